@@ -1,23 +1,49 @@
 #include "server/cli/cli.hpp"
 
+#include <exception>
 #include <ostream>
+
+#include "server/cli/args.hpp"
+#include "server/cli/commands.hpp"
 
 namespace avk::server {
 
 namespace {
 void usage(std::ostream& out) {
   out << "usage: avk <command> [options]\n"
-         "commands:\n"
-         "  turn normalize   read turn records, print them normalised\n"
-         "  ckt build|export|import|query\n";
+         "\n"
+         "  avk turn normalize [FILE|-] [--format text|json]\n"
+         "      read turn records (text records or JSON, one a line), print them normalised\n"
+         "  avk ckt build --turns FILE [--out FILE] [--format json|csv] [--vehicle ID]\n"
+         "                [--vehicle-length M] [--fit arc_length_spline|poly4_xy] [--epsilon M]\n"
+         "      build the Cached Kinematics Table from turn records and write the CKT file\n"
+         "  avk ckt export (--turns FILE | --ckt FILE) [--out FILE] [--format json|csv]\n"
+         "      write a CKT file (JSON) or its vertices as CSV\n"
+         "  avk ckt import FILE [--out FILE] [--format json|csv]\n"
+         "      check a CKT file and summarise it; nothing partial is ever loaded\n"
+         "  avk ckt query --ckt FILE --speed M/S --dheading DEG [--x M --y M --heading DEG]\n"
+         "                [--format json|csv]\n"
+         "      predicted trajectory of one turn (placed at a pose when one is given)\n";
 }
 }  // namespace
 
-int run_cli(const std::vector<std::string>& args, std::istream&, std::ostream& out,
+int run_cli(const std::vector<std::string>& args, std::istream& in, std::ostream& out,
             std::ostream& err) {
-  if (args.empty() || args[0] == "--help" || args[0] == "-h") {
+  if (args.empty() || args[0] == "--help" || args[0] == "-h" || args[0] == "help") {
     usage(args.empty() ? err : out);
     return args.empty() ? 2 : 0;
+  }
+  Io io{in, out, err};
+  const std::vector<std::string> rest(args.begin() + 1, args.end());
+  try {
+    if (args[0] == "turn") return cmd_turn(rest, io);
+    if (args[0] == "ckt") return cmd_ckt(rest, io);
+  } catch (const UsageError& e) {
+    err << "avk " << args[0] << ": " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    err << "avk " << args[0] << ": " << e.what() << "\n";
+    return 1;
   }
   err << "avk: unknown command '" << args[0] << "'\n";
   usage(err);

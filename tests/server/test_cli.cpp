@@ -1,23 +1,167 @@
 #include <gtest/gtest.h>
 
+#include <filesystem>
+#include <fstream>
 #include <sstream>
 
+#include <nlohmann/json.hpp>
+
+#include "kinematics/ckt_file.hpp"
+#include "kinematics/turn_text.hpp"
 #include "server/cli/cli.hpp"
+#include "support/synthetic_turns.hpp"
+
+namespace fs = std::filesystem;
 
 namespace {
-int run(const std::vector<std::string>& args, std::string& out, std::string& err,
-        const std::string& input = "") {
+
+struct Result {
+  int rc;
+  std::string out;
+  std::string err;
+};
+
+Result run(const std::vector<std::string>& args, const std::string& input = "") {
   std::istringstream in(input);
   std::ostringstream o, e;
   const int rc = avk::server::run_cli(args, in, o, e);
-  out = o.str();
-  err = e.str();
-  return rc;
+  return {rc, o.str(), e.str()};
 }
+
+std::string slurp(const fs::path& p) {
+  std::ifstream f(p);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+class CliFiles : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("avk_cli_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    std::ofstream turns(path("turns.txt"));
+    turns << "# two cells, two turns each\n";
+    unsigned seed = 1;
+    for (double d : {40.0, 90.0}) {
+      for (int r = 0; r < 2; ++r) {
+        avk::testing::ArcTurnSpec s;
+        s.dheading_deg = r ? -d : d;
+        s.seed = seed++;
+        s.start = {5.0 * seed, 1.0, 20.0 * seed};
+        s.position_noise_m = 0.02;
+        turns << avk::kinematics::to_text_record(avk::testing::make_arc_turn(s)) << "\n";
+      }
+    }
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string path(const std::string& name) const { return (dir_ / name).string(); }
+
+  fs::path dir_;
+};
+
 }  // namespace
 
 TEST(Cli, UnknownCommandIsAnErrorThatNamesIt) {
-  std::string out, err;
-  EXPECT_EQ(run({"frobnicate"}, out, err), 2);
-  EXPECT_NE(err.find("frobnicate"), std::string::npos);
+  const Result r = run({"frobnicate"});
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_NE(r.err.find("frobnicate"), std::string::npos);
+}
+
+TEST(Cli, UnknownOptionAndBadNumberAreUsageErrors) {
+  Result r = run({"ckt", "query", "--ckt", "x.json", "--sped", "1"});
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_NE(r.err.find("--sped"), std::string::npos);
+  r = run({"ckt", "query", "--ckt", "x.json", "--speed", "fast", "--dheading", "10"});
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_NE(r.err.find("--speed"), std::string::npos);
+  r = run({"ckt", "query", "--ckt", "x.json", "--speed", "nan", "--dheading", "10"});
+  EXPECT_EQ(r.rc, 2);
+}
+
+TEST_F(CliFiles, TurnNormalizeMakesRightTurnsFromTheOrigin) {
+  const Result r = run({"turn", "normalize", path("turns.txt")});
+  ASSERT_EQ(r.rc, 0) << r.err;
+  std::istringstream lines(r.out);
+  std::string line;
+  int n = 0;
+  while (std::getline(lines, line)) {
+    const auto t = avk::kinematics::parse_text_record(line);
+    EXPECT_TRUE(t.meta().normalized);
+    EXPECT_DOUBLE_EQ(t.samples().front().x_m, 0.0);
+    EXPECT_GT(t.samples().back().x_m, 0.0);
+    ++n;
+  }
+  EXPECT_EQ(n, 4);
+  const Result j = run({"turn", "normalize", "-", "--format", "json"}, slurp(path("turns.txt")));
+  ASSERT_EQ(j.rc, 0) << j.err;
+  EXPECT_EQ(j.out.rfind("{", 0), 0u);
+}
+
+TEST_F(CliFiles, BadTurnRecordNamesFileAndLine) {
+  std::ofstream(path("turns.txt"), std::ios::app) << "AVKTURN/1 garbage\n";
+  const Result r = run({"ckt", "build", "--turns", path("turns.txt"), "--out", path("ckt.json")});
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.err.find("turns.txt:6:"), std::string::npos) << r.err;
+  EXPECT_FALSE(fs::exists(path("ckt.json")));
+}
+
+TEST_F(CliFiles, BuildImportQueryExport) {
+  Result r = run({"ckt", "build", "--turns", path("turns.txt"), "--out", path("ckt.json"),
+                  "--vehicle", "boat-7"});
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const std::string written = slurp(path("ckt.json"));
+  const auto table = avk::kinematics::parse_ckt_json(written);
+  EXPECT_EQ(table.vehicle_id, "boat-7");
+  EXPECT_EQ(table.cells().size(), 2u);
+
+  r = run({"ckt", "import", path("ckt.json"), "--out", path("again.json")});
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.err.find("2 cells with turns, 4 turns"), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(path("again.json")), written);
+
+  r = run({"ckt", "query", "--ckt", path("ckt.json"), "--speed", "1", "--dheading", "-65"});
+  ASSERT_EQ(r.rc, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["frame"], "normalized");
+  EXPECT_LT(j["trajectory"].back()[0].get<double>(), 0.0);  // a left turn ends to port
+
+  r = run({"ckt", "query", "--ckt", path("ckt.json"), "--speed", "1", "--dheading", "90", "--x",
+           "100", "--y", "50", "--heading", "90", "--format", "csv"});
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.out.find("0,100.0,50.0\n"), std::string::npos) << r.out;
+
+  r = run({"ckt", "export", "--ckt", path("ckt.json"), "--format", "csv"});
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("speed_mps,dheading_deg,vertex_index,x_m,y_m\n", 0), 0u);
+}
+
+TEST_F(CliFiles, OutOfRangeSpeedIsRefused) {
+  ASSERT_EQ(run({"ckt", "build", "--turns", path("turns.txt"), "--out", path("ckt.json")}).rc, 0);
+  const Result r =
+      run({"ckt", "query", "--ckt", path("ckt.json"), "--speed", "2", "--dheading", "10"});
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.err.find("outside the table's range"), std::string::npos) << r.err;
+}
+
+TEST_F(CliFiles, CorruptCktIsRefusedAndExistingOutputKept) {
+  ASSERT_EQ(run({"ckt", "build", "--turns", path("turns.txt"), "--out", path("ckt.json")}).rc, 0);
+  const std::string good = slurp(path("ckt.json"));
+  std::string bad = good;
+  bad.replace(bad.find("\"schema_version\": 1"), 19, "\"schema_version\": 9");
+  std::ofstream(path("bad.json")) << bad;
+  Result r = run({"ckt", "import", path("bad.json"), "--out", path("ckt.json")});
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.err.find("schema_version"), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(path("ckt.json")), good);  // the existing file is untouched
+  std::ofstream(path("trunc.json")) << good.substr(0, good.size() / 3);
+  r = run({"ckt", "import", path("trunc.json")});
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.err.find("line"), std::string::npos) << r.err;
+  r = run({"ckt", "import", path("missing.json")});
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.err.find("missing.json"), std::string::npos) << r.err;
 }

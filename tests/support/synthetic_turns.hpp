@@ -6,6 +6,7 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "kinematics/angles.hpp"
 #include "kinematics/geometry.hpp"
@@ -27,6 +28,19 @@ struct ArcTurnSpec {
   std::string vehicle_id = "test";
   std::string mission_id = "m1";
 };
+
+// Normalised right turn without lead-in: centre (R, 0), starting at the origin heading north,
+// sampled every step_m of arc length.
+inline kinematics::Polyline circular_arc(double radius_m, double dheading_deg, double step_m) {
+  const double total = radius_m * kinematics::deg_to_rad(dheading_deg);
+  kinematics::Polyline out;
+  const auto n = static_cast<int>(std::ceil(total / step_m));
+  for (int k = 0; k <= n; ++k) {
+    const double a = std::min(total, k * step_m) / radius_m;
+    out.push_back({radius_m * (1.0 - std::cos(a)), radius_m * std::sin(a)});
+  }
+  return out;
+}
 
 // Point at arc length s along the analytic normalised right turn, and its heading change (deg).
 inline kinematics::Point arc_turn_point(const ArcTurnSpec& spec, double s, double* heading_deg) {
@@ -89,6 +103,37 @@ inline kinematics::TurnSequence make_arc_turn(const ArcTurnSpec& spec) {
   turn.fill_derived_metadata();
   turn.meta().initial_heading_deg = spec.start.heading_deg;
   return turn;
+}
+
+// The thesis' Figure 4-1 grid (10..160 deg x 0.5, 1.0, 1.5 m/s), `per_cell` turns a cell with
+// alternating sides, from scattered start poses, for a vehicle whose lead-in (0.5 + u m) and
+// radius (1 + 2u m) grow with speed.
+inline std::vector<kinematics::TurnSequence> thesis_grid_turns(int per_cell, double dt_s,
+                                                               double position_noise_m,
+                                                               double heading_noise_deg = 0.0) {
+  std::vector<kinematics::TurnSequence> turns;
+  unsigned seed = 1;
+  for (double u : {0.5, 1.0, 1.5}) {
+    for (double d : {10.0, 40.0, 70.0, 100.0, 130.0, 160.0}) {
+      for (int r = 0; r < per_cell; ++r) {
+        ArcTurnSpec s;
+        s.speed_mps = u;
+        s.dheading_deg = r % 2 ? -d : d;
+        s.lead_in_m = 0.5 + u;
+        s.radius_m = 1.0 + 2.0 * u;
+        s.dt_s = dt_s;
+        s.position_noise_m = position_noise_m;
+        s.heading_noise_deg = heading_noise_deg;
+        s.seed = seed;
+        s.start = {-40.0 + 7.0 * (seed % 11), 25.0 - 5.0 * (seed % 9), 31.0 * seed};
+        s.vehicle_id = "synthetic";
+        s.mission_id = "example";
+        ++seed;
+        turns.push_back(make_arc_turn(s));
+      }
+    }
+  }
+  return turns;
 }
 
 }  // namespace avk::testing

@@ -1,0 +1,451 @@
+#include "kinematics/ckt.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+#include "kinematics/angles.hpp"
+#include "kinematics/mean_turn.hpp"
+#include "kinematics/simplify.hpp"
+#include "kinematics/turn_measures.hpp"
+#include "kinematics/turn_metrics.hpp"
+
+namespace avk::kinematics {
+
+namespace {
+
+constexpr double kGridEps = 1e-9;
+
+std::string fmt(double v) {
+  std::ostringstream o;
+  o << v;
+  return o.str();
+}
+
+std::vector<double> distinct_sorted(std::vector<double> v, double quantum) {
+  for (double& x : v)
+    x = std::round(x / quantum) * quantum;
+  std::sort(v.begin(), v.end());
+  v.erase(std::unique(v.begin(), v.end(), [&](double a, double b) { return b - a < quantum / 2; }),
+          v.end());
+  return v;
+}
+
+std::optional<std::size_t> nearest_index(const std::vector<double>& values, double v, double tol) {
+  std::optional<std::size_t> best;
+  double best_d = tol;
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const double d = std::abs(values[i] - v);
+    if (d <= best_d) {
+      best = i;
+      best_d = d;
+    }
+  }
+  return best;
+}
+
+// A profile blended from several cells with weights; reconstructs the trajectory of a turn of
+// `dheading_deg` from it. Breakpoints are the union of the sources' breakpoints so one source
+// with weight 1 reproduces its trajectory exactly.
+struct WeightedProfile {
+  const HeadingProfile* profile;
+  double weight;
+};
+
+Polyline reconstruct(const std::vector<WeightedProfile>& sources, double length_m,
+                     double dheading_deg) {
+  std::vector<double> breaks;
+  for (const auto& s : sources)
+    breaks.insert(breaks.end(), s.profile->breaks.begin(), s.profile->breaks.end());
+  std::sort(breaks.begin(), breaks.end());
+  breaks.erase(std::unique(breaks.begin(), breaks.end()), breaks.end());
+  std::vector<std::size_t> cursor(sources.size(), 0);
+  Polyline out;
+  out.reserve(breaks.size());
+  Point p{0.0, 0.0};
+  out.push_back(p);
+  for (std::size_t j = 0; j + 1 < breaks.size(); ++j) {
+    const double mid = 0.5 * (breaks[j] + breaks[j + 1]);
+    double fraction = 0.0;
+    for (std::size_t i = 0; i < sources.size(); ++i) {
+      const HeadingProfile& hp = *sources[i].profile;
+      while (cursor[i] + 1 < hp.fraction.size() && hp.breaks[cursor[i] + 1] <= mid)
+        ++cursor[i];
+      fraction += sources[i].weight * hp.fraction[cursor[i]];
+    }
+    const double heading = deg_to_rad(fraction * dheading_deg);
+    const double ds = (breaks[j + 1] - breaks[j]) * length_m;
+    p = {p.x_m + ds * std::sin(heading), p.y_m + ds * std::cos(heading)};
+    out.push_back(p);
+  }
+  return out;
+}
+
+Polyline reflect_x(Polyline line) {
+  for (Point& p : line)
+    p.x_m = 0.0 - p.x_m;  // not -x: keeps the lead-in at +0, not -0
+  return line;
+}
+
+// Lead-in plus constant-radius arc fitted to one cell's advance and transfer, used to carry a
+// cell's statistics to heading changes outside the table.
+AdvanceTransfer arc_model_extrapolate(const CktCell& c, double dheading_deg) {
+  const double d0 = deg_to_rad(c.dheading_deg);
+  const double d = deg_to_rad(dheading_deg);
+  const double radius = c.transfer_m.mean / std::max(1e-9, 1.0 - std::cos(d0));
+  const double lead_in = c.advance_m.mean - radius * std::sin(d0);
+  return {lead_in + radius * std::sin(d), radius * (1.0 - std::cos(d))};
+}
+
+}  // namespace
+
+MeanSd mean_sd(const std::vector<double>& values) {
+  MeanSd r;
+  if (values.empty()) return r;
+  r.mean = std::accumulate(values.begin(), values.end(), 0.0) / static_cast<double>(values.size());
+  if (values.size() > 1) {
+    double ss = 0.0;
+    for (double v : values)
+      ss += (v - r.mean) * (v - r.mean);
+    r.sd = std::sqrt(ss / static_cast<double>(values.size() - 1));
+  }
+  return r;
+}
+
+HeadingProfile heading_profile(const Polyline& trajectory, double goal_dheading_deg) {
+  HeadingProfile hp;
+  const std::vector<double> s = cumulative_arc_length_m(trajectory);
+  hp.length_m = s.empty() ? 0.0 : s.back();
+  if (trajectory.size() < 2 || !(hp.length_m > 0.0) || goal_dheading_deg == 0.0) {
+    hp.breaks = {0.0, 1.0};
+    hp.fraction = {0.0};
+    return hp;
+  }
+  double previous = 0.0;  // unwrapped heading change, starting north
+  hp.breaks.push_back(0.0);
+  for (std::size_t i = 1; i < trajectory.size(); ++i) {
+    const double len = s[i] - s[i - 1];
+    if (len <= 0.0) continue;
+    const double h = heading_of_deg(trajectory[i].x_m - trajectory[i - 1].x_m,
+                                    trajectory[i].y_m - trajectory[i - 1].y_m);
+    const double unwrapped = previous + angle180_deg(h - previous);
+    previous = unwrapped;
+    hp.fraction.push_back(unwrapped / goal_dheading_deg);
+    hp.breaks.push_back(s[i] / hp.length_m);
+  }
+  hp.breaks.back() = 1.0;
+  return hp;
+}
+
+const CktCell& Ckt::cell(std::size_t speed_index, std::size_t dheading_index) const {
+  return cells_.at(speed_index * grid_.dheadings_deg.size() + dheading_index);
+}
+
+std::optional<std::size_t> Ckt::speed_index(double speed_mps) const {
+  return nearest_index(grid_.speeds_mps, speed_mps, kGridEps);
+}
+
+std::optional<std::size_t> Ckt::dheading_index(double dheading_deg) const {
+  return nearest_index(grid_.dheadings_deg, dheading_deg, kGridEps);
+}
+
+Ckt Ckt::build(const std::vector<TurnSequence>& turns, const CktOptions& options,
+               std::optional<CktGrid> grid, CktBuildReport* report) {
+  CktBuildReport local;
+  CktBuildReport& rep = report ? *report : local;
+  if (!grid) {
+    std::vector<double> speeds, dheadings;
+    for (const auto& t : turns) {
+      if (t.meta().status != TurnStatus::ok) continue;
+      speeds.push_back(t.meta().commanded_speed_mps);
+      dheadings.push_back(std::abs(t.meta().goal_dheading_deg));
+    }
+    grid = CktGrid{distinct_sorted(speeds, 0.01), distinct_sorted(dheadings, 0.1)};
+  }
+  for (double d : grid->dheadings_deg) {
+    if (!(d > 0.0 && d <= 180.0)) {
+      throw std::invalid_argument("CKT heading change " + fmt(d) + " deg is outside (0, 180]");
+    }
+  }
+  Ckt table;
+  table.grid_ = *grid;
+  table.options_ = options;
+  const std::size_t ns = grid->speeds_mps.size(), nd = grid->dheadings_deg.size();
+  table.cells_.resize(ns * nd);
+  for (std::size_t i = 0; i < ns; ++i) {
+    for (std::size_t j = 0; j < nd; ++j) {
+      table.cells_[i * nd + j].speed_mps = grid->speeds_mps[i];
+      table.cells_[i * nd + j].dheading_deg = grid->dheadings_deg[j];
+    }
+  }
+  for (const auto& t : turns) {
+    if (t.meta().status != TurnStatus::ok) {
+      ++rep.turns_skipped_status;
+      continue;
+    }
+    const auto si =
+        nearest_index(grid->speeds_mps, t.meta().commanded_speed_mps, options.speed_match_mps);
+    const auto di = nearest_index(grid->dheadings_deg, std::abs(t.meta().goal_dheading_deg),
+                                  options.dheading_match_deg);
+    if (!si || !di) {
+      ++rep.turns_unassigned;
+      continue;
+    }
+    table.cells_[*si * nd + *di].turns.push_back(t.normalized());
+    ++rep.turns_used;
+  }
+  for (CktCell& c : table.cells_) {
+    c.n_turns = c.turns.size();
+    if (c.turns.empty()) continue;
+    std::vector<Polyline> paths;
+    std::vector<double> advances, transfers;
+    paths.reserve(c.turns.size());
+    for (const auto& t : c.turns) {
+      paths.push_back(t.points());
+      const AdvanceTransfer at = advance_transfer(paths.back());
+      advances.push_back(at.advance_m);
+      transfers.push_back(at.transfer_m);
+    }
+    c.advance_m = mean_sd(advances);
+    c.transfer_m = mean_sd(transfers);
+    if (paths.size() >= 2) {
+      c.avk_error_m2 =
+          cell_errors(paths, c.dheading_deg, {options.mean_x_step_m, 0.0}).avk_error_m2;
+    }
+    c.mean_turn =
+        mean_turn(paths, c.dheading_deg, {options.mean_x_step_m, options.mean_x_margin_m}).points();
+    c.fit = fit_curve(options.fit_kind, c.mean_turn);
+    c.trajectory = piecewise_linear(c.fit, options.pwl_epsilon_m);
+    // Every normalised turn starts at the origin; the fit misses it by its residual, and a
+    // y = f(x) fit cannot hold the straight lead-in at all (then the origin is a new vertex).
+    if (!c.trajectory.empty()) {
+      if (distance_m(c.trajectory.front(), {0.0, 0.0}) > options.pwl_epsilon_m) {
+        c.trajectory.insert(c.trajectory.begin(), Point{0.0, 0.0});
+      } else {
+        c.trajectory.front() = {0.0, 0.0};
+      }
+    }
+    // The fit rounds off the corner where the mean turn runs onto its goal ray; the trajectory
+    // ends with an explicit segment on the goal heading so it (and every blend of it) ends there.
+    if (c.trajectory.size() >= 2) {
+      const Point& a = c.trajectory[c.trajectory.size() - 2];
+      const Point& b = c.trajectory.back();
+      const double end_heading = heading_of_deg(b.x_m - a.x_m, b.y_m - a.y_m);
+      if (std::abs(angle180_deg(end_heading - c.dheading_deg)) > 1e-6) {
+        const double goal = deg_to_rad(c.dheading_deg);
+        const double tail = std::max(options.mean_x_margin_m, 4.0 * options.pwl_epsilon_m);
+        c.trajectory.push_back({b.x_m + tail * std::sin(goal), b.y_m + tail * std::cos(goal)});
+      }
+    }
+    c.profile = heading_profile(c.trajectory, c.dheading_deg);
+  }
+  return table;
+}
+
+Ckt Ckt::from_cells(CktGrid grid, std::vector<CktCell> cells, CktOptions options) {
+  Ckt table;
+  const std::size_t ns = grid.speeds_mps.size(), nd = grid.dheadings_deg.size();
+  table.grid_ = std::move(grid);
+  table.options_ = options;
+  table.cells_.resize(ns * nd);
+  for (std::size_t i = 0; i < ns; ++i) {
+    for (std::size_t j = 0; j < nd; ++j) {
+      table.cells_[i * nd + j].speed_mps = table.grid_.speeds_mps[i];
+      table.cells_[i * nd + j].dheading_deg = table.grid_.dheadings_deg[j];
+    }
+  }
+  for (CktCell& c : cells) {
+    const auto si = table.speed_index(c.speed_mps);
+    const auto di = table.dheading_index(c.dheading_deg);
+    if (!si || !di) {
+      throw std::invalid_argument("cell (" + fmt(c.speed_mps) + " m/s, " + fmt(c.dheading_deg) +
+                                  " deg) is not on the table's grid");
+    }
+    c.profile = heading_profile(c.trajectory, c.dheading_deg);
+    table.cells_[*si * nd + *di] = std::move(c);
+  }
+  return table;
+}
+
+std::optional<std::pair<double, double>> Ckt::speed_range_mps() const {
+  std::optional<std::pair<double, double>> r;
+  const std::size_t nd = grid_.dheadings_deg.size();
+  for (std::size_t i = 0; i < grid_.speeds_mps.size(); ++i) {
+    for (std::size_t j = 0; j < nd; ++j) {
+      if (!cells_[i * nd + j].has_data()) continue;
+      const double u = grid_.speeds_mps[i];
+      if (!r) r = {u, u};
+      r->first = std::min(r->first, u);
+      r->second = std::max(r->second, u);
+      break;
+    }
+  }
+  return r;
+}
+
+namespace {
+
+struct RowAnswer {
+  std::vector<WeightedProfile> profiles;
+  double length_m = 0.0;
+  AdvanceTransfer at;
+  bool exact = false;
+  bool extrapolated = false;
+};
+
+// The answer within one speed row for |dheading| d: one cell, a blend of the two neighbouring
+// cells, or the nearest cell carried beyond the row's range.
+RowAnswer answer_row(const std::vector<const CktCell*>& row, double d) {
+  RowAnswer a;
+  const CktCell* lo = nullptr;
+  const CktCell* hi = nullptr;
+  for (const CktCell* c : row) {
+    if (std::abs(c->dheading_deg - d) <= kGridEps) {
+      a.profiles.push_back({&c->profile, 1.0});
+      a.length_m = c->profile.length_m;
+      a.at = {c->advance_m.mean, c->transfer_m.mean};
+      a.exact = true;
+      return a;
+    }
+    if (c->dheading_deg < d) lo = c;
+    if (c->dheading_deg > d && !hi) hi = c;
+  }
+  if (lo && hi) {
+    const double w = (d - lo->dheading_deg) / (hi->dheading_deg - lo->dheading_deg);
+    a.profiles = {{&lo->profile, 1.0 - w}, {&hi->profile, w}};
+    a.length_m = (1.0 - w) * lo->profile.length_m + w * hi->profile.length_m;
+    a.at = {(1.0 - w) * lo->advance_m.mean + w * hi->advance_m.mean,
+            (1.0 - w) * lo->transfer_m.mean + w * hi->transfer_m.mean};
+    return a;
+  }
+  const CktCell* near = lo ? lo : hi;
+  a.extrapolated = true;
+  a.profiles = {{&near->profile, 1.0}};
+  a.at = arc_model_extrapolate(*near, d);
+  // The turning part grows with the heading change at the cell's radius; the lead-in does not.
+  const double radius =
+      near->transfer_m.mean / std::max(1e-9, 1.0 - std::cos(deg_to_rad(near->dheading_deg)));
+  a.length_m = std::max(near->profile.length_m * 0.25,
+                        near->profile.length_m + radius * deg_to_rad(d - near->dheading_deg));
+  return a;
+}
+
+}  // namespace
+
+TurnPrediction Ckt::query(double speed_mps, double dheading_deg) const {
+  if (!std::isfinite(speed_mps) || !std::isfinite(dheading_deg)) {
+    throw std::invalid_argument("speed and heading change must be finite numbers");
+  }
+  if (dheading_deg < -180.0 || dheading_deg > 180.0) {
+    throw CktRangeError("heading change " + fmt(dheading_deg) + " deg is outside [-180, 180]");
+  }
+  const auto range = speed_range_mps();
+  if (!range) throw CktRangeError("the table holds no turns");
+  if (speed_mps < range->first - kGridEps || speed_mps > range->second + kGridEps) {
+    throw CktRangeError("speed " + fmt(speed_mps) + " m/s is outside the table's range " +
+                        fmt(range->first) + "-" + fmt(range->second) + " m/s");
+  }
+  const double d = std::abs(dheading_deg);
+  const std::size_t nd = grid_.dheadings_deg.size();
+  // Bracketing speed rows among the rows that hold data.
+  std::optional<std::size_t> row_lo, row_hi;
+  for (std::size_t i = 0; i < grid_.speeds_mps.size(); ++i) {
+    bool has = false;
+    for (std::size_t j = 0; j < nd && !has; ++j)
+      has = cells_[i * nd + j].has_data();
+    if (!has) continue;
+    if (grid_.speeds_mps[i] <= speed_mps + kGridEps) row_lo = i;
+    if (grid_.speeds_mps[i] >= speed_mps - kGridEps && !row_hi) row_hi = i;
+  }
+  const auto row_cells = [&](std::size_t i) {
+    std::vector<const CktCell*> row;
+    for (std::size_t j = 0; j < nd; ++j) {
+      if (cells_[i * nd + j].has_data()) row.push_back(&cells_[i * nd + j]);
+    }
+    return row;
+  };
+  TurnPrediction p;
+  p.speed_mps = speed_mps;
+  p.dheading_deg = dheading_deg;
+  std::vector<WeightedProfile> profiles;
+  double length_m = 0.0;
+  AdvanceTransfer at;
+  const RowAnswer a = answer_row(row_cells(*row_lo), d);
+  if (*row_lo == *row_hi || std::abs(grid_.speeds_mps[*row_lo] - speed_mps) <= kGridEps) {
+    profiles = a.profiles;
+    length_m = a.length_m;
+    at = a.at;
+    p.exact_cell = a.exact;
+    p.extrapolated = a.extrapolated;
+  } else {
+    const RowAnswer b = answer_row(row_cells(*row_hi), d);
+    const double w = (speed_mps - grid_.speeds_mps[*row_lo]) /
+                     (grid_.speeds_mps[*row_hi] - grid_.speeds_mps[*row_lo]);
+    for (auto wp : a.profiles)
+      profiles.push_back({wp.profile, wp.weight * (1.0 - w)});
+    for (auto wp : b.profiles)
+      profiles.push_back({wp.profile, wp.weight * w});
+    length_m = (1.0 - w) * a.length_m + w * b.length_m;
+    at = {(1.0 - w) * a.at.advance_m + w * b.at.advance_m,
+          (1.0 - w) * a.at.transfer_m + w * b.at.transfer_m};
+    p.extrapolated = a.extrapolated || b.extrapolated;
+  }
+  if (p.exact_cell) {
+    const CktCell& c = cell(*row_lo, *dheading_index(d));
+    p.trajectory = c.trajectory;
+  } else {
+    // The blend has the union of its sources' vertices; thin it to the table's tolerance but
+    // keep the final segment, which carries the goal heading.
+    Polyline full = reconstruct(profiles, length_m, d);
+    const Point last = full.back();
+    full.pop_back();
+    p.trajectory = full.size() > 2 ? simplify_polyline(full, options_.pwl_epsilon_m) : full;
+    p.trajectory.push_back(last);
+  }
+  p.advance_m = at.advance_m;
+  p.transfer_m = at.transfer_m;
+  if (dheading_deg < 0.0) p.trajectory = reflect_x(std::move(p.trajectory));
+  return p;
+}
+
+MaterializedCkt::MaterializedCkt(const Ckt& table, FineGridSpec spec) : spec_(spec) {
+  if (!(spec.speed_step_mps > 0.0) || !(spec.dheading_step_deg > 0.0)) {
+    throw std::invalid_argument("fine grid steps must be positive");
+  }
+  const auto range = table.speed_range_mps();
+  if (!range) throw CktRangeError("the table holds no turns");
+  speed_min_mps_ = range->first;
+  speed_count_ = static_cast<std::size_t>(
+                     std::floor((range->second - range->first) / spec.speed_step_mps + 1e-9)) +
+                 1;
+  dheading_count_ = static_cast<std::size_t>(std::floor(180.0 / spec.dheading_step_deg + 1e-9)) + 1;
+  entries_.reserve(speed_count_ * dheading_count_);
+  for (std::size_t i = 0; i < speed_count_; ++i) {
+    const double u =
+        std::min(range->second, speed_min_mps_ + static_cast<double>(i) * spec.speed_step_mps);
+    for (std::size_t j = 0; j < dheading_count_; ++j) {
+      const double d = std::min(180.0, static_cast<double>(j) * spec.dheading_step_deg);
+      entries_.push_back(table.query(u, d));
+    }
+  }
+}
+
+MaterializedCkt::Lookup MaterializedCkt::lookup(double speed_mps, double dheading_deg) const {
+  const double top = speed_min_mps_ + static_cast<double>(speed_count_ - 1) * spec_.speed_step_mps;
+  if (!(speed_mps >= speed_min_mps_ - 0.5 * spec_.speed_step_mps &&
+        speed_mps <= top + 0.5 * spec_.speed_step_mps) ||
+      !(std::abs(dheading_deg) <= 180.0)) {
+    throw CktRangeError("speed " + fmt(speed_mps) + " m/s or heading change " + fmt(dheading_deg) +
+                        " deg is outside the materialised table");
+  }
+  const auto i = static_cast<std::size_t>(
+      std::clamp<long>(std::lround((speed_mps - speed_min_mps_) / spec_.speed_step_mps), 0,
+                       static_cast<long>(speed_count_) - 1));
+  const auto j = static_cast<std::size_t>(
+      std::clamp<long>(std::lround(std::abs(dheading_deg) / spec_.dheading_step_deg), 0,
+                       static_cast<long>(dheading_count_) - 1));
+  return {&entries_[i * dheading_count_ + j], side_of(dheading_deg)};
+}
+
+}  // namespace avk::kinematics

@@ -1,0 +1,167 @@
+#pragma once
+// The Cached Kinematics Table (thesis §3.2): turn trajectories over speed x heading change.
+//
+// Every cell trajectory is a normalised right turn (start at the origin heading north); a left
+// turn is its reflection across the y axis. Past its last vertex a trajectory continues along the
+// goal heading. Between cells, trajectories are interpolated in their heading profile over
+// fraction of arc length (never by averaging y at equal x across different heading changes), so
+// an interpolated turn ends on the requested heading.
+
+#include <cstddef>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "kinematics/curve_fit.hpp"
+#include "kinematics/geometry.hpp"
+#include "kinematics/turn_sequence.hpp"
+
+namespace avk::kinematics {
+
+struct MeanSd {
+  double mean = 0.0;
+  double sd = 0.0;  // sample standard deviation (n - 1); 0 for a single value
+  friend bool operator==(const MeanSd&, const MeanSd&) = default;
+};
+MeanSd mean_sd(const std::vector<double>& values);
+
+struct CktOptions {
+  FitKind fit_kind = FitKind::arc_length_spline;
+  double pwl_epsilon_m = 0.05;
+  double mean_x_step_m = 0.01;
+  // The representative mean turn runs this far (in x) past the set's largest x so that it ends
+  // on the goal heading; the thesis' metrics keep using the unextended domain.
+  double mean_x_margin_m = 0.5;
+  // A turn belongs to a grid cell when its commanded speed and |goal| are this close to it.
+  double speed_match_mps = 0.05;
+  double dheading_match_deg = 0.5;
+  friend bool operator==(const CktOptions&, const CktOptions&) = default;
+};
+
+struct CktGrid {
+  std::vector<double> speeds_mps;     // ascending
+  std::vector<double> dheadings_deg;  // ascending, each in (0, 180]
+  friend bool operator==(const CktGrid&, const CktGrid&) = default;
+};
+
+// Heading change as a step function of fraction of arc length: on [breaks[j], breaks[j+1]) the
+// heading is fraction[j] * goal. Derived from a cell's trajectory; reconstructing it reproduces
+// the trajectory exactly.
+struct HeadingProfile {
+  double length_m = 0.0;
+  std::vector<double> breaks;    // size m + 1, from 0 to 1
+  std::vector<double> fraction;  // size m
+};
+
+struct CktCell {
+  double speed_mps = 0.0;
+  double dheading_deg = 0.0;  // > 0: the table stores right turns
+  std::size_t n_turns = 0;
+  MeanSd advance_m;
+  MeanSd transfer_m;
+  std::optional<double> avk_error_m2;  // mean MSE of the turns against their mean; needs 2 turns
+  CurveFit fit;
+  Polyline trajectory;              // piecewise-linear approximation of the fit of the mean turn
+  HeadingProfile profile;           // derived from trajectory
+  std::vector<TurnSequence> turns;  // the observed turns, normalised (empty when loaded from file)
+  Polyline mean_turn;               // the representative mean turn (empty when loaded from file)
+
+  bool has_data() const { return n_turns > 0; }
+};
+
+// What a query answers: a normalised trajectory (reflected for a left turn), and the expected
+// advance and transfer at the end of the turn (transfer positive towards the turn side).
+struct TurnPrediction {
+  double speed_mps = 0.0;
+  double dheading_deg = 0.0;  // signed as asked
+  Polyline trajectory;
+  double advance_m = 0.0;
+  double transfer_m = 0.0;
+  bool exact_cell = false;    // answered by one cell, not interpolated
+  bool extrapolated = false;  // |dheading| outside the heading changes the table holds
+};
+
+class CktRangeError : public std::out_of_range {
+ public:
+  using std::out_of_range::out_of_range;
+};
+
+struct CktBuildReport {
+  std::size_t turns_used = 0;
+  std::size_t turns_skipped_status = 0;  // aborted or rejected
+  std::size_t turns_unassigned = 0;      // no grid cell within the match tolerances
+  std::vector<std::string> warnings;
+};
+
+class Ckt {
+ public:
+  Ckt() = default;
+
+  // Builds the table from turns (raw or normalised; only status ok is used). Without a grid the
+  // grid is the set of distinct commanded speeds and |goal| heading changes.
+  static Ckt build(const std::vector<TurnSequence>& turns, const CktOptions& options = {},
+                   std::optional<CktGrid> grid = std::nullopt, CktBuildReport* report = nullptr);
+
+  // Assembles a table from stored cells (the CKT file); derives each cell's profile.
+  static Ckt from_cells(CktGrid grid, std::vector<CktCell> cells, CktOptions options);
+
+  const CktGrid& grid() const { return grid_; }
+  const CktOptions& options() const { return options_; }
+  const std::vector<CktCell>& cells() const { return cells_; }  // row-major: speed, dheading
+  const CktCell& cell(std::size_t speed_index, std::size_t dheading_index) const;
+  std::optional<std::size_t> speed_index(double speed_mps) const;  // exact grid match
+  std::optional<std::size_t> dheading_index(double dheading_deg) const;
+
+  std::string vehicle_id;
+  std::optional<double> vehicle_length_m;
+  std::string created_utc;  // ISO 8601
+
+  // Speeds the table can answer: the range of speed rows that hold at least one turn.
+  std::optional<std::pair<double, double>> speed_range_mps() const;
+
+  // Any speed within speed_range_mps and any heading change in [-180, 180]. Throws
+  // CktRangeError for a speed outside the range, std::invalid_argument for non-finite input.
+  TurnPrediction query(double speed_mps, double dheading_deg) const;
+
+ private:
+  CktGrid grid_;
+  CktOptions options_;
+  std::vector<CktCell> cells_;
+};
+
+// Derives the step-function heading profile of a normalised trajectory.
+HeadingProfile heading_profile(const Polyline& trajectory, double goal_dheading_deg);
+
+// The fine table guidance uses (default 0.1 m/s x 1 deg), computed once so that a lookup is an
+// index computation.
+struct FineGridSpec {
+  double speed_step_mps = 0.1;
+  double dheading_step_deg = 1.0;
+};
+
+class MaterializedCkt {
+ public:
+  MaterializedCkt(const Ckt& table, FineGridSpec spec = {});
+
+  struct Lookup {
+    const TurnPrediction* right_turn;  // the stored right turn; reflect x for a left turn
+    TurnSide side;
+  };
+  // The nearest fine cell. Throws CktRangeError outside the speed range.
+  Lookup lookup(double speed_mps, double dheading_deg) const;
+
+  std::size_t speed_count() const { return speed_count_; }
+  std::size_t dheading_count() const { return dheading_count_; }
+  double speed_min_mps() const { return speed_min_mps_; }
+  const FineGridSpec& spec() const { return spec_; }
+
+ private:
+  FineGridSpec spec_;
+  double speed_min_mps_ = 0.0;
+  std::size_t speed_count_ = 0;
+  std::size_t dheading_count_ = 0;
+  std::vector<TurnPrediction> entries_;  // row-major: speed, dheading 0..180
+};
+
+}  // namespace avk::kinematics

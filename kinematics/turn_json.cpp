@@ -1,0 +1,358 @@
+#include "kinematics/turn_json.hpp"
+
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+#include <vector>
+
+#include "kinematics/turn_text.hpp"
+
+namespace avk::kinematics {
+
+namespace {
+
+using nlohmann::json;
+
+constexpr const char* kFormat = "avk-turn";
+constexpr int kVersion = 1;
+constexpr std::size_t kSampleArity = 5;
+constexpr std::array<const char*, kSampleArity> kSampleFields = {"t_s", "x_m", "y_m", "heading_deg",
+                                                                 "speed_mps"};
+
+// Meta doubles in a fixed order, shared by writer and reader so neither can miss one.
+constexpr std::array<std::pair<const char*, double TurnMeta::*>, 7> kMetaDoubles = {{
+    {"commanded_speed_mps", &TurnMeta::commanded_speed_mps},
+    {"goal_dheading_deg", &TurnMeta::goal_dheading_deg},
+    {"observed_dheading_deg", &TurnMeta::observed_dheading_deg},
+    {"initial_heading_deg", &TurnMeta::initial_heading_deg},
+    {"initial_speed_mps", &TurnMeta::initial_speed_mps},
+    {"start_time_s", &TurnMeta::start_time_s},
+    {"end_time_s", &TurnMeta::end_time_s},
+}};
+
+constexpr std::array<const char*, 17> kKeys = {
+    "format",
+    "version",
+    "vehicle_id",
+    "mission_id",
+    "status",
+    "status_reason",
+    "normalized",
+    "commanded_speed_mps",
+    "goal_dheading_deg",
+    "observed_dheading_deg",
+    "initial_heading_deg",
+    "initial_speed_mps",
+    "start_time_s",
+    "end_time_s",
+    "warnings",
+    "sample_fields",
+    "samples",
+};
+
+// A turn document is an object of arrays of arrays; anything deeper is not a turn, and refusing
+// it while parsing keeps a hostile "[[[[..." from building a huge tree first.
+constexpr std::size_t kMaxDepth = 3;
+constexpr std::size_t kMaxObjectKeys = 64;
+constexpr std::size_t kMaxArrayElements = kMaxTurnRecordSamples;
+constexpr std::size_t kMaxValues =
+    kMaxTurnRecordSamples * (kSampleArity + 1) + kMaxTurnRecordWarnings + 1024;
+
+// Appends rather than "/" + token: GCC 12 reports a false -Wrestrict on operator+(const char*,
+// std::string&&) at -O3.
+void append_pointer_token(std::string& out, std::string_view s) {
+  for (char c : s) {
+    if (c == '~') {
+      out += "~0";
+    } else if (c == '/') {
+      out += "~1";
+    } else {
+      out += c;
+    }
+  }
+}
+
+std::string member_pointer(std::string_view key) {
+  std::string out = "/";
+  append_pointer_token(out, key);
+  return out;
+}
+
+std::string sample_pointer(std::size_t i) {
+  std::string out = "/samples/";
+  out += std::to_string(i);
+  return out;
+}
+
+// Builds the DOM like nlohmann's own parser, but rejects duplicate keys (which nlohmann would
+// silently collapse to the last one) and bounds depth, width and total size as it goes.
+class BoundedDomBuilder {
+ public:
+  explicit BoundedDomBuilder(json& root) : root_(root) {}
+
+  bool null() { return add(nullptr); }
+  bool boolean(bool v) { return add(v); }
+  bool number_integer(json::number_integer_t v) { return add(v); }
+  bool number_unsigned(json::number_unsigned_t v) { return add(v); }
+  bool number_float(json::number_float_t v, const json::string_t& /*text*/) { return add(v); }
+  bool string(json::string_t& v) { return add(std::move(v)); }
+  bool binary(json::binary_t& /*v*/) { fail("binary values are not JSON"); }
+
+  bool start_object(std::size_t /*size*/) { return open(json::object()); }
+  bool start_array(std::size_t /*size*/) { return open(json::array()); }
+  bool end_object() { return close(); }
+  bool end_array() { return close(); }
+
+  bool key(json::string_t& k) {
+    Frame& f = stack_.back();
+    f.key = k;
+    if (f.node->contains(k)) fail("duplicate key");
+    if (f.node->size() >= kMaxObjectKeys) fail("object has more keys than a turn");
+    return true;
+  }
+
+  [[noreturn]] bool parse_error(std::size_t position, const std::string& /*last_token*/,
+                                const json::exception& ex) {
+    // nlohmann counts bytes read including the offending one (and the end of input); the project
+    // reports 0-based offsets, so step back one to point at the byte itself.
+    throw ParseError("json", position == 0 ? 0 : position - 1, ex.what());
+  }
+
+ private:
+  struct Frame {
+    json* node = nullptr;
+    std::size_t next_index = 0;  // arrays: elements added so far
+    std::string key;             // objects: key of the member being read
+  };
+
+  // Pointer to the value now being added, for errors raised while building.
+  std::string pointer() const {
+    std::string out;
+    for (std::size_t d = 0; d < stack_.size(); ++d) {
+      const Frame& f = stack_[d];
+      if (f.node->is_object()) {
+        out += member_pointer(f.key);
+      } else {
+        const bool innermost = d + 1 == stack_.size();
+        out += '/';
+        out += std::to_string(innermost ? f.next_index : f.next_index - 1);
+      }
+    }
+    return out;
+  }
+
+  std::size_t sample_index() const {
+    if (stack_.size() < 2 || !stack_[0].node->is_object() || stack_[0].key != "samples" ||
+        !stack_[1].node->is_array()) {
+      return 0;
+    }
+    return stack_.size() == 2 ? stack_[1].next_index : stack_[1].next_index - 1;
+  }
+
+  [[noreturn]] void fail(const std::string& message) const {
+    throw ParseError(pointer(), sample_index(), message);
+  }
+
+  template <class V>
+  json* insert(V&& v) {
+    if (++values_ > kMaxValues) fail("document holds more values than any turn");
+    if (stack_.empty()) {
+      root_ = json(std::forward<V>(v));
+      return &root_;
+    }
+    Frame& f = stack_.back();
+    if (f.node->is_array()) {
+      if (f.next_index >= kMaxArrayElements) fail("array holds more elements than any turn");
+      f.node->push_back(json(std::forward<V>(v)));
+      ++f.next_index;
+      return &f.node->back();
+    }
+    json& slot = (*f.node)[f.key];
+    slot = json(std::forward<V>(v));
+    return &slot;
+  }
+
+  template <class V>
+  bool add(V&& v) {
+    insert(std::forward<V>(v));
+    return true;
+  }
+
+  bool open(json container) {
+    if (stack_.size() >= kMaxDepth) fail("nested deeper than a turn document");
+    json* node = insert(std::move(container));
+    stack_.push_back({node, 0, {}});
+    return true;
+  }
+
+  bool close() {
+    stack_.pop_back();
+    return true;
+  }
+
+  json& root_;
+  std::vector<Frame> stack_;
+  std::size_t values_ = 0;
+};
+
+const json& member(const json& j, const char* key) {
+  const auto it = j.find(key);
+  if (it == j.end()) throw ParseError(member_pointer(key), 0, "missing key");
+  return *it;
+}
+
+std::string read_string(const json& j, const char* key) {
+  const json& v = member(j, key);
+  if (!v.is_string()) throw ParseError(member_pointer(key), 0, "expected a string");
+  const auto& s = v.get_ref<const std::string&>();
+  if (!is_valid_utf8(s)) throw ParseError(member_pointer(key), 0, "string is not valid UTF-8");
+  return s;
+}
+
+// A json built in memory (not parsed) may hold NaN or infinity, so check finiteness here too.
+double read_double(const json& v, const std::string& pointer, std::size_t position) {
+  if (!v.is_number()) throw ParseError(pointer, position, "expected a number");
+  const double d = v.get<double>();
+  if (!std::isfinite(d)) throw ParseError(pointer, position, "NaN and infinity are not allowed");
+  return d;
+}
+
+}  // namespace
+
+json to_json(const TurnSequence& turn) {
+  check_turn_serialisable(turn);
+  const TurnMeta& m = turn.meta();
+  json j = json::object();
+  j["format"] = kFormat;
+  j["version"] = kVersion;
+  j["vehicle_id"] = m.vehicle_id;
+  j["mission_id"] = m.mission_id;
+  j["status"] = to_string(m.status);
+  j["status_reason"] = m.status_reason;
+  j["normalized"] = m.normalized;
+  for (const auto& [name, ptr] : kMetaDoubles)
+    j[name] = m.*ptr;
+  j["warnings"] = turn.warnings();
+  json fields = json::array();
+  for (const char* f : kSampleFields)
+    fields.push_back(f);
+  j["sample_fields"] = std::move(fields);
+  json samples = json::array();
+  samples.get_ref<json::array_t&>().reserve(turn.samples().size());
+  for (const auto& s : turn.samples()) {
+    samples.push_back(json::array({s.t_s, s.x_m, s.y_m, s.heading_deg, s.speed_mps}));
+  }
+  j["samples"] = std::move(samples);
+  return j;
+}
+
+TurnSequence turn_from_json(const json& j) {
+  if (!j.is_object()) throw ParseError("", 0, "a turn must be a JSON object");
+  // Format and version first: a document of another kind should say so rather than list its
+  // keys as unknown.
+  const json& format = member(j, "format");
+  if (!format.is_string() || format.get_ref<const std::string&>() != kFormat) {
+    throw ParseError("/format", 0, std::string("format must be \"") + kFormat + "\"");
+  }
+  const json& version = member(j, "version");
+  if (!version.is_number_integer() || version != kVersion) {
+    throw ParseError("/version", 0,
+                     "unsupported version; this reader knows " + std::to_string(kVersion));
+  }
+  for (const auto& item : j.items()) {
+    bool known = false;
+    for (const char* k : kKeys)
+      known = known || item.key() == k;
+    if (!known) throw ParseError(member_pointer(item.key()), 0, "unknown key");
+  }
+  for (const char* k : kKeys)
+    member(j, k);
+
+  TurnMeta m;
+  m.vehicle_id = read_string(j, "vehicle_id");
+  m.mission_id = read_string(j, "mission_id");
+  const auto status = turn_status_from_string(read_string(j, "status"));
+  if (!status) throw ParseError("/status", 0, "status must be ok|aborted|rejected");
+  m.status = *status;
+  m.status_reason = read_string(j, "status_reason");
+  const json& normalized = member(j, "normalized");
+  if (!normalized.is_boolean()) throw ParseError("/normalized", 0, "expected true or false");
+  m.normalized = normalized.get<bool>();
+  for (const auto& [name, ptr] : kMetaDoubles)
+    m.*ptr = read_double(member(j, name), member_pointer(name), 0);
+
+  const json& warnings = member(j, "warnings");
+  if (!warnings.is_array()) throw ParseError("/warnings", 0, "expected an array of strings");
+  if (warnings.size() > kMaxTurnRecordWarnings) {
+    throw ParseError("/warnings", 0,
+                     "more than " + std::to_string(kMaxTurnRecordWarnings) + " warnings");
+  }
+  for (std::size_t i = 0; i < warnings.size(); ++i) {
+    const json& w = warnings[i];
+    if (!w.is_string() || !is_valid_utf8(w.get_ref<const std::string&>())) {
+      throw ParseError("/warnings/" + std::to_string(i), 0, "expected a UTF-8 string");
+    }
+  }
+
+  // The fields are fixed; the array is there so a reader of the file need not guess the order.
+  json expected_fields = json::array();
+  for (const char* f : kSampleFields)
+    expected_fields.push_back(f);
+  if (member(j, "sample_fields") != expected_fields) {
+    throw ParseError("/sample_fields", 0, "sample_fields must be " + expected_fields.dump());
+  }
+
+  const json& samples = member(j, "samples");
+  if (!samples.is_array()) throw ParseError("/samples", 0, "expected an array of samples");
+  if (samples.size() > kMaxTurnRecordSamples) {
+    throw ParseError("/samples", 0,
+                     "more than " + std::to_string(kMaxTurnRecordSamples) + " samples");
+  }
+  std::vector<TurnSample> out;
+  out.reserve(samples.size());  // the array exists already, so its size is not just a claim
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    const json& s = samples[i];
+    if (!s.is_array() || s.size() != kSampleArity) {
+      throw ParseError(sample_pointer(i), i,
+                       "a sample is an array of 5 numbers [t_s,x_m,y_m,heading_deg,speed_mps]");
+    }
+    const auto value = [&](std::size_t c) {
+      std::string pointer = sample_pointer(i);
+      pointer += '/';
+      pointer += std::to_string(c);
+      return read_double(s[c], pointer, i);
+    };
+    out.push_back({value(0), value(1), value(2), value(3), value(4)});
+  }
+
+  TurnSequence turn(std::move(m), std::move(out));
+  for (const json& w : warnings)
+    turn.add_warning(w.get<std::string>());
+  return turn;
+}
+
+std::string to_json_string(const TurnSequence& turn) {
+  std::string out = to_json(turn).dump();
+  if (out.size() > kMaxTurnRecordBytes) {
+    throw std::invalid_argument("turn cannot be serialised: the JSON would exceed " +
+                                std::to_string(kMaxTurnRecordBytes) + " bytes");
+  }
+  return out;
+}
+
+TurnSequence parse_turn_json(std::string_view text) {
+  if (text.size() > kMaxTurnRecordBytes) {
+    throw ParseError("json", kMaxTurnRecordBytes,
+                     "document is longer than " + std::to_string(kMaxTurnRecordBytes) + " bytes");
+  }
+  json root;
+  BoundedDomBuilder builder(root);
+  // strict: anything but whitespace after the document is a syntax error.
+  if (!json::sax_parse(text.begin(), text.end(), &builder, json::input_format_t::json, true)) {
+    throw ParseError("json", 0, "JSON parser stopped without reporting an error");
+  }
+  return turn_from_json(root);
+}
+
+}  // namespace avk::kinematics

@@ -1,0 +1,62 @@
+#include "server/cli/args.hpp"
+
+#include <charconv>
+#include <cmath>
+
+namespace avk::server {
+
+Args::Args(const std::vector<std::string>& words, const std::set<std::string>& value_options,
+           const std::set<std::string>& flag_options) {
+  for (std::size_t i = 0; i < words.size(); ++i) {
+    const std::string& w = words[i];
+    if (w.rfind("--", 0) != 0 || w == "-") {
+      positional_.push_back(w);
+      continue;
+    }
+    std::string name = w.substr(2);
+    std::optional<std::string> inline_value;
+    if (const auto eq = name.find('='); eq != std::string::npos) {
+      inline_value = name.substr(eq + 1);
+      name = name.substr(0, eq);
+    }
+    if (flag_options.count(name)) {
+      if (inline_value) throw UsageError("option --" + name + " takes no value");
+      flags_.insert(name);
+    } else if (value_options.count(name)) {
+      if (values_.count(name)) throw UsageError("option --" + name + " given twice");
+      if (inline_value) {
+        values_[name] = *inline_value;
+      } else {
+        if (i + 1 >= words.size()) throw UsageError("option --" + name + " needs a value");
+        values_[name] = words[++i];
+      }
+    } else {
+      throw UsageError("unknown option --" + name);
+    }
+  }
+}
+
+std::optional<std::string> Args::get(const std::string& name) const {
+  const auto it = values_.find(name);
+  if (it == values_.end()) return std::nullopt;
+  return it->second;
+}
+
+std::string Args::require(const std::string& name) const {
+  auto v = get(name);
+  if (!v) throw UsageError("missing required option --" + name);
+  return *v;
+}
+
+std::optional<double> Args::number(const std::string& name) const {
+  const auto v = get(name);
+  if (!v) return std::nullopt;
+  double d = 0.0;
+  const auto r = std::from_chars(v->data(), v->data() + v->size(), d);
+  if (r.ec != std::errc() || r.ptr != v->data() + v->size() || !std::isfinite(d)) {
+    throw UsageError("option --" + name + " needs a finite number, got '" + *v + "'");
+  }
+  return d;
+}
+
+}  // namespace avk::server

@@ -1,0 +1,37 @@
+#pragma once
+// Command-line options of the form `--name value` and `--flag`, with errors that name the option.
+
+#include <map>
+#include <optional>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace avk::server {
+
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class Args {
+ public:
+  // value_options take a value; flag_options do not. Anything else starting with "--" is an error;
+  // other words are positional.
+  Args(const std::vector<std::string>& words, const std::set<std::string>& value_options,
+       const std::set<std::string>& flag_options = {});
+
+  std::optional<std::string> get(const std::string& name) const;
+  std::string require(const std::string& name) const;
+  bool flag(const std::string& name) const { return flags_.count(name) > 0; }
+  std::optional<double> number(const std::string& name) const;  // finite, else UsageError
+  const std::vector<std::string>& positional() const { return positional_; }
+
+ private:
+  std::map<std::string, std::string> values_;
+  std::set<std::string> flags_;
+  std::vector<std::string> positional_;
+};
+
+}  // namespace avk::server

@@ -1,0 +1,182 @@
+#include <chrono>
+#include <ctime>
+#include <nlohmann/json.hpp>
+#include <ostream>
+
+#include "kinematics/ckt.hpp"
+#include "kinematics/ckt_file.hpp"
+#include "server/cli/args.hpp"
+#include "server/cli/commands.hpp"
+#include "server/cli/files.hpp"
+#include "server/cli/turn_file.hpp"
+
+namespace avk::server {
+
+namespace kin = avk::kinematics;
+
+std::string utc_now_iso8601() {
+  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+namespace {
+
+enum class OutFormat { json, csv };
+
+OutFormat out_format(const Args& a) {
+  const std::string f = a.get("format").value_or("json");
+  if (f == "json") return OutFormat::json;
+  if (f == "csv") return OutFormat::csv;
+  throw UsageError("--format must be json or csv, got '" + f + "'");
+}
+
+void emit(const Args& a, Io& io, const std::string& content) {
+  if (const auto out = a.get("out"); out && *out != "-") {
+    write_file_atomic(*out, content);
+  } else {
+    io.out << content;
+  }
+}
+
+kin::Ckt build_from_turns(const Args& a, Io& io) {
+  const std::string path = a.require("turns");
+  const auto records = parse_turn_file(read_file(path, io.in), path == "-" ? "stdin" : path);
+  std::vector<kin::TurnSequence> turns;
+  turns.reserve(records.size());
+  for (const auto& r : records)
+    turns.push_back(r.turn);
+  kin::CktOptions options;
+  if (const auto fit = a.get("fit")) {
+    const auto kind = kin::fit_kind_from_string(*fit);
+    if (!kind) throw UsageError("--fit must be arc_length_spline or poly4_xy, got '" + *fit + "'");
+    options.fit_kind = *kind;
+  }
+  if (const auto eps = a.number("epsilon")) {
+    if (!(*eps > 0.0)) throw UsageError("--epsilon must be positive (metres)");
+    options.pwl_epsilon_m = *eps;
+  }
+  kin::CktBuildReport report;
+  kin::Ckt table = kin::Ckt::build(turns, options, std::nullopt, &report);
+  table.vehicle_id =
+      a.get("vehicle").value_or(turns.empty() ? "" : turns.front().meta().vehicle_id);
+  table.vehicle_length_m = a.number("vehicle-length");
+  table.created_utc = utc_now_iso8601();
+  io.err << "ckt: " << report.turns_used << " turns used, " << report.turns_skipped_status
+         << " aborted/rejected skipped, " << report.turns_unassigned << " off the grid\n";
+  return table;
+}
+
+kin::Ckt load_ckt(const std::string& path, Io& io) {
+  const std::string text = read_file(path, io.in);
+  try {
+    return kin::parse_ckt_json(text);
+  } catch (const std::exception& e) {
+    throw std::runtime_error((path == "-" ? std::string("stdin") : path) + ": " + e.what());
+  }
+}
+
+std::string serialise(const kin::Ckt& table, OutFormat f) {
+  return f == OutFormat::json ? kin::ckt_to_json_string(table) : kin::ckt_to_csv(table);
+}
+
+int summarise(const kin::Ckt& t, Io& io) {
+  std::size_t cells = 0, turns = 0;
+  for (const auto& c : t.cells()) {
+    if (!c.has_data()) continue;
+    ++cells;
+    turns += c.n_turns;
+  }
+  io.err << "ckt: vehicle '" << t.vehicle_id << "', schema " << kin::kCktSchemaVersion << ", "
+         << t.grid().speeds_mps.size() << " speeds x " << t.grid().dheadings_deg.size()
+         << " heading changes, " << cells << " cells with turns, " << turns << " turns";
+  if (const auto r = t.speed_range_mps()) {
+    io.err << ", speeds " << r->first << "-" << r->second << " m/s";
+  }
+  io.err << "\n";
+  return 0;
+}
+
+int query(const Args& a, Io& io) {
+  const std::string ckt_path = a.require("ckt");
+  const auto speed = a.number("speed");
+  const auto dheading = a.number("dheading");
+  if (!speed) throw UsageError("missing required option --speed (m/s)");
+  if (!dheading) throw UsageError("missing required option --dheading (deg, + right, - left)");
+  const auto x = a.number("x"), y = a.number("y"), heading = a.number("heading");
+  const bool placed = x || y || heading;
+  if (placed && !(x && y && heading)) {
+    throw UsageError("a pose needs all of --x, --y and --heading");
+  }
+  const OutFormat format = out_format(a);
+  const kin::Ckt table = load_ckt(ckt_path, io);
+  kin::TurnPrediction p = table.query(*speed, *dheading);
+  kin::Polyline line = p.trajectory;
+  if (placed) {
+    // The prediction is already reflected for a left turn; place it as a right-handed shape.
+    line = kin::place_normalized(line, {*x, *y, *heading}, kin::TurnSide::right);
+  }
+  if (format == OutFormat::csv) {
+    std::string csv = "vertex_index,x_m,y_m\n";
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      csv += std::to_string(i) + "," + nlohmann::json(line[i].x_m).dump() + "," +
+             nlohmann::json(line[i].y_m).dump() + "\n";
+    }
+    emit(a, io, csv);
+    return 0;
+  }
+  nlohmann::json j = {{"speed_mps", p.speed_mps},
+                      {"dheading_deg", p.dheading_deg},
+                      {"advance_m", p.advance_m},
+                      {"transfer_m", p.transfer_m},
+                      {"exact_cell", p.exact_cell},
+                      {"extrapolated", p.extrapolated},
+                      {"frame", placed ? "world" : "normalized"}};
+  nlohmann::json pts = nlohmann::json::array();
+  for (const auto& pt : line)
+    pts.push_back({pt.x_m, pt.y_m});
+  j["trajectory"] = std::move(pts);
+  emit(a, io, j.dump() + "\n");
+  return 0;
+}
+
+}  // namespace
+
+int cmd_ckt(const std::vector<std::string>& args, Io& io) {
+  if (args.empty()) throw UsageError("expected 'ckt build|export|import|query'");
+  const std::string sub = args[0];
+  const std::vector<std::string> rest(args.begin() + 1, args.end());
+  if (sub == "build") {
+    const Args a(rest, {"turns", "out", "format", "vehicle", "vehicle-length", "fit", "epsilon"});
+    const kin::Ckt t = build_from_turns(a, io);
+    emit(a, io, serialise(t, out_format(a)));
+    return summarise(t, io);
+  }
+  if (sub == "export") {
+    const Args a(rest,
+                 {"turns", "ckt", "out", "format", "vehicle", "vehicle-length", "fit", "epsilon"});
+    if (a.get("turns").has_value() == a.get("ckt").has_value()) {
+      throw UsageError("give exactly one of --turns FILE or --ckt FILE");
+    }
+    const kin::Ckt t = a.get("turns") ? build_from_turns(a, io) : load_ckt(*a.get("ckt"), io);
+    emit(a, io, serialise(t, out_format(a)));
+    return 0;
+  }
+  if (sub == "import") {
+    const Args a(rest, {"out", "format"});
+    if (a.positional().size() != 1) throw UsageError("expected one CKT file to import");
+    const kin::Ckt t = load_ckt(a.positional()[0], io);
+    if (a.get("out")) emit(a, io, serialise(t, out_format(a)));
+    return summarise(t, io);
+  }
+  if (sub == "query") {
+    return query(Args(rest, {"ckt", "speed", "dheading", "x", "y", "heading", "format", "out"}),
+                 io);
+  }
+  throw UsageError("unknown subcommand 'ckt " + sub + "'");
+}
+
+}  // namespace avk::server
