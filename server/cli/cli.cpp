@@ -23,7 +23,15 @@ void usage(std::ostream& out) {
          "      check a CKT file and summarise it; nothing partial is ever loaded\n"
          "  avk ckt query --ckt FILE --speed M/S --dheading DEG [--x M --y M --heading DEG]\n"
          "                [--format json|csv]\n"
-         "      predicted trajectory of one turn (placed at a pose when one is given)\n";
+         "      predicted trajectory of one turn (placed at a pose when one is given)\n"
+         "  avk sim turn --speed M/S --dheading DEG [--vehicle usim|catamaran[:m200|:otter]]\n"
+         "               [--seed N] [--ticks plant=4,controller=4,helm=4] [--csv FILE]\n"
+         "               [--sim-config FILE] [--jitter] [--threshold DEG]\n"
+         "               [--realtime [--realtime-factor K]]\n"
+         "      one steady-then-turn run; the trajectory as CSV\n"
+         "  avk sim variability --speed M/S --dheading DEG [--repeats 77] [--jitter]\n"
+         "               [--sweep-ticks] [--vehicle ...] [--sim-config FILE] [--seed N]\n"
+         "      advance/transfer per repetition and their coefficient of variation\n";
 }
 }  // namespace
 
