@@ -30,9 +30,9 @@ void RealtimePacer::wait_until(double sim_time_s) {
     return;
   }
   const auto deadline =
-      *impl_->wall_start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                               std::chrono::duration<double>((sim_time_s - impl_->sim_start_s) /
-                                                             factor_));
+      *impl_->wall_start +
+      std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+          std::chrono::duration<double>((sim_time_s - impl_->sim_start_s) / factor_));
   if (deadline <= now) return;
   impl_->timer.expires_at(deadline);
   boost::system::error_code ec;

@@ -11,7 +11,12 @@ TEST(Scheduler, RatesAndPhasesAndOrder) {
   std::vector<std::pair<std::string, double>> log;
   s.add("plant", 4.0, [&](double t) { log.push_back({"plant", t}); });
   s.add("pid", 4.0, [&](double t) { log.push_back({"pid", t}); });
-  s.add("helm", 2.0, [&](double t) { log.push_back({"helm", t}); }, 0.1);
+  s.add(
+      "helm", 2.0,
+      [&](double t) {
+        log.push_back({"helm", t});
+      },
+      0.1);
   EXPECT_TRUE(s.run_until(1.0));
   // plant and pid at 0, .25, .5, .75, 1.0; helm at .1, .6
   ASSERT_EQ(log.size(), 12u);
@@ -81,7 +86,8 @@ TEST(Scheduler, RealtimePacerFollowsTheWallClock) {
   RealtimePacer pacer(5.0);
   const auto start = std::chrono::steady_clock::now();
   s.run_until(0.5, pacer);
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_EQ(n, 11);
   EXPECT_GE(wall, 0.099);  // a lower bound only: the pacer must not run ahead of the clock
 }
