@@ -24,13 +24,19 @@ void run_stack(benchmark::State& state, const std::string& kind) {
     scheduler.run_until(sim_s);
     benchmark::DoNotOptimize(v.truth());
   }
-  state.counters["sim_s_per_wall_s"] =
-      benchmark::Counter(sim_s * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
+  state.counters["sim_s_per_wall_s"] = benchmark::Counter(
+      sim_s * static_cast<double>(state.iterations()), benchmark::Counter::kIsRate);
 }
 
-void BM_FullStackUsim(benchmark::State& state) { run_stack(state, "usim"); }
-void BM_FullStackCatamaranM200(benchmark::State& state) { run_stack(state, "catamaran:m200"); }
-void BM_FullStackCatamaranOtter(benchmark::State& state) { run_stack(state, "catamaran:otter"); }
+void BM_FullStackUsim(benchmark::State& state) {
+  run_stack(state, "usim");
+}
+void BM_FullStackCatamaranM200(benchmark::State& state) {
+  run_stack(state, "catamaran:m200");
+}
+void BM_FullStackCatamaranOtter(benchmark::State& state) {
+  run_stack(state, "catamaran:otter");
+}
 BENCHMARK(BM_FullStackUsim)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FullStackCatamaranM200)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FullStackCatamaranOtter)->Unit(benchmark::kMillisecond);

@@ -1,7 +1,7 @@
 #pragma once
 // What the navigation system reports of the true motion: GNSS position noise, compass noise,
-// optionally heading from GNSS course above a speed (as the Heron's frontseat does), a
-// publication rate (set by the scheduler tick) and a latency. Seeded, so a run is repeatable.
+// optionally heading from GNSS course above a speed (as the Heron's frontseat does), and a
+// latency. The publication rate is the plant's scheduler tick. Seeded, so a run is repeatable.
 
 #include <cstdint>
 #include <deque>
@@ -19,7 +19,6 @@ struct SensorConfig {
   double speed_sigma_mps = 0.0;
   // Above this speed over ground the reported heading is the GNSS course, not the compass.
   std::optional<double> heading_from_course_above_mps;
-  double rate_hz = 10.0;
   double latency_s = 0.0;
   // uSimMarine publishes speed rounded to 0.01 m/s; 0 leaves it unrounded.
   double speed_quantum_mps = 0.0;

@@ -46,6 +46,7 @@ int run_cli(const std::vector<std::string>& args, std::istream& in, std::ostream
   try {
     if (args[0] == "turn") return cmd_turn(rest, io);
     if (args[0] == "ckt") return cmd_ckt(rest, io);
+    if (args[0] == "sim") return cmd_sim(rest, io);
   } catch (const UsageError& e) {
     err << "avk " << args[0] << ": " << e.what() << "\n";
     return 2;

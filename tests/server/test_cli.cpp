@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -164,4 +165,37 @@ TEST_F(CliFiles, CorruptCktIsRefusedAndExistingOutputKept) {
   r = run({"ckt", "import", path("missing.json")});
   EXPECT_EQ(r.rc, 1);
   EXPECT_NE(r.err.find("missing.json"), std::string::npos) << r.err;
+}
+
+TEST(CliSim, TurnPrintsTheTrajectoryCsv) {
+  const Result r = run({"sim", "turn", "--speed", "1", "--dheading", "-40", "--ticks",
+                        "plant=4,controller=4,helm=4"});
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("t_s,x_m,y_m,heading_deg,speed_mps,desired_heading_deg,desired_speed_mps,"
+                        "rudder_pct,thrust_pct\n",
+                        0),
+            0u);
+  EXPECT_NE(r.err.find("completed"), std::string::npos);
+  EXPECT_GT(std::count(r.out.begin(), r.out.end(), '\n'), 100);
+}
+
+TEST(CliSim, BadInputIsNamed) {
+  Result r = run({"sim", "turn", "--speed", "9", "--dheading", "40"});
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_NE(r.err.find("maximum"), std::string::npos) << r.err;
+  r = run({"sim", "turn", "--speed", "1", "--dheading", "40", "--vehicle", "blimp"});
+  EXPECT_EQ(r.rc, 2);
+  EXPECT_NE(r.err.find("blimp"), std::string::npos) << r.err;
+  r = run({"sim", "turn", "--speed", "1", "--dheading", "40", "--ticks", "plant=0"});
+  EXPECT_EQ(r.rc, 2);
+  r = run({"sim", "turn", "--speed", "1", "--dheading", "200"});
+  EXPECT_EQ(r.rc, 2);
+}
+
+TEST(CliSim, VariabilityReportsTheCoefficientOfVariation) {
+  const Result r =
+      run({"sim", "variability", "--speed", "1", "--dheading", "90", "--repeats", "5", "--jitter"});
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.out.find("repetition,seed,completed,advance_m,transfer_m\n"), std::string::npos);
+  EXPECT_NE(r.out.find("(CV "), std::string::npos);
 }

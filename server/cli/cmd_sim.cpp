@@ -1,0 +1,210 @@
+#include <charconv>
+#include <cmath>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+#include <ostream>
+#include <sstream>
+
+#include "kinematics/turn_measures.hpp"
+#include "server/cli/args.hpp"
+#include "server/cli/commands.hpp"
+#include "server/cli/files.hpp"
+#include "sim/sim_config.hpp"
+#include "sim/turn_scenario.hpp"
+#include "sim/variability.hpp"
+
+namespace avk::server {
+
+namespace {
+
+std::string num(double v) {
+  return nlohmann::json(v).dump();
+}
+
+// --ticks plant=4,controller=4,helm=4
+void apply_ticks(const std::string& spec, sim::SimSetup& setup) {
+  std::size_t pos = 0;
+  while (pos <= spec.size()) {
+    std::size_t end = spec.find(',', pos);
+    if (end == std::string::npos) end = spec.size();
+    const std::string item = spec.substr(pos, end - pos);
+    const auto eq = item.find('=');
+    if (eq == std::string::npos)
+      throw UsageError("--ticks expects name=Hz pairs, got '" + item + "'");
+    const std::string name = item.substr(0, eq);
+    const std::string value = item.substr(eq + 1);
+    double hz = 0.0;
+    const auto r = std::from_chars(value.data(), value.data() + value.size(), hz);
+    if (r.ec != std::errc() || r.ptr != value.data() + value.size() || !(hz > 0.0) ||
+        !std::isfinite(hz)) {
+      throw UsageError("--ticks " + name + " needs a positive rate in Hz, got '" + value + "'");
+    }
+    if (name == "plant") {
+      setup.vehicle.plant_hz = hz;
+    } else if (name == "controller") {
+      setup.vehicle.controller_hz = hz;
+    } else if (name == "helm") {
+      setup.helm_hz = hz;
+    } else {
+      throw UsageError("--ticks knows plant, controller and helm, not '" + name + "'");
+    }
+    pos = end + 1;
+  }
+}
+
+sim::SimSetup setup_from(const Args& a, Io& io) {
+  const std::string kind = a.get("vehicle").value_or("usim");
+  sim::SimSetup setup;
+  if (const auto path = a.get("sim-config")) {
+    try {
+      setup = sim::parse_sim_config(read_file(*path, io.in), kind);
+    } catch (const std::exception& e) {
+      throw std::runtime_error(*path + ": " + e.what());
+    }
+  } else {
+    try {
+      setup = sim::default_sim_setup(kind);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--vehicle: ") + e.what());
+    }
+  }
+  if (const auto ticks = a.get("ticks")) apply_ticks(*ticks, setup);
+  if (const auto seed = a.number("seed")) {
+    if (*seed < 0 || std::floor(*seed) != *seed)
+      throw UsageError("--seed needs a whole number >= 0");
+    setup.scheduler.seed = static_cast<std::uint64_t>(*seed);
+  }
+  if (a.flag("jitter")) {
+    setup.scheduler.random_phases = true;
+    if (setup.scheduler.jitter_fraction == 0.0) setup.scheduler.jitter_fraction = 0.05;
+  }
+  return setup;
+}
+
+sim::TurnScenarioConfig scenario_from(const Args& a, const sim::SimSetup& setup) {
+  sim::TurnScenarioConfig c;
+  c.vehicle = setup.vehicle;
+  c.scheduler = setup.scheduler;
+  c.helm_hz = setup.helm_hz;
+  const auto speed = a.number("speed");
+  const auto dheading = a.number("dheading");
+  if (!speed) throw UsageError("missing required option --speed (m/s)");
+  if (!dheading) throw UsageError("missing required option --dheading (deg, + right, - left)");
+  if (!(*speed > 0.0)) throw UsageError("--speed must be positive (m/s)");
+  if (*speed > setup.vehicle_max_speed_mps()) {
+    throw UsageError("--speed " + num(*speed) + " m/s is above the vehicle's maximum " +
+                     num(setup.vehicle_max_speed_mps()) + " m/s");
+  }
+  if (!(std::abs(*dheading) > 0.0 && std::abs(*dheading) <= 180.0)) {
+    throw UsageError("--dheading must be in [-180, 0) or (0, 180] degrees");
+  }
+  c.speed_mps = *speed;
+  c.dheading_deg = *dheading;
+  if (const auto th = a.number("threshold")) {
+    if (!(*th > 0.0 && *th < 90.0)) throw UsageError("--threshold must be in (0, 90) degrees");
+    c.completion_threshold_deg = *th;
+  }
+  return c;
+}
+
+int sim_turn(const std::vector<std::string>& rest, Io& io) {
+  const Args a(rest,
+               {"vehicle", "speed", "dheading", "seed", "ticks", "csv", "sim-config", "threshold",
+                "realtime-factor"},
+               {"jitter", "realtime"});
+  const sim::SimSetup setup = setup_from(a, io);
+  const sim::TurnScenarioConfig c = scenario_from(a, setup);
+  sim::TurnScenarioResult r;
+  if (a.flag("realtime")) {
+    sim::RealtimePacer pacer(a.number("realtime-factor").value_or(1.0));
+    r = sim::run_turn_scenario(c, pacer);
+  } else {
+    r = sim::run_turn_scenario(c);
+  }
+  std::ostringstream csv;
+  csv << "t_s,x_m,y_m,heading_deg,speed_mps,desired_heading_deg,desired_speed_mps,rudder_pct,"
+         "thrust_pct\n";
+  for (const auto& row : r.rows) {
+    csv << num(row.t_s) << ',' << num(row.x_m) << ',' << num(row.y_m) << ',' << num(row.heading_deg)
+        << ',' << num(row.speed_mps) << ',' << num(row.desired_heading_deg) << ','
+        << num(row.desired_speed_mps) << ',' << num(row.rudder_pct) << ',' << num(row.thrust_pct)
+        << '\n';
+  }
+  if (const auto path = a.get("csv"); path && *path != "-") {
+    write_file_atomic(*path, csv.str());
+  } else {
+    io.out << csv.str();
+  }
+  io.err << "sim turn: " << setup.vehicle.kind << ", " << num(c.speed_mps) << " m/s, "
+         << num(c.dheading_deg) << " deg, commanded at t=" << num(r.command_time_s) << " s, "
+         << (r.completed ? "completed" : "NOT completed");
+  if (r.turn.samples().size() >= 2) {
+    const auto at = kinematics::advance_transfer(r.turn);
+    io.err << " after " << num(r.turn.samples().back().t_s - r.command_time_s) << " s; advance "
+           << num(at.advance_m) << " m, transfer " << num(at.transfer_m) << " m";
+  }
+  io.err << "\n";
+  return r.completed ? 0 : 1;
+}
+
+void print_variability(const sim::VariabilityResult& v, Io& io, bool per_repetition) {
+  if (per_repetition) {
+    io.out << "repetition,seed,completed,advance_m,transfer_m\n";
+    for (const auto& row : v.rows) {
+      io.out << row.repetition << ',' << row.seed << ',' << (row.completed ? 1 : 0) << ','
+             << num(row.advance_m) << ',' << num(row.transfer_m) << '\n';
+    }
+  }
+}
+
+int sim_variability(const std::vector<std::string>& rest, Io& io) {
+  const Args a(
+      rest, {"vehicle", "speed", "dheading", "seed", "ticks", "sim-config", "repeats", "threshold"},
+      {"jitter", "sweep-ticks"});
+  sim::SimSetup setup = setup_from(a, io);
+  sim::VariabilityConfig vc;
+  vc.base = scenario_from(a, setup);
+  vc.jitter = a.flag("jitter");
+  vc.jitter_fraction = setup.scheduler.jitter_fraction > 0 ? setup.scheduler.jitter_fraction : 0.05;
+  vc.first_seed = setup.scheduler.seed;
+  const double repeats = a.number("repeats").value_or(77);
+  if (!(repeats >= 1 && repeats <= 100000) || std::floor(repeats) != repeats) {
+    throw UsageError("--repeats must be a whole number from 1 to 100000");
+  }
+  vc.repeats = static_cast<int>(repeats);
+  if (!a.flag("sweep-ticks")) {
+    const sim::VariabilityResult v = sim::run_variability(vc);
+    print_variability(v, io, true);
+    io.out << "# advance " << num(v.advance_m.mean) << " +- " << num(v.advance_m.sd) << " m (CV "
+           << num(v.advance_cv) << "), transfer " << num(v.transfer_m.mean) << " +- "
+           << num(v.transfer_m.sd) << " m (CV " << num(v.transfer_cv) << "), "
+           << v.distinct_outcomes << " distinct outcomes at 1 cm\n";
+    return 0;
+  }
+  // Thesis Figure 5-1: vary the AppTick of the plant and the helm together, 1..10 Hz.
+  io.out << "tick_hz,repeats,advance_mean_m,advance_sd_m,advance_cv,transfer_mean_m,transfer_sd_m,"
+            "transfer_cv,distinct_outcomes\n";
+  for (int hz = 1; hz <= 10; ++hz) {
+    sim::VariabilityConfig swept = vc;
+    swept.base.vehicle.plant_hz = hz;
+    swept.base.helm_hz = hz;
+    const sim::VariabilityResult v = sim::run_variability(swept);
+    io.out << hz << ',' << vc.repeats << ',' << num(v.advance_m.mean) << ',' << num(v.advance_m.sd)
+           << ',' << num(v.advance_cv) << ',' << num(v.transfer_m.mean) << ','
+           << num(v.transfer_m.sd) << ',' << num(v.transfer_cv) << ',' << v.distinct_outcomes
+           << '\n';
+  }
+  return 0;
+}
+
+}  // namespace
+
+int cmd_sim(const std::vector<std::string>& args, Io& io) {
+  if (args.empty()) throw UsageError("expected 'sim turn' or 'sim variability'");
+  const std::vector<std::string> rest(args.begin() + 1, args.end());
+  if (args[0] == "turn") return sim_turn(rest, io);
+  if (args[0] == "variability") return sim_variability(rest, io);
+  throw UsageError("unknown subcommand 'sim " + args[0] + "'");
+}
+
+}  // namespace avk::server

@@ -1,0 +1,178 @@
+#include "sim/sim_vehicle.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "kinematics/angles.hpp"
+
+namespace avk::sim {
+
+namespace {
+
+std::variant<UsimPlant, CatamaranPlant> make_plant(const SimVehicleConfig& c) {
+  if (c.kind == "usim") {
+    return UsimPlant(c.usim,
+                     UsimState{c.start_x_m, c.start_y_m, c.start_heading_deg, c.start_speed_mps});
+  }
+  CatamaranState s;
+  s.x_m = c.start_x_m;
+  s.y_m = c.start_y_m;
+  s.heading_deg = c.start_heading_deg;
+  s.u_mps = c.start_speed_mps;
+  // One seed drives the whole run: noise, gusts and timing.
+  EnvironmentConfig env = c.environment;
+  env.seed = c.seed * 0xD1B54A32D192ED03ULL + 7;
+  return CatamaranPlant(*c.catamaran, env, s);
+}
+
+}  // namespace
+
+SimVehicleConfig sim_vehicle_defaults(const std::string& kind) {
+  SimVehicleConfig c;
+  if (kind == "usim") {
+    c.kind = "usim";
+    c.usim.turn_rate = 30.0;  // thesis Table 5.1
+    c.sensors.speed_quantum_mps = 0.01;
+    return c;
+  }
+  std::string model = "m200";
+  if (kind.rfind("catamaran", 0) == 0) {
+    if (kind.size() > 9) {
+      if (kind[9] != ':') throw std::invalid_argument("unknown vehicle kind '" + kind + "'");
+      model = kind.substr(10);
+    }
+  } else {
+    throw std::invalid_argument("unknown vehicle kind '" + kind +
+                                "' (usim, catamaran, catamaran:m200, catamaran:otter)");
+  }
+  const auto params = CatamaranParams::by_name(model);
+  if (!params) {
+    throw std::invalid_argument("unknown catamaran model '" + model + "' (m200, otter)");
+  }
+  c.kind = "catamaran:" + model;
+  c.catamaran = *params;
+  c.plant_hz = 10.0;
+  c.sensors.gnss_sigma_m = 0.3;
+  c.sensors.compass_sigma_deg = 1.0;
+  return c;
+}
+
+SimVehicle::SimVehicle(SimVehicleConfig config, Scheduler& scheduler)
+    : config_([&] {
+        if (config.kind != "usim" && !config.catamaran) {
+          const SimVehicleConfig d = sim_vehicle_defaults(config.kind);
+          config.catamaran = d.catamaran;
+          config.kind = d.kind;
+        }
+        return config;
+      }()),
+      plant_(make_plant(config_)),
+      sensor_(config_.sensors, config_.seed * 0x9E3779B97F4A7C15ULL + 1),
+      pid_(config_.pid) {
+  info_.id = config_.id;
+  info_.kind = config_.kind;
+  if (config_.catamaran) {
+    info_.max_speed_mps = config_.catamaran->max_speed_mps;
+    info_.length_m = config_.catamaran->length_m;
+  } else {
+    // uSimMarine's top speed is full thrust over the thrust factor (or the thrust map's end).
+    info_.max_speed_mps = config_.usim.thrust_map.empty()
+                              ? config_.pid.max_thrust_pct / config_.usim.thrust_factor
+                              : config_.usim.thrust_map.back().second;
+  }
+  scheduler.add(config_.id + "/plant", config_.plant_hz, [this](double t) { plant_tick(t); });
+  scheduler.add(config_.id + "/controller", config_.controller_hz,
+                [this](double t) { controller_tick(t); });
+}
+
+TruthSample SimVehicle::truth() const {
+  TruthSample t;
+  if (const auto* u = std::get_if<UsimPlant>(&plant_)) {
+    t.x_m = u->state().x_m;
+    t.y_m = u->state().y_m;
+    t.heading_deg = u->state().heading_deg;
+    t.speed_over_ground_mps = u->state().speed_mps;
+    t.course_over_ground_deg = u->state().heading_deg;
+    t.yaw_rate_dps = u->yaw_rate_dps();
+  } else {
+    const auto& c = std::get<CatamaranPlant>(plant_);
+    t.x_m = c.state().x_m;
+    t.y_m = c.state().y_m;
+    t.heading_deg = c.state().heading_deg;
+    t.speed_over_ground_mps = c.speed_over_ground_mps();
+    t.course_over_ground_deg = c.course_over_ground_deg();
+    t.yaw_rate_dps = c.yaw_rate_dps();
+  }
+  t.t_s = last_plant_time_s_.value_or(0.0);
+  return t;
+}
+
+void SimVehicle::plant_tick(double now_s) {
+  const double dt = last_plant_time_s_ ? now_s - *last_plant_time_s_ : 0.0;
+  last_plant_time_s_ = now_s;
+  if (auto* u = std::get_if<UsimPlant>(&plant_)) {
+    if (dt > 0.0) u->step(actuators_, dt);
+  } else {
+    auto& c = std::get<CatamaranPlant>(plant_);
+    c.advance(dt, actuators_.left_pct.value_or(0.0), actuators_.right_pct.value_or(0.0));
+  }
+  sensor_.measure(truth());
+  for (auto& s : sensor_.deliver(now_s)) {
+    if (nav_cut_) continue;
+    last_nav_ = s;
+    mailbox_.push_back(s);
+  }
+  // A backseat that never drains its mail must not grow without bound.
+  constexpr std::size_t kMailboxLimit = 100000;
+  if (mailbox_.size() > kMailboxLimit) {
+    mailbox_.erase(mailbox_.begin(), mailbox_.begin() + (mailbox_.size() - kMailboxLimit));
+  }
+}
+
+void SimVehicle::controller_tick(double now_s) {
+  vehicle::ActuatorCommand a;
+  if (stopped_) {
+    pid_.reset();  // no thrust memory carried over an all-stop
+  } else {
+    a = pid_.step(now_s, last_nav_, desired_);
+  }
+  if (config_.catamaran) {
+    const vehicle::DifferentialThrust lr =
+        vehicle::mix_differential(a.rudder_pct, a.thrust_pct, config_.mix);
+    a.left_pct = lr.left_pct;
+    a.right_pct = lr.right_pct;
+  }
+  actuators_ = a;
+}
+
+std::vector<vehicle::NavSample> SimVehicle::take_nav() {
+  std::vector<vehicle::NavSample> out;
+  out.swap(mailbox_);
+  return out;
+}
+
+vehicle::LinkState SimVehicle::link_state(double now_s) const {
+  return vehicle::link_state_from(last_nav_, true, now_s, config_.stale_limit_s);
+}
+
+void SimVehicle::command(const vehicle::DesiredCommand& desired) {
+  if (!std::isfinite(desired.heading_deg) || !std::isfinite(desired.speed_mps) ||
+      desired.speed_mps < 0.0) {
+    throw std::invalid_argument("desired heading and speed must be finite, speed >= 0");
+  }
+  desired_ = desired;
+  desired_->heading_deg = kinematics::wrap360_deg(desired.heading_deg);
+  stopped_ = false;
+}
+
+void SimVehicle::all_stop(double now_s) {
+  stopped_ = true;
+  desired_ = vehicle::DesiredCommand{now_s, desired_ ? desired_->heading_deg : 0.0, 0.0};
+  actuators_ = {};
+  if (config_.catamaran) {
+    actuators_.left_pct = 0.0;
+    actuators_.right_pct = 0.0;
+  }
+}
+
+}  // namespace avk::sim
