@@ -38,8 +38,8 @@ struct ActuatorCommand {
 };
 
 enum class LinkState {
-  live,  // navigation arriving
-  stale,  // connected, but no navigation for longer than the stale limit
+  live,          // navigation arriving
+  stale,         // connected, but no navigation for longer than the stale limit
   disconnected,  // no link, or never any navigation
 };
 const char* to_string(LinkState s);
