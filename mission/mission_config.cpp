@@ -1,0 +1,275 @@
+#include "mission/mission_config.hpp"
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+#include <set>
+
+namespace avk::mission {
+
+using nlohmann::json;
+
+const char* to_string(DirectionPolicy p) {
+  switch (p) {
+    case DirectionPolicy::right:
+      return "right";
+    case DirectionPolicy::left:
+      return "left";
+    case DirectionPolicy::alternate:
+      return "alternate";
+    case DirectionPolicy::automatic:
+      return "auto";
+  }
+  return "?";
+}
+
+namespace {
+
+std::string describe(const std::vector<FieldError>& errors) {
+  std::string s = "invalid mission:";
+  for (const auto& e : errors)
+    s += "\n  " + e.field + ": " + e.message;
+  return s;
+}
+
+// Reads one object, recording problems rather than stopping at the first one.
+class Reader {
+ public:
+  Reader(const json& obj, std::string path, std::vector<FieldError>& errors)
+      : obj_(obj), path_(std::move(path)), errors_(errors) {
+    ok_ = obj.is_object();
+    if (!ok_) error(path_.empty() ? "/" : path_, "expected an object");
+  }
+  bool ok() const { return ok_; }
+
+  void error(const std::string& field, const std::string& message) {
+    errors_.push_back({field, message});
+  }
+  std::string at(const char* key) const { return path_ + "/" + key; }
+
+  const json* get(const char* key, bool required) {
+    known_.insert(key);
+    if (!ok_) return nullptr;
+    const auto it = obj_.find(key);
+    if (it == obj_.end()) {
+      if (required) error(at(key), "missing required field");
+      return nullptr;
+    }
+    return &*it;
+  }
+
+  void number(const char* key, double& target, double min, double max, bool required = false,
+              bool min_exclusive = false) {
+    const json* v = get(key, required);
+    if (!v) return;
+    if (!v->is_number() || !std::isfinite(v->get<double>())) {
+      error(at(key), "expected a number");
+      return;
+    }
+    const double d = v->get<double>();
+    if (d < min || d > max || (min_exclusive && d == min)) {
+      error(at(key), std::string("must be ") + (min_exclusive ? "> " : ">= ") + json(min).dump() +
+                         " and <= " + json(max).dump() + ", got " + v->dump());
+      return;
+    }
+    target = d;
+  }
+
+  void integer(const char* key, int& target, int min, int max) {
+    const json* v = get(key, false);
+    if (!v) return;
+    if (!v->is_number_integer() || v->get<long long>() < min || v->get<long long>() > max) {
+      error(at(key),
+            "expected a whole number from " + std::to_string(min) + " to " + std::to_string(max));
+      return;
+    }
+    target = static_cast<int>(v->get<long long>());
+  }
+
+  std::optional<kinematics::Point> point(const json& v, const std::string& field) {
+    if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number() ||
+        !std::isfinite(v[0].get<double>()) || !std::isfinite(v[1].get<double>())) {
+      error(field, "expected [x_m, y_m]");
+      return std::nullopt;
+    }
+    return kinematics::Point{v[0].get<double>(), v[1].get<double>()};
+  }
+
+  void finish() {
+    if (!ok_) return;
+    for (const auto& [k, v] : obj_.items()) {
+      if (!known_.count(k)) error(path_ + "/" + k, "unknown field");
+    }
+  }
+
+ private:
+  const json& obj_;
+  std::string path_;
+  std::vector<FieldError>& errors_;
+  std::set<std::string> known_;
+  bool ok_ = true;
+};
+
+std::vector<double> number_list(Reader& r, const char* key, double min, double max,
+                                bool min_exclusive, const std::string& unit) {
+  std::vector<double> out;
+  const json* v = r.get(key, true);
+  if (!v) return out;
+  if (!v->is_array() || v->empty()) {
+    r.error(r.at(key), "expected a non-empty array of " + unit);
+    return out;
+  }
+  for (std::size_t i = 0; i < v->size(); ++i) {
+    const json& e = (*v)[i];
+    const std::string f = r.at(key) + "/" + std::to_string(i);
+    if (!e.is_number() || !std::isfinite(e.get<double>())) {
+      r.error(f, "expected a number (" + unit + ")");
+      continue;
+    }
+    const double d = e.get<double>();
+    if (d < min || d > max || (min_exclusive && d == min)) {
+      r.error(f, std::string("must be in ") + (min_exclusive ? "(" : "[") + json(min).dump() +
+                     ", " + json(max).dump() + "] " + unit + ", got " + e.dump());
+      continue;
+    }
+    out.push_back(d);
+  }
+  return out;
+}
+
+}  // namespace
+
+MissionConfigError::MissionConfigError(std::vector<FieldError> errors)
+    : std::runtime_error(describe(errors)), errors_(std::move(errors)) {}
+
+MissionConfig parse_mission_config(std::string_view json_text, double max_speed_mps) {
+  std::vector<FieldError> errors;
+  json doc;
+  try {
+    doc = json::parse(json_text.begin(), json_text.end());
+  } catch (const json::parse_error& e) {
+    throw MissionConfigError({{"json", std::string("not valid JSON at byte ") +
+                                           std::to_string(e.byte > 0 ? e.byte - 1 : 0)}});
+  }
+  MissionConfig c;
+  Reader root(doc, "", errors);
+  if (const json* name = root.get("name", true)) {
+    if (!name->is_string() || name->get<std::string>().empty()) {
+      root.error("/name", "expected a non-empty string");
+    } else {
+      c.name = name->get<std::string>();
+    }
+  }
+  if (const json* kind = root.get("kind", false)) {
+    if (*kind == "turns") {
+      c.kind = MissionKind::turns;
+    } else if (*kind == "persistent_excitation") {
+      c.kind = MissionKind::persistent_excitation;
+    } else {
+      root.error("/kind", "must be 'turns' or 'persistent_excitation'");
+    }
+  }
+  const double vmax = max_speed_mps;
+  if (const json* ta = root.get("turn_array", c.kind == MissionKind::turns)) {
+    Reader r(*ta, "/turn_array", errors);
+    if (r.ok()) {
+      c.turn_array.speeds_mps = number_list(r, "speeds_mps", 0.0, vmax, true, "m/s");
+      c.turn_array.dheadings_deg = number_list(r, "dheadings_deg", 0.0, 180.0, true, "deg");
+      if (const json* d = r.get("direction", false)) {
+        if (*d == "right") {
+          c.turn_array.direction = DirectionPolicy::right;
+        } else if (*d == "left") {
+          c.turn_array.direction = DirectionPolicy::left;
+        } else if (*d == "alternate") {
+          c.turn_array.direction = DirectionPolicy::alternate;
+        } else if (*d == "auto") {
+          c.turn_array.direction = DirectionPolicy::automatic;
+        } else {
+          r.error("/turn_array/direction", "must be right, left, alternate or auto");
+        }
+      }
+      r.integer("repeats", c.turn_array.repeats, 1, 1000);
+      r.finish();
+    }
+  }
+  if (const json* cs = root.get("condition_set", false)) {
+    Reader r(*cs, "/condition_set", errors);
+    r.number("speed_tolerance_mps", c.condition_set.speed_tolerance_mps, 0.0, 1.0, false, true);
+    r.number("max_yaw_rate_dps", c.condition_set.max_yaw_rate_dps, 0.0, 90.0, false, true);
+    r.integer("window", c.condition_set.window, 1, 100);
+    r.number("timeout_s", c.condition_set.timeout_s, 0.0, 3600.0, false, true);
+    r.finish();
+  }
+  if (const json* ch = root.get("constant_heading", false)) {
+    Reader r(*ch, "/constant_heading", errors);
+    r.number("completion_threshold_deg", c.completion_threshold_deg, 0.0, 45.0, false, true);
+    r.finish();
+  }
+  if (const json* reg = root.get("operating_region", true)) {
+    Reader r(*reg, "/operating_region", errors);
+    if (const json* poly = r.get("polygon_m", true)) {
+      if (!poly->is_array() || poly->size() < 3) {
+        r.error("/operating_region/polygon_m", "expected at least 3 [x_m, y_m] vertices");
+      } else {
+        for (std::size_t i = 0; i < poly->size(); ++i) {
+          if (auto p = r.point((*poly)[i], "/operating_region/polygon_m/" + std::to_string(i))) {
+            c.region.polygon.push_back(*p);
+          }
+        }
+      }
+    }
+    r.number("buffer_m", c.region.buffer_m, 0.0, 1000.0);
+    bool has_return = false;
+    if (const json* rp = r.get("return_point_m", true)) {
+      if (auto p = r.point(*rp, "/operating_region/return_point_m")) {
+        c.region.return_point = *p;
+        has_return = true;
+      }
+    }
+    r.finish();
+    const auto& poly = c.region.polygon;
+    if (poly.size() >= 3 && reg->contains("polygon_m") &&
+        poly.size() == reg->at("polygon_m").size()) {
+      const double area = polygon_area_m2(poly);
+      double perimeter = 0.0;
+      for (std::size_t i = 0; i < poly.size(); ++i) {
+        perimeter += kinematics::distance_m(poly[i], poly[(i + 1) % poly.size()]);
+      }
+      if (!polygon_is_simple(poly)) {
+        r.error("/operating_region/polygon_m", "the polygon intersects itself");
+      } else if (area < 400.0) {
+        r.error("/operating_region/polygon_m",
+                "the region is too small (" + json(area).dump() + " m²; at least 400 m² needed)");
+      } else if (c.region.buffer_m >= 2.0 * area / perimeter) {
+        // 2A/P is the inradius of a regular shape: a buffer that large leaves no interior.
+        r.error("/operating_region/buffer_m", "the buffer leaves no room inside the region");
+      } else if (has_return && !point_in_polygon(c.region.return_point, poly)) {
+        r.error("/operating_region/return_point_m", "the return point is outside the region");
+      }
+    }
+  }
+  if (const json* ex = root.get("excitation", c.kind == MissionKind::persistent_excitation)) {
+    Reader r(*ex, "/excitation", errors);
+    ExcitationConfig e;
+    r.number("speed_mps", e.speed_mps, 0.0, vmax, true, true);
+    r.number("duration_s", e.duration_s, 0.0, 86400.0, false, true);
+    r.number("min_step_deg", e.min_step_deg, 0.0, 180.0, false, true);
+    r.number("max_step_deg", e.max_step_deg, 0.0, 180.0, false, true);
+    r.number("min_interval_s", e.min_interval_s, 0.0, 3600.0, false, true);
+    r.number("max_interval_s", e.max_interval_s, 0.0, 3600.0, false, true);
+    double seed = 1;
+    r.number("seed", seed, 0.0, 9007199254740992.0);
+    e.seed = static_cast<std::uint64_t>(seed);
+    if (e.min_step_deg > e.max_step_deg)
+      r.error("/excitation/min_step_deg", "must not exceed max_step_deg");
+    if (e.min_interval_s > e.max_interval_s) {
+      r.error("/excitation/min_interval_s", "must not exceed max_interval_s");
+    }
+    r.finish();
+    c.excitation = e;
+  }
+  root.finish();
+  if (!errors.empty()) throw MissionConfigError(std::move(errors));
+  return c;
+}
+
+}  // namespace avk::mission

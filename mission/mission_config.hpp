@@ -1,0 +1,87 @@
+#pragma once
+// The mission file (docs/mission-format.md): what turns to collect, how to establish each turn's
+// conditions, when a turn is complete, and where the vehicle may go. Validation collects every
+// problem, each naming its field, so an operator fixes a file in one pass.
+
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "kinematics/geometry.hpp"
+
+namespace avk::mission {
+
+enum class DirectionPolicy { right, left, alternate, automatic };
+const char* to_string(DirectionPolicy p);
+
+enum class MissionKind { turns, persistent_excitation };
+
+struct TurnArray {
+  std::vector<double> speeds_mps;
+  std::vector<double> dheadings_deg;  // magnitudes in (0, 180]
+  DirectionPolicy direction = DirectionPolicy::alternate;
+  int repeats = 1;
+};
+
+struct ConditionSetConfig {
+  double speed_tolerance_mps = 0.1;
+  double max_yaw_rate_dps = 1.0;
+  int window = 5;  // moving-average window of differenced headings (thesis eq. 4.2)
+  double timeout_s = 120.0;
+};
+
+struct OperatingRegion {
+  kinematics::Polyline polygon;  // local grid, metres
+  double buffer_m = 10.0;
+  kinematics::Point return_point;
+};
+
+// Thesis §3.4.2: constant speed, random heading changes at random intervals (seeded).
+struct ExcitationConfig {
+  double speed_mps = 1.0;
+  double duration_s = 600.0;
+  double min_step_deg = 20.0;
+  double max_step_deg = 120.0;
+  double min_interval_s = 3.0;
+  double max_interval_s = 10.0;
+  std::uint64_t seed = 1;
+};
+
+struct MissionConfig {
+  std::string name;
+  MissionKind kind = MissionKind::turns;
+  TurnArray turn_array;
+  ConditionSetConfig condition_set;
+  double completion_threshold_deg = 5.0;
+  OperatingRegion region;
+  std::optional<ExcitationConfig> excitation;
+};
+
+struct FieldError {
+  std::string field;  // JSON pointer
+  std::string message;
+};
+
+class MissionConfigError : public std::runtime_error {
+ public:
+  explicit MissionConfigError(std::vector<FieldError> errors);
+  const std::vector<FieldError>& errors() const { return errors_; }
+
+ private:
+  std::vector<FieldError> errors_;
+};
+
+// Parses and validates; max_speed_mps is the vehicle's. Throws MissionConfigError listing every
+// problem.
+MissionConfig parse_mission_config(std::string_view json_text, double max_speed_mps);
+
+// Polygon helpers the validation and the container behaviour share.
+double polygon_area_m2(const kinematics::Polyline& polygon);
+bool polygon_is_simple(const kinematics::Polyline& polygon);
+bool point_in_polygon(kinematics::Point p, const kinematics::Polyline& polygon);
+double distance_to_boundary_m(kinematics::Point p, const kinematics::Polyline& polygon);
+
+}  // namespace avk::mission

@@ -1,0 +1,118 @@
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "mission/mission_config.hpp"
+
+using namespace avk::mission;
+using nlohmann::json;
+
+namespace {
+
+std::string example(const std::string& name) {
+  std::ifstream f(std::string(AVK_SOURCE_DIR) + "/examples/" + name);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// Fields named by the validation of a mutated copy of the Figure 4-1 mission.
+std::vector<std::string> fields_of(const std::function<void(json&)>& mutate, double vmax = 2.0) {
+  json doc = json::parse(example("thesis-fig4-1.json"));
+  mutate(doc);
+  try {
+    parse_mission_config(doc.dump(), vmax);
+  } catch (const MissionConfigError& e) {
+    std::vector<std::string> f;
+    for (const auto& err : e.errors())
+      f.push_back(err.field);
+    return f;
+  }
+  return {};
+}
+
+}  // namespace
+
+TEST(MissionConfig, ThesisFigure41Example) {
+  const MissionConfig c = parse_mission_config(example("thesis-fig4-1.json"), 1.7);
+  EXPECT_EQ(c.name, "thesis-fig4-1");
+  EXPECT_EQ(c.turn_array.speeds_mps, (std::vector<double>{0.5, 1.0, 1.5}));
+  EXPECT_EQ(c.turn_array.dheadings_deg.size(), 6u);
+  EXPECT_EQ(c.turn_array.direction, DirectionPolicy::alternate);
+  EXPECT_EQ(c.condition_set.window, 5);
+  EXPECT_EQ(c.completion_threshold_deg, 5.0);
+  EXPECT_EQ(c.region.polygon.size(), 4u);
+  EXPECT_EQ(c.region.buffer_m, 10.0);
+}
+
+TEST(MissionConfig, PersistentExcitationExample) {
+  const MissionConfig c = parse_mission_config(example("persistent-excitation.json"), 1.7);
+  EXPECT_EQ(c.kind, MissionKind::persistent_excitation);
+  ASSERT_TRUE(c.excitation.has_value());
+  EXPECT_EQ(c.excitation->seed, 7u);
+}
+
+TEST(MissionConfig, EveryProblemIsNamed) {
+  using V = std::vector<std::string>;
+  EXPECT_EQ(fields_of([](json& d) { d["turn_array"]["speeds_mps"] = json::array(); }),
+            V{"/turn_array/speeds_mps"});
+  EXPECT_EQ(fields_of([](json& d) { d["turn_array"]["speeds_mps"][2] = 3.0; }),
+            V{"/turn_array/speeds_mps/2"});  // above the vehicle's maximum
+  EXPECT_EQ(fields_of([](json& d) { d["turn_array"]["dheadings_deg"][0] = 0; }),
+            V{"/turn_array/dheadings_deg/0"});
+  EXPECT_EQ(fields_of([](json& d) { d["turn_array"]["dheadings_deg"][1] = 190; }),
+            V{"/turn_array/dheadings_deg/1"});
+  EXPECT_EQ(fields_of([](json& d) { d["turn_array"]["direction"] = "sideways"; }),
+            V{"/turn_array/direction"});
+  EXPECT_EQ(fields_of([](json& d) { d["turn_aray"] = 1; }), V{"/turn_aray"});
+  EXPECT_EQ(fields_of([](json& d) { d["condition_set"]["speed_tolerance_kts"] = 1; }),
+            V{"/condition_set/speed_tolerance_kts"});
+  EXPECT_EQ(fields_of([](json& d) { d["constant_heading"]["completion_threshold_deg"] = "5"; }),
+            V{"/constant_heading/completion_threshold_deg"});
+  EXPECT_EQ(fields_of([](json& d) {
+              d["operating_region"]["polygon_m"] = {{0, 0}, {100, 100}, {100, 0}, {0, 100}};
+            }),
+            V{"/operating_region/polygon_m"});  // a bow tie
+  EXPECT_EQ(fields_of([](json& d) {
+              d["operating_region"]["polygon_m"] = {{0, 0}, {10, 0}, {10, 10}, {0, 10}};
+              d["operating_region"]["return_point_m"] = {5, 5};
+            }),
+            V{"/operating_region/polygon_m"});  // too small
+  EXPECT_EQ(fields_of([](json& d) { d["operating_region"]["buffer_m"] = 70; }),
+            V{"/operating_region/buffer_m"});
+  EXPECT_EQ(fields_of([](json& d) {
+              d["operating_region"]["return_point_m"] = {500, 0};
+            }),
+            V{"/operating_region/return_point_m"});
+  EXPECT_EQ(fields_of([](json& d) { d.erase("name"); }), V{"/name"});
+  // Several problems at once are all reported.
+  EXPECT_EQ(fields_of([](json& d) {
+              d["turn_array"]["repeats"] = 0;
+              d["operating_region"].erase("return_point_m");
+            }).size(),
+            2u);
+}
+
+TEST(MissionConfig, BadJsonIsAnError) {
+  try {
+    parse_mission_config("{\"name\": ", 1.0);
+    FAIL();
+  } catch (const MissionConfigError& e) {
+    ASSERT_EQ(e.errors().size(), 1u);
+    EXPECT_EQ(e.errors()[0].field, "json");
+  }
+}
+
+TEST(Polygon, AreaSimplicityAndContainment) {
+  const avk::kinematics::Polyline square{{0, 0}, {10, 0}, {10, 10}, {0, 10}};
+  EXPECT_DOUBLE_EQ(polygon_area_m2(square), 100.0);
+  EXPECT_TRUE(polygon_is_simple(square));
+  EXPECT_FALSE(polygon_is_simple({{0, 0}, {10, 10}, {10, 0}, {0, 10}}));
+  EXPECT_TRUE(point_in_polygon({5, 5}, square));
+  EXPECT_FALSE(point_in_polygon({15, 5}, square));
+  EXPECT_DOUBLE_EQ(distance_to_boundary_m({5, 2}, square), 2.0);
+  EXPECT_DOUBLE_EQ(distance_to_boundary_m({5, 9}, square), 1.0);
+}
