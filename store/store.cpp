@@ -1,0 +1,415 @@
+#include "store/store.hpp"
+
+#include <array>
+#include <cmath>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "kinematics/ckt_file.hpp"
+#include "kinematics/turn_json.hpp"
+#include "kinematics/turn_measures.hpp"
+
+namespace avk::store {
+
+namespace {
+
+// Each step moves the schema from version i to i + 1. Steps are append-only: a released step is
+// never edited, because databases in the field have already run it.
+constexpr std::array<const char*, 1> kMigrations = {
+    R"sql(
+CREATE TABLE vehicles (
+  id            TEXT PRIMARY KEY,
+  kind          TEXT NOT NULL,
+  max_speed_mps REAL NOT NULL,
+  length_m      REAL
+);
+CREATE TABLE missions (
+  id            INTEGER PRIMARY KEY,
+  vehicle_id    TEXT NOT NULL REFERENCES vehicles(id),
+  name          TEXT NOT NULL,
+  config_json   TEXT NOT NULL,
+  status        TEXT NOT NULL CHECK (status IN ('created', 'running', 'paused', 'interrupted',
+                                                'aborted', 'halted', 'done')),
+  created_utc   TEXT NOT NULL DEFAULT (strftime('%Y-%m-%dT%H:%M:%fZ', 'now')),
+  started_s     REAL,
+  ended_s       REAL,
+  status_reason TEXT NOT NULL DEFAULT ''
+);
+CREATE TABLE turns (
+  id                    INTEGER PRIMARY KEY,
+  mission_id            INTEGER NOT NULL REFERENCES missions(id),
+  vehicle_id            TEXT NOT NULL,
+  cell_speed_mps        REAL NOT NULL,
+  cell_dheading_deg     REAL NOT NULL,
+  status                TEXT NOT NULL CHECK (status IN ('ok', 'aborted', 'rejected')),
+  reason                TEXT NOT NULL,
+  commanded_speed_mps   REAL NOT NULL,
+  goal_dheading_deg     REAL NOT NULL,
+  observed_dheading_deg REAL NOT NULL,
+  start_time_s          REAL NOT NULL,
+  end_time_s            REAL NOT NULL,
+  advance_m             REAL,
+  transfer_m            REAL,
+  condition_set_time_s  REAL,
+  raw_json              TEXT NOT NULL,
+  normalized_json       TEXT
+);
+CREATE INDEX turns_by_mission ON turns (mission_id, id);
+CREATE INDEX turns_by_cell ON turns (commanded_speed_mps, goal_dheading_deg, id);
+CREATE TABLE nav_samples (
+  mission_id          INTEGER NOT NULL REFERENCES missions(id),
+  t_s                 REAL NOT NULL,
+  x_m                 REAL NOT NULL,
+  y_m                 REAL NOT NULL,
+  heading_deg         REAL NOT NULL,
+  speed_mps           REAL NOT NULL,
+  desired_heading_deg REAL,
+  desired_speed_mps   REAL,
+  helm_mode           TEXT NOT NULL
+);
+CREATE INDEX nav_by_mission_time ON nav_samples (mission_id, t_s);
+CREATE TABLE ckt_snapshots (
+  id          INTEGER PRIMARY KEY,
+  created_utc TEXT NOT NULL DEFAULT (strftime('%Y-%m-%dT%H:%M:%fZ', 'now')),
+  mission_ids TEXT NOT NULL,
+  document    TEXT NOT NULL
+);
+)sql",
+};
+
+constexpr const char* kMissionStatusNames[] = {"created", "running", "paused", "interrupted",
+                                               "aborted", "halted",  "done"};
+
+constexpr const char* kTurnColumns =
+    "id, mission_id, vehicle_id, cell_speed_mps, cell_dheading_deg, status, reason, "
+    "commanded_speed_mps, goal_dheading_deg, observed_dheading_deg, start_time_s, end_time_s, "
+    "advance_m, transfer_m, condition_set_time_s";
+
+TurnRow read_turn_row(const Statement& s) {
+  TurnRow r;
+  r.id = s.column_int64(0);
+  r.mission_id = s.column_int64(1);
+  r.vehicle_id = s.column_text(2);
+  r.cell_speed_mps = s.column_double(3);
+  r.cell_dheading_deg = s.column_double(4);
+  const std::string status = s.column_text(5);
+  const auto parsed = kinematics::turn_status_from_string(status);
+  if (!parsed)
+    throw StoreError("turn " + std::to_string(r.id) + " has unknown status '" + status + "'");
+  r.status = *parsed;
+  r.reason = s.column_text(6);
+  r.commanded_speed_mps = s.column_double(7);
+  r.goal_dheading_deg = s.column_double(8);
+  r.observed_dheading_deg = s.column_double(9);
+  r.start_time_s = s.column_double(10);
+  r.end_time_s = s.column_double(11);
+  r.advance_m = s.column_optional_double(12);
+  r.transfer_m = s.column_optional_double(13);
+  r.condition_set_time_s = s.column_optional_double(14);
+  return r;
+}
+
+Mission read_mission(const Statement& s) {
+  Mission m;
+  m.id = s.column_int64(0);
+  m.vehicle_id = s.column_text(1);
+  m.name = s.column_text(2);
+  m.config_json = s.column_text(3);
+  const std::string status = s.column_text(4);
+  const auto parsed = mission_status_from_string(status);
+  if (!parsed)
+    throw StoreError("mission " + std::to_string(m.id) + " has unknown status '" + status + "'");
+  m.status = *parsed;
+  m.created_utc = s.column_text(5);
+  m.started_s = s.column_optional_double(6);
+  m.ended_s = s.column_optional_double(7);
+  m.status_reason = s.column_text(8);
+  return m;
+}
+
+constexpr const char* kMissionColumns =
+    "id, vehicle_id, name, config_json, status, created_utc, started_s, ended_s, status_reason";
+
+kinematics::TurnSequence parse_stored_turn(std::int64_t id, const std::string& column,
+                                           const std::string& text) {
+  try {
+    return kinematics::parse_turn_json(text);
+  } catch (const std::exception& e) {
+    throw StoreError("turn " + std::to_string(id) + ": stored " + column +
+                     " is corrupt: " + e.what());
+  }
+}
+
+}  // namespace
+
+int schema_version() {
+  return static_cast<int>(kMigrations.size());
+}
+
+const char* to_string(MissionStatus s) {
+  return kMissionStatusNames[static_cast<int>(s)];
+}
+
+std::optional<MissionStatus> mission_status_from_string(std::string_view s) {
+  for (int i = 0; i < static_cast<int>(std::size(kMissionStatusNames)); ++i)
+    if (s == kMissionStatusNames[i]) return static_cast<MissionStatus>(i);
+  return std::nullopt;
+}
+
+Store::Store(const std::string& path) : db_(path) {
+  // Waiting up to 5 s for a lock rides out another writer's commit instead of failing at once.
+  db_.exec("PRAGMA busy_timeout = 5000");
+  db_.exec("PRAGMA foreign_keys = ON");
+  // WAL: readers never block the writer nor see its uncommitted work. NORMAL synchronous is
+  // durable against process crashes (only a power cut may lose the last commits) and avoids an
+  // fsync per transaction, which nav ingest could not afford.
+  db_.exec("PRAGMA journal_mode = WAL");
+  db_.exec("PRAGMA synchronous = NORMAL");
+  migrate();
+}
+
+int Store::user_version() {
+  auto s = db_.prepare("PRAGMA user_version");
+  s.step();
+  return static_cast<int>(s.column_int64(0));
+}
+
+std::string Store::journal_mode() {
+  auto s = db_.prepare("PRAGMA journal_mode");
+  s.step();
+  return s.column_text(0);
+}
+
+bool Store::integrity_check() {
+  auto s = db_.prepare("PRAGMA integrity_check");
+  // A healthy database answers a single row "ok"; anything else lists problems.
+  if (!s.step()) return false;
+  const bool ok = s.column_text(0) == "ok";
+  return ok && !s.step();
+}
+
+void Store::migrate() {
+  // The version check and the steps share one write transaction, so two processes opening a
+  // fresh file cannot both run step 1.
+  Transaction tx(db_);
+  const int current = user_version();
+  const int latest = schema_version();
+  if (current > latest)
+    throw StoreError("database schema version " + std::to_string(current) +
+                     " is newer than this program supports (" + std::to_string(latest) +
+                     "); upgrade AVK Station to open it");
+  for (int v = current; v < latest; ++v)
+    db_.exec(kMigrations[static_cast<std::size_t>(v)]);
+  if (current != latest) {
+    // PRAGMA takes no bound parameters; the value is our own integer, not outside input.
+    const std::string set = "PRAGMA user_version = " + std::to_string(latest);
+    db_.exec(set.c_str());
+  }
+  tx.commit();
+}
+
+void Store::upsert_vehicle(const vehicle::VehicleInfo& info) {
+  auto s = db_.prepare(
+      "INSERT INTO vehicles (id, kind, max_speed_mps, length_m) VALUES (?, ?, ?, ?) "
+      "ON CONFLICT (id) DO UPDATE SET kind = excluded.kind, "
+      "max_speed_mps = excluded.max_speed_mps, length_m = excluded.length_m");
+  s.bind(1, info.id).bind(2, info.kind).bind(3, info.max_speed_mps).bind(4, info.length_m);
+  s.run();
+}
+
+std::optional<vehicle::VehicleInfo> Store::get_vehicle(const std::string& id) {
+  auto s = db_.prepare("SELECT id, kind, max_speed_mps, length_m FROM vehicles WHERE id = ?");
+  s.bind(1, id);
+  if (!s.step()) return std::nullopt;
+  return vehicle::VehicleInfo{s.column_text(0), s.column_text(1), s.column_double(2),
+                              s.column_optional_double(3)};
+}
+
+std::int64_t Store::create_mission(const std::string& vehicle_id, const std::string& name,
+                                   const std::string& config_json) {
+  auto s = db_.prepare(
+      "INSERT INTO missions (vehicle_id, name, config_json, status) VALUES (?, ?, ?, 'created')");
+  s.bind(1, vehicle_id).bind(2, name).bind(3, config_json);
+  s.run();
+  return db_.last_insert_rowid();
+}
+
+void Store::set_mission_status(std::int64_t mission_id, MissionStatus status,
+                               const std::string& reason, double t_s) {
+  const bool starts = status == MissionStatus::running;
+  const bool ends = status == MissionStatus::aborted || status == MissionStatus::halted ||
+                    status == MissionStatus::done;
+  auto s = db_.prepare(
+      "UPDATE missions SET status = ?1, status_reason = ?2, "
+      "started_s = CASE WHEN ?3 AND started_s IS NULL THEN ?5 ELSE started_s END, "
+      "ended_s = CASE WHEN ?4 THEN ?5 ELSE ended_s END WHERE id = ?6");
+  s.bind(1, to_string(status)).bind(2, reason).bind(3, starts ? 1 : 0).bind(4, ends ? 1 : 0);
+  s.bind(5, t_s).bind(6, mission_id);
+  s.run();
+  if (db_.changes() == 0) throw StoreError("no mission " + std::to_string(mission_id));
+}
+
+std::optional<Mission> Store::get_mission(std::int64_t mission_id) {
+  auto s = db_.prepare(std::string("SELECT ") + kMissionColumns + " FROM missions WHERE id = ?");
+  s.bind(1, mission_id);
+  if (!s.step()) return std::nullopt;
+  return read_mission(s);
+}
+
+std::vector<Mission> Store::list_missions() {
+  auto s = db_.prepare(std::string("SELECT ") + kMissionColumns + " FROM missions ORDER BY id");
+  std::vector<Mission> out;
+  while (s.step())
+    out.push_back(read_mission(s));
+  return out;
+}
+
+std::int64_t Store::store_turn(std::int64_t mission_id, const kinematics::TurnSequence& raw,
+                               kinematics::TurnStatus status, const std::string& reason,
+                               std::optional<double> condition_set_time_s) {
+  kinematics::TurnSequence turn = raw;
+  turn.meta().status = status;
+  turn.meta().status_reason = reason;
+  // Serialise and measure before taking the write lock: a turn JSON cannot hold (NaN) fails
+  // here without touching the database, and the lock is held only for the inserts.
+  const std::string raw_json = kinematics::to_json_string(turn);
+  std::optional<std::string> normalized_json;
+  std::optional<double> advance_m, transfer_m;
+  try {
+    const kinematics::TurnSequence norm = turn.meta().normalized ? turn : turn.normalized();
+    const auto at = kinematics::advance_transfer(norm.points());
+    normalized_json = kinematics::to_json_string(norm);
+    advance_m = at.advance_m;
+    transfer_m = at.transfer_m;
+  } catch (const std::exception&) {
+    // A rejected or aborted turn may be unusable (too short, empty); it is still worth keeping
+    // with its reason. An ok turn must normalise.
+    if (status == kinematics::TurnStatus::ok) throw;
+  }
+  const auto& m = turn.meta();
+  Transaction tx(db_);
+  auto s = db_.prepare(
+      "INSERT INTO turns (mission_id, vehicle_id, cell_speed_mps, cell_dheading_deg, status, "
+      "reason, commanded_speed_mps, goal_dheading_deg, observed_dheading_deg, start_time_s, "
+      "end_time_s, advance_m, transfer_m, condition_set_time_s, raw_json, normalized_json) "
+      "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  s.bind(1, mission_id).bind(2, m.vehicle_id).bind(3, m.commanded_speed_mps);
+  s.bind(4, std::abs(m.goal_dheading_deg)).bind(5, kinematics::to_string(status)).bind(6, reason);
+  s.bind(7, m.commanded_speed_mps).bind(8, m.goal_dheading_deg).bind(9, m.observed_dheading_deg);
+  s.bind(10, m.start_time_s).bind(11, m.end_time_s).bind(12, advance_m).bind(13, transfer_m);
+  s.bind(14, condition_set_time_s).bind(15, raw_json);
+  if (normalized_json)
+    s.bind(16, *normalized_json);
+  else
+    s.bind_null(16);
+  s.run();
+  const std::int64_t id = db_.last_insert_rowid();
+  if (store_turn_hook_) store_turn_hook_("turn_inserted");
+  tx.commit();
+  return id;
+}
+
+std::vector<TurnRow> Store::list_turns(const TurnFilter& filter) {
+  // Every filter is always bound; a NULL parameter switches its condition off, so one fixed
+  // statement serves all combinations. Ranges keep the (speed, goal) index usable.
+  auto s = db_.prepare(std::string("SELECT ") + kTurnColumns +
+                       " FROM turns WHERE id > ?1"
+                       " AND (?2 IS NULL OR mission_id = ?2)"
+                       " AND (?3 IS NULL OR commanded_speed_mps BETWEEN ?3 AND ?4)"
+                       " AND (?5 IS NULL OR goal_dheading_deg BETWEEN ?5 AND ?6)"
+                       " AND (?7 IS NULL OR status = ?7)"
+                       " ORDER BY id LIMIT ?8");
+  s.bind(1, filter.after_id);
+  if (filter.mission_id) s.bind(2, *filter.mission_id);
+  if (filter.speed_mps) {
+    s.bind(3, *filter.speed_mps - filter.speed_tolerance_mps);
+    s.bind(4, *filter.speed_mps + filter.speed_tolerance_mps);
+  }
+  if (filter.dheading_deg) {
+    s.bind(5, *filter.dheading_deg - filter.dheading_tolerance_deg);
+    s.bind(6, *filter.dheading_deg + filter.dheading_tolerance_deg);
+  }
+  if (filter.status) s.bind(7, kinematics::to_string(*filter.status));
+  s.bind(8, filter.limit);
+  std::vector<TurnRow> out;
+  while (s.step())
+    out.push_back(read_turn_row(s));
+  return out;
+}
+
+std::optional<StoredTurn> Store::get_turn(std::int64_t turn_id) {
+  auto s = db_.prepare(std::string("SELECT ") + kTurnColumns +
+                       ", raw_json, normalized_json FROM turns WHERE id = ?");
+  s.bind(1, turn_id);
+  if (!s.step()) return std::nullopt;
+  StoredTurn t{read_turn_row(s), parse_stored_turn(turn_id, "raw_json", s.column_text(15)),
+               std::nullopt};
+  if (!s.is_null(16))
+    t.normalized = parse_stored_turn(turn_id, "normalized_json", s.column_text(16));
+  return t;
+}
+
+void Store::append_nav(std::int64_t mission_id, std::span<const NavRow> rows) {
+  Transaction tx(db_);
+  auto s = db_.prepare(
+      "INSERT INTO nav_samples (mission_id, t_s, x_m, y_m, heading_deg, speed_mps, "
+      "desired_heading_deg, desired_speed_mps, helm_mode) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  for (const NavRow& r : rows) {
+    s.bind(1, mission_id).bind(2, r.t_s).bind(3, r.x_m).bind(4, r.y_m).bind(5, r.heading_deg);
+    s.bind(6, r.speed_mps).bind(7, r.desired_heading_deg).bind(8, r.desired_speed_mps);
+    s.bind(9, r.helm_mode);
+    s.run();
+    s.reset();
+  }
+  tx.commit();
+}
+
+std::vector<NavRow> Store::nav_for_mission(std::int64_t mission_id) {
+  // rowid breaks ties between samples stamped with the same time: insertion order.
+  auto s = db_.prepare(
+      "SELECT t_s, x_m, y_m, heading_deg, speed_mps, desired_heading_deg, desired_speed_mps, "
+      "helm_mode FROM nav_samples WHERE mission_id = ? ORDER BY t_s, rowid");
+  s.bind(1, mission_id);
+  std::vector<NavRow> out;
+  while (s.step())
+    out.push_back({s.column_double(0), s.column_double(1), s.column_double(2), s.column_double(3),
+                   s.column_double(4), s.column_optional_double(5), s.column_optional_double(6),
+                   s.column_text(7)});
+  return out;
+}
+
+std::int64_t Store::save_ckt_snapshot(const kinematics::Ckt& table,
+                                      const std::vector<std::int64_t>& mission_ids) {
+  const std::string ids = nlohmann::json(mission_ids).dump();
+  const std::string doc = kinematics::ckt_to_json_string(table);
+  auto s = db_.prepare("INSERT INTO ckt_snapshots (mission_ids, document) VALUES (?, ?)");
+  s.bind(1, ids).bind(2, doc);
+  s.run();
+  return db_.last_insert_rowid();
+}
+
+std::optional<CktSnapshot> Store::latest_ckt_snapshot() {
+  auto s = db_.prepare(
+      "SELECT id, created_utc, mission_ids, document FROM ckt_snapshots ORDER BY id DESC LIMIT 1");
+  if (!s.step()) return std::nullopt;
+  CktSnapshot snap;
+  snap.id = s.column_int64(0);
+  snap.created_utc = s.column_text(1);
+  snap.document = s.column_text(3);
+  try {
+    snap.mission_ids = nlohmann::json::parse(s.column_text(2)).get<std::vector<std::int64_t>>();
+    snap.table = kinematics::parse_ckt_json(snap.document);
+  } catch (const std::exception& e) {
+    throw StoreError("CKT snapshot " + std::to_string(snap.id) + " is corrupt: " + e.what());
+  }
+  return snap;
+}
+
+void Store::overwrite_turn_json_for_testing(std::int64_t turn_id, std::string_view raw_json) {
+  auto s = db_.prepare("UPDATE turns SET raw_json = ? WHERE id = ?");
+  s.bind(1, raw_json).bind(2, turn_id);
+  s.run();
+}
+
+}  // namespace avk::store

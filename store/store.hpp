@@ -1,0 +1,156 @@
+#pragma once
+// The station's SQLite store: vehicles, missions, recorded turns (raw and normalised), navigation
+// samples and CKT snapshots. The only code in the project that writes SQL.
+//
+// One Store is one connection, for one thread. Several Stores (threads or processes) may open the
+// same file: WAL mode lets readers see committed data while a writer works.
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "kinematics/ckt.hpp"
+#include "kinematics/turn_sequence.hpp"
+#include "store/sqlite.hpp"
+#include "vehicle/vehicle.hpp"
+
+namespace avk::store {
+
+// The schema version this code writes; opening a newer database is refused.
+int schema_version();
+
+enum class MissionStatus { created, running, paused, interrupted, aborted, halted, done };
+const char* to_string(MissionStatus s);
+std::optional<MissionStatus> mission_status_from_string(std::string_view s);
+
+struct Mission {
+  std::int64_t id = 0;
+  std::string vehicle_id;
+  std::string name;
+  std::string config_json;
+  MissionStatus status = MissionStatus::created;
+  std::string created_utc;          // ISO 8601, set by the database
+  std::optional<double> started_s;  // mission clock of the first switch to running
+  std::optional<double> ended_s;    // mission clock of the switch to aborted/halted/done
+  std::string status_reason;
+};
+
+// Summary columns of a stored turn, readable without parsing its JSON.
+struct TurnRow {
+  std::int64_t id = 0;
+  std::int64_t mission_id = 0;
+  std::string vehicle_id;
+  double cell_speed_mps = 0.0;     // commanded speed
+  double cell_dheading_deg = 0.0;  // |goal|: the CKT stores right turns
+  kinematics::TurnStatus status = kinematics::TurnStatus::ok;
+  std::string reason;
+  double commanded_speed_mps = 0.0;
+  double goal_dheading_deg = 0.0;  // signed
+  double observed_dheading_deg = 0.0;
+  double start_time_s = 0.0;
+  double end_time_s = 0.0;
+  std::optional<double> advance_m;  // absent when the turn could not be normalised
+  std::optional<double> transfer_m;
+  std::optional<double> condition_set_time_s;
+};
+
+struct StoredTurn {
+  TurnRow row;
+  kinematics::TurnSequence raw;
+  std::optional<kinematics::TurnSequence> normalized;
+};
+
+struct TurnFilter {
+  std::optional<std::int64_t> mission_id;
+  std::optional<double> speed_mps;     // matches commanded speed within speed_tolerance_mps
+  std::optional<double> dheading_deg;  // matches the signed goal within dheading_tolerance_deg
+  std::optional<kinematics::TurnStatus> status;
+  double speed_tolerance_mps = 0.05;
+  double dheading_tolerance_deg = 0.5;
+  std::int64_t after_id = 0;  // keyset pagination: rows with id > after_id
+  int limit = 100;
+};
+
+// One navigation report as the mission records it, with the guidance input in force.
+struct NavRow {
+  double t_s = 0.0;
+  double x_m = 0.0;
+  double y_m = 0.0;
+  double heading_deg = 0.0;
+  double speed_mps = 0.0;
+  std::optional<double> desired_heading_deg;
+  std::optional<double> desired_speed_mps;
+  std::string helm_mode;
+  friend bool operator==(const NavRow&, const NavRow&) = default;
+};
+
+struct CktSnapshot {
+  std::int64_t id = 0;
+  std::string created_utc;
+  std::vector<std::int64_t> mission_ids;
+  std::string document;  // the CKT file (docs/ckt-format.md) as saved
+  kinematics::Ckt table;
+};
+
+class Store {
+ public:
+  // Opens (creating if needed) and migrates the database. ":memory:" gives a private in-memory
+  // database. Throws StoreError for a database newer than this code or any SQLite failure.
+  explicit Store(const std::string& path);
+
+  int user_version();
+  std::string journal_mode();
+  bool integrity_check();  // PRAGMA integrity_check says "ok"
+
+  void upsert_vehicle(const vehicle::VehicleInfo& info);
+  std::optional<vehicle::VehicleInfo> get_vehicle(const std::string& id);
+
+  std::int64_t create_mission(const std::string& vehicle_id, const std::string& name,
+                              const std::string& config_json);
+  // Records the first start (running) and the end (aborted/halted/done) on the mission clock.
+  // Throws StoreError for an unknown mission.
+  void set_mission_status(std::int64_t mission_id, MissionStatus status, const std::string& reason,
+                          double t_s);
+  std::optional<Mission> get_mission(std::int64_t mission_id);
+  std::vector<Mission> list_missions();
+
+  // Stores the turn with the given status and reason (written into its metadata too), its
+  // normalised form and advance/transfer, in one transaction. A turn that cannot be normalised
+  // is kept without the normalised form only when it is not ok. Returns the turn id.
+  std::int64_t store_turn(std::int64_t mission_id, const kinematics::TurnSequence& raw,
+                          kinematics::TurnStatus status, const std::string& reason,
+                          std::optional<double> condition_set_time_s = std::nullopt);
+  // Oldest first, at most filter.limit rows with id > filter.after_id.
+  std::vector<TurnRow> list_turns(const TurnFilter& filter);
+  // Throws StoreError naming the turn when its stored JSON is corrupt.
+  std::optional<StoredTurn> get_turn(std::int64_t turn_id);
+
+  // One transaction, one prepared statement for the whole batch.
+  void append_nav(std::int64_t mission_id, std::span<const NavRow> rows);
+  std::vector<NavRow> nav_for_mission(std::int64_t mission_id);
+
+  std::int64_t save_ckt_snapshot(const kinematics::Ckt& table,
+                                 const std::vector<std::int64_t>& mission_ids);
+  // Throws StoreError when the stored document no longer parses.
+  std::optional<CktSnapshot> latest_ckt_snapshot();
+
+  // Test seams. The hook runs inside store_turn's transaction after each step ("turn_inserted"),
+  // so a test can fail it halfway; overwrite_turn_json_for_testing corrupts a stored turn.
+  void set_store_turn_hook_for_testing(std::function<void(std::string_view step)> hook) {
+    store_turn_hook_ = std::move(hook);
+  }
+  void overwrite_turn_json_for_testing(std::int64_t turn_id, std::string_view raw_json);
+
+ private:
+  void migrate();
+
+  Connection db_;
+  std::function<void(std::string_view)> store_turn_hook_;
+};
+
+}  // namespace avk::store
