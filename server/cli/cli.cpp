@@ -31,7 +31,9 @@ void usage(std::ostream& out) {
          "      one steady-then-turn run; the trajectory as CSV\n"
          "  avk sim variability --speed M/S --dheading DEG [--repeats 77] [--jitter]\n"
          "               [--sweep-ticks] [--vehicle ...] [--sim-config FILE] [--seed N]\n"
-         "      advance/transfer per repetition and their coefficient of variation\n";
+         "      advance/transfer per repetition and their coefficient of variation\n"
+         "  avk mission validate --config FILE [--vehicle KIND]\n"
+         "      check a mission file; every problem is listed with its field\n";
 }
 }  // namespace
 
@@ -47,6 +49,7 @@ int run_cli(const std::vector<std::string>& args, std::istream& in, std::ostream
     if (args[0] == "turn") return cmd_turn(rest, io);
     if (args[0] == "ckt") return cmd_ckt(rest, io);
     if (args[0] == "sim") return cmd_sim(rest, io);
+    if (args[0] == "mission") return cmd_mission(rest, io);
   } catch (const UsageError& e) {
     err << "avk " << args[0] << ": " << e.what() << "\n";
     return 2;

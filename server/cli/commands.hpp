@@ -17,6 +17,7 @@ struct Io {
 int cmd_turn(const std::vector<std::string>& args, Io& io);
 int cmd_ckt(const std::vector<std::string>& args, Io& io);
 int cmd_sim(const std::vector<std::string>& args, Io& io);
+int cmd_mission(const std::vector<std::string>& args, Io& io);
 
 // Current UTC time as ISO 8601 (seconds).
 std::string utc_now_iso8601();

@@ -199,3 +199,17 @@ TEST(CliSim, VariabilityReportsTheCoefficientOfVariation) {
   EXPECT_NE(r.out.find("repetition,seed,completed,advance_m,transfer_m\n"), std::string::npos);
   EXPECT_NE(r.out.find("(CV "), std::string::npos);
 }
+
+TEST(CliMission, ValidateNamesEveryProblem) {
+  Result r = run({"mission", "validate", "--config",
+                  std::string(AVK_SOURCE_DIR) + "/examples/thesis-fig4-1.json"});
+  ASSERT_EQ(r.rc, 0) << r.err;
+  EXPECT_NE(r.out.find("(18 turns)"), std::string::npos) << r.out;
+  r = run({"mission", "validate", "--config", "-"},
+          R"({"name": "x", "turn_array": {"speeds_mps": [9], "dheadings_deg": [0]},
+              "operating_region": {"polygon_m": [[0,0],[50,0],[50,50],[0,50]], "buffer_m": 5,
+                                   "return_point_m": [25, 25]}})");
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.err.find("/turn_array/speeds_mps/0"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("/turn_array/dheadings_deg/0"), std::string::npos) << r.err;
+}
