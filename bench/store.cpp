@@ -3,6 +3,8 @@
 
 #include <benchmark/benchmark.h>
 
+#include "support/temp_db.hpp"
+
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -13,23 +15,7 @@
 
 namespace {
 
-class TempFile {
- public:
-  explicit TempFile(const std::string& name)
-      : path_(std::filesystem::temp_directory_path() / name) {
-    remove();
-  }
-  ~TempFile() { remove(); }
-  std::string path() const { return path_.string(); }
-
- private:
-  void remove() {
-    std::error_code ec;
-    for (const char* suffix : {"", "-wal", "-shm"})
-      std::filesystem::remove(path_.string() + suffix, ec);
-  }
-  std::filesystem::path path_;
-};
+using avk::testing::TempDb;
 
 std::int64_t mission(avk::store::Store& s) {
   s.upsert_vehicle({"bench", "usim", 2.0, 1.0});
@@ -37,7 +23,7 @@ std::int64_t mission(avk::store::Store& s) {
 }
 
 void BM_NavIngestBatch1000(benchmark::State& state) {
-  TempFile file("avk_bench_nav.db");
+  TempDb file("avk_bench_nav");
   avk::store::Store s(file.path());
   const auto m = mission(s);
   std::vector<avk::store::NavRow> rows(1000);
@@ -54,7 +40,7 @@ void BM_NavIngestBatch1000(benchmark::State& state) {
 BENCHMARK(BM_NavIngestBatch1000)->Unit(benchmark::kMillisecond);
 
 void BM_StoreTurn(benchmark::State& state) {
-  TempFile file("avk_bench_turn.db");
+  TempDb file("avk_bench_turn");
   avk::store::Store s(file.path());
   const auto m = mission(s);
   avk::testing::ArcTurnSpec spec;

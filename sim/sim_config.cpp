@@ -97,9 +97,7 @@ void read_gains(ObjectReader& r, vehicle::PidGains& g) {
 }  // namespace
 
 double SimSetup::vehicle_max_speed_mps() const {
-  if (vehicle.catamaran) return vehicle.catamaran->max_speed_mps;
-  return vehicle.usim.thrust_map.empty() ? vehicle.pid.max_thrust_pct / vehicle.usim.thrust_factor
-                                         : vehicle.usim.thrust_map.back().second;
+  return max_speed_mps(vehicle);
 }
 
 SimSetup default_sim_setup(const std::string& kind) {

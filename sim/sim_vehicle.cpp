@@ -57,6 +57,12 @@ SimVehicleConfig sim_vehicle_defaults(const std::string& kind) {
   return c;
 }
 
+double max_speed_mps(const SimVehicleConfig& c) {
+  if (c.catamaran) return c.catamaran->max_speed_mps;
+  return c.usim.thrust_map.empty() ? c.pid.max_thrust_pct / c.usim.thrust_factor
+                                   : c.usim.thrust_map.back().second;
+}
+
 SimVehicle::SimVehicle(SimVehicleConfig config, Scheduler& scheduler)
     : config_([&] {
         if (config.kind != "usim" && !config.catamaran) {
@@ -71,15 +77,8 @@ SimVehicle::SimVehicle(SimVehicleConfig config, Scheduler& scheduler)
       pid_(config_.pid) {
   info_.id = config_.id;
   info_.kind = config_.kind;
-  if (config_.catamaran) {
-    info_.max_speed_mps = config_.catamaran->max_speed_mps;
-    info_.length_m = config_.catamaran->length_m;
-  } else {
-    // uSimMarine's top speed is full thrust over the thrust factor (or the thrust map's end).
-    info_.max_speed_mps = config_.usim.thrust_map.empty()
-                              ? config_.pid.max_thrust_pct / config_.usim.thrust_factor
-                              : config_.usim.thrust_map.back().second;
-  }
+  info_.max_speed_mps = max_speed_mps(config_);
+  if (config_.catamaran) info_.length_m = config_.catamaran->length_m;
   scheduler.add(config_.id + "/plant", config_.plant_hz, [this](double t) { plant_tick(t); });
   scheduler.add(config_.id + "/controller", config_.controller_hz,
                 [this](double t) { controller_tick(t); });

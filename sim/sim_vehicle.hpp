@@ -46,6 +46,10 @@ struct SimVehicleConfig {
 // unknown kind, naming it.
 SimVehicleConfig sim_vehicle_defaults(const std::string& kind);
 
+// The top operating speed: the catamaran's rating, or uSimMarine's full thrust over its thrust
+// factor (or the end of its thrust map).
+double max_speed_mps(const SimVehicleConfig& config);
+
 class SimVehicle final : public vehicle::Vehicle {
  public:
   // Registers the plant and controller components with the scheduler (which must outlive this).

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "support/temp_db.hpp"
+
 #include <atomic>
 #include <filesystem>
 #include <set>
@@ -19,28 +21,7 @@ using namespace avk::store;
 
 namespace {
 
-// A fresh file under the temp directory, removed (with its WAL side files) afterwards.
-class TempDb {
- public:
-  TempDb() {
-    static std::atomic<int> counter{0};
-    path_ = std::filesystem::temp_directory_path() /
-            ("avk_store_test_" + std::to_string(::testing::UnitTest::GetInstance()->random_seed()) +
-             "_" + std::to_string(counter++) + "_" +
-             ::testing::UnitTest::GetInstance()->current_test_info()->name() + ".db");
-    remove();
-  }
-  ~TempDb() { remove(); }
-  std::string path() const { return path_.string(); }
-
- private:
-  void remove() {
-    std::error_code ec;
-    for (const char* suffix : {"", "-wal", "-shm"})
-      std::filesystem::remove(path_.string() + suffix, ec);
-  }
-  std::filesystem::path path_;
-};
+using avk::testing::TempDb;
 
 std::int64_t make_mission(Store& s, const std::string& vehicle = "usim-1") {
   s.upsert_vehicle({vehicle, "usim", 2.0, 1.2});
