@@ -1,5 +1,7 @@
-// Store throughput: nav ingest in batches of 1000 (target >= 200,000 samples/s) and storing one
-// ~200-sample turn (target <= 1 ms), both against a WAL file database as the station runs it.
+// Store throughput: nav ingest in batches of 1000 (target >= 200,000 samples/s), storing one
+// ~200-sample turn (target <= 1 ms), and building the CKT from 10,000 stored turns (target < 1 s,
+// load + build; load and build are also timed alone to show which dominates), all against a WAL
+// file database as the station runs it.
 
 #include <benchmark/benchmark.h>
 
@@ -7,9 +9,11 @@
 
 #include <cmath>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "kinematics/ckt.hpp"
 #include "store/store.hpp"
 #include "support/synthetic_turns.hpp"
 
@@ -52,5 +56,74 @@ void BM_StoreTurn(benchmark::State& state) {
     benchmark::DoNotOptimize(s.store_turn(m, turn, avk::kinematics::TurnStatus::ok, "", 1.0));
 }
 BENCHMARK(BM_StoreTurn)->Unit(benchmark::kMicrosecond);
+
+// 10,000 ok turns over the thesis' 18 cells (0.5/1.0/1.5 m/s x 10..160 deg, ~556 a cell), sampled
+// at 10 Hz with 0.1 m position noise, from a vehicle whose lead-in and radius grow with speed.
+// Storing them takes seconds, so the three benchmarks below share one database built on first use.
+class StoredTurns {
+ public:
+  static StoredTurns& get() {
+    static StoredTurns instance;
+    return instance;
+  }
+  std::string path() const { return file_.path(); }
+  std::size_t samples() const { return samples_; }
+
+ private:
+  StoredTurns() : file_("avk_bench_ckt") {
+    avk::store::Store s(file_.path());
+    const auto m = mission(s);
+    constexpr double kSpeeds[] = {0.5, 1.0, 1.5};
+    constexpr double kDheadings[] = {10.0, 40.0, 70.0, 100.0, 130.0, 160.0};
+    for (unsigned i = 0; i < 10000; ++i) {
+      const unsigned cell = i % 18;
+      const double u = kSpeeds[cell / 6];
+      const double d = kDheadings[cell % 6];
+      avk::testing::ArcTurnSpec spec;
+      spec.speed_mps = u;
+      spec.dheading_deg = (i / 18) % 2 ? -d : d;
+      spec.lead_in_m = 0.5 + u;
+      spec.radius_m = 1.0 + 2.0 * u;
+      spec.dt_s = 0.1;
+      spec.position_noise_m = 0.1;
+      spec.seed = i + 1;
+      spec.start = {-40.0 + 7.0 * (i % 11), 25.0 - 5.0 * (i % 9), 31.0 * i};
+      spec.vehicle_id = "bench";
+      const auto turn = avk::testing::make_arc_turn(spec);
+      samples_ += turn.samples().size();
+      s.store_turn(m, turn, avk::kinematics::TurnStatus::ok, "", 2.0);
+    }
+  }
+  TempDb file_;
+  std::size_t samples_ = 0;
+};
+
+void BM_CktFrom10000StoredTurns(benchmark::State& state) {
+  auto& data = StoredTurns::get();
+  avk::store::Store s(data.path());
+  for (auto _ : state) {
+    const auto turns = s.load_normalized_turns({});
+    benchmark::DoNotOptimize(avk::kinematics::Ckt::build(turns));
+  }
+  state.counters["samples"] = static_cast<double>(data.samples());
+}
+BENCHMARK(BM_CktFrom10000StoredTurns)->Unit(benchmark::kMillisecond);
+
+void BM_LoadNormalized10000Turns(benchmark::State& state) {
+  auto& data = StoredTurns::get();
+  avk::store::Store s(data.path());
+  for (auto _ : state)
+    benchmark::DoNotOptimize(s.load_normalized_turns({}));
+  state.SetItemsProcessed(state.iterations() * 10000);
+}
+BENCHMARK(BM_LoadNormalized10000Turns)->Unit(benchmark::kMillisecond);
+
+void BM_CktBuild10000Turns(benchmark::State& state) {
+  auto& data = StoredTurns::get();
+  const auto turns = avk::store::Store(data.path()).load_normalized_turns({});
+  for (auto _ : state)
+    benchmark::DoNotOptimize(avk::kinematics::Ckt::build(turns));
+}
+BENCHMARK(BM_CktBuild10000Turns)->Unit(benchmark::kMillisecond);
 
 }  // namespace

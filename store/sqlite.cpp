@@ -85,6 +85,18 @@ Statement& Statement::bind(int index, std::optional<double> value) {
   return value ? bind(index, *value) : bind_null(index);
 }
 
+Statement& Statement::bind(int index, std::optional<std::int64_t> value) {
+  return value ? bind(index, *value) : bind_null(index);
+}
+
+Statement& Statement::bind_blob(int index, std::span<const unsigned char> bytes) {
+  // A zero-length blob from a null pointer would bind NULL; "" keeps it an empty blob.
+  static const unsigned char kEmpty = 0;
+  const void* data = bytes.empty() ? &kEmpty : bytes.data();
+  db_->check(sqlite3_bind_blob64(stmt_, index, data, bytes.size(), SQLITE_TRANSIENT), "bind");
+  return *this;
+}
+
 Statement& Statement::bind_null(int index) {
   db_->check(sqlite3_bind_null(stmt_, index), "bind");
   return *this;
@@ -132,6 +144,20 @@ std::string Statement::column_text(int column) const {
 std::optional<double> Statement::column_optional_double(int column) const {
   if (is_null(column)) return std::nullopt;
   return column_double(column);
+}
+
+std::optional<std::int64_t> Statement::column_optional_int64(int column) const {
+  if (is_null(column)) return std::nullopt;
+  return column_int64(column);
+}
+
+std::span<const unsigned char> Statement::column_blob(int column) const {
+  // sqlite3_column_blob before sqlite3_column_bytes: the documented order that avoids a
+  // conversion invalidating the pointer.
+  const auto* p = static_cast<const unsigned char*>(sqlite3_column_blob(stmt_, column));
+  const int n = sqlite3_column_bytes(stmt_, column);
+  if (!p) return {};
+  return {p, static_cast<std::size_t>(n)};
 }
 
 Transaction::Transaction(Connection& db) : db_(db) {

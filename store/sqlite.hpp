@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -67,6 +68,8 @@ class Statement {
     return bind(index, std::string_view(text));
   }
   Statement& bind(int index, std::optional<double> value);
+  Statement& bind(int index, std::optional<std::int64_t> value);
+  Statement& bind_blob(int index, std::span<const unsigned char> bytes);
   Statement& bind_null(int index);
 
   // True while a row is available; false when done. Throws StoreError on failure.
@@ -81,6 +84,9 @@ class Statement {
   std::int64_t column_int64(int column) const;
   std::string column_text(int column) const;
   std::optional<double> column_optional_double(int column) const;
+  std::optional<std::int64_t> column_optional_int64(int column) const;
+  // Valid until the next step, reset or column access on this statement; empty for NULL.
+  std::span<const unsigned char> column_blob(int column) const;
 
  private:
   const Connection* db_;

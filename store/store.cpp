@@ -1,7 +1,10 @@
 #include "store/store.hpp"
 
 #include <array>
+#include <bit>
 #include <cmath>
+#include <limits>
+#include <span>
 #include <stdexcept>
 
 #include <nlohmann/json.hpp>
@@ -16,7 +19,7 @@ namespace {
 
 // Each step moves the schema from version i to i + 1. Steps are append-only: a released step is
 // never edited, because databases in the field have already run it.
-constexpr std::array<const char*, 1> kMigrations = {
+constexpr std::array<const char*, 2> kMigrations = {
     R"sql(
 CREATE TABLE vehicles (
   id            TEXT PRIMARY KEY,
@@ -76,6 +79,33 @@ CREATE TABLE ckt_snapshots (
   document    TEXT NOT NULL
 );
 )sql",
+    // normalized_samples (packed float64, see pack_samples) and normalized_meta_json (the
+    // normalised turn's JSON without samples) let the CKT load thousands of turns without
+    // parsing their full JSON; normalized_json stays the turn's document of record.
+    R"sql(
+ALTER TABLE missions ADD COLUMN runner_pid INTEGER;
+ALTER TABLE turns ADD COLUMN normalized_samples BLOB;
+ALTER TABLE turns ADD COLUMN normalized_meta_json TEXT;
+CREATE INDEX turns_by_mission_end ON turns (mission_id, end_time_s);
+CREATE TABLE condition_sets (
+  id               INTEGER PRIMARY KEY,
+  mission_id       INTEGER NOT NULL REFERENCES missions(id),
+  start_s          REAL NOT NULL,
+  end_s            REAL NOT NULL,
+  target_speed_mps REAL NOT NULL,
+  outcome          TEXT NOT NULL CHECK (outcome IN ('set', 'timeout', 'interrupted')),
+  CHECK (end_s >= start_s)
+);
+CREATE INDEX condition_sets_by_mission ON condition_sets (mission_id, start_s);
+CREATE TABLE mission_events (
+  id         INTEGER PRIMARY KEY,
+  mission_id INTEGER NOT NULL REFERENCES missions(id),
+  t_s        REAL NOT NULL,
+  kind       TEXT NOT NULL,
+  message    TEXT NOT NULL
+);
+CREATE INDEX mission_events_by_mission ON mission_events (mission_id, id);
+)sql",
 };
 
 constexpr const char* kMissionStatusNames[] = {"created", "running", "paused", "interrupted",
@@ -125,11 +155,69 @@ Mission read_mission(const Statement& s) {
   m.started_s = s.column_optional_double(6);
   m.ended_s = s.column_optional_double(7);
   m.status_reason = s.column_text(8);
+  m.runner_pid = s.column_optional_int64(9);
   return m;
 }
 
 constexpr const char* kMissionColumns =
-    "id, vehicle_id, name, config_json, status, created_utc, started_s, ended_s, status_reason";
+    "id, vehicle_id, name, config_json, status, created_utc, started_s, ended_s, status_reason, "
+    "runner_pid";
+
+// A sample is 5 doubles (t_s, x_m, y_m, heading_deg, speed_mps), each 8 bytes little-endian
+// whatever the host, so a database file moves between machines.
+constexpr std::size_t kPackedSampleBytes = 5 * sizeof(std::uint64_t);
+static_assert(sizeof(double) == sizeof(std::uint64_t) && std::numeric_limits<double>::is_iec559);
+
+std::vector<unsigned char> pack_samples(const std::vector<kinematics::TurnSample>& samples) {
+  std::vector<unsigned char> out(samples.size() * kPackedSampleBytes);
+  unsigned char* p = out.data();
+  const auto put = [&p](double v) {
+    const auto bits = std::bit_cast<std::uint64_t>(v);
+    for (int b = 0; b < 8; ++b)
+      *p++ = static_cast<unsigned char>(bits >> (8 * b));
+  };
+  for (const auto& s : samples) {
+    put(s.t_s);
+    put(s.x_m);
+    put(s.y_m);
+    put(s.heading_deg);
+    put(s.speed_mps);
+  }
+  return out;
+}
+
+std::vector<kinematics::TurnSample> unpack_samples(std::int64_t turn_id,
+                                                   std::span<const unsigned char> bytes) {
+  if (bytes.size() % kPackedSampleBytes != 0)
+    throw StoreError("turn " + std::to_string(turn_id) +
+                     ": stored normalized_samples is corrupt (" + std::to_string(bytes.size()) +
+                     " bytes, not whole samples)");
+  const unsigned char* p = bytes.data();
+  const auto get = [&p] {
+    std::uint64_t bits = 0;
+    for (int b = 0; b < 8; ++b)
+      bits |= static_cast<std::uint64_t>(*p++) << (8 * b);
+    return std::bit_cast<double>(bits);
+  };
+  std::vector<kinematics::TurnSample> out(bytes.size() / kPackedSampleBytes);
+  for (auto& s : out) {
+    s.t_s = get();
+    s.x_m = get();
+    s.y_m = get();
+    s.heading_deg = get();
+    s.speed_mps = get();
+  }
+  return out;
+}
+
+// The turn without its samples: metadata and warnings through the same serialiser as the full
+// document, so whatever TurnMeta holds survives the packed path too.
+std::string meta_json(const kinematics::TurnSequence& turn) {
+  kinematics::TurnSequence head(turn.meta(), {});
+  for (const auto& w : turn.warnings())
+    head.add_warning(w);
+  return kinematics::to_json_string(head);
+}
 
 kinematics::TurnSequence parse_stored_turn(std::int64_t id, const std::string& column,
                                            const std::string& text) {
@@ -145,6 +233,12 @@ kinematics::TurnSequence parse_stored_turn(std::int64_t id, const std::string& c
 
 int schema_version() {
   return static_cast<int>(kMigrations.size());
+}
+
+std::string_view migration_step_sql(int index) {
+  if (index < 0 || index >= schema_version())
+    throw std::out_of_range("no migration step " + std::to_string(index));
+  return kMigrations[static_cast<std::size_t>(index)];
 }
 
 const char* to_string(MissionStatus s) {
@@ -274,12 +368,15 @@ std::int64_t Store::store_turn(std::int64_t mission_id, const kinematics::TurnSe
   // Serialise and measure before taking the write lock: a turn JSON cannot hold (NaN) fails
   // here without touching the database, and the lock is held only for the inserts.
   const std::string raw_json = kinematics::to_json_string(turn);
-  std::optional<std::string> normalized_json;
+  std::optional<std::string> normalized_json, normalized_meta;
+  std::vector<unsigned char> normalized_samples;
   std::optional<double> advance_m, transfer_m;
   try {
     const kinematics::TurnSequence norm = turn.meta().normalized ? turn : turn.normalized();
     const auto at = kinematics::advance_transfer(norm.points());
     normalized_json = kinematics::to_json_string(norm);
+    normalized_meta = meta_json(norm);
+    normalized_samples = pack_samples(norm.samples());
     advance_m = at.advance_m;
     transfer_m = at.transfer_m;
   } catch (const std::exception&) {
@@ -292,17 +389,19 @@ std::int64_t Store::store_turn(std::int64_t mission_id, const kinematics::TurnSe
   auto s = db_.prepare(
       "INSERT INTO turns (mission_id, vehicle_id, cell_speed_mps, cell_dheading_deg, status, "
       "reason, commanded_speed_mps, goal_dheading_deg, observed_dheading_deg, start_time_s, "
-      "end_time_s, advance_m, transfer_m, condition_set_time_s, raw_json, normalized_json) "
-      "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+      "end_time_s, advance_m, transfer_m, condition_set_time_s, raw_json, normalized_json, "
+      "normalized_meta_json, normalized_samples) "
+      "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   s.bind(1, mission_id).bind(2, m.vehicle_id).bind(3, m.commanded_speed_mps);
   s.bind(4, std::abs(m.goal_dheading_deg)).bind(5, kinematics::to_string(status)).bind(6, reason);
   s.bind(7, m.commanded_speed_mps).bind(8, m.goal_dheading_deg).bind(9, m.observed_dheading_deg);
   s.bind(10, m.start_time_s).bind(11, m.end_time_s).bind(12, advance_m).bind(13, transfer_m);
   s.bind(14, condition_set_time_s).bind(15, raw_json);
-  if (normalized_json)
-    s.bind(16, *normalized_json);
-  else
-    s.bind_null(16);
+  if (normalized_json) {
+    s.bind(16, *normalized_json).bind(17, *normalized_meta).bind_blob(18, normalized_samples);
+  } else {
+    s.bind_null(16).bind_null(17).bind_null(18);
+  }
   s.run();
   const std::int64_t id = db_.last_insert_rowid();
   if (store_turn_hook_) store_turn_hook_("turn_inserted");
@@ -348,6 +447,152 @@ std::optional<StoredTurn> Store::get_turn(std::int64_t turn_id) {
   if (!s.is_null(16))
     t.normalized = parse_stored_turn(turn_id, "normalized_json", s.column_text(16));
   return t;
+}
+
+void Store::set_mission_runner(std::int64_t mission_id, std::optional<std::int64_t> pid) {
+  auto s = db_.prepare("UPDATE missions SET runner_pid = ? WHERE id = ?");
+  s.bind(1, pid).bind(2, mission_id);
+  s.run();
+  if (db_.changes() == 0) throw StoreError("no mission " + std::to_string(mission_id));
+}
+
+void Store::append_condition_set(std::int64_t mission_id, const ConditionSetTiming& timing) {
+  auto s = db_.prepare(
+      "INSERT INTO condition_sets (mission_id, start_s, end_s, target_speed_mps, outcome) "
+      "VALUES (?, ?, ?, ?, ?)");
+  s.bind(1, mission_id).bind(2, timing.start_s).bind(3, timing.end_s);
+  s.bind(4, timing.target_speed_mps).bind(5, timing.outcome);
+  s.run();
+}
+
+std::vector<ConditionSetTiming> Store::condition_sets(std::int64_t mission_id) {
+  // id breaks ties between episodes that start at the same time: insertion order.
+  auto s = db_.prepare(
+      "SELECT start_s, end_s, target_speed_mps, outcome FROM condition_sets WHERE mission_id = ? "
+      "ORDER BY start_s, id");
+  s.bind(1, mission_id);
+  std::vector<ConditionSetTiming> out;
+  while (s.step())
+    out.push_back({s.column_double(0), s.column_double(1), s.column_double(2), s.column_text(3)});
+  return out;
+}
+
+std::int64_t Store::append_event(std::int64_t mission_id, double t_s, const std::string& kind,
+                                 const std::string& message) {
+  auto s = db_.prepare(
+      "INSERT INTO mission_events (mission_id, t_s, kind, message) VALUES (?, ?, ?, ?)");
+  s.bind(1, mission_id).bind(2, t_s).bind(3, kind).bind(4, message);
+  s.run();
+  return db_.last_insert_rowid();
+}
+
+std::vector<MissionEvent> Store::list_events(std::int64_t mission_id, std::int64_t after_id,
+                                             int limit) {
+  auto s = db_.prepare(
+      "SELECT id, mission_id, t_s, kind, message FROM mission_events "
+      "WHERE mission_id = ? AND id > ? ORDER BY id LIMIT ?");
+  s.bind(1, mission_id).bind(2, after_id).bind(3, limit);
+  std::vector<MissionEvent> out;
+  while (s.step())
+    out.push_back({s.column_int64(0), s.column_int64(1), s.column_double(2), s.column_text(3),
+                   s.column_text(4)});
+  return out;
+}
+
+std::optional<double> Store::mission_clock_end_s(std::int64_t mission_id) {
+  // The aggregate max skips the NULL of an empty source (the scalar max(a, b) would not), and
+  // each inner max is one index probe for the large tables (nav, turns).
+  auto s = db_.prepare(
+      "SELECT max(t) FROM ("
+      " SELECT max(t_s) AS t FROM nav_samples WHERE mission_id = ?1"
+      " UNION ALL SELECT max(end_time_s) FROM turns WHERE mission_id = ?1"
+      " UNION ALL SELECT max(t_s) FROM mission_events WHERE mission_id = ?1"
+      " UNION ALL SELECT max(end_s) FROM condition_sets WHERE mission_id = ?1)");
+  s.bind(1, mission_id);
+  s.step();
+  return s.column_optional_double(0);
+}
+
+std::vector<CellStats> Store::mission_cell_stats(std::int64_t mission_id) {
+  auto s = db_.prepare(
+      "SELECT cell_speed_mps, cell_dheading_deg, status, advance_m, transfer_m, "
+      "condition_set_time_s FROM turns WHERE mission_id = ? "
+      "ORDER BY cell_speed_mps, cell_dheading_deg, id");
+  s.bind(1, mission_id);
+  std::vector<CellStats> out;
+  std::vector<double> advances, transfers, condition_set_times;
+  // The standard deviation needs every value, which SQL cannot aggregate; the rows arrive
+  // grouped by cell, so each cell is closed when the next begins.
+  const auto close_cell = [&] {
+    if (out.empty()) return;
+    CellStats& c = out.back();
+    if (!advances.empty()) c.advance_m = kinematics::mean_sd(advances);
+    if (!transfers.empty()) c.transfer_m = kinematics::mean_sd(transfers);
+    if (!condition_set_times.empty())
+      c.condition_set_time_s = kinematics::mean_sd(condition_set_times);
+    advances.clear();
+    transfers.clear();
+    condition_set_times.clear();
+  };
+  while (s.step()) {
+    const double speed = s.column_double(0);
+    const double dheading = s.column_double(1);
+    if (out.empty() || out.back().speed_mps != speed || out.back().dheading_deg != dheading) {
+      close_cell();
+      out.push_back({});
+      out.back().speed_mps = speed;
+      out.back().dheading_deg = dheading;
+    }
+    CellStats& c = out.back();
+    const std::string status = s.column_text(2);
+    if (status == "aborted") {
+      ++c.n_aborted;
+    } else if (status == "rejected") {
+      ++c.n_rejected;
+    } else {
+      ++c.n_ok;
+      if (auto v = s.column_optional_double(3)) advances.push_back(*v);
+      if (auto v = s.column_optional_double(4)) transfers.push_back(*v);
+      if (auto v = s.column_optional_double(5)) condition_set_times.push_back(*v);
+    }
+  }
+  close_cell();
+  return out;
+}
+
+std::vector<kinematics::TurnSequence> Store::load_normalized_turns(
+    const std::vector<std::int64_t>& mission_ids, const std::optional<std::string>& vehicle_id) {
+  // The mission list travels as one bound JSON array, so the statement text stays fixed
+  // whatever the number of missions.
+  constexpr const char* kColumns =
+      "SELECT id, normalized_meta_json, normalized_samples, normalized_json FROM turns ";
+  auto s =
+      db_.prepare(mission_ids.empty()
+                      ? std::string(kColumns) +
+                            "WHERE status = 'ok' AND (?1 IS NULL OR vehicle_id = ?1) ORDER BY id"
+                      : std::string(kColumns) +
+                            "WHERE status = 'ok' AND (?1 IS NULL OR vehicle_id = ?1) "
+                            "AND mission_id IN (SELECT value FROM json_each(?2)) ORDER BY id");
+  if (vehicle_id) s.bind(1, *vehicle_id);
+  if (!mission_ids.empty()) s.bind(2, nlohmann::json(mission_ids).dump());
+  std::vector<kinematics::TurnSequence> out;
+  while (s.step()) {
+    const std::int64_t id = s.column_int64(0);
+    if (!s.is_null(1) && !s.is_null(2)) {
+      kinematics::TurnSequence head =
+          parse_stored_turn(id, "normalized_meta_json", s.column_text(1));
+      kinematics::TurnSequence turn(head.meta(), unpack_samples(id, s.column_blob(2)));
+      for (const auto& w : head.warnings())
+        turn.add_warning(w);
+      out.push_back(std::move(turn));
+    } else if (!s.is_null(3)) {
+      out.push_back(parse_stored_turn(id, "normalized_json", s.column_text(3)));
+    } else {
+      // store_turn never writes an ok turn without its normalised form.
+      throw StoreError("turn " + std::to_string(id) + " is ok but has no normalised form");
+    }
+  }
+  return out;
 }
 
 void Store::append_nav(std::int64_t mission_id, std::span<const NavRow> rows) {

@@ -24,6 +24,11 @@ namespace avk::store {
 // The schema version this code writes; opening a newer database is refused.
 int schema_version();
 
+// The SQL of migration step `index` (0-based: it moves a database from version index to
+// index + 1), so a test can build a database exactly as an older release left it. Throws
+// std::out_of_range outside [0, schema_version()).
+std::string_view migration_step_sql(int index);
+
 enum class MissionStatus { created, running, paused, interrupted, aborted, halted, done };
 const char* to_string(MissionStatus s);
 std::optional<MissionStatus> mission_status_from_string(std::string_view s);
@@ -38,6 +43,7 @@ struct Mission {
   std::optional<double> started_s;  // mission clock of the first switch to running
   std::optional<double> ended_s;    // mission clock of the switch to aborted/halted/done
   std::string status_reason;
+  std::optional<std::int64_t> runner_pid;  // the process running the mission, if any
 };
 
 // Summary columns of a stored turn, readable without parsing its JSON.
@@ -89,6 +95,36 @@ struct NavRow {
   friend bool operator==(const NavRow&, const NavRow&) = default;
 };
 
+// One ConditionSet episode (thesis: the time spent establishing a turn's initial conditions).
+struct ConditionSetTiming {
+  double start_s = 0.0;
+  double end_s = 0.0;
+  double target_speed_mps = 0.0;
+  std::string outcome;  // "set", "timeout", "interrupted"
+  double duration_s() const { return end_s - start_s; }
+  friend bool operator==(const ConditionSetTiming&, const ConditionSetTiming&) = default;
+};
+
+// One entry of the operator's event log of a mission.
+struct MissionEvent {
+  std::int64_t id = 0;
+  std::int64_t mission_id = 0;
+  double t_s = 0.0;
+  std::string kind;  // e.g. "containment", "turn_aborted", "halt", "pause"
+  std::string message;
+  friend bool operator==(const MissionEvent&, const MissionEvent&) = default;
+};
+
+// Per turn-array cell of one mission: cell = (cell_speed_mps, cell_dheading_deg) as stored.
+struct CellStats {
+  double speed_mps = 0.0;
+  double dheading_deg = 0.0;  // |goal|, as cell_dheading_deg
+  std::int64_t n_ok = 0, n_aborted = 0, n_rejected = 0;
+  std::optional<kinematics::MeanSd> advance_m;  // over ok turns; absent with no ok turn
+  std::optional<kinematics::MeanSd> transfer_m;
+  std::optional<kinematics::MeanSd> condition_set_time_s;  // over ok turns that have one
+};
+
 struct CktSnapshot {
   std::int64_t id = 0;
   std::string created_utc;
@@ -118,6 +154,25 @@ class Store {
                           double t_s);
   std::optional<Mission> get_mission(std::int64_t mission_id);
   std::vector<Mission> list_missions();
+  // Throws StoreError for an unknown mission.
+  void set_mission_runner(std::int64_t mission_id, std::optional<std::int64_t> pid);
+
+  // Both throw StoreError for an unknown mission or an outcome other than set/timeout/interrupted.
+  void append_condition_set(std::int64_t mission_id, const ConditionSetTiming& timing);
+  std::vector<ConditionSetTiming> condition_sets(std::int64_t mission_id);  // by start_s
+
+  // Returns the event id. list_events is keyset-paginated: oldest first, ids > after_id.
+  std::int64_t append_event(std::int64_t mission_id, double t_s, const std::string& kind,
+                            const std::string& message);
+  std::vector<MissionEvent> list_events(std::int64_t mission_id, std::int64_t after_id = 0,
+                                        int limit = 1000);
+
+  // Latest mission-clock time anything of the mission was recorded at (nav t_s, turn end_time_s,
+  // event t_s, condition set end_s); empty when nothing was. A resumed run continues its clock
+  // after this so that times never repeat.
+  std::optional<double> mission_clock_end_s(std::int64_t mission_id);
+  // Ordered by speed, then heading change.
+  std::vector<CellStats> mission_cell_stats(std::int64_t mission_id);
 
   // Stores the turn with the given status and reason (written into its metadata too), its
   // normalised form and advance/transfer, in one transaction. A turn that cannot be normalised
@@ -129,6 +184,12 @@ class Store {
   std::vector<TurnRow> list_turns(const TurnFilter& filter);
   // Throws StoreError naming the turn when its stored JSON is corrupt.
   std::optional<StoredTurn> get_turn(std::int64_t turn_id);
+  // Normalised turns of status ok for the CKT, oldest first, from the given missions (empty: all
+  // missions), optionally of one vehicle. Each equals get_turn(id)->normalized. Reads the packed
+  // samples; turns stored before schema 2 have none and are parsed from their JSON instead.
+  std::vector<kinematics::TurnSequence> load_normalized_turns(
+      const std::vector<std::int64_t>& mission_ids,
+      const std::optional<std::string>& vehicle_id = std::nullopt);
 
   // One transaction, one prepared statement for the whole batch.
   void append_nav(std::int64_t mission_id, std::span<const NavRow> rows);
