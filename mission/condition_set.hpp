@@ -18,6 +18,7 @@ class ConditionSetMonitor {
   // Feeds one navigation sample; true once speed and smoothed yaw rate are both within limits.
   bool update(const vehicle::NavSample& nav);
   bool conditions_set() const { return set_; }
+  double target_speed_mps() const { return target_speed_mps_; }
   std::optional<double> yaw_rate_dps() const;  // moving average; empty until two samples
   void reset(double target_speed_mps);
 

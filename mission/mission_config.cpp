@@ -138,6 +138,12 @@ std::vector<double> number_list(Reader& r, const char* key, double min, double m
 
 }  // namespace
 
+double return_speed_mps(const MissionConfig& config) {
+  if (config.region.return_speed_mps) return *config.region.return_speed_mps;
+  if (config.excitation) return config.excitation->speed_mps;
+  return config.turn_array.speeds_mps.empty() ? 1.0 : config.turn_array.speeds_mps.front();
+}
+
 MissionConfigError::MissionConfigError(std::vector<FieldError> errors)
     : std::runtime_error(describe(errors)), errors_(std::move(errors)) {}
 
@@ -188,6 +194,7 @@ MissionConfig parse_mission_config(std::string_view json_text, double max_speed_
         }
       }
       r.integer("repeats", c.turn_array.repeats, 1, 1000);
+      r.integer("max_attempts", c.turn_array.max_attempts, 1, 1000);
       r.finish();
     }
   }
@@ -202,6 +209,7 @@ MissionConfig parse_mission_config(std::string_view json_text, double max_speed_
   if (const json* ch = root.get("constant_heading", false)) {
     Reader r(*ch, "/constant_heading", errors);
     r.number("completion_threshold_deg", c.completion_threshold_deg, 0.0, 45.0, false, true);
+    r.number("timeout_s", c.turn_timeout_s, 0.0, 3600.0, false, true);
     r.finish();
   }
   if (const json* reg = root.get("operating_region", true)) {
@@ -218,6 +226,10 @@ MissionConfig parse_mission_config(std::string_view json_text, double max_speed_
       }
     }
     r.number("buffer_m", c.region.buffer_m, 0.0, 1000.0);
+    double return_speed = 0.0;
+    r.number("return_speed_mps", return_speed, 0.0, vmax, false, true);
+    if (return_speed > 0.0) c.region.return_speed_mps = return_speed;
+    r.number("capture_radius_m", c.region.capture_radius_m, 0.0, 1000.0, false, true);
     bool has_return = false;
     if (const json* rp = r.get("return_point_m", true)) {
       if (auto p = r.point(*rp, "/operating_region/return_point_m")) {

@@ -24,6 +24,9 @@ struct TurnArray {
   std::vector<double> dheadings_deg;  // magnitudes in (0, 180]
   DirectionPolicy direction = DirectionPolicy::alternate;
   int repeats = 1;
+  // A turn aborted by containment or a link loss is re-queued; after this many attempts it is
+  // given up (and reported) so that a region too small for a turn cannot loop forever.
+  int max_attempts = 10;
 };
 
 struct ConditionSetConfig {
@@ -37,6 +40,8 @@ struct OperatingRegion {
   kinematics::Polyline polygon;  // local grid, metres
   double buffer_m = 10.0;
   kinematics::Point return_point;
+  std::optional<double> return_speed_mps;  // default: the mission's first speed
+  double capture_radius_m = 3.0;           // the return point is reached within this
 };
 
 // Thesis §3.4.2: constant speed, random heading changes at random intervals (seeded).
@@ -56,6 +61,8 @@ struct MissionConfig {
   TurnArray turn_array;
   ConditionSetConfig condition_set;
   double completion_threshold_deg = 5.0;
+  // A turn that has not completed after this long is aborted (and re-queued).
+  double turn_timeout_s = 120.0;
   OperatingRegion region;
   std::optional<ExcitationConfig> excitation;
 };
@@ -73,6 +80,9 @@ class MissionConfigError : public std::runtime_error {
  private:
   std::vector<FieldError> errors_;
 };
+
+// Speed for the run back to the return point.
+double return_speed_mps(const MissionConfig& config);
 
 // Parses and validates; max_speed_mps is the vehicle's. Throws MissionConfigError listing every
 // problem.

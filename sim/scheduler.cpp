@@ -5,7 +5,11 @@
 
 namespace avk::sim {
 
-Scheduler::Scheduler(SchedulerOptions options) : options_(options), rng_(options.seed) {
+Scheduler::Scheduler(SchedulerOptions options)
+    : options_(options), rng_(options.seed), now_s_(options.start_time_s) {
+  if (!std::isfinite(options.start_time_s) || options.start_time_s < 0.0) {
+    throw std::invalid_argument("scheduler start_time_s must be a finite time >= 0 s");
+  }
   if (!(options.jitter_fraction >= 0.0 && options.jitter_fraction < 1.0)) {
     throw std::invalid_argument("scheduler jitter_fraction must be in [0, 1)");
   }

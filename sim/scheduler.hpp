@@ -49,6 +49,9 @@ struct SchedulerOptions {
   double jitter_fraction = 0.0;
   // Start every component at a random phase within its period (seeded) instead of its own phase.
   bool random_phases = false;
+  // The clock's first reading. A resumed mission continues its clock so that stored times
+  // never repeat.
+  double start_time_s = 0.0;
 };
 
 class Scheduler {

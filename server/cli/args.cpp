@@ -6,7 +6,8 @@
 namespace avk::server {
 
 Args::Args(const std::vector<std::string>& words, const std::set<std::string>& value_options,
-           const std::set<std::string>& flag_options) {
+           const std::set<std::string>& flag_options,
+           const std::set<std::string>& repeatable_options) {
   for (std::size_t i = 0; i < words.size(); ++i) {
     const std::string& w = words[i];
     if (w.rfind("--", 0) != 0 || w == "-") {
@@ -22,13 +23,14 @@ Args::Args(const std::vector<std::string>& words, const std::set<std::string>& v
     if (flag_options.count(name)) {
       if (inline_value) throw UsageError("option --" + name + " takes no value");
       flags_.insert(name);
-    } else if (value_options.count(name)) {
-      if (values_.count(name)) throw UsageError("option --" + name + " given twice");
+    } else if (value_options.count(name) || repeatable_options.count(name)) {
+      if (values_.count(name) && !repeatable_options.count(name))
+        throw UsageError("option --" + name + " given twice");
       if (inline_value) {
-        values_[name] = *inline_value;
+        values_[name].push_back(*inline_value);
       } else {
         if (i + 1 >= words.size()) throw UsageError("option --" + name + " needs a value");
-        values_[name] = words[++i];
+        values_[name].push_back(words[++i]);
       }
     } else {
       throw UsageError("unknown option --" + name);
@@ -39,7 +41,12 @@ Args::Args(const std::vector<std::string>& words, const std::set<std::string>& v
 std::optional<std::string> Args::get(const std::string& name) const {
   const auto it = values_.find(name);
   if (it == values_.end()) return std::nullopt;
-  return it->second;
+  return it->second.back();
+}
+
+std::vector<std::string> Args::all(const std::string& name) const {
+  const auto it = values_.find(name);
+  return it == values_.end() ? std::vector<std::string>{} : it->second;
 }
 
 std::string Args::require(const std::string& name) const {

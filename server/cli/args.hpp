@@ -19,17 +19,20 @@ class Args {
  public:
   // value_options take a value; flag_options do not. Anything else starting with "--" is an error;
   // other words are positional.
+  // repeatable_options may be given more than once (`--mission 1 --mission 2`).
   Args(const std::vector<std::string>& words, const std::set<std::string>& value_options,
-       const std::set<std::string>& flag_options = {});
+       const std::set<std::string>& flag_options = {},
+       const std::set<std::string>& repeatable_options = {});
 
   std::optional<std::string> get(const std::string& name) const;
   std::string require(const std::string& name) const;
   bool flag(const std::string& name) const { return flags_.count(name) > 0; }
   std::optional<double> number(const std::string& name) const;  // finite, else UsageError
+  std::vector<std::string> all(const std::string& name) const;  // every value given, in order
   const std::vector<std::string>& positional() const { return positional_; }
 
  private:
-  std::map<std::string, std::string> values_;
+  std::map<std::string, std::vector<std::string>> values_;
   std::set<std::string> flags_;
   std::vector<std::string> positional_;
 };

@@ -1,7 +1,9 @@
+#include <algorithm>
 #include <chrono>
 #include <ctime>
 #include <nlohmann/json.hpp>
 #include <ostream>
+#include <set>
 
 #include "kinematics/ckt.hpp"
 #include "kinematics/ckt_file.hpp"
@@ -9,6 +11,7 @@
 #include "server/cli/commands.hpp"
 #include "server/cli/files.hpp"
 #include "server/cli/turn_file.hpp"
+#include "store/store.hpp"
 
 namespace avk::server {
 
@@ -42,13 +45,7 @@ void emit(const Args& a, Io& io, const std::string& content) {
   }
 }
 
-kin::Ckt build_from_turns(const Args& a, Io& io) {
-  const std::string path = a.require("turns");
-  const auto records = parse_turn_file(read_file(path, io.in), path == "-" ? "stdin" : path);
-  std::vector<kin::TurnSequence> turns;
-  turns.reserve(records.size());
-  for (const auto& r : records)
-    turns.push_back(r.turn);
+kin::CktOptions build_options(const Args& a) {
   kin::CktOptions options;
   if (const auto fit = a.get("fit")) {
     const auto kind = kin::fit_kind_from_string(*fit);
@@ -59,15 +56,82 @@ kin::Ckt build_from_turns(const Args& a, Io& io) {
     if (!(*eps > 0.0)) throw UsageError("--epsilon must be positive (metres)");
     options.pwl_epsilon_m = *eps;
   }
+  return options;
+}
+
+std::vector<std::int64_t> mission_ids(const Args& a) {
+  std::vector<std::int64_t> ids;
+  for (const std::string& s : a.all("mission")) {
+    std::size_t used = 0;
+    long long id = 0;
+    try {
+      id = std::stoll(s, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != s.size() || id <= 0)
+      throw UsageError("--mission needs a positive whole number, got '" + s + "'");
+    ids.push_back(id);
+  }
+  return ids;
+}
+
+// The vehicle whose turns make the table: --vehicle, or the only vehicle of the chosen missions.
+// Mixing vehicles in one table would average different hulls.
+std::string db_vehicle(const Args& a, store::Store& db, const std::vector<std::int64_t>& ids) {
+  if (const auto v = a.get("vehicle")) return *v;
+  std::set<std::string> vehicles;
+  for (const auto& m : db.list_missions()) {
+    if (ids.empty() || std::find(ids.begin(), ids.end(), m.id) != ids.end())
+      vehicles.insert(m.vehicle_id);
+  }
+  for (const auto id : ids) {
+    if (!db.get_mission(id)) throw std::runtime_error("no mission " + std::to_string(id));
+  }
+  if (vehicles.empty()) throw std::runtime_error("the database holds no missions");
+  if (vehicles.size() > 1) {
+    std::string names;
+    for (const auto& v : vehicles)
+      names += (names.empty() ? "" : ", ") + v;
+    throw UsageError("the missions are of several vehicles (" + names +
+                     "): choose one with --vehicle");
+  }
+  return *vehicles.begin();
+}
+
+struct BuiltTable {
+  kin::Ckt table;
+  std::vector<std::int64_t> mission_ids;
+};
+
+BuiltTable build_table(const Args& a, Io& io) {
+  if (a.get("turns").has_value() == a.get("db").has_value())
+    throw UsageError("give exactly one source: --turns FILE or --db FILE");
+  std::vector<kin::TurnSequence> turns;
+  BuiltTable out;
+  std::string vehicle;
+  if (const auto path = a.get("turns")) {
+    if (!a.all("mission").empty()) throw UsageError("--mission goes with --db");
+    const auto records = parse_turn_file(read_file(*path, io.in), *path == "-" ? "stdin" : *path);
+    turns.reserve(records.size());
+    for (const auto& r : records)
+      turns.push_back(r.turn);
+    vehicle = a.get("vehicle").value_or(turns.empty() ? "" : turns.front().meta().vehicle_id);
+  } else {
+    store::Store db(*a.get("db"));
+    out.mission_ids = mission_ids(a);
+    vehicle = db_vehicle(a, db, out.mission_ids);
+    turns = db.load_normalized_turns(out.mission_ids, vehicle);
+    if (turns.empty()) throw std::runtime_error("no ok turns of '" + vehicle + "' to build from");
+  }
   kin::CktBuildReport report;
-  kin::Ckt table = kin::Ckt::build(turns, options, std::nullopt, &report);
-  table.vehicle_id =
-      a.get("vehicle").value_or(turns.empty() ? "" : turns.front().meta().vehicle_id);
-  table.vehicle_length_m = a.number("vehicle-length");
-  table.created_utc = utc_now_iso8601();
+  out.table = kin::Ckt::build(turns, build_options(a), std::nullopt, &report);
+  out.table.vehicle_id = vehicle;
+  out.table.vehicle_length_m = a.number("vehicle-length");
+  out.table.created_utc = utc_now_iso8601();
   io.err << "ckt: " << report.turns_used << " turns used, " << report.turns_skipped_status
          << " aborted/rejected skipped, " << report.turns_unassigned << " off the grid\n";
-  return table;
+  return out;
 }
 
 kin::Ckt load_ckt(const std::string& path, Io& io) {
@@ -149,20 +213,34 @@ int cmd_ckt(const std::vector<std::string>& args, Io& io) {
   if (args.empty()) throw UsageError("expected 'ckt build|export|import|query'");
   const std::string sub = args[0];
   const std::vector<std::string> rest(args.begin() + 1, args.end());
+  const std::set<std::string> build_values = {
+      "turns", "db", "out", "format", "vehicle", "vehicle-length", "fit", "epsilon"};
   if (sub == "build") {
-    const Args a(rest, {"turns", "out", "format", "vehicle", "vehicle-length", "fit", "epsilon"});
-    const kin::Ckt t = build_from_turns(a, io);
-    emit(a, io, serialise(t, out_format(a)));
-    return summarise(t, io);
+    const Args a(rest, build_values, {}, {"mission"});
+    const OutFormat format = out_format(a);
+    const BuiltTable t = build_table(a, io);
+    emit(a, io, serialise(t.table, format));
+    if (const auto db_path = a.get("db")) {
+      // The snapshot records which table guidance was given, and from which missions.
+      store::Store db(*db_path);
+      io.err << "ckt: saved as snapshot " << db.save_ckt_snapshot(t.table, t.mission_ids) << "\n";
+    }
+    return summarise(t.table, io);
   }
   if (sub == "export") {
-    const Args a(rest,
-                 {"turns", "ckt", "out", "format", "vehicle", "vehicle-length", "fit", "epsilon"});
-    if (a.get("turns").has_value() == a.get("ckt").has_value()) {
-      throw UsageError("give exactly one of --turns FILE or --ckt FILE");
+    std::set<std::string> values = build_values;
+    values.insert("ckt");
+    const Args a(rest, values, {}, {"mission"});
+    const OutFormat format = out_format(a);
+    kin::Ckt t;
+    if (const auto ckt = a.get("ckt")) {
+      if (a.get("turns") || a.get("db"))
+        throw UsageError("give one source: --turns FILE, --db FILE or --ckt FILE");
+      t = load_ckt(*ckt, io);
+    } else {
+      t = build_table(a, io).table;
     }
-    const kin::Ckt t = a.get("turns") ? build_from_turns(a, io) : load_ckt(*a.get("ckt"), io);
-    emit(a, io, serialise(t, out_format(a)));
+    emit(a, io, serialise(t, format));
     return 0;
   }
   if (sub == "import") {

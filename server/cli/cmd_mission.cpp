@@ -1,18 +1,466 @@
-#include <ostream>
+#include <unistd.h>
 
+#include <cerrno>
+#include <chrono>
+#include <csignal>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <ostream>
+#include <sstream>
+
+#include "kinematics/angles.hpp"
 #include "mission/mission_config.hpp"
+#include "mission/mission_runner.hpp"
+#include "mission/turn_plan.hpp"
 #include "server/cli/args.hpp"
 #include "server/cli/commands.hpp"
 #include "server/cli/files.hpp"
-#include "sim/sim_config.hpp"
+#include "server/cli/sim_options.hpp"
+#include "server/mission_recorder.hpp"
+#include "sim/sim_mission.hpp"
+#include "store/store.hpp"
 
 namespace avk::server {
 
-int cmd_mission(const std::vector<std::string>& args, Io& io) {
-  if (args.empty() || args[0] != "validate") {
-    throw UsageError("expected 'mission validate --config FILE [--vehicle KIND]'");
+namespace {
+
+using nlohmann::json;
+
+std::atomic<bool> g_stop{false};
+extern "C" void on_stop_signal(int) {
+  g_stop.store(true);
+}
+
+// SIGINT/SIGTERM ask the running mission to stop at its next helm tick (stored as interrupted,
+// resumable) instead of killing the process mid-write.
+class StopSignals {
+ public:
+  StopSignals() {
+    g_stop.store(false);
+    previous_int_ = std::signal(SIGINT, on_stop_signal);
+    previous_term_ = std::signal(SIGTERM, on_stop_signal);
   }
-  const Args a({args.begin() + 1, args.end()}, {"config", "vehicle"});
+  ~StopSignals() {
+    std::signal(SIGINT, previous_int_);
+    std::signal(SIGTERM, previous_term_);
+  }
+
+ private:
+  void (*previous_int_)(int);
+  void (*previous_term_)(int);
+};
+
+bool process_alive(std::int64_t pid) {
+  if (pid <= 0 || (::kill(static_cast<pid_t>(pid), 0) != 0 && errno != EPERM)) return false;
+  // A killed process that its parent has not reaped yet still answers kill(0): a zombie.
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  if (!std::getline(stat, line)) return true;
+  const auto paren = line.rfind(')');
+  return paren == std::string::npos || paren + 2 >= line.size() || line[paren + 2] != 'Z';
+}
+
+// A mission stored as running whose process is gone (kill -9, power loss) is interrupted.
+store::MissionStatus effective_status(const store::Mission& m) {
+  if (m.status == store::MissionStatus::running &&
+      (!m.runner_pid || !process_alive(*m.runner_pid))) {
+    return store::MissionStatus::interrupted;
+  }
+  return m.status;
+}
+
+std::string fixed(double v, int decimals) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(decimals) << v;
+  return s.str();
+}
+
+std::string signed_deg(const mission::TurnTask& t, const kinematics::TurnSequence& raw) {
+  const double d =
+      raw.meta().goal_dheading_deg != 0.0 ? raw.meta().goal_dheading_deg : t.dheading_deg;
+  std::string out = d > 0 ? "+" : "";
+  out += fixed(d, 0);
+  out += " deg";
+  return out;
+}
+
+// One line per turn and the events an operator must read.
+class ProgressPrinter final : public mission::MissionObserver {
+ public:
+  ProgressPrinter(std::ostream& out, int planned, int done_before, bool quiet)
+      : out_(out), planned_(planned), ok_(done_before), quiet_(quiet) {}
+
+  void on_turn(mission::TurnOutcome& t) override {
+    if (t.status == kinematics::TurnStatus::ok) ++ok_;
+    if (quiet_) return;
+    const std::string count = t.status == kinematics::TurnStatus::ok
+                                  ? std::to_string(ok_) + "/" + std::to_string(planned_)
+                                  : "-";
+    out_ << "turn " << std::setw(7) << count << "  " << fixed(t.task.speed_mps, 2) << " m/s "
+         << std::setw(9) << signed_deg(t.task, t.raw) << "  " << std::left << std::setw(8)
+         << kinematics::to_string(t.status) << std::right;
+    if (t.status == kinematics::TurnStatus::ok) {
+      out_ << " advance " << fixed(*t.advance_m, 2) << " m, transfer " << fixed(*t.transfer_m, 2)
+           << " m";
+    } else {
+      out_ << " " << t.reason << (t.requeued ? " (re-queued)" : t.given_up ? " (given up)" : "");
+    }
+    if (t.condition_set_time_s)
+      out_ << ", conditions set in " << fixed(*t.condition_set_time_s, 1) << " s";
+    out_ << "  [t=" << fixed(t.raw.meta().end_time_s, 1) << " s";
+    if (t.stored_id) out_ << ", turn " << *t.stored_id;
+    out_ << "]" << std::endl;  // flushed: an operator may be watching a pipe or a log file
+  }
+
+  void on_event(const mission::MissionEventRecord& e) override {
+    static const std::set<std::string> shown = {"halted",        "aborted", "interrupted",
+                                                "turn_given_up", "link",    "condition_set_timeout",
+                                                "returning"};
+    if (quiet_ || !shown.count(e.kind)) return;
+    out_ << "  " << e.kind << " at t=" << fixed(e.t_s, 1) << " s: " << e.message << std::endl;
+  }
+
+ private:
+  std::ostream& out_;
+  int planned_;
+  int ok_;
+  bool quiet_;
+};
+
+std::string mission_json(const store::Mission& m) {
+  json j = {{"id", m.id},
+            {"name", m.name},
+            {"vehicle_id", m.vehicle_id},
+            {"status", store::to_string(effective_status(m))},
+            {"status_reason", m.status_reason},
+            {"created_utc", m.created_utc}};
+  j["started_s"] = m.started_s ? json(*m.started_s) : json(nullptr);
+  j["ended_s"] = m.ended_s ? json(*m.ended_s) : json(nullptr);
+  return j.dump();
+}
+
+struct RunSpec {
+  std::int64_t mission_id = 0;
+  mission::MissionConfig config;
+  sim::SimSetup setup;
+  std::string vehicle_id;
+  std::vector<mission::TurnTask> tasks;
+  kinematics::Pose start;
+  double start_time_s = 0.0;
+  int done_before = 0;
+};
+
+int execute(store::Store& db, RunSpec spec, const Args& a, Io& io) {
+  sim::SimMissionOptions so;
+  so.setup = spec.setup;
+  so.start = spec.start;
+  so.start_time_s = spec.start_time_s;
+  if (const auto limit = a.number("max-sim-time")) {
+    if (!(*limit > 0.0)) throw UsageError("--max-sim-time must be positive (s)");
+    so.max_duration_s = *limit;
+  }
+  sim::SimMission sim(so);
+  MissionRecorder recorder(db, spec.mission_id);
+  const int planned = static_cast<int>(mission::plan_turns(spec.config).size());
+  ProgressPrinter printer(io.out, planned, spec.done_before, a.flag("quiet"));
+  mission::RunnerOptions ro;
+  ro.vehicle_id = spec.vehicle_id;
+  ro.mission_label = std::to_string(spec.mission_id);
+  mission::MissionRunner runner(spec.config, sim.vehicle(), spec.tasks, ro);
+  runner.add_observer(recorder);
+  runner.add_observer(printer);
+
+  db.set_mission_runner(spec.mission_id, static_cast<std::int64_t>(::getpid()));
+  io.out << "mission " << spec.mission_id << " '" << spec.config.name << "' on " << spec.vehicle_id
+         << ": " << spec.tasks.size() << " turns to do"
+         << (spec.done_before ? " (" + std::to_string(spec.done_before) + " done before)" : "")
+         << "\n";
+  const auto wall_start = std::chrono::steady_clock::now();
+  sim::SimMissionResult result;
+  {
+    StopSignals signals;
+    if (a.flag("realtime")) {
+      sim::RealtimePacer pacer(a.number("realtime-factor").value_or(1.0));
+      result = sim.run(runner, pacer, &g_stop);
+    } else {
+      sim::FastPacer pacer;
+      result = sim.run(runner, pacer, &g_stop);
+    }
+  }
+  const double wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+  recorder.flush();
+  db.set_mission_runner(spec.mission_id, std::nullopt);
+
+  std::int64_t ok = 0, aborted = 0, rejected = 0;
+  for (const auto& c : db.mission_cell_stats(spec.mission_id)) {
+    ok += c.n_ok;
+    aborted += c.n_aborted;
+    rejected += c.n_rejected;
+  }
+  const auto m = db.get_mission(spec.mission_id);
+  io.out << "mission " << spec.mission_id << " " << store::to_string(m->status);
+  if (!m->status_reason.empty()) io.out << " (" << m->status_reason << ")";
+  io.out << ": " << ok << "/" << planned << " turns ok, " << aborted << " aborted, " << rejected
+         << " rejected";
+  if (runner.turns_given_up()) io.out << ", " << runner.turns_given_up() << " given up";
+  io.out << "; simulated " << fixed(result.end_time_s - result.start_time_s, 1) << " s in "
+         << fixed(wall_s, 3) << " s of wall time ("
+         << fixed((result.end_time_s - result.start_time_s) / std::max(wall_s, 1e-9), 0) << "x)\n";
+  if (result.stopped) return 130;
+  return m->status == store::MissionStatus::done ? 0 : 1;
+}
+
+mission::MissionConfig parse_config(const std::string& text, double max_speed_mps,
+                                    const std::string& name, Io& io, bool& ok) {
+  try {
+    ok = true;
+    return mission::parse_mission_config(text, max_speed_mps);
+  } catch (const mission::MissionConfigError& e) {
+    for (const auto& f : e.errors())
+      io.err << name << ": " << f.field << ": " << f.message << "\n";
+    ok = false;
+    return {};
+  }
+}
+
+void require_sim(const Args& a) {
+  if (!a.flag("sim")) {
+    throw UsageError(
+        "give the vehicle: --sim runs the simulator (the M200 driver, --m200, is not built yet)");
+  }
+}
+
+kinematics::Pose start_pose(const mission::MissionConfig& c) {
+  // At rest at the return point, facing the region's interior (the thesis starts dockside).
+  const mission::Container container(c.region);
+  const auto rp = c.region.return_point;
+  const auto in = container.interior_point();
+  const double heading = kinematics::distance_m(rp, in) > 1e-6
+                             ? kinematics::heading_of_deg(in.x_m - rp.x_m, in.y_m - rp.y_m)
+                             : 0.0;
+  return {rp.x_m, rp.y_m, heading};
+}
+
+const std::set<std::string> kRunValues = {"config",          "db",         "vehicle",
+                                          "sim-config",      "ticks",      "seed",
+                                          "realtime-factor", "vehicle-id", "max-sim-time"};
+const std::set<std::string> kRunFlags = {"sim", "realtime", "jitter", "quiet"};
+
+int run(const std::vector<std::string>& rest, Io& io) {
+  const Args a(rest, kRunValues, kRunFlags);
+  require_sim(a);
+  const std::string path = a.require("config");
+  const std::string db_path = a.require("db");
+  RunSpec spec;
+  spec.setup = sim_setup_from(a, io);
+  spec.vehicle_id = a.get("vehicle-id").value_or("sim-" + spec.setup.vehicle.kind);
+  spec.setup.vehicle.id = spec.vehicle_id;
+  const std::string text = read_file(path, io.in);
+  bool ok = false;
+  spec.config = parse_config(text, spec.setup.vehicle_max_speed_mps(), path, io, ok);
+  if (!ok) return 1;
+  store::Store db(db_path);
+  db.upsert_vehicle(
+      {spec.vehicle_id, spec.setup.vehicle.kind, spec.setup.vehicle_max_speed_mps(), std::nullopt});
+  spec.mission_id = db.create_mission(spec.vehicle_id, spec.config.name, text);
+  spec.tasks = mission::plan_turns(spec.config);
+  spec.start = start_pose(spec.config);
+  return execute(db, std::move(spec), a, io);
+}
+
+std::int64_t mission_id_arg(const Args& a) {
+  if (a.positional().size() != 1) throw UsageError("expected one mission id");
+  const std::string& s = a.positional()[0];
+  std::size_t used = 0;
+  long long id = 0;
+  try {
+    id = std::stoll(s, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != s.size() || id <= 0)
+    throw UsageError("mission id must be a positive whole number, got '" + s + "'");
+  return id;
+}
+
+store::Mission find_mission(store::Store& db, std::int64_t id) {
+  auto m = db.get_mission(id);
+  if (!m) throw std::runtime_error("no mission " + std::to_string(id) + " in the database");
+  return *m;
+}
+
+int resume(const std::vector<std::string>& rest, Io& io) {
+  const Args a(rest, kRunValues, kRunFlags);
+  require_sim(a);
+  store::Store db(a.require("db"));
+  const store::Mission m = find_mission(db, mission_id_arg(a));
+  const store::MissionStatus status = effective_status(m);
+  if (status == store::MissionStatus::done || status == store::MissionStatus::aborted) {
+    throw std::runtime_error("mission " + std::to_string(m.id) + " is " + store::to_string(status) +
+                             "; there is nothing to resume");
+  }
+  if (status == store::MissionStatus::running) {
+    throw std::runtime_error("mission " + std::to_string(m.id) + " is running in process " +
+                             std::to_string(m.runner_pid.value_or(0)));
+  }
+  const auto vehicle = db.get_vehicle(m.vehicle_id);
+  if (!vehicle) throw std::runtime_error("mission's vehicle '" + m.vehicle_id + "' is not stored");
+  if (const auto kind = a.get("vehicle");
+      kind && *kind != vehicle->kind &&
+      "catamaran:" + kind->substr(kind->find(':') + 1) != vehicle->kind) {
+    throw UsageError("--vehicle " + *kind + " differs from the mission's vehicle (" +
+                     vehicle->kind + ")");
+  }
+  RunSpec spec;
+  spec.mission_id = m.id;
+  spec.setup = sim_setup_from(a, io, vehicle->kind);
+  spec.vehicle_id = m.vehicle_id;
+  spec.setup.vehicle.id = m.vehicle_id;
+  bool ok = false;
+  spec.config = parse_config(m.config_json, spec.setup.vehicle_max_speed_mps(),
+                             "mission " + std::to_string(m.id), io, ok);
+  if (!ok) return 1;
+  std::vector<mission::CellCount> done;
+  for (const auto& c : db.mission_cell_stats(m.id)) {
+    done.push_back({c.speed_mps, c.dheading_deg, static_cast<int>(c.n_ok)});
+    spec.done_before += static_cast<int>(c.n_ok);
+  }
+  spec.tasks = mission::remaining_turns(mission::plan_turns(spec.config), done);
+  spec.start_time_s = db.mission_clock_end_s(m.id).value_or(0.0) + 1.0;
+  // The simulated vehicle restarts where it was last seen; its motion is not stored.
+  const auto nav = db.nav_for_mission(m.id);
+  spec.start = nav.empty()
+                   ? start_pose(spec.config)
+                   : kinematics::Pose{nav.back().x_m, nav.back().y_m, nav.back().heading_deg};
+  db.append_event(m.id, spec.start_time_s, "resume",
+                  "resumed from " + std::string(store::to_string(status)) + " with " +
+                      std::to_string(spec.tasks.size()) + " turns to do");
+  return execute(db, std::move(spec), a, io);
+}
+
+int list(const std::vector<std::string>& rest, Io& io) {
+  const Args a(rest, {"db", "format"});
+  store::Store db(a.require("db"));
+  const std::string format = a.get("format").value_or("table");
+  if (format != "table" && format != "json") throw UsageError("--format must be table or json");
+  const auto missions = db.list_missions();
+  if (format == "json") {
+    io.out << "[";
+    for (std::size_t i = 0; i < missions.size(); ++i)
+      io.out << (i ? "," : "") << mission_json(missions[i]);
+    io.out << "]\n";
+    return 0;
+  }
+  io.out << std::left << std::setw(5) << "id" << std::setw(13) << "status" << std::setw(22)
+         << "vehicle" << std::setw(12) << "turns ok" << std::setw(26) << "created (UTC)"
+         << "name\n";
+  for (const auto& m : missions) {
+    std::int64_t ok = 0;
+    for (const auto& c : db.mission_cell_stats(m.id))
+      ok += c.n_ok;
+    io.out << std::setw(5) << m.id << std::setw(13) << store::to_string(effective_status(m))
+           << std::setw(22) << m.vehicle_id << std::setw(12) << ok << std::setw(26) << m.created_utc
+           << m.name << "\n";
+  }
+  io.out << std::right;
+  return 0;
+}
+
+json mean_sd_json(const std::optional<kinematics::MeanSd>& v) {
+  if (!v) return nullptr;
+  return {{"mean", v->mean}, {"sd", v->sd}};
+}
+
+std::string pm(const std::optional<kinematics::MeanSd>& v, int decimals) {
+  return v ? fixed(v->mean, decimals) + " ± " + fixed(v->sd, decimals) : "-";
+}
+
+int report(const std::vector<std::string>& rest, Io& io) {
+  const Args a(rest, {"db", "format"});
+  store::Store db(a.require("db"));
+  const store::Mission m = find_mission(db, mission_id_arg(a));
+  const std::string format = a.get("format").value_or("table");
+  if (format != "table" && format != "json" && format != "csv")
+    throw UsageError("--format must be table, json or csv");
+  const auto cells = db.mission_cell_stats(m.id);
+  std::vector<double> set_times;
+  std::map<std::string, int> outcomes;
+  for (const auto& cs : db.condition_sets(m.id)) {
+    ++outcomes[cs.outcome];
+    if (cs.outcome == "set") set_times.push_back(cs.duration_s());
+  }
+  const std::optional<kinematics::MeanSd> cs_stats =
+      set_times.empty() ? std::nullopt : std::optional(kinematics::mean_sd(set_times));
+  std::int64_t ok = 0, aborted = 0, rejected = 0;
+  for (const auto& c : cells) {
+    ok += c.n_ok;
+    aborted += c.n_aborted;
+    rejected += c.n_rejected;
+  }
+  if (format == "csv") {
+    io.out << "speed_mps,dheading_deg,n_ok,n_aborted,n_rejected,advance_mean_m,advance_sd_m,"
+              "transfer_mean_m,transfer_sd_m,condition_set_mean_s,condition_set_sd_s\n";
+    const auto opt = [](const std::optional<kinematics::MeanSd>& v, bool sd) {
+      return v ? num(sd ? v->sd : v->mean) : std::string();
+    };
+    for (const auto& c : cells) {
+      io.out << num(c.speed_mps) << ',' << num(c.dheading_deg) << ',' << c.n_ok << ','
+             << c.n_aborted << ',' << c.n_rejected << ',' << opt(c.advance_m, false) << ','
+             << opt(c.advance_m, true) << ',' << opt(c.transfer_m, false) << ','
+             << opt(c.transfer_m, true) << ',' << opt(c.condition_set_time_s, false) << ','
+             << opt(c.condition_set_time_s, true) << '\n';
+    }
+    return 0;
+  }
+  if (format == "json") {
+    json j = json::parse(mission_json(m));
+    j["turns"] = {{"ok", ok}, {"aborted", aborted}, {"rejected", rejected}};
+    j["simulated_time_s"] =
+        m.started_s && m.ended_s ? json(*m.ended_s - *m.started_s) : json(nullptr);
+    j["condition_set"] = {{"episodes", outcomes}, {"time_to_set_s", mean_sd_json(cs_stats)}};
+    json jc = json::array();
+    for (const auto& c : cells) {
+      jc.push_back({{"speed_mps", c.speed_mps},
+                    {"dheading_deg", c.dheading_deg},
+                    {"n_ok", c.n_ok},
+                    {"n_aborted", c.n_aborted},
+                    {"n_rejected", c.n_rejected},
+                    {"advance_m", mean_sd_json(c.advance_m)},
+                    {"transfer_m", mean_sd_json(c.transfer_m)},
+                    {"condition_set_time_s", mean_sd_json(c.condition_set_time_s)}});
+    }
+    j["cells"] = std::move(jc);
+    io.out << j.dump(2) << "\n";
+    return 0;
+  }
+  io.out << "mission " << m.id << " '" << m.name << "' on " << m.vehicle_id << ": "
+         << store::to_string(effective_status(m));
+  if (!m.status_reason.empty()) io.out << " (" << m.status_reason << ")";
+  io.out << "\n";
+  if (m.started_s && m.ended_s)
+    io.out << "simulated time " << fixed(*m.ended_s - *m.started_s, 1) << " s\n";
+  io.out << "turns: " << ok << " ok, " << aborted << " aborted, " << rejected << " rejected\n";
+  io.out << "time to set conditions (thesis Table 5.2): " << pm(cs_stats, 2) << " s over "
+         << set_times.size() << " turn starts; " << outcomes["timeout"] << " timeouts, "
+         << outcomes["interrupted"] << " interrupted\n\n";
+  io.out << std::setw(9) << "speed" << std::setw(10) << "dheading" << std::setw(5) << "ok"
+         << std::setw(9) << "aborted" << std::setw(10) << "rejected" << std::setw(18) << "advance m"
+         << std::setw(18) << "transfer m" << std::setw(18) << "conditions s"
+         << "\n";
+  for (const auto& c : cells) {
+    io.out << std::setw(9) << fixed(c.speed_mps, 2) << std::setw(10) << fixed(c.dheading_deg, 0)
+           << std::setw(5) << c.n_ok << std::setw(9) << c.n_aborted << std::setw(10) << c.n_rejected
+           << std::setw(18) << pm(c.advance_m, 2) << std::setw(18) << pm(c.transfer_m, 2)
+           << std::setw(18) << pm(c.condition_set_time_s, 2) << "\n";
+  }
+  return 0;
+}
+
+int validate(const std::vector<std::string>& rest, Io& io) {
+  const Args a(rest, {"config", "vehicle"});
   const std::string path = a.require("config");
   double max_speed = 0.0;
   try {
@@ -20,23 +468,27 @@ int cmd_mission(const std::vector<std::string>& args, Io& io) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("--vehicle: ") + e.what());
   }
-  try {
-    const mission::MissionConfig c =
-        mission::parse_mission_config(read_file(path, io.in), max_speed);
-    io.out << path << ": mission '" << c.name << "' is valid";
-    if (c.kind == mission::MissionKind::turns) {
-      io.out << " ("
-             << c.turn_array.speeds_mps.size() * c.turn_array.dheadings_deg.size() *
-                    static_cast<std::size_t>(c.turn_array.repeats)
-             << " turns)";
-    }
-    io.out << "\n";
-    return 0;
-  } catch (const mission::MissionConfigError& e) {
-    for (const auto& f : e.errors())
-      io.err << path << ": " << f.field << ": " << f.message << "\n";
-    return 1;
-  }
+  bool ok = false;
+  const mission::MissionConfig c = parse_config(read_file(path, io.in), max_speed, path, io, ok);
+  if (!ok) return 1;
+  io.out << path << ": mission '" << c.name << "' is valid";
+  if (c.kind == mission::MissionKind::turns)
+    io.out << " (" << mission::plan_turns(c).size() << " turns)";
+  io.out << "\n";
+  return 0;
+}
+
+}  // namespace
+
+int cmd_mission(const std::vector<std::string>& args, Io& io) {
+  if (args.empty()) throw UsageError("expected 'mission validate|run|resume|list|report'");
+  const std::vector<std::string> rest(args.begin() + 1, args.end());
+  if (args[0] == "validate") return validate(rest, io);
+  if (args[0] == "run") return run(rest, io);
+  if (args[0] == "resume") return resume(rest, io);
+  if (args[0] == "list") return list(rest, io);
+  if (args[0] == "report") return report(rest, io);
+  throw UsageError("unknown subcommand 'mission " + args[0] + "'");
 }
 
 }  // namespace avk::server

@@ -1,0 +1,27 @@
+#include "mission/helm_mode.hpp"
+
+#include <array>
+
+namespace avk::mission {
+
+namespace {
+constexpr std::array<const char*, 8> kNames = {"CONTAINING", "CONDITIONING", "TURNING", "EXCITING",
+                                               "RETURNING",  "PAUSED",       "DONE",    "HALTED"};
+}
+
+const char* to_string(HelmMode m) {
+  return kNames[static_cast<std::size_t>(m)];
+}
+
+std::optional<HelmMode> helm_mode_from_string(std::string_view s) {
+  for (std::size_t i = 0; i < kNames.size(); ++i)
+    if (s == kNames[i]) return static_cast<HelmMode>(i);
+  return std::nullopt;
+}
+
+bool commands_motion(HelmMode m) {
+  return m == HelmMode::containing || m == HelmMode::conditioning || m == HelmMode::turning ||
+         m == HelmMode::exciting || m == HelmMode::returning;
+}
+
+}  // namespace avk::mission

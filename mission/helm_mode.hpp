@@ -1,0 +1,25 @@
+#pragma once
+// The helm modes of the collection mission (thesis §4.5), as MOOS' helm mode tree names them.
+
+#include <optional>
+#include <string_view>
+
+namespace avk::mission {
+
+enum class HelmMode {
+  containing,    // in the buffer (or not yet inside): heading for the region's interior
+  conditioning,  // ConditionSet: hold the noted course, reach the target speed
+  turning,       // ConstantHeading + ConstantSpeed: the recorded turn
+  exciting,      // persistent excitation: random heading steps at constant speed
+  returning,     // all turns done: to the return point
+  paused,        // all stop, waiting for resume
+  done,          // at the return point, all stop
+  halted,        // all stop after leaving the region or an operator abort
+};
+const char* to_string(HelmMode m);
+std::optional<HelmMode> helm_mode_from_string(std::string_view s);
+
+// Modes in which the helm commands a heading and speed.
+bool commands_motion(HelmMode m);
+
+}  // namespace avk::mission

@@ -1,0 +1,69 @@
+#pragma once
+// What a running mission tells the rest of the station: every navigation sample with the
+// guidance in force, every turn as it ends, ConditionSet episodes, events and status changes.
+// The store, the command line's progress lines and (later) the live stream each implement it.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "kinematics/turn_sequence.hpp"
+#include "mission/helm_mode.hpp"
+#include "mission/turn_plan.hpp"
+#include "vehicle/vehicle.hpp"
+
+namespace avk::mission {
+
+// Mission lifecycle, as stored (store::MissionStatus has the same names).
+enum class MissionState { running, paused, interrupted, aborted, halted, done };
+const char* to_string(MissionState s);
+
+struct NavRecord {
+  vehicle::NavSample nav;
+  std::optional<double> desired_heading_deg;
+  std::optional<double> desired_speed_mps;
+  HelmMode mode = HelmMode::containing;
+};
+
+struct TurnOutcome {
+  TurnTask task;
+  kinematics::TurnSequence raw;  // metadata status/reason filled
+  kinematics::TurnStatus status = kinematics::TurnStatus::ok;
+  std::string reason;
+  std::optional<double> condition_set_time_s;
+  std::optional<double> advance_m;  // for ok turns
+  std::optional<double> transfer_m;
+  bool requeued = false;                  // aborted and put back into the queue
+  bool given_up = false;                  // aborted for the last allowed time
+  std::optional<std::int64_t> stored_id;  // set by the observer that stores it
+};
+
+struct ConditionSetEpisode {
+  double start_s = 0.0;
+  double end_s = 0.0;
+  double target_speed_mps = 0.0;
+  enum class Outcome { set, timeout, interrupted } outcome = Outcome::set;
+};
+const char* to_string(ConditionSetEpisode::Outcome o);
+
+struct MissionEventRecord {
+  double t_s = 0.0;
+  std::string kind;  // containment, turn_aborted, turn_rejected, halt, pause, link, ...
+  std::string message;
+};
+
+class MissionObserver {
+ public:
+  virtual ~MissionObserver() = default;
+  virtual void on_nav(const NavRecord&) {}
+  // Observers are called in the order they were added; one that stores the turn sets stored_id,
+  // so the ones after it can name the stored turn.
+  virtual void on_turn_started(const TurnTask&, double /*t_s*/, double /*goal_heading_deg*/) {}
+  virtual void on_turn(TurnOutcome&) {}
+  virtual void on_condition_set(const ConditionSetEpisode&) {}
+  virtual void on_event(const MissionEventRecord&) {}
+  virtual void on_state(MissionState, const std::string& /*reason*/, double /*t_s*/) {}
+  virtual void on_mode(HelmMode /*from*/, HelmMode /*to*/, double /*t_s*/) {}
+};
+
+}  // namespace avk::mission

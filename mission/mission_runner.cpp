@@ -1,0 +1,497 @@
+#include "mission/mission_runner.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "kinematics/angles.hpp"
+#include "kinematics/turn_measures.hpp"
+#include "mission/turn_checks.hpp"
+
+namespace avk::mission {
+
+namespace {
+
+using kinematics::TurnSide;
+using kinematics::TurnStatus;
+
+// Fixed decimals for messages an operator reads.
+std::string num(double v, int decimals = 2) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+std::string cell_name(const TurnTask& t) {
+  std::string out = num(t.speed_mps, 2);
+  out += " m/s, ";
+  out += num(t.dheading_deg, 0);
+  out += " deg";
+  return out;
+}
+
+std::string at(const vehicle::NavSample& s) {
+  std::string out = "(";
+  out += num(s.x_m, 1);
+  out += ", ";
+  out += num(s.y_m, 1);
+  out += ") m";
+  return out;
+}
+
+}  // namespace
+
+const char* to_string(MissionState s) {
+  switch (s) {
+    case MissionState::running:
+      return "running";
+    case MissionState::paused:
+      return "paused";
+    case MissionState::interrupted:
+      return "interrupted";
+    case MissionState::aborted:
+      return "aborted";
+    case MissionState::halted:
+      return "halted";
+    case MissionState::done:
+      return "done";
+  }
+  return "?";
+}
+
+const char* to_string(ConditionSetEpisode::Outcome o) {
+  switch (o) {
+    case ConditionSetEpisode::Outcome::set:
+      return "set";
+    case ConditionSetEpisode::Outcome::timeout:
+      return "timeout";
+    case ConditionSetEpisode::Outcome::interrupted:
+      return "interrupted";
+  }
+  return "?";
+}
+
+MissionRunner::MissionRunner(MissionConfig config, vehicle::Vehicle& vehicle,
+                             std::vector<TurnTask> tasks, RunnerOptions options)
+    : config_(std::move(config)),
+      vehicle_(vehicle),
+      options_(std::move(options)),
+      container_(config_.region),
+      queue_(tasks.begin(), tasks.end()),
+      rng_(config_.excitation ? config_.excitation->seed : 1) {
+  for (const TurnTask& t : plan_turns(config_)) {
+    if (!cell_of(t)) cells_.push_back({t.speed_mps, t.dheading_deg, 0, 0, 0, 0, 0, false});
+    ++cell_of(t)->planned;
+  }
+  for (CellProgress& c : cells_) {
+    const auto left = std::count_if(queue_.begin(), queue_.end(), [&](const TurnTask& t) {
+      return same_cell(t.speed_mps, t.dheading_deg, c.speed_mps, c.dheading_deg);
+    });
+    c.ok = c.planned - static_cast<int>(left);
+  }
+}
+
+CellProgress* MissionRunner::cell_of(const TurnTask& t) {
+  for (CellProgress& c : cells_)
+    if (same_cell(t.speed_mps, t.dheading_deg, c.speed_mps, c.dheading_deg)) return &c;
+  return nullptr;
+}
+
+bool MissionRunner::finished() const {
+  return state_ && (*state_ == MissionState::done || *state_ == MissionState::halted ||
+                    *state_ == MissionState::aborted || *state_ == MissionState::interrupted);
+}
+
+void MissionRunner::set_mode(HelmMode m, double t_s) {
+  if (m == mode_) return;
+  const HelmMode from = mode_;
+  mode_ = m;
+  for (auto* o : observers_)
+    o->on_mode(from, m, t_s);
+}
+
+void MissionRunner::set_state(MissionState s, const std::string& reason, double t_s) {
+  state_ = s;
+  for (auto* o : observers_)
+    o->on_state(s, reason, t_s);
+}
+
+void MissionRunner::event(double t_s, const std::string& kind, const std::string& message) {
+  const MissionEventRecord e{t_s, kind, message};
+  for (auto* o : observers_)
+    o->on_event(e);
+}
+
+void MissionRunner::tick(double now_s) {
+  if (!state_) set_state(MissionState::running, "", now_s);
+  for (const vehicle::NavSample& s : vehicle_.take_nav())
+    process(s);
+  if (finished() || mode_ == HelmMode::paused) return;
+
+  const bool live = vehicle_.link_state(now_s) == vehicle::LinkState::live;
+  if (!live && last_nav_ && !holding_) {
+    // Without navigation nothing can be recorded or contained: stop and wait.
+    holding_ = true;
+    if (turn_) abort_turn(now_s, "navigation lost during the turn", true);
+    if (condition_set_) end_condition_set(now_s, ConditionSetEpisode::Outcome::interrupted);
+    vehicle_.all_stop(now_s);
+    event(now_s, "link",
+          std::string("navigation ") + vehicle::to_string(vehicle_.link_state(now_s)) +
+              ": all stop until it is back");
+    if (mode_ != HelmMode::returning && mode_ != HelmMode::exciting)
+      set_mode(HelmMode::containing, now_s);
+  } else if (live && holding_) {
+    holding_ = false;
+    event(now_s, "link", "navigation is back");
+  }
+  if (holding_ || !last_nav_) return;
+
+  // The helm acts on the latest navigation, as pHelmIvP does at its AppTick.
+  if (mode_ == HelmMode::conditioning && condition_set_->conditions_set())
+    start_turn(*last_nav_, now_s);
+  if (mode_ == HelmMode::conditioning &&
+      last_nav_->t_s - condition_set_start_s_ > config_.condition_set.timeout_s) {
+    end_condition_set(last_nav_->t_s, ConditionSetEpisode::Outcome::timeout);
+    TurnTask& task = queue_.front();
+    ++task.attempts;
+    event(now_s, "condition_set_timeout",
+          "conditions for " + cell_name(task) + " not set within " +
+              num(config_.condition_set.timeout_s, 0) + " s (attempt " +
+              std::to_string(task.attempts) + ")");
+    if (task.attempts >= config_.turn_array.max_attempts) {
+      ++given_up_;
+      if (auto* c = cell_of(task)) ++c->given_up;
+      event(now_s, "turn_given_up",
+            cell_name(task) + " given up after " + std::to_string(task.attempts) + " attempts");
+      queue_.pop_front();
+    }
+    start_conditioning(*last_nav_);
+  }
+  if (config_.kind == MissionKind::persistent_excitation && excite_start_s_ &&
+      (mode_ == HelmMode::exciting || mode_ == HelmMode::containing) &&
+      now_s - *excite_start_s_ >= config_.excitation->duration_s) {
+    start_returning(now_s);
+  }
+  if (mode_ == HelmMode::exciting && now_s >= next_step_s_) {
+    const auto& e = *config_.excitation;
+    const double step =
+        std::uniform_real_distribution<double>(e.min_step_deg, e.max_step_deg)(rng_);
+    const double sign = std::bernoulli_distribution(0.5)(rng_) ? 1.0 : -1.0;
+    desired_heading_deg_ =
+        kinematics::wrap360_deg(desired_heading_deg_.value_or(0.0) + sign * step);
+    next_step_s_ =
+        now_s + std::uniform_real_distribution<double>(e.min_interval_s, e.max_interval_s)(rng_);
+  }
+  if (finished()) return;
+  update_desired(now_s);
+  if (commands_motion(mode_) && desired_heading_deg_ && desired_speed_mps_)
+    vehicle_.command({now_s, *desired_heading_deg_, *desired_speed_mps_});
+}
+
+void MissionRunner::update_desired(double) {
+  const auto& s = *last_nav_;
+  switch (mode_) {
+    case HelmMode::containing:
+      desired_heading_deg_ = container_.heading_to_interior_deg({s.x_m, s.y_m});
+      if (!queue_.empty()) {
+        desired_speed_mps_ = queue_.front().speed_mps;
+      } else if (config_.excitation) {
+        desired_speed_mps_ = config_.excitation->speed_mps;
+      } else {
+        desired_speed_mps_ = return_speed_mps(config_);
+      }
+      break;
+    case HelmMode::returning: {
+      const auto& rp = config_.region.return_point;
+      desired_heading_deg_ = kinematics::heading_of_deg(rp.x_m - s.x_m, rp.y_m - s.y_m);
+      desired_speed_mps_ = return_speed_mps(config_);
+      break;
+    }
+    default:
+      break;  // conditioning, turning and exciting hold what they set
+  }
+}
+
+void MissionRunner::process(const vehicle::NavSample& s) {
+  for (auto* o : observers_)
+    o->on_nav({s, desired_heading_deg_, desired_speed_mps_, mode_});
+  last_nav_ = s;
+  if (finished() || mode_ == HelmMode::paused || holding_) return;
+  const RegionZone zone = container_.zone({s.x_m, s.y_m});
+  if (zone != RegionZone::outside) {
+    been_inside_ = true;
+  } else if (been_inside_) {
+    // OpRegion: outside the polygon the vehicle is shut down (thesis §4.4.2).
+    if (turn_) abort_turn(s.t_s, "left the operating region", false);
+    stop_all(s.t_s, HelmMode::halted, MissionState::halted,
+             "left the operating region at " + at(s));
+    return;
+  }
+  switch (mode_) {
+    case HelmMode::containing:
+      if (zone == RegionZone::interior) leave_containment(s);
+      break;
+    case HelmMode::conditioning:
+      if (zone == RegionZone::buffer) {
+        contain(s, "entered the buffer zone while setting conditions");
+      } else {
+        condition_set_->update(s);
+      }
+      break;
+    case HelmMode::turning:
+      if (zone == RegionZone::buffer) {
+        abort_turn(s.t_s, "containment: entered the buffer zone at " + at(s), true);
+        contain(s, "entered the buffer zone during a turn");
+      } else if (const Completion c = turn_->update(s); c != Completion::none) {
+        finish_turn(s, c);
+      } else if (s.t_s - turn_start_s_ > config_.turn_timeout_s) {
+        abort_turn(s.t_s,
+                   "the turn did not complete within " + num(config_.turn_timeout_s, 0) + " s",
+                   true);
+        start_conditioning(s);
+      }
+      break;
+    case HelmMode::exciting:
+      if (zone == RegionZone::buffer) contain(s, "entered the buffer zone");
+      break;
+    case HelmMode::returning:
+      check_return(s);
+      break;
+    default:
+      break;
+  }
+}
+
+void MissionRunner::contain(const vehicle::NavSample& s, const std::string& why) {
+  if (condition_set_) end_condition_set(s.t_s, ConditionSetEpisode::Outcome::interrupted);
+  event(s.t_s, "containment", why + " at " + at(s) + ": heading for the interior");
+  set_mode(HelmMode::containing, s.t_s);
+}
+
+void MissionRunner::leave_containment(const vehicle::NavSample& s) {
+  if (config_.kind == MissionKind::persistent_excitation) {
+    start_exciting(s, s.t_s);
+  } else {
+    start_conditioning(s);
+  }
+}
+
+void MissionRunner::start_conditioning(const vehicle::NavSample& s) {
+  if (queue_.empty()) {
+    start_returning(s.t_s);
+    return;
+  }
+  // ConditionSet notes the current course on becoming active and holds it (thesis §4.4.1).
+  held_course_deg_ = s.heading_deg;
+  condition_set_.emplace(config_.condition_set, queue_.front().speed_mps);
+  condition_set_start_s_ = s.t_s;
+  desired_heading_deg_ = held_course_deg_;
+  desired_speed_mps_ = queue_.front().speed_mps;
+  set_mode(HelmMode::conditioning, s.t_s);
+}
+
+void MissionRunner::end_condition_set(double t_s, ConditionSetEpisode::Outcome outcome) {
+  const ConditionSetEpisode e{condition_set_start_s_, t_s, condition_set_->target_speed_mps(),
+                              outcome};
+  condition_set_.reset();
+  for (auto* o : observers_)
+    o->on_condition_set(e);
+}
+
+const kinematics::Ckt* MissionRunner::table_for_auto() {
+  if (!ok_turns_.empty() && own_table_turns_ != ok_turns_.size()) {
+    own_table_ = kinematics::Ckt::build(ok_turns_);
+    own_table_turns_ = ok_turns_.size();
+  }
+  const double u = queue_.front().speed_mps;
+  const kinematics::Ckt* own = own_table_ ? &*own_table_ : nullptr;
+  for (const kinematics::Ckt* t : {own, options_.prior_table}) {
+    if (!t) continue;
+    const auto range = t->speed_range_mps();
+    if (range && u >= range->first && u <= range->second) return t;
+  }
+  return nullptr;
+}
+
+void MissionRunner::start_turn(const vehicle::NavSample& s, double now_s) {
+  const double cs_time = s.t_s - condition_set_start_s_;
+  end_condition_set(s.t_s, ConditionSetEpisode::Outcome::set);
+  TurnTask& task = queue_.front();
+  TurnSide side = task.side.value_or(TurnSide::right);
+  if (!task.side) {
+    const SideChoice c =
+        choose_side(container_, {s.x_m, s.y_m, s.heading_deg}, task.speed_mps, task.dheading_deg,
+                    table_for_auto(), next_auto_preference_, options_.direction);
+    side = c.side;
+    next_auto_preference_ = side == TurnSide::right ? TurnSide::left : TurnSide::right;
+  }
+  const double signed_dheading = side == TurnSide::left ? -task.dheading_deg : task.dheading_deg;
+  turn_.emplace(s, task.speed_mps, signed_dheading, config_.completion_threshold_deg);
+  turn_start_s_ = s.t_s;
+  turn_condition_set_time_s_ = cs_time;
+  desired_heading_deg_ = turn_->goal_heading_deg();
+  desired_speed_mps_ = task.speed_mps;
+  if (auto* c = cell_of(task)) c->running = true;
+  set_mode(HelmMode::turning, s.t_s);
+  for (auto* o : observers_)
+    o->on_turn_started(task, now_s, *desired_heading_deg_);
+}
+
+void MissionRunner::finish_turn(const vehicle::NavSample& s, Completion how) {
+  TurnOutcome out;
+  out.task = queue_.front();
+  out.raw = turn_->build(options_.vehicle_id, options_.mission_label);
+  if (how == Completion::passed_goal)
+    out.raw.add_warning("completed by passing the goal heading between two samples");
+  out.condition_set_time_s = turn_condition_set_time_s_;
+  turn_.reset();
+  const auto anomaly =
+      turn_anomaly(out.raw, {config_.completion_threshold_deg, options_.max_sample_gap_s});
+  CellProgress* cell = cell_of(out.task);
+  if (cell) cell->running = false;
+  if (anomaly) {
+    out.status = TurnStatus::rejected;
+    out.reason = *anomaly;
+    TurnTask& task = queue_.front();
+    ++task.attempts;
+    out.task = task;
+    if (cell) ++cell->rejected;
+    if (task.attempts >= config_.turn_array.max_attempts) {
+      out.given_up = true;
+      ++given_up_;
+      if (cell) ++cell->given_up;
+      queue_.pop_front();
+    } else {
+      out.requeued = true;
+    }
+    event(s.t_s, "turn_rejected", cell_name(out.task) + ": " + *anomaly);
+  } else {
+    const auto at = kinematics::advance_transfer(out.raw.normalized().points());
+    out.advance_m = at.advance_m;
+    out.transfer_m = at.transfer_m;
+    ok_turns_.push_back(out.raw);
+    if (cell) ++cell->ok;
+    queue_.pop_front();
+  }
+  out.raw.meta().status = out.status;
+  out.raw.meta().status_reason = out.reason;
+  for (auto* o : observers_)
+    o->on_turn(out);
+  // The next ConditionSet starts from here, on the course the turn ended on.
+  start_conditioning(s);
+}
+
+void MissionRunner::abort_turn(double t_s, const std::string& reason, bool count_attempt) {
+  TurnOutcome out;
+  TurnTask& task = queue_.front();
+  if (count_attempt) ++task.attempts;
+  out.task = task;
+  out.raw = turn_->build(options_.vehicle_id, options_.mission_label);
+  out.status = TurnStatus::aborted;
+  out.reason = reason;
+  out.raw.meta().status = out.status;
+  out.raw.meta().status_reason = reason;
+  out.condition_set_time_s = turn_condition_set_time_s_;
+  turn_.reset();
+  CellProgress* cell = cell_of(task);
+  if (cell) {
+    cell->running = false;
+    ++cell->aborted;
+  }
+  if (task.attempts >= config_.turn_array.max_attempts) {
+    out.given_up = true;
+    ++given_up_;
+    if (cell) ++cell->given_up;
+    queue_.pop_front();
+  } else {
+    out.requeued = true;
+  }
+  event(t_s, "turn_aborted",
+        cell_name(out.task) + ": " + reason +
+            (out.requeued ? "; re-queued"
+                          : "; given up after " + std::to_string(task.attempts) + " attempts"));
+  for (auto* o : observers_)
+    o->on_turn(out);
+}
+
+void MissionRunner::start_exciting(const vehicle::NavSample& s, double now_s) {
+  if (!excite_start_s_) {
+    excite_start_s_ = now_s;
+    event(now_s, "excitation",
+          "persistent excitation for " + num(config_.excitation->duration_s, 0) + " s at " +
+              num(config_.excitation->speed_mps) + " m/s");
+  }
+  desired_heading_deg_ = s.heading_deg;
+  desired_speed_mps_ = config_.excitation->speed_mps;
+  next_step_s_ = now_s;
+  set_mode(HelmMode::exciting, now_s);
+}
+
+void MissionRunner::start_returning(double t_s) {
+  if (condition_set_) end_condition_set(t_s, ConditionSetEpisode::Outcome::interrupted);
+  return_best_m_ = std::numeric_limits<double>::infinity();
+  event(t_s, "returning", "heading for the return point");
+  set_mode(HelmMode::returning, t_s);
+}
+
+void MissionRunner::check_return(const vehicle::NavSample& s) {
+  const double d = kinematics::distance_m({s.x_m, s.y_m}, config_.region.return_point);
+  const double capture = config_.region.capture_radius_m;
+  // Like a MOOS waypoint's slip radius: close enough and moving away counts as arrived, so a
+  // vehicle whose turning circle is wider than the capture radius does not orbit the point.
+  const bool slipped = d <= 3.0 * capture && d > return_best_m_ + 0.5;
+  return_best_m_ = std::min(return_best_m_, d);
+  if (d <= capture || slipped) {
+    stop_all(s.t_s, HelmMode::done, MissionState::done,
+             "at the return point (" + num(d, 1) + " m away)");
+  }
+}
+
+void MissionRunner::stop_all(double t_s, HelmMode mode, MissionState state,
+                             const std::string& reason) {
+  if (condition_set_) end_condition_set(t_s, ConditionSetEpisode::Outcome::interrupted);
+  vehicle_.all_stop(t_s);
+  desired_heading_deg_.reset();
+  desired_speed_mps_.reset();
+  set_mode(mode, t_s);
+  if (state != MissionState::done && state != MissionState::paused)
+    event(t_s, to_string(state), reason);
+  set_state(state, reason, t_s);
+}
+
+bool MissionRunner::pause(double now_s, const std::string& reason) {
+  if (finished() || mode_ == HelmMode::paused) return false;
+  if (turn_) abort_turn(now_s, reason, false);
+  paused_from_ = mode_;
+  event(now_s, "pause", reason);
+  stop_all(now_s, HelmMode::paused, MissionState::paused, reason);
+  return true;
+}
+
+bool MissionRunner::resume(double now_s) {
+  if (mode_ != HelmMode::paused || finished()) return false;
+  event(now_s, "resume", "resumed");
+  set_state(MissionState::running, "", now_s);
+  if (paused_from_ == HelmMode::returning) {
+    start_returning(now_s);
+  } else {
+    // Containment re-enters conditioning (or excitation) as soon as the vehicle is inside.
+    set_mode(HelmMode::containing, now_s);
+  }
+  return true;
+}
+
+bool MissionRunner::abort(double now_s, const std::string& reason) {
+  if (finished()) return false;
+  if (turn_) abort_turn(now_s, reason, false);
+  stop_all(now_s, HelmMode::halted, MissionState::aborted, reason);
+  return true;
+}
+
+void MissionRunner::interrupt(double now_s, const std::string& reason) {
+  if (finished()) return;
+  if (turn_) abort_turn(now_s, reason, false);
+  stop_all(now_s, HelmMode::paused, MissionState::interrupted, reason);
+}
+
+}  // namespace avk::mission

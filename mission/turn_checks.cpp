@@ -1,0 +1,42 @@
+#include "mission/turn_checks.hpp"
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+namespace avk::mission {
+
+namespace {
+std::string num(double v) {
+  return nlohmann::json(std::round(v * 100.0) / 100.0).dump();
+}
+}  // namespace
+
+std::optional<std::string> turn_anomaly(const kinematics::TurnSequence& raw,
+                                        const TurnCheckOptions& options) {
+  try {
+    raw.validate();
+  } catch (const kinematics::TurnError& e) {
+    return std::string(kinematics::to_string(e.code())) + ": " + e.what();
+  }
+  const auto& s = raw.samples();
+  for (std::size_t i = 1; i < s.size(); ++i) {
+    if (s[i].t_s - s[i - 1].t_s > options.max_sample_gap_s) {
+      return "navigation gap of " + num(s[i].t_s - s[i - 1].t_s) + " s at sample " +
+             std::to_string(i);
+    }
+  }
+  const double goal = raw.meta().goal_dheading_deg;
+  const double observed = raw.heading_change_deg();
+  if (goal * observed <= 0.0) {
+    return "turned the wrong way: observed " + num(observed) + " deg for a goal of " + num(goal) +
+           " deg";
+  }
+  // Completion is within the threshold of the goal, or past it; anything shorter is a turn that
+  // ended for another reason and would enter the table as a smaller heading change.
+  if (std::abs(goal) - std::abs(observed) > options.completion_threshold_deg + 1.0) {
+    return "stopped short: observed " + num(observed) + " deg for a goal of " + num(goal) + " deg";
+  }
+  return std::nullopt;
+}
+
+}  // namespace avk::mission

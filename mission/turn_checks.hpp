@@ -1,0 +1,21 @@
+#pragma once
+// Anomaly checks on a finished turn before it is stored as ok (thesis §4.5: an instantaneous
+// "turn", mismatched streams; and what the pass-through completion rule cannot rule out).
+
+#include <optional>
+#include <string>
+
+#include "kinematics/turn_sequence.hpp"
+
+namespace avk::mission {
+
+struct TurnCheckOptions {
+  double completion_threshold_deg = 5.0;
+  double max_sample_gap_s = 2.0;  // a longer gap in navigation leaves the trajectory unknown
+};
+
+// The reason the turn must be rejected, or empty when it is usable.
+std::optional<std::string> turn_anomaly(const kinematics::TurnSequence& raw,
+                                        const TurnCheckOptions& options);
+
+}  // namespace avk::mission

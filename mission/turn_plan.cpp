@@ -1,0 +1,68 @@
+#include "mission/turn_plan.hpp"
+
+#include <cmath>
+
+#include "kinematics/ckt.hpp"
+
+namespace avk::mission {
+
+std::vector<TurnTask> plan_turns(const MissionConfig& config) {
+  std::vector<TurnTask> plan;
+  if (config.kind != MissionKind::turns) return plan;
+  const auto& ta = config.turn_array;
+  for (double u : ta.speeds_mps) {
+    for (double d : ta.dheadings_deg) {
+      for (int r = 0; r < ta.repeats; ++r) {
+        TurnTask t;
+        t.index = plan.size();
+        t.speed_mps = u;
+        t.dheading_deg = d;
+        switch (ta.direction) {
+          case DirectionPolicy::right:
+            t.side = kinematics::TurnSide::right;
+            break;
+          case DirectionPolicy::left:
+            t.side = kinematics::TurnSide::left;
+            break;
+          case DirectionPolicy::alternate:
+            t.side = t.index % 2 == 0 ? kinematics::TurnSide::right : kinematics::TurnSide::left;
+            break;
+          case DirectionPolicy::automatic:
+            break;
+        }
+        plan.push_back(t);
+      }
+    }
+  }
+  return plan;
+}
+
+bool same_cell(double speed_a_mps, double dheading_a_deg, double speed_b_mps,
+               double dheading_b_deg) {
+  const kinematics::CktOptions tolerances;
+  return std::abs(speed_a_mps - speed_b_mps) <= tolerances.speed_match_mps &&
+         std::abs(std::abs(dheading_a_deg) - std::abs(dheading_b_deg)) <=
+             tolerances.dheading_match_deg;
+}
+
+std::vector<TurnTask> remaining_turns(const std::vector<TurnTask>& plan,
+                                      const std::vector<CellCount>& done) {
+  std::vector<int> left_to_skip;
+  for (const auto& c : done)
+    left_to_skip.push_back(c.done);
+  std::vector<TurnTask> out;
+  for (const auto& t : plan) {
+    bool skipped = false;
+    for (std::size_t i = 0; i < done.size() && !skipped; ++i) {
+      if (left_to_skip[i] > 0 &&
+          same_cell(t.speed_mps, t.dheading_deg, done[i].speed_mps, done[i].dheading_deg)) {
+        --left_to_skip[i];
+        skipped = true;
+      }
+    }
+    if (!skipped) out.push_back(t);
+  }
+  return out;
+}
+
+}  // namespace avk::mission

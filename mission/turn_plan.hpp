@@ -1,0 +1,41 @@
+#pragma once
+// The turn array unrolled into the ordered list of turns a mission performs (pDynamicsMonitor's
+// turn_array), and what is left of it when a mission resumes.
+
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include "kinematics/geometry.hpp"
+#include "mission/mission_config.hpp"
+
+namespace avk::mission {
+
+struct TurnTask {
+  std::size_t index = 0;  // position in the full plan
+  double speed_mps = 0.0;
+  double dheading_deg = 0.0;                 // magnitude, as the cell
+  std::optional<kinematics::TurnSide> side;  // empty: chosen at the turn (direction auto)
+  int attempts = 0;                          // aborted tries so far
+};
+
+// Speed-major, then heading change, then repeats: at each speed the vehicle settles once and
+// runs every heading change, as in the thesis' Figure 4-1. `alternate` alternates by plan index,
+// so a resumed mission gives each remaining turn the side it had in the original plan.
+std::vector<TurnTask> plan_turns(const MissionConfig& config);
+
+struct CellCount {
+  double speed_mps = 0.0;
+  double dheading_deg = 0.0;
+  int done = 0;
+};
+
+// The plan without the turns already done: per cell, the first `done` tasks are dropped.
+std::vector<TurnTask> remaining_turns(const std::vector<TurnTask>& plan,
+                                      const std::vector<CellCount>& done);
+
+// Cells are matched with the same tolerances the CKT uses.
+bool same_cell(double speed_a_mps, double dheading_a_deg, double speed_b_mps,
+               double dheading_b_deg);
+
+}  // namespace avk::mission

@@ -1,0 +1,23 @@
+#pragma once
+// The simulator options every `avk` command that runs a simulated vehicle shares:
+// --vehicle, --sim-config, --ticks, --seed, --jitter.
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "server/cli/args.hpp"
+#include "server/cli/commands.hpp"
+#include "sim/sim_config.hpp"
+
+namespace avk::server {
+
+// Shortest text that reads back as the same double.
+inline std::string num(double v) {
+  return nlohmann::json(v).dump();
+}
+
+// --vehicle (default_kind when absent), --sim-config, --ticks, --seed, --jitter. Throws
+// UsageError naming the option.
+sim::SimSetup sim_setup_from(const Args& a, Io& io, const std::string& default_kind = "usim");
+
+}  // namespace avk::server

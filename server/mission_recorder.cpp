@@ -1,0 +1,69 @@
+#include "server/mission_recorder.hpp"
+
+#include <exception>
+
+namespace avk::server {
+
+store::MissionStatus to_store_status(mission::MissionState s) {
+  switch (s) {
+    case mission::MissionState::running:
+      return store::MissionStatus::running;
+    case mission::MissionState::paused:
+      return store::MissionStatus::paused;
+    case mission::MissionState::interrupted:
+      return store::MissionStatus::interrupted;
+    case mission::MissionState::aborted:
+      return store::MissionStatus::aborted;
+    case mission::MissionState::halted:
+      return store::MissionStatus::halted;
+    case mission::MissionState::done:
+      return store::MissionStatus::done;
+  }
+  return store::MissionStatus::interrupted;
+}
+
+MissionRecorder::MissionRecorder(store::Store& store, std::int64_t mission_id,
+                                 double flush_period_s)
+    : store_(store), mission_id_(mission_id), flush_period_s_(flush_period_s) {
+  pending_.reserve(256);
+}
+
+MissionRecorder::~MissionRecorder() {
+  // A destructor must not throw; the batch is lost only if the database itself is gone.
+  try {
+    flush();
+  } catch (const std::exception&) {
+  }
+}
+
+void MissionRecorder::on_nav(const mission::NavRecord& r) {
+  pending_.push_back({r.nav.t_s, r.nav.x_m, r.nav.y_m, r.nav.heading_deg, r.nav.speed_mps,
+                      r.desired_heading_deg, r.desired_speed_mps, mission::to_string(r.mode)});
+  if (pending_.back().t_s - pending_.front().t_s >= flush_period_s_) flush();
+}
+
+void MissionRecorder::flush() {
+  if (pending_.empty()) return;
+  store_.append_nav(mission_id_, pending_);
+  pending_.clear();
+}
+
+void MissionRecorder::on_turn(mission::TurnOutcome& t) {
+  t.stored_id = store_.store_turn(mission_id_, t.raw, t.status, t.reason, t.condition_set_time_s);
+}
+
+void MissionRecorder::on_condition_set(const mission::ConditionSetEpisode& e) {
+  store_.append_condition_set(mission_id_,
+                              {e.start_s, e.end_s, e.target_speed_mps, to_string(e.outcome)});
+}
+
+void MissionRecorder::on_event(const mission::MissionEventRecord& e) {
+  store_.append_event(mission_id_, e.t_s, e.kind, e.message);
+}
+
+void MissionRecorder::on_state(mission::MissionState s, const std::string& reason, double t_s) {
+  flush();
+  store_.set_mission_status(mission_id_, to_store_status(s), reason, t_s);
+}
+
+}  // namespace avk::server

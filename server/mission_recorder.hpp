@@ -1,0 +1,36 @@
+#pragma once
+// Keeps everything a running mission records in the store: navigation in batches (a crash loses
+// at most the last second of it), each turn in one transaction the moment it ends, ConditionSet
+// episodes, events and status changes.
+
+#include <cstdint>
+#include <vector>
+
+#include "mission/mission_observer.hpp"
+#include "store/store.hpp"
+
+namespace avk::server {
+
+store::MissionStatus to_store_status(mission::MissionState s);
+
+class MissionRecorder final : public mission::MissionObserver {
+ public:
+  MissionRecorder(store::Store& store, std::int64_t mission_id, double flush_period_s = 1.0);
+  ~MissionRecorder() override;
+
+  void on_nav(const mission::NavRecord& r) override;
+  void on_turn(mission::TurnOutcome& t) override;
+  void on_condition_set(const mission::ConditionSetEpisode& e) override;
+  void on_event(const mission::MissionEventRecord& e) override;
+  void on_state(mission::MissionState s, const std::string& reason, double t_s) override;
+
+  void flush();
+
+ private:
+  store::Store& store_;
+  std::int64_t mission_id_;
+  double flush_period_s_;
+  std::vector<store::NavRow> pending_;
+};
+
+}  // namespace avk::server

@@ -1,0 +1,54 @@
+#include "sim/sim_mission.hpp"
+
+namespace avk::sim {
+
+namespace {
+
+SchedulerOptions scheduler_options(const SimMissionOptions& o) {
+  SchedulerOptions s = o.setup.scheduler;
+  s.start_time_s = o.start_time_s;
+  return s;
+}
+
+SimVehicleConfig vehicle_config(const SimMissionOptions& o) {
+  SimVehicleConfig v = o.setup.vehicle;
+  v.start_x_m = o.start.x_m;
+  v.start_y_m = o.start.y_m;
+  v.start_heading_deg = o.start.heading_deg;
+  v.start_speed_mps = 0.0;
+  v.seed = o.setup.scheduler.seed;
+  return v;
+}
+
+}  // namespace
+
+SimMission::SimMission(SimMissionOptions options)
+    : options_(std::move(options)),
+      scheduler_(scheduler_options(options_)),
+      vehicle_(vehicle_config(options_), scheduler_) {}
+
+SimMissionResult SimMission::run(mission::MissionRunner& runner, Pacer& pacer,
+                                 const std::atomic<bool>* stop,
+                                 std::function<void(double)> before_tick) {
+  SimMissionResult result;
+  result.start_time_s = scheduler_.now_s();
+  const double end = result.start_time_s + options_.max_duration_s;
+  scheduler_.add("helm", options_.setup.helm_hz, [&](double now) {
+    if (stop && stop->load()) {
+      result.stopped = true;
+      runner.interrupt(now, "stopped by a signal");
+    } else if (now >= end) {
+      result.horizon_reached = true;
+      runner.interrupt(now, "simulated time limit reached");
+    } else {
+      if (before_tick) before_tick(now);
+      runner.tick(now);
+    }
+    if (runner.finished()) scheduler_.request_stop();
+  });
+  scheduler_.run_until(end + 1.0, pacer);
+  result.end_time_s = scheduler_.now_s();
+  return result;
+}
+
+}  // namespace avk::sim

@@ -1,0 +1,54 @@
+#pragma once
+// A collection mission against a simulated vehicle: the scheduler, the vehicle and the mission's
+// helm as one more AppTick component. Faster than real time or paced to the wall clock, with the
+// same code path.
+
+#include <atomic>
+#include <functional>
+#include <optional>
+
+#include "kinematics/geometry.hpp"
+#include "mission/mission_runner.hpp"
+#include "sim/scheduler.hpp"
+#include "sim/sim_config.hpp"
+#include "sim/sim_vehicle.hpp"
+
+namespace avk::sim {
+
+struct SimMissionOptions {
+  SimSetup setup{};
+  kinematics::Pose start{};       // where the vehicle is when the mission starts, at rest
+  double start_time_s = 0.0;      // the mission clock (continues after a resume)
+  double max_duration_s = 86400;  // simulated; the mission is interrupted when it is reached
+};
+
+struct SimMissionResult {
+  double start_time_s = 0.0;
+  double end_time_s = 0.0;
+  bool stopped = false;          // the stop flag was raised
+  bool horizon_reached = false;  // max_duration_s ran out
+};
+
+class SimMission {
+ public:
+  explicit SimMission(SimMissionOptions options);
+
+  vehicle::Vehicle& vehicle() { return vehicle_; }
+  SimVehicle& sim_vehicle() { return vehicle_; }
+  double now_s() const { return scheduler_.now_s(); }
+
+  // Runs until the runner finishes. A raised stop flag (a signal, a server shutdown) or the end
+  // of max_duration_s interrupts the mission at the next helm tick. before_tick runs at every
+  // helm tick before the runner's, on the simulation thread: the place to apply queued
+  // operator commands.
+  SimMissionResult run(mission::MissionRunner& runner, Pacer& pacer,
+                       const std::atomic<bool>* stop = nullptr,
+                       std::function<void(double now_s)> before_tick = {});
+
+ private:
+  SimMissionOptions options_;
+  Scheduler scheduler_;
+  SimVehicle vehicle_;
+};
+
+}  // namespace avk::sim

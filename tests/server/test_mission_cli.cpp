@@ -1,0 +1,362 @@
+// `avk mission run|resume|list|report` and `avk ckt build|export --db` end to end on the
+// simulator, including a kill -9 of a running mission process.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
+
+#include "kinematics/ckt_file.hpp"
+#include "server/cli/cli.hpp"
+#include "store/store.hpp"
+#include "support/temp_db.hpp"
+
+namespace fs = std::filesystem;
+using avk::store::Store;
+using avk::testing::TempDb;
+using nlohmann::json;
+
+extern char** environ;
+
+namespace {
+
+struct Result {
+  int rc;
+  std::string out;
+  std::string err;
+};
+
+Result run(const std::vector<std::string>& args) {
+  std::istringstream in;
+  std::ostringstream o, e;
+  const int rc = avk::server::run_cli(args, in, o, e);
+  return {rc, o.str(), e.str()};
+}
+
+std::string example(const std::string& name) {
+  return std::string(AVK_SOURCE_DIR) + "/examples/" + name;
+}
+
+std::int64_t count_turns(Store& s, std::optional<avk::kinematics::TurnStatus> status) {
+  avk::store::TurnFilter f;
+  f.status = status;
+  f.limit = 100000;
+  return static_cast<std::int64_t>(s.list_turns(f).size());
+}
+
+// Per (speed, dheading) cell of the CKT: advance and transfer means.
+std::map<std::pair<double, double>, std::pair<double, double>> cell_means(
+    const std::string& json_text) {
+  const auto table = avk::kinematics::parse_ckt_json(json_text);
+  std::map<std::pair<double, double>, std::pair<double, double>> out;
+  for (const auto& c : table.cells()) {
+    if (c.has_data()) out[{c.speed_mps, c.dheading_deg}] = {c.advance_m.mean, c.transfer_m.mean};
+  }
+  return out;
+}
+
+class MissionCli : public ::testing::Test {
+ protected:
+  TempDb db_{"avk_mission_cli"};
+};
+
+TEST_F(MissionCli, Figure41OnUsimCompletesEveryTurnAndStoresEverything) {
+  const Result r = run({"mission", "run", "--config", example("thesis-fig4-1.json"), "--db",
+                        db_.path(), "--sim", "--vehicle", "usim"});
+  ASSERT_EQ(r.rc, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("18/18 turns ok"), std::string::npos) << r.out;
+  Store s(db_.path());
+  EXPECT_TRUE(s.integrity_check());
+  const auto missions = s.list_missions();
+  ASSERT_EQ(missions.size(), 1u);
+  EXPECT_EQ(missions[0].status, avk::store::MissionStatus::done);
+  EXPECT_FALSE(missions[0].runner_pid.has_value());
+  EXPECT_EQ(count_turns(s, avk::kinematics::TurnStatus::ok), 18);
+  // Every cell once, each with its normalised form and a ConditionSet time.
+  const auto cells = s.mission_cell_stats(missions[0].id);
+  ASSERT_EQ(cells.size(), 18u);
+  for (const auto& c : cells) {
+    EXPECT_EQ(c.n_ok, 1) << c.speed_mps << " " << c.dheading_deg;
+    ASSERT_TRUE(c.condition_set_time_s.has_value());
+    EXPECT_GT(c.condition_set_time_s->mean, 0.0);
+  }
+  // Aborted turns are stored too; ok + aborted + rejected is everything recorded.
+  const auto all = count_turns(s, std::nullopt);
+  EXPECT_EQ(all, 18 + count_turns(s, avk::kinematics::TurnStatus::aborted) +
+                     count_turns(s, avk::kinematics::TurnStatus::rejected));
+  // The navigation log has every mode of the mission, in time order.
+  const auto nav = s.nav_for_mission(missions[0].id);
+  ASSERT_GT(nav.size(), 1000u);
+  std::set<std::string> modes;
+  for (std::size_t i = 0; i < nav.size(); ++i) {
+    modes.insert(nav[i].helm_mode);
+    if (i) {
+      EXPECT_GE(nav[i].t_s, nav[i - 1].t_s);
+    }
+  }
+  for (const char* m : {"CONDITIONING", "TURNING", "RETURNING"})
+    EXPECT_TRUE(modes.count(m)) << m;
+  // The mission ends at the return point.
+  EXPECT_LT(std::hypot(nav.back().x_m - 0.0, nav.back().y_m + 70.0), 10.0);
+
+  const Result report = run({"mission", "report", "1", "--db", db_.path(), "--format", "json"});
+  ASSERT_EQ(report.rc, 0) << report.err;
+  const json j = json::parse(report.out);
+  EXPECT_EQ(j["status"], "done");
+  EXPECT_EQ(j["turns"]["ok"], 18);
+  EXPECT_EQ(j["cells"].size(), 18u);
+  EXPECT_GT(j["condition_set"]["time_to_set_s"]["mean"].get<double>(), 0.0);
+  const Result list = run({"mission", "list", "--db", db_.path()});
+  EXPECT_NE(list.out.find("done"), std::string::npos);
+  EXPECT_NE(list.out.find("thesis-fig4-1"), std::string::npos);
+}
+
+TEST_F(MissionCli, CatamaranInCurrentAndWindIsContainedAndLosesNoTurn) {
+  const Result r = run({"mission", "run", "--config", example("thesis-fig4-1.json"), "--db",
+                        db_.path(), "--sim", "--sim-config", example("sim-choppy.json")});
+  ASSERT_EQ(r.rc, 0) << r.out << r.err;
+  Store s(db_.path());
+  EXPECT_EQ(count_turns(s, avk::kinematics::TurnStatus::ok), 18);
+  // Containment aborted at least one turn, which was stored with its reason and run again.
+  avk::store::TurnFilter f;
+  f.status = avk::kinematics::TurnStatus::aborted;
+  const auto aborted = s.list_turns(f);
+  ASSERT_FALSE(aborted.empty());
+  for (const auto& t : aborted) {
+    EXPECT_EQ(t.reason.rfind("containment", 0), 0u) << t.reason;
+    avk::store::TurnFilter same;
+    same.speed_mps = t.commanded_speed_mps;
+    same.dheading_deg = t.goal_dheading_deg;
+    same.status = avk::kinematics::TurnStatus::ok;
+    same.after_id = t.id;  // the retry comes after the abort
+    EXPECT_EQ(s.list_turns(same).size(), 1u);
+  }
+  const auto events = s.list_events(1);
+  EXPECT_TRUE(std::any_of(events.begin(), events.end(),
+                          [](const auto& e) { return e.kind == "containment"; }));
+}
+
+TEST_F(MissionCli, ExportedTableGrowsWithSpeedAndHeadingChangeAsPhysicsSays) {
+  // A catamaran's yaw rate is bounded by its hull, so its turning circle widens with speed:
+  // advance grows with speed for every heading change, transfer for the large ones.
+  ASSERT_EQ(run({"mission", "run", "--config", example("thesis-fig4-1.json"), "--db", db_.path(),
+                 "--sim", "--vehicle", "catamaran:m200", "--quiet"})
+                .rc,
+            0);
+  const fs::path out = fs::path(db_.path()).replace_extension(".ckt.json");
+  const Result built = run({"ckt", "build", "--db", db_.path(), "--out", out.string()});
+  ASSERT_EQ(built.rc, 0) << built.err;
+  std::ifstream f(out);
+  std::stringstream text;
+  text << f.rdbuf();
+  const auto m = cell_means(text.str());
+  ASSERT_EQ(m.size(), 18u);
+  for (double d : {40.0, 70.0, 100.0, 130.0, 160.0}) {
+    EXPECT_LT(m.at({0.5, d}).first, m.at({1.0, d}).first) << d;
+    EXPECT_LT(m.at({1.0, d}).first, m.at({1.5, d}).first) << d;
+  }
+  for (double d : {100.0, 130.0, 160.0}) {
+    EXPECT_LT(m.at({0.5, d}).second, m.at({1.0, d}).second) << d;
+    EXPECT_LT(m.at({1.0, d}).second, m.at({1.5, d}).second) << d;
+  }
+  for (double d : {10.0, 40.0, 70.0, 100.0})
+    EXPECT_LT(m.at({1.5, d}).second, m.at({1.5, d + 30.0}).second) << d;
+  fs::remove(out);
+}
+
+TEST_F(MissionCli, UsimTransferGrowsWithHeadingChange) {
+  ASSERT_EQ(run({"mission", "run", "--config", example("thesis-fig4-1.json"), "--db", db_.path(),
+                 "--sim", "--quiet"})
+                .rc,
+            0);
+  const Result csv = run({"ckt", "export", "--db", db_.path(), "--format", "json"});
+  ASSERT_EQ(csv.rc, 0) << csv.err;
+  const auto m = cell_means(csv.out);
+  for (double u : {0.5, 1.0, 1.5}) {
+    // Up to 130 deg the vehicle is still moving to the turn side when the turn completes.
+    for (double d : {10.0, 40.0, 70.0, 100.0})
+      EXPECT_LT(m.at({u, d}).second, m.at({u, d + 30.0}).second) << u << " " << d;
+    EXPECT_LT(m.at({u, 10.0}).first, m.at({u, 40.0}).first);
+    // Past 90 deg the vehicle comes back along its original course: advance falls.
+    EXPECT_GT(m.at({u, 100.0}).first, m.at({u, 160.0}).first);
+  }
+}
+
+TEST_F(MissionCli, InvalidMissionNamesTheFieldAndStoresNothing) {
+  const fs::path bad = fs::path(db_.path()).replace_extension(".mission.json");
+  std::ofstream(bad)
+      << R"({"name": "x", "turn_array": {"speeds_mps": [9.0], "dheadings_deg": [200]},
+    "operating_region": {"polygon_m": [[0,0],[10,0],[0,10],[10,10]], "return_point_m": [1, 1]}})";
+  const Result r = run({"mission", "run", "--config", bad.string(), "--db", db_.path(), "--sim"});
+  EXPECT_EQ(r.rc, 1);
+  EXPECT_NE(r.err.find("/turn_array/speeds_mps/0"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("/turn_array/dheadings_deg/0"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("/operating_region/polygon_m"), std::string::npos) << r.err;
+  Store s(db_.path());
+  EXPECT_TRUE(s.list_missions().empty());
+  fs::remove(bad);
+}
+
+TEST_F(MissionCli, UsageErrorsNameTheProblem) {
+  EXPECT_EQ(
+      run({"mission", "run", "--config", example("thesis-fig4-1.json"), "--db", db_.path()}).rc, 2);
+  EXPECT_EQ(run({"mission", "report", "x1", "--db", db_.path()}).rc, 2);
+  const Result missing = run({"mission", "report", "7", "--db", db_.path()});
+  EXPECT_EQ(missing.rc, 1);
+  EXPECT_NE(missing.err.find("no mission 7"), std::string::npos);
+  ASSERT_EQ(run({"mission", "run", "--config", example("thesis-fig4-1.json"), "--db", db_.path(),
+                 "--sim", "--quiet"})
+                .rc,
+            0);
+  const Result again = run({"mission", "resume", "1", "--db", db_.path(), "--sim"});
+  EXPECT_EQ(again.rc, 1);
+  EXPECT_NE(again.err.find("nothing to resume"), std::string::npos) << again.err;
+  // Two vehicles in one database: the table needs to be told which.
+  ASSERT_EQ(run({"mission", "run", "--config", example("thesis-fig4-1.json"), "--db", db_.path(),
+                 "--sim", "--vehicle", "catamaran", "--quiet"})
+                .rc,
+            0);
+  const Result mixed = run({"ckt", "build", "--db", db_.path()});
+  EXPECT_EQ(mixed.rc, 2);
+  EXPECT_NE(mixed.err.find("--vehicle"), std::string::npos) << mixed.err;
+  const Result one = run({"ckt", "build", "--db", db_.path(), "--mission", "2"});
+  EXPECT_EQ(one.rc, 0) << one.err;
+  EXPECT_EQ(avk::kinematics::parse_ckt_json(one.out).vehicle_id, "sim-catamaran:m200");
+}
+
+TEST_F(MissionCli, PersistentExcitationLogsNavigationForIdentification) {
+  const Result r = run({"mission", "run", "--config", example("persistent-excitation.json"), "--db",
+                        db_.path(), "--sim", "--quiet"});
+  ASSERT_EQ(r.rc, 0) << r.out << r.err;
+  Store s(db_.path());
+  const auto nav = s.nav_for_mission(1);
+  std::size_t exciting = 0;
+  std::set<double> desired;
+  for (const auto& n : nav) {
+    if (n.helm_mode != "EXCITING") continue;
+    ++exciting;
+    if (n.desired_heading_deg) desired.insert(*n.desired_heading_deg);
+  }
+  // 900 s of excitation at 4 Hz navigation, with a new heading every 3 to 10 s.
+  EXPECT_GT(exciting, 3000u);
+  EXPECT_GT(desired.size(), 60u);
+  EXPECT_EQ(count_turns(s, std::nullopt), 0);
+}
+
+// --- a real process, killed -------------------------------------------------------------
+
+pid_t spawn_avk(const std::vector<std::string>& args, const std::string& log) {
+  std::vector<std::string> argv_s = {AVK_BINARY};
+  argv_s.insert(argv_s.end(), args.begin(), args.end());
+  std::vector<char*> argv;
+  for (auto& a : argv_s)
+    argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&fa, 1, 2);
+  pid_t pid = 0;
+  const int rc = posix_spawn(&pid, AVK_BINARY, &fa, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&fa);
+  return rc == 0 ? pid : -1;
+}
+
+// Waits (bounded) until the running mission has stored at least n ok turns.
+bool wait_for_ok_turns(const std::string& db, std::int64_t n, pid_t child) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (waitpid(child, nullptr, WNOHANG) == child) return false;  // ended early
+    if (fs::exists(db)) {
+      try {
+        Store s(db);
+        if (count_turns(s, avk::kinematics::TurnStatus::ok) >= n) return true;
+      } catch (const std::exception&) {
+        // The schema is being created; look again.
+      }
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return false;
+}
+
+TEST_F(MissionCli, KillNineLosesNoFinishedTurnAndResumeCompletesTheMission) {
+  const std::string log = db_.path() + ".log";
+  const pid_t child =
+      spawn_avk({"mission", "run", "--config", example("thesis-fig4-1.json"), "--db", db_.path(),
+                 "--sim", "--realtime", "--realtime-factor", "60"},
+                log);
+  ASSERT_GT(child, 0);
+  ASSERT_TRUE(wait_for_ok_turns(db_.path(), 4, child)) << "the mission did not store 4 turns";
+  ASSERT_EQ(kill(child, SIGKILL), 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFSIGNALED(status));
+
+  std::vector<avk::store::StoredTurn> before;
+  {
+    Store s(db_.path());
+    EXPECT_TRUE(s.integrity_check());
+    avk::store::TurnFilter f;
+    f.limit = 1000;
+    for (const auto& row : s.list_turns(f))
+      before.push_back(*s.get_turn(row.id));
+    ASSERT_GE(before.size(), 4u);
+    EXPECT_EQ(s.get_mission(1)->status, avk::store::MissionStatus::running);  // as it was left
+    EXPECT_GT(s.nav_for_mission(1).size(), 100u);
+  }
+  const Result list = run({"mission", "list", "--db", db_.path()});
+  EXPECT_NE(list.out.find("interrupted"), std::string::npos) << list.out;
+
+  const Result resumed = run({"mission", "resume", "1", "--db", db_.path(), "--sim"});
+  ASSERT_EQ(resumed.rc, 0) << resumed.out << resumed.err;
+  Store s(db_.path());
+  EXPECT_TRUE(s.integrity_check());
+  EXPECT_EQ(count_turns(s, avk::kinematics::TurnStatus::ok), 18);
+  const auto cells = s.mission_cell_stats(1);
+  for (const auto& c : cells)
+    EXPECT_EQ(c.n_ok, 1) << c.speed_mps << " " << c.dheading_deg;
+  for (const auto& t : before) {
+    const auto now = s.get_turn(t.row.id);
+    ASSERT_TRUE(now.has_value());
+    EXPECT_EQ(now->raw, t.raw);
+  }
+  // The resumed clock continues after everything stored before the kill.
+  const auto nav = s.nav_for_mission(1);
+  for (std::size_t i = 1; i < nav.size(); ++i)
+    ASSERT_GE(nav[i].t_s, nav[i - 1].t_s);
+  EXPECT_EQ(s.get_mission(1)->status, avk::store::MissionStatus::done);
+  fs::remove(log);
+}
+
+TEST_F(MissionCli, SigtermStopsTheMissionAsInterruptedAndResumable) {
+  const std::string log = db_.path() + ".log";
+  const pid_t child =
+      spawn_avk({"mission", "run", "--config", example("thesis-fig4-1.json"), "--db", db_.path(),
+                 "--sim", "--realtime", "--realtime-factor", "60"},
+                log);
+  ASSERT_GT(child, 0);
+  ASSERT_TRUE(wait_for_ok_turns(db_.path(), 2, child));
+  ASSERT_EQ(kill(child, SIGTERM), 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 130);
+  Store s(db_.path());
+  const auto m = s.get_mission(1);
+  EXPECT_EQ(m->status, avk::store::MissionStatus::interrupted);
+  EXPECT_FALSE(m->runner_pid.has_value());
+  EXPECT_NE(m->status_reason.find("signal"), std::string::npos);
+  fs::remove(log);
+}
+
+}  // namespace
