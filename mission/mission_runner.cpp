@@ -439,7 +439,8 @@ void MissionRunner::check_return(const vehicle::NavSample& s) {
   const double capture = config_.region.capture_radius_m;
   // Like a MOOS waypoint's slip radius: close enough and moving away counts as arrived, so a
   // vehicle whose turning circle is wider than the capture radius does not orbit the point.
-  const bool slipped = d <= 3.0 * capture && d > return_best_m_ + 0.5;
+  // The 2 m margin keeps GNSS noise (decimetres) from looking like moving away.
+  const bool slipped = d <= 3.0 * capture && d > return_best_m_ + 2.0;
   return_best_m_ = std::min(return_best_m_, d);
   if (d <= capture || slipped) {
     stop_all(s.t_s, HelmMode::done, MissionState::done,
