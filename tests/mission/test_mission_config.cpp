@@ -45,7 +45,7 @@ TEST(MissionConfig, ThesisFigure41Example) {
   EXPECT_EQ(c.condition_set.window, 5);
   EXPECT_EQ(c.completion_threshold_deg, 5.0);
   EXPECT_EQ(c.region.polygon.size(), 4u);
-  EXPECT_EQ(c.region.buffer_m, 10.0);
+  EXPECT_EQ(c.region.buffer_m, 25.0);
 }
 
 TEST(MissionConfig, PersistentExcitationExample) {
@@ -115,4 +115,34 @@ TEST(Polygon, AreaSimplicityAndContainment) {
   EXPECT_FALSE(point_in_polygon({15, 5}, square));
   EXPECT_DOUBLE_EQ(distance_to_boundary_m({5, 2}, square), 2.0);
   EXPECT_DOUBLE_EQ(distance_to_boundary_m({5, 9}, square), 1.0);
+}
+
+TEST(MissionConfig, RunnerFieldsHaveDefaultsAndRanges) {
+  const MissionConfig c = parse_mission_config(example("thesis-fig4-1.json"), 1.7);
+  EXPECT_EQ(c.turn_array.max_attempts, 10);
+  EXPECT_DOUBLE_EQ(c.turn_timeout_s, 120.0);
+  EXPECT_FALSE(c.region.return_speed_mps.has_value());
+  EXPECT_DOUBLE_EQ(return_speed_mps(c), 0.5);  // the first speed of the turn array
+  EXPECT_DOUBLE_EQ(c.region.capture_radius_m, 3.0);
+
+  json doc = json::parse(example("thesis-fig4-1.json"));
+  doc["turn_array"]["max_attempts"] = 3;
+  doc["constant_heading"]["timeout_s"] = 60;
+  doc["operating_region"]["return_speed_mps"] = 1.2;
+  doc["operating_region"]["capture_radius_m"] = 5;
+  const MissionConfig set = parse_mission_config(doc.dump(), 1.7);
+  EXPECT_EQ(set.turn_array.max_attempts, 3);
+  EXPECT_DOUBLE_EQ(set.turn_timeout_s, 60.0);
+  EXPECT_DOUBLE_EQ(return_speed_mps(set), 1.2);
+  EXPECT_DOUBLE_EQ(set.region.capture_radius_m, 5.0);
+
+  EXPECT_EQ(fields_of([](json& d) { d["turn_array"]["max_attempts"] = 0; }),
+            std::vector<std::string>{"/turn_array/max_attempts"});
+  EXPECT_EQ(fields_of([](json& d) { d["constant_heading"]["timeout_s"] = -1; }),
+            std::vector<std::string>{"/constant_heading/timeout_s"});
+  // A return speed above the vehicle's maximum is as impossible as a turn speed above it.
+  EXPECT_EQ(fields_of([](json& d) { d["operating_region"]["return_speed_mps"] = 3.0; }, 2.0),
+            std::vector<std::string>{"/operating_region/return_speed_mps"});
+  EXPECT_EQ(fields_of([](json& d) { d["operating_region"]["capture_radius_m"] = "3"; }),
+            std::vector<std::string>{"/operating_region/capture_radius_m"});
 }

@@ -191,6 +191,41 @@ TEST_F(MissionCli, UsimTransferGrowsWithHeadingChange) {
   }
 }
 
+TEST_F(MissionCli, DirectionAutoLosesFewerTurnsToContainmentThanAlternate) {
+  const fs::path auto_config = fs::path(db_.path()).replace_extension(".auto.json");
+  json doc;
+  std::ifstream(example("thesis-fig4-1.json")) >> doc;
+  doc["turn_array"]["direction"] = "auto";
+  std::ofstream(auto_config) << doc.dump();
+  ASSERT_EQ(run({"mission", "run", "--config", example("thesis-fig4-1.json"), "--db", db_.path(),
+                 "--sim", "--quiet"})
+                .rc,
+            0);
+  ASSERT_EQ(run({"mission", "run", "--config", auto_config.string(), "--db", db_.path(), "--sim",
+                 "--quiet"})
+                .rc,
+            0);
+  Store s(db_.path());
+  std::int64_t aborted[2] = {0, 0};
+  std::set<double> sides;
+  for (std::int64_t m : {1, 2}) {
+    for (const auto& c : s.mission_cell_stats(m)) {
+      EXPECT_EQ(c.n_ok, 1);
+      aborted[m - 1] += c.n_aborted;
+    }
+  }
+  // The thesis' alternating mission runs into the buffer twice on this region; auto never does.
+  EXPECT_GT(aborted[0], 0);
+  EXPECT_LT(aborted[1], aborted[0]);
+  // Auto still turns both ways.
+  avk::store::TurnFilter f;
+  f.mission_id = 2;
+  for (const auto& t : s.list_turns(f))
+    sides.insert(t.goal_dheading_deg > 0 ? 1.0 : -1.0);
+  EXPECT_EQ(sides.size(), 2u);
+  fs::remove(auto_config);
+}
+
 TEST_F(MissionCli, InvalidMissionNamesTheFieldAndStoresNothing) {
   const fs::path bad = fs::path(db_.path()).replace_extension(".mission.json");
   std::ofstream(bad)
