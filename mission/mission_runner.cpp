@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "kinematics/angles.hpp"
 #include "kinematics/turn_measures.hpp"
@@ -147,8 +148,7 @@ void MissionRunner::tick(double now_s) {
   if (holding_ || !last_nav_) return;
 
   // The helm acts on the latest navigation, as pHelmIvP does at its AppTick.
-  if (mode_ == HelmMode::conditioning && condition_set_->conditions_set())
-    start_turn(*last_nav_, now_s);
+  if (mode_ == HelmMode::conditioning && condition_set_->conditions_set()) start_turn(*last_nav_);
   if (mode_ == HelmMode::conditioning &&
       last_nav_->t_s - condition_set_start_s_ > config_.condition_set.timeout_s) {
     end_condition_set(last_nav_->t_s, ConditionSetEpisode::Outcome::timeout);
@@ -158,13 +158,8 @@ void MissionRunner::tick(double now_s) {
           "conditions for " + cell_name(task) + " not set within " +
               num(config_.condition_set.timeout_s, 0) + " s (attempt " +
               std::to_string(task.attempts) + ")");
-    if (task.attempts >= config_.turn_array.max_attempts) {
-      ++given_up_;
-      if (auto* c = cell_of(task)) ++c->given_up;
-      event(now_s, "turn_given_up",
-            cell_name(task) + " given up after " + std::to_string(task.attempts) + " attempts");
-      queue_.pop_front();
-    }
+    TurnOutcome no_turn;  // conditions never set: nothing was recorded
+    give_up_or_requeue(now_s, no_turn);
     start_conditioning(*last_nav_);
   }
   if (config_.kind == MissionKind::persistent_excitation && excite_start_s_ &&
@@ -313,7 +308,7 @@ const kinematics::Ckt* MissionRunner::table_for_auto() {
   return nullptr;
 }
 
-void MissionRunner::start_turn(const vehicle::NavSample& s, double now_s) {
+void MissionRunner::start_turn(const vehicle::NavSample& s) {
   const double cs_time = s.t_s - condition_set_start_s_;
   end_condition_set(s.t_s, ConditionSetEpisode::Outcome::set);
   TurnTask& task = queue_.front();
@@ -334,7 +329,7 @@ void MissionRunner::start_turn(const vehicle::NavSample& s, double now_s) {
   if (auto* c = cell_of(task)) c->running = true;
   set_mode(HelmMode::turning, s.t_s);
   for (auto* o : observers_)
-    o->on_turn_started(task, now_s, *desired_heading_deg_);
+    o->on_turn_started(task, s.t_s, *desired_heading_deg_);
 }
 
 void MissionRunner::finish_turn(const vehicle::NavSample& s, Completion how) {
@@ -356,14 +351,7 @@ void MissionRunner::finish_turn(const vehicle::NavSample& s, Completion how) {
     ++task.attempts;
     out.task = task;
     if (cell) ++cell->rejected;
-    if (task.attempts >= config_.turn_array.max_attempts) {
-      out.given_up = true;
-      ++given_up_;
-      if (cell) ++cell->given_up;
-      queue_.pop_front();
-    } else {
-      out.requeued = true;
-    }
+    give_up_or_requeue(s.t_s, out);
     event(s.t_s, "turn_rejected", cell_name(out.task) + ": " + *anomaly);
   } else {
     const auto at = kinematics::advance_transfer(out.raw.normalized().points());
@@ -379,6 +367,20 @@ void MissionRunner::finish_turn(const vehicle::NavSample& s, Completion how) {
     o->on_turn(out);
   // The next ConditionSet starts from here, on the course the turn ended on.
   start_conditioning(s);
+}
+
+void MissionRunner::give_up_or_requeue(double t_s, TurnOutcome& out) {
+  const TurnTask& task = queue_.front();
+  if (task.attempts < config_.turn_array.max_attempts) {
+    out.requeued = true;
+    return;
+  }
+  out.given_up = true;
+  ++given_up_;
+  if (auto* c = cell_of(task)) ++c->given_up;
+  event(t_s, "turn_given_up",
+        cell_name(task) + " given up after " + std::to_string(task.attempts) + " attempts");
+  queue_.pop_front();
 }
 
 void MissionRunner::abort_turn(double t_s, const std::string& reason, bool count_attempt) {
@@ -398,18 +400,11 @@ void MissionRunner::abort_turn(double t_s, const std::string& reason, bool count
     cell->running = false;
     ++cell->aborted;
   }
-  if (task.attempts >= config_.turn_array.max_attempts) {
-    out.given_up = true;
-    ++given_up_;
-    if (cell) ++cell->given_up;
-    queue_.pop_front();
-  } else {
-    out.requeued = true;
-  }
+  give_up_or_requeue(t_s, out);
   event(t_s, "turn_aborted",
         cell_name(out.task) + ": " + reason +
             (out.requeued ? "; re-queued"
-                          : "; given up after " + std::to_string(task.attempts) + " attempts"));
+                          : "; given up after " + std::to_string(out.task.attempts) + " attempts"));
   for (auto* o : observers_)
     o->on_turn(out);
 }
@@ -439,8 +434,8 @@ void MissionRunner::check_return(const vehicle::NavSample& s) {
   const double capture = config_.region.capture_radius_m;
   // Like a MOOS waypoint's slip radius: close enough and moving away counts as arrived, so a
   // vehicle whose turning circle is wider than the capture radius does not orbit the point.
-  // The 2 m margin keeps GNSS noise (decimetres) from looking like moving away.
-  const bool slipped = d <= 3.0 * capture && d > return_best_m_ + 2.0;
+  // A margin of up to 2 m keeps GNSS noise (decimetres) from looking like moving away.
+  const bool slipped = d <= 3.0 * capture && d > return_best_m_ + std::min(2.0, capture);
   return_best_m_ = std::min(return_best_m_, d);
   if (d <= capture || slipped) {
     stop_all(s.t_s, HelmMode::done, MissionState::done,

@@ -85,11 +85,13 @@ class MissionRunner {
   void leave_containment(const vehicle::NavSample& s);
   void start_conditioning(const vehicle::NavSample& s);
   void end_condition_set(double t_s, ConditionSetEpisode::Outcome outcome);
-  void start_turn(const vehicle::NavSample& s, double now_s);
+  void start_turn(const vehicle::NavSample& s);
   void finish_turn(const vehicle::NavSample& s, Completion how);
   // count_attempt: containment, timeouts and link loss count towards max_attempts; an
   // operator's pause does not.
   void abort_turn(double t_s, const std::string& reason, bool count_attempt);
+  // After a failed attempt: back to the front of the queue, or given up at max_attempts.
+  void give_up_or_requeue(double t_s, TurnOutcome& out);
   void start_exciting(const vehicle::NavSample& s, double now_s);
   void start_returning(double t_s);
   void stop_all(double t_s, HelmMode mode, MissionState state, const std::string& reason);

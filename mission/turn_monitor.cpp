@@ -12,7 +12,8 @@ TurnMonitor::TurnMonitor(const vehicle::NavSample& start, double commanded_speed
       goal_dheading_deg_(goal_dheading_deg),
       threshold_deg_(completion_threshold_deg),
       goal_heading_deg_(kinematics::wrap360_deg(start.heading_deg + goal_dheading_deg)),
-      previous_error_deg_(goal_dheading_deg) {
+      // Errors are signed towards the turn, so the goal starts ahead for either side.
+      previous_error_deg_(std::abs(goal_dheading_deg)) {
   t_.push_back(start.t_s);
   x_.push_back(start.x_m);
   y_.push_back(start.y_m);

@@ -81,7 +81,7 @@ TEST(MissionConfig, EveryProblemIsNamed) {
               d["operating_region"]["return_point_m"] = {5, 5};
             }),
             V{"/operating_region/polygon_m"});  // too small
-  EXPECT_EQ(fields_of([](json& d) { d["operating_region"]["buffer_m"] = 70; }),
+  EXPECT_EQ(fields_of([](json& d) { d["operating_region"]["buffer_m"] = 120; }),
             V{"/operating_region/buffer_m"});
   EXPECT_EQ(fields_of([](json& d) {
               d["operating_region"]["return_point_m"] = {500, 0};
