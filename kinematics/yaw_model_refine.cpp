@@ -63,7 +63,8 @@ struct Problem {
 }  // namespace
 
 YawModel refine_yaw_model(const YawModel& start, const std::vector<TurnWindow>& windows,
-                          const RefineOptions& options, RefineReport* report) {
+                          const RefineOptions& options, RefineReport* report,
+                          const std::vector<TurnWindow>& validation) {
   YawModel m = start;
   m.refined = true;
   const Problem problem{windows, options};
@@ -73,8 +74,13 @@ YawModel refine_yaw_model(const YawModel& start, const std::vector<TurnWindow>& 
   Eigen::VectorXd r(rows), r_trial(rows), r_step(rows);
   problem.residuals(m, r);
   double cost = r.squaredNorm();
-  if (report) *report = {0, cost, cost};
+  if (report) *report = {0, 0, cost, cost};
   if (rows == 0) return m;
+  const auto validation_error = [&](const YawModel& candidate) {
+    return validation.empty() ? 0.0 : trajectory_error(candidate, validation).position_mse_m2;
+  };
+  Eigen::VectorXd best_theta = theta;
+  double best_validation = validation_error(m);
   double mu = 1e-3;
   Eigen::MatrixXd jac(rows, p);
   YawModel trial = m;
@@ -109,9 +115,15 @@ YawModel refine_yaw_model(const YawModel& start, const std::vector<TurnWindow>& 
         cost = trial_cost;
         mu = std::max(mu / 3.0, 1e-9);
         improved = true;
-        if (report) {
-          report->iterations = it + 1;
-          report->final_cost = cost;
+        if (report) report->iterations = it + 1;
+        set_parameters(trial, theta);
+        if (const double v = validation_error(trial); validation.empty() || v < best_validation) {
+          best_validation = v;
+          best_theta = theta;
+          if (report) {
+            report->best_iteration = it + 1;
+            report->final_cost = cost;
+          }
         }
         if (relative < 1e-6) it = options.max_iterations;
       } else {
@@ -120,7 +132,7 @@ YawModel refine_yaw_model(const YawModel& start, const std::vector<TurnWindow>& 
     }
     if (!improved) break;
   }
-  set_parameters(m, theta);
+  set_parameters(m, best_theta);
   return m;
 }
 

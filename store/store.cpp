@@ -12,6 +12,7 @@
 #include "kinematics/ckt_file.hpp"
 #include "kinematics/turn_json.hpp"
 #include "kinematics/turn_measures.hpp"
+#include "kinematics/yaw_model_json.hpp"
 
 namespace avk::store {
 
@@ -19,7 +20,7 @@ namespace {
 
 // Each step moves the schema from version i to i + 1. Steps are append-only: a released step is
 // never edited, because databases in the field have already run it.
-constexpr std::array<const char*, 2> kMigrations = {
+constexpr std::array<const char*, 3> kMigrations = {
     R"sql(
 CREATE TABLE vehicles (
   id            TEXT PRIMARY KEY,
@@ -105,6 +106,25 @@ CREATE TABLE mission_events (
   message    TEXT NOT NULL
 );
 CREATE INDEX mission_events_by_mission ON mission_events (mission_id, id);
+)sql",
+    // Identified yaw models: the model document (kinematics/yaw_model_json.hpp), what it was
+    // trained on, and how well it did on data it did not see.
+    R"sql(
+CREATE TABLE yaw_models (
+  id                      INTEGER PRIMARY KEY,
+  created_utc             TEXT NOT NULL DEFAULT (strftime('%Y-%m-%dT%H:%M:%fZ', 'now')),
+  vehicle_id              TEXT NOT NULL,
+  form                    TEXT NOT NULL,
+  history                 INTEGER NOT NULL,
+  rate_hz                 REAL NOT NULL,
+  refined                 INTEGER NOT NULL,
+  training_missions       TEXT NOT NULL,
+  train_one_step_rms_deg  REAL,
+  validation_mse_m2       REAL,
+  validation_heading_rms_deg REAL,
+  document                TEXT NOT NULL
+);
+CREATE INDEX yaw_models_by_vehicle ON yaw_models (vehicle_id, id);
 )sql",
 };
 
@@ -649,6 +669,73 @@ std::optional<CktSnapshot> Store::latest_ckt_snapshot() {
     throw StoreError("CKT snapshot " + std::to_string(snap.id) + " is corrupt: " + e.what());
   }
   return snap;
+}
+
+namespace {
+
+constexpr const char* kModelColumns =
+    "id, created_utc, vehicle_id, training_missions, train_one_step_rms_deg, validation_mse_m2, "
+    "validation_heading_rms_deg, document";
+
+StoredModel read_model(const Statement& s) {
+  StoredModel m;
+  m.id = s.column_int64(0);
+  m.created_utc = s.column_text(1);
+  m.vehicle_id = s.column_text(2);
+  m.train_one_step_rms_deg = s.column_optional_double(4);
+  m.validation_mse_m2 = s.column_optional_double(5);
+  m.validation_heading_rms_deg = s.column_optional_double(6);
+  try {
+    m.training_missions =
+        nlohmann::json::parse(s.column_text(3)).get<std::vector<std::int64_t>>();
+    m.model = kinematics::parse_yaw_model_json(s.column_text(7));
+  } catch (const std::exception& e) {
+    throw StoreError("yaw model " + std::to_string(m.id) + " is corrupt: " + e.what());
+  }
+  return m;
+}
+
+}  // namespace
+
+std::int64_t Store::save_model(const StoredModel& m) {
+  auto s = db_.prepare(
+      "INSERT INTO yaw_models (vehicle_id, form, history, rate_hz, refined, training_missions, "
+      "train_one_step_rms_deg, validation_mse_m2, validation_heading_rms_deg, document) "
+      "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  s.bind(1, m.vehicle_id).bind(2, kinematics::to_string(m.model.form));
+  s.bind(3, static_cast<std::int64_t>(m.model.history)).bind(4, m.model.rate_hz);
+  s.bind(5, static_cast<std::int64_t>(m.model.refined ? 1 : 0));
+  s.bind(6, nlohmann::json(m.training_missions).dump());
+  s.bind(7, m.train_one_step_rms_deg).bind(8, m.validation_mse_m2);
+  s.bind(9, m.validation_heading_rms_deg).bind(10, kinematics::yaw_model_to_json(m.model));
+  s.run();
+  return db_.last_insert_rowid();
+}
+
+std::optional<StoredModel> Store::get_model(std::int64_t id) {
+  auto s = db_.prepare(std::string("SELECT ") + kModelColumns + " FROM yaw_models WHERE id = ?");
+  s.bind(1, id);
+  if (!s.step()) return std::nullopt;
+  return read_model(s);
+}
+
+std::vector<StoredModel> Store::list_models(const std::optional<std::string>& vehicle_id) {
+  auto s = db_.prepare(std::string("SELECT ") + kModelColumns +
+                       " FROM yaw_models WHERE ?1 IS NULL OR vehicle_id = ?1 ORDER BY id");
+  if (vehicle_id) s.bind(1, *vehicle_id);
+  std::vector<StoredModel> out;
+  while (s.step())
+    out.push_back(read_model(s));
+  return out;
+}
+
+std::optional<StoredModel> Store::latest_model(const std::optional<std::string>& vehicle_id) {
+  auto s = db_.prepare(std::string("SELECT ") + kModelColumns +
+                       " FROM yaw_models WHERE ?1 IS NULL OR vehicle_id = ?1 "
+                       "ORDER BY id DESC LIMIT 1");
+  if (vehicle_id) s.bind(1, *vehicle_id);
+  if (!s.step()) return std::nullopt;
+  return read_model(s);
 }
 
 void Store::overwrite_turn_json_for_testing(std::int64_t turn_id, std::string_view raw_json) {

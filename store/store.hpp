@@ -16,6 +16,7 @@
 
 #include "kinematics/ckt.hpp"
 #include "kinematics/turn_sequence.hpp"
+#include "kinematics/yaw_model.hpp"
 #include "store/sqlite.hpp"
 #include "vehicle/vehicle.hpp"
 
@@ -125,6 +126,18 @@ struct CellStats {
   std::optional<kinematics::MeanSd> condition_set_time_s;  // over ok turns that have one
 };
 
+// An identified black-box yaw model with its provenance and validation errors.
+struct StoredModel {
+  std::int64_t id = 0;
+  std::string created_utc;
+  std::string vehicle_id;
+  std::vector<std::int64_t> training_missions;
+  kinematics::YawModel model;
+  std::optional<double> train_one_step_rms_deg;
+  std::optional<double> validation_mse_m2;  // trajectory position MSE on validation turns
+  std::optional<double> validation_heading_rms_deg;
+};
+
 struct CktSnapshot {
   std::int64_t id = 0;
   std::string created_utc;
@@ -199,6 +212,12 @@ class Store {
                                  const std::vector<std::int64_t>& mission_ids);
   // Throws StoreError when the stored document no longer parses.
   std::optional<CktSnapshot> latest_ckt_snapshot();
+
+  // Returns the model id (m.id is ignored). Reads throw StoreError for a corrupt document.
+  std::int64_t save_model(const StoredModel& m);
+  std::optional<StoredModel> get_model(std::int64_t id);
+  std::vector<StoredModel> list_models(const std::optional<std::string>& vehicle_id = {});
+  std::optional<StoredModel> latest_model(const std::optional<std::string>& vehicle_id = {});
 
   // Test seams. The hook runs inside store_turn's transaction after each step ("turn_inserted"),
   // so a test can fail it halfway; overwrite_turn_json_for_testing corrupts a stored turn.

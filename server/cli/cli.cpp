@@ -33,7 +33,12 @@ void usage(std::ostream& out) {
          "               [--sweep-ticks] [--vehicle ...] [--sim-config FILE] [--seed N]\n"
          "      advance/transfer per repetition and their coefficient of variation\n"
          "  avk mission validate --config FILE [--vehicle KIND]\n"
-         "      check a mission file; every problem is listed with its field\n";
+         "      check a mission file; every problem is listed with its field\n"
+         "  avk import alog FILE --db FILE [--vehicle NAME] [--names NAV_X=X,NAV_Y=Y,...]\n"
+         "                  [--turn-record VAR] [--threshold DEG] [--speed-tolerance M/S]\n"
+         "                  [--max-yaw-rate DEG/S]\n"
+         "      a MOOS-IvP .alog as a mission: navigation, and turns from its turn records or\n"
+         "      from steps in DESIRED_HEADING; malformed lines are counted, not fatal\n";
 }
 }  // namespace
 
@@ -50,6 +55,10 @@ int run_cli(const std::vector<std::string>& args, std::istream& in, std::ostream
     if (args[0] == "ckt") return cmd_ckt(rest, io);
     if (args[0] == "sim") return cmd_sim(rest, io);
     if (args[0] == "mission") return cmd_mission(rest, io);
+    if (args[0] == "model") return cmd_model(rest, io);
+    if (args[0] == "compare") return cmd_compare(rest, io);
+    if (args[0] == "predict") return cmd_predict(rest, io);
+    if (args[0] == "import") return cmd_import(rest, io);
   } catch (const UsageError& e) {
     err << "avk " << args[0] << ": " << e.what() << "\n";
     return 2;

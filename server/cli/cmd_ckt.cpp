@@ -9,6 +9,7 @@
 #include "kinematics/ckt_file.hpp"
 #include "server/cli/args.hpp"
 #include "server/cli/commands.hpp"
+#include "server/cli/db_selection.hpp"
 #include "server/cli/files.hpp"
 #include "server/cli/turn_file.hpp"
 #include "store/store.hpp"
@@ -59,46 +60,6 @@ kin::CktOptions build_options(const Args& a) {
   return options;
 }
 
-std::vector<std::int64_t> mission_ids(const Args& a) {
-  std::vector<std::int64_t> ids;
-  for (const std::string& s : a.all("mission")) {
-    std::size_t used = 0;
-    long long id = 0;
-    try {
-      id = std::stoll(s, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != s.size() || id <= 0)
-      throw UsageError("--mission needs a positive whole number, got '" + s + "'");
-    ids.push_back(id);
-  }
-  return ids;
-}
-
-// The vehicle whose turns make the table: --vehicle, or the only vehicle of the chosen missions.
-// Mixing vehicles in one table would average different hulls.
-std::string db_vehicle(const Args& a, store::Store& db, const std::vector<std::int64_t>& ids) {
-  if (const auto v = a.get("vehicle")) return *v;
-  std::set<std::string> vehicles;
-  for (const auto& m : db.list_missions()) {
-    if (ids.empty() || std::find(ids.begin(), ids.end(), m.id) != ids.end())
-      vehicles.insert(m.vehicle_id);
-  }
-  for (const auto id : ids) {
-    if (!db.get_mission(id)) throw std::runtime_error("no mission " + std::to_string(id));
-  }
-  if (vehicles.empty()) throw std::runtime_error("the database holds no missions");
-  if (vehicles.size() > 1) {
-    std::string names;
-    for (const auto& v : vehicles)
-      names += (names.empty() ? "" : ", ") + v;
-    throw UsageError("the missions are of several vehicles (" + names +
-                     "): choose one with --vehicle");
-  }
-  return *vehicles.begin();
-}
-
 struct BuiltTable {
   kin::Ckt table;
   std::vector<std::int64_t> mission_ids;
@@ -120,7 +81,7 @@ BuiltTable build_table(const Args& a, Io& io) {
   } else {
     store::Store db(*a.get("db"));
     out.mission_ids = mission_ids(a);
-    vehicle = db_vehicle(a, db, out.mission_ids);
+    vehicle = vehicle_of(a, db, out.mission_ids);
     turns = db.load_normalized_turns(out.mission_ids, vehicle);
     if (turns.empty()) throw std::runtime_error("no ok turns of '" + vehicle + "' to build from");
   }

@@ -18,6 +18,10 @@ int cmd_turn(const std::vector<std::string>& args, Io& io);
 int cmd_ckt(const std::vector<std::string>& args, Io& io);
 int cmd_sim(const std::vector<std::string>& args, Io& io);
 int cmd_mission(const std::vector<std::string>& args, Io& io);
+int cmd_model(const std::vector<std::string>& args, Io& io);
+int cmd_compare(const std::vector<std::string>& args, Io& io);
+int cmd_predict(const std::vector<std::string>& args, Io& io);
+int cmd_import(const std::vector<std::string>& args, Io& io);
 
 // Current UTC time as ISO 8601 (seconds).
 std::string utc_now_iso8601();

@@ -4,8 +4,10 @@
 #include <random>
 
 #include "kinematics/angles.hpp"
+#include "kinematics/parse_error.hpp"
 #include "kinematics/resample.hpp"
 #include "kinematics/yaw_model.hpp"
+#include "kinematics/yaw_model_json.hpp"
 
 using namespace avk::kinematics;
 
@@ -305,4 +307,29 @@ TEST(YawModel, SpeedModelIsIdentified) {
   EXPECT_NEAR(sm->gain, 0.2, 1e-9);
   EXPECT_NEAR(sm->sag_per_deg, 0.01, 1e-9);
   EXPECT_NEAR(sm->bias_mps, 0.0, 1e-9);
+}
+
+TEST(YawModelJson, RoundTripsAndNamesTheBadField) {
+  YawModel m = invariant_truth();
+  m.ridge_lambda = 1e-5;
+  m.speed = SpeedModel{0.2, 0.01, 0.0};
+  const YawModel back = parse_yaw_model_json(yaw_model_to_json(m));
+  EXPECT_EQ(back.error_coeffs, m.error_coeffs);
+  EXPECT_EQ(back.heading_coeffs, m.heading_coeffs);
+  EXPECT_EQ(back.history, m.history);
+  EXPECT_EQ(back.form, m.form);
+  ASSERT_TRUE(back.speed.has_value());
+  const auto field_of = [](const std::string& text) {
+    try {
+      parse_yaw_model_json(text);
+    } catch (const ParseError& e) {
+      return e.field();
+    }
+    return std::string("accepted");
+  };
+  EXPECT_EQ(field_of("{"), "json");
+  EXPECT_EQ(field_of(R"({"form":"nomoto"})"), "/form");
+  std::string text = yaw_model_to_json(m);
+  EXPECT_EQ(field_of(text.replace(text.find("\"history\":3"), 11, "\"history\":4")),
+            "/error_coeffs");
 }

@@ -71,13 +71,14 @@ void expect_mean_sd(const std::optional<avk::kinematics::MeanSd>& got, double me
 
 }  // namespace
 
-TEST(MissionQueries, SchemaIsVersionTwo) {
+TEST(MissionQueries, SchemaIsVersionThree) {
   Store s(":memory:");
-  EXPECT_EQ(schema_version(), 2);
-  EXPECT_EQ(s.user_version(), 2);
+  EXPECT_EQ(schema_version(), 3);
+  EXPECT_EQ(s.user_version(), 3);
   EXPECT_FALSE(migration_step_sql(0).empty());
   EXPECT_NE(migration_step_sql(1).find("normalized_samples"), std::string_view::npos);
-  EXPECT_THROW(migration_step_sql(2), std::out_of_range);
+  EXPECT_NE(migration_step_sql(2).find("yaw_models"), std::string_view::npos);
+  EXPECT_THROW(migration_step_sql(3), std::out_of_range);
   EXPECT_THROW(migration_step_sql(-1), std::out_of_range);
 }
 
@@ -434,7 +435,7 @@ TEST(MissionQueries, MigratesSchemaOneDatabase) {
     }
   }
   Store s(db.path());
-  EXPECT_EQ(s.user_version(), 2);
+  EXPECT_EQ(s.user_version(), schema_version());
   EXPECT_TRUE(s.integrity_check());
   const auto mission = s.get_mission(7);
   ASSERT_TRUE(mission);
@@ -474,4 +475,43 @@ TEST(MissionQueries, MigratesSchemaOneDatabase) {
   EXPECT_EQ(cells[1].n_ok, 1);
   expect_mean_sd(cells[1].condition_set_time_s, 2.5, 0.0);
   EXPECT_TRUE(s.integrity_check());
+}
+
+TEST(MissionQueries, YawModelsRoundTripAndAreFoundByVehicle) {
+  Store s(":memory:");
+  EXPECT_FALSE(s.latest_model().has_value());
+  StoredModel m;
+  m.vehicle_id = "cat-1";
+  m.training_missions = {3, 5};
+  m.model.form = avk::kinematics::YawModelForm::thesis;
+  m.model.history = 2;
+  m.model.error_coeffs = {0.25, -0.125};
+  m.model.heading_coeffs = {1.5, -0.5};
+  m.model.ridge_lambda = 1e-4;
+  m.model.refined = true;
+  m.model.speed = avk::kinematics::SpeedModel{0.2, 0.01, -0.001};
+  m.train_one_step_rms_deg = 1.25;
+  m.validation_mse_m2 = 2.5;
+  const auto a = s.save_model(m);
+  m.vehicle_id = "usim-1";
+  m.validation_mse_m2.reset();
+  const auto b = s.save_model(m);
+  const auto got = s.get_model(a);
+  ASSERT_TRUE(got.has_value());
+  EXPECT_EQ(got->vehicle_id, "cat-1");
+  EXPECT_EQ(got->training_missions, (std::vector<std::int64_t>{3, 5}));
+  EXPECT_EQ(got->model.error_coeffs, m.model.error_coeffs);
+  EXPECT_EQ(got->model.heading_coeffs, m.model.heading_coeffs);
+  EXPECT_EQ(got->model.form, avk::kinematics::YawModelForm::thesis);
+  EXPECT_TRUE(got->model.refined);
+  ASSERT_TRUE(got->model.speed.has_value());
+  EXPECT_DOUBLE_EQ(got->model.speed->sag_per_deg, 0.01);
+  EXPECT_EQ(got->validation_mse_m2, std::optional<double>(2.5));
+  EXPECT_FALSE(s.get_model(b)->validation_mse_m2.has_value());
+  EXPECT_FALSE(s.get_model(99).has_value());
+  EXPECT_EQ(s.latest_model()->id, b);
+  EXPECT_EQ(s.latest_model(std::string("cat-1"))->id, a);
+  EXPECT_FALSE(s.latest_model(std::string("otter")).has_value());
+  EXPECT_EQ(s.list_models().size(), 2u);
+  EXPECT_EQ(s.list_models(std::string("usim-1")).size(), 1u);
 }

@@ -1,0 +1,47 @@
+#include "server/cli/db_selection.hpp"
+
+#include <algorithm>
+#include <set>
+#include <stdexcept>
+
+namespace avk::server {
+
+std::vector<std::int64_t> mission_ids(const Args& a) {
+  std::vector<std::int64_t> ids;
+  for (const std::string& s : a.all("mission")) {
+    std::size_t used = 0;
+    long long id = 0;
+    try {
+      id = std::stoll(s, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (used != s.size() || id <= 0)
+      throw UsageError("--mission needs a positive whole number, got '" + s + "'");
+    ids.push_back(id);
+  }
+  return ids;
+}
+
+std::string vehicle_of(const Args& a, store::Store& db, const std::vector<std::int64_t>& ids) {
+  if (const auto v = a.get("vehicle")) return *v;
+  std::set<std::string> vehicles;
+  for (const auto& m : db.list_missions()) {
+    if (ids.empty() || std::find(ids.begin(), ids.end(), m.id) != ids.end())
+      vehicles.insert(m.vehicle_id);
+  }
+  for (const auto id : ids) {
+    if (!db.get_mission(id)) throw std::runtime_error("no mission " + std::to_string(id));
+  }
+  if (vehicles.empty()) throw std::runtime_error("the database holds no missions");
+  if (vehicles.size() > 1) {
+    std::string names;
+    for (const auto& v : vehicles)
+      names += (names.empty() ? "" : ", ") + v;
+    throw UsageError("the missions are of several vehicles (" + names +
+                     "): choose one with --vehicle");
+  }
+  return *vehicles.begin();
+}
+
+}  // namespace avk::server

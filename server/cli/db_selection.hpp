@@ -1,0 +1,21 @@
+#pragma once
+// Which data of the store a command works on: --mission IDs and the vehicle.
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "server/cli/args.hpp"
+#include "store/store.hpp"
+
+namespace avk::server {
+
+// Every --mission, each a positive whole number (UsageError otherwise); empty: all missions.
+std::vector<std::int64_t> mission_ids(const Args& a);
+
+// --vehicle, or the only vehicle of the chosen missions (all missions when none are chosen).
+// Mixing vehicles would average different hulls: several vehicles without --vehicle is a
+// UsageError naming them; an unknown mission or an empty database a runtime_error.
+std::string vehicle_of(const Args& a, store::Store& db, const std::vector<std::int64_t>& ids);
+
+}  // namespace avk::server
