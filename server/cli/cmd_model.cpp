@@ -131,10 +131,17 @@ int model_fit(const std::vector<std::string>& rest, Io& io) {
          << mo.history << " samples of history (" << fixed(mo.history / mo.rate_hz, 2) << " s at "
          << fixed(mo.rate_hz, 2) << " Hz), " << mo.coefficient_count() << " coefficients, ridge "
          << mo.ridge_lambda;
-  if (r.refinement)
-    io.out << ", refined (" << r.refinement->iterations << " iterations, cost "
-           << fixed(r.refinement->initial_cost, 1) << " -> " << fixed(r.refinement->final_cost, 1)
-           << ")";
+  if (r.refinement) {
+    if (r.refinement->best_iteration == 0) {
+      io.out << ", refinement ran " << r.refinement->iterations
+             << " iterations but none lowered the validation error: least-squares coefficients "
+                "kept";
+    } else {
+      io.out << ", refined (iteration " << r.refinement->best_iteration << " of "
+             << r.refinement->iterations << ", weighted cost " << fixed(r.refinement->initial_cost, 1)
+             << " -> " << fixed(r.refinement->final_cost, 1) << ")";
+    }
+  }
   io.out << "\n  training:   " << r.train_segments << " segments, one-step heading RMS "
          << fixed(r.train_one_step_rms_deg, 3) << " deg, trajectory MSE "
          << fixed(r.train.position_mse_m2, 3) << " m^2 over " << r.train.windows << " turns\n"
