@@ -16,6 +16,7 @@
 #include "mission/turn_plan.hpp"
 #include "server/cli/args.hpp"
 #include "server/cli/commands.hpp"
+#include "server/cli/db_selection.hpp"
 #include "server/cli/files.hpp"
 #include "server/cli/sim_options.hpp"
 #include "server/mission_recorder.hpp"
@@ -273,17 +274,7 @@ int run(const std::vector<std::string>& rest, Io& io) {
 
 std::int64_t mission_id_arg(const Args& a) {
   if (a.positional().size() != 1) throw UsageError("expected one mission id");
-  const std::string& s = a.positional()[0];
-  std::size_t used = 0;
-  long long id = 0;
-  try {
-    id = std::stoll(s, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != s.size() || id <= 0)
-    throw UsageError("mission id must be a positive whole number, got '" + s + "'");
-  return id;
+  return parse_id(a.positional()[0], "the mission id");
 }
 
 store::Mission find_mission(store::Store& db, std::int64_t id) {

@@ -138,8 +138,9 @@ int model_fit(const std::vector<std::string>& rest, Io& io) {
                 "kept";
     } else {
       io.out << ", refined (iteration " << r.refinement->best_iteration << " of "
-             << r.refinement->iterations << ", weighted cost " << fixed(r.refinement->initial_cost, 1)
-             << " -> " << fixed(r.refinement->final_cost, 1) << ")";
+             << r.refinement->iterations << ", weighted cost "
+             << fixed(r.refinement->initial_cost, 1) << " -> " << fixed(r.refinement->final_cost, 1)
+             << ")";
     }
   }
   io.out << "\n  training:   " << r.train_segments << " segments, one-step heading RMS "

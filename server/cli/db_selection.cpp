@@ -6,20 +6,23 @@
 
 namespace avk::server {
 
+std::int64_t parse_id(const std::string& text, const std::string& what) {
+  std::size_t used = 0;
+  long long id = 0;
+  try {
+    id = std::stoll(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || id <= 0)
+    throw UsageError(what + " needs a positive whole number, got '" + text + "'");
+  return id;
+}
+
 std::vector<std::int64_t> mission_ids(const Args& a) {
   std::vector<std::int64_t> ids;
-  for (const std::string& s : a.all("mission")) {
-    std::size_t used = 0;
-    long long id = 0;
-    try {
-      id = std::stoll(s, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != s.size() || id <= 0)
-      throw UsageError("--mission needs a positive whole number, got '" + s + "'");
-    ids.push_back(id);
-  }
+  for (const std::string& s : a.all("mission"))
+    ids.push_back(parse_id(s, "--mission"));
   return ids;
 }
 

@@ -10,6 +10,9 @@
 
 namespace avk::server {
 
+// A record id: a positive whole number, else a UsageError naming `what` (an option, "mission id").
+std::int64_t parse_id(const std::string& text, const std::string& what);
+
 // Every --mission, each a positive whole number (UsageError otherwise); empty: all missions.
 std::vector<std::int64_t> mission_ids(const Args& a);
 

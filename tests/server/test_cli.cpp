@@ -10,24 +10,16 @@
 #include "kinematics/ckt_file.hpp"
 #include "kinematics/turn_text.hpp"
 #include "server/cli/cli.hpp"
+#include "support/cli_run.hpp"
 #include "support/synthetic_turns.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-  int rc;
-  std::string out;
-  std::string err;
-};
-
-Result run(const std::vector<std::string>& args, const std::string& input = "") {
-  std::istringstream in(input);
-  std::ostringstream o, e;
-  const int rc = avk::server::run_cli(args, in, o, e);
-  return {rc, o.str(), e.str()};
-}
+using avk::testing::example;
+using avk::testing::run;
+using Result = avk::testing::CliResult;
 
 std::string slurp(const fs::path& p) {
   std::ifstream f(p);

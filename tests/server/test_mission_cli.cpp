@@ -18,6 +18,7 @@
 #include "kinematics/ckt_file.hpp"
 #include "server/cli/cli.hpp"
 #include "store/store.hpp"
+#include "support/cli_run.hpp"
 #include "support/temp_db.hpp"
 
 namespace fs = std::filesystem;
@@ -29,22 +30,9 @@ extern char** environ;
 
 namespace {
 
-struct Result {
-  int rc;
-  std::string out;
-  std::string err;
-};
-
-Result run(const std::vector<std::string>& args) {
-  std::istringstream in;
-  std::ostringstream o, e;
-  const int rc = avk::server::run_cli(args, in, o, e);
-  return {rc, o.str(), e.str()};
-}
-
-std::string example(const std::string& name) {
-  return std::string(AVK_SOURCE_DIR) + "/examples/" + name;
-}
+using avk::testing::example;
+using avk::testing::run;
+using Result = avk::testing::CliResult;
 
 std::int64_t count_turns(Store& s, std::optional<avk::kinematics::TurnStatus> status) {
   avk::store::TurnFilter f;

@@ -6,28 +6,16 @@
 
 #include "server/cli/cli.hpp"
 #include "store/store.hpp"
+#include "support/cli_run.hpp"
 #include "support/temp_db.hpp"
 
 using nlohmann::json;
 
 namespace {
 
-struct Result {
-  int rc;
-  std::string out;
-  std::string err;
-};
-
-Result run(const std::vector<std::string>& args) {
-  std::istringstream in;
-  std::ostringstream o, e;
-  const int rc = avk::server::run_cli(args, in, o, e);
-  return {rc, o.str(), e.str()};
-}
-
-std::string example(const std::string& name) {
-  return std::string(AVK_SOURCE_DIR) + "/examples/" + name;
-}
+using avk::testing::example;
+using avk::testing::run;
+using Result = avk::testing::CliResult;
 
 // Two Figure 4-1 missions (two turns a cell) and the persistent-excitation mission, once for the
 // whole suite.
