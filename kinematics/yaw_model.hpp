@@ -86,9 +86,11 @@ std::vector<PredictedStep> predict(const YawModel& m, const YawHistory& history,
 // A normalised right turn of dheading_deg from a steady course (start at the origin heading north
 // for the invariant form; the thesis form starts on `course_deg` and is rotated back to north,
 // which is where its lack of invariance shows).
+// With use_speed_model (and a model that has one) the speed follows the speed model towards
+// speed_mps instead of staying constant.
 Polyline predict_normalized_turn(const YawModel& m, double speed_mps, double dheading_deg,
                                  double completion_threshold_deg, double course_deg = 0.0,
-                                 std::size_t max_steps = 400);
+                                 std::size_t max_steps = 400, bool use_speed_model = false);
 
 // --- identification ---------------------------------------------------------------------
 

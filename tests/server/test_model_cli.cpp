@@ -149,3 +149,26 @@ TEST_F(ModelCli, SweepReportsEveryHistoryLength) {
 }
 
 }  // namespace
+
+namespace {
+TEST_F(ModelCli, SpeedModelChangesThePredictedPath) {
+  ASSERT_EQ(run({"model", "fit", "--db", db_->path(), "--mission", "3"}).rc, 0);
+  const auto path = [&](bool speed_model) {
+    std::vector<std::string> args = {"predict",    "--db", db_->path(), "--speed", "1.5",
+                                     "--dheading", "90",   "--method",  "model"};
+    if (speed_model) args.push_back("--speed-model");
+    const Result r = run(args);
+    EXPECT_EQ(r.rc, 0) << r.err;
+    return json::parse(r.out);
+  };
+  const json constant = path(false), modelled = path(true);
+  EXPECT_FALSE(constant["speed_model"].get<bool>());
+  EXPECT_TRUE(modelled["speed_model"].get<bool>());
+  // The same headings, a different speed through the turn: the end points differ.
+  const auto& a = constant["trajectory"].back();
+  const auto& b = modelled["trajectory"].back();
+  EXPECT_GT(
+      std::hypot(a[0].get<double>() - b[0].get<double>(), a[1].get<double>() - b[1].get<double>()),
+      1e-3);
+}
+}  // namespace
