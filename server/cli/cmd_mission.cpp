@@ -19,6 +19,8 @@
 #include "server/cli/db_selection.hpp"
 #include "server/cli/files.hpp"
 #include "server/cli/sim_options.hpp"
+#include "server/mission_liveness.hpp"
+#include "server/mission_plans.hpp"
 #include "server/mission_recorder.hpp"
 #include "sim/sim_mission.hpp"
 #include "store/store.hpp"
@@ -52,25 +54,6 @@ class StopSignals {
   void (*previous_int_)(int);
   void (*previous_term_)(int);
 };
-
-bool process_alive(std::int64_t pid) {
-  if (pid <= 0 || (::kill(static_cast<pid_t>(pid), 0) != 0 && errno != EPERM)) return false;
-  // A killed process that its parent has not reaped yet still answers kill(0): a zombie.
-  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
-  std::string line;
-  if (!std::getline(stat, line)) return true;
-  const auto paren = line.rfind(')');
-  return paren == std::string::npos || paren + 2 >= line.size() || line[paren + 2] != 'Z';
-}
-
-// A mission stored as running whose process is gone (kill -9, power loss) is interrupted.
-store::MissionStatus effective_status(const store::Mission& m) {
-  if (m.status == store::MissionStatus::running &&
-      (!m.runner_pid || !process_alive(*m.runner_pid))) {
-    return store::MissionStatus::interrupted;
-  }
-  return m.status;
-}
 
 std::string fixed(double v, int decimals) {
   std::ostringstream s;
@@ -143,40 +126,36 @@ std::string mission_json(const store::Mission& m) {
 }
 
 struct RunSpec {
-  std::int64_t mission_id = 0;
-  mission::MissionConfig config;
+  MissionPlan plan;
   sim::SimSetup setup;
   std::string vehicle_id;
-  std::vector<mission::TurnTask> tasks;
-  kinematics::Pose start;
-  double start_time_s = 0.0;
-  int done_before = 0;
 };
 
 int execute(store::Store& db, RunSpec spec, const Args& a, Io& io) {
   sim::SimMissionOptions so;
   so.setup = spec.setup;
-  so.start = spec.start;
-  so.start_time_s = spec.start_time_s;
+  so.start = spec.plan.start;
+  so.start_time_s = spec.plan.clock_after_s;
   if (const auto limit = a.number("max-sim-time")) {
     if (!(*limit > 0.0)) throw UsageError("--max-sim-time must be positive (s)");
     so.max_duration_s = *limit;
   }
   sim::SimMission sim(so);
-  MissionRecorder recorder(db, spec.mission_id);
-  const int planned = static_cast<int>(mission::plan_turns(spec.config).size());
-  ProgressPrinter printer(io.out, planned, spec.done_before, a.flag("quiet"));
+  MissionRecorder recorder(db, spec.plan.mission_id);
+  const int planned = static_cast<int>(mission::plan_turns(spec.plan.config).size());
+  ProgressPrinter printer(io.out, planned, spec.plan.done_before, a.flag("quiet"));
   mission::RunnerOptions ro;
   ro.vehicle_id = spec.vehicle_id;
-  ro.mission_label = std::to_string(spec.mission_id);
-  mission::MissionRunner runner(spec.config, sim.vehicle(), spec.tasks, ro);
+  ro.mission_label = std::to_string(spec.plan.mission_id);
+  mission::MissionRunner runner(spec.plan.config, sim.vehicle(), spec.plan.tasks, ro);
   runner.add_observer(recorder);
   runner.add_observer(printer);
 
-  db.set_mission_runner(spec.mission_id, static_cast<std::int64_t>(::getpid()));
-  io.out << "mission " << spec.mission_id << " '" << spec.config.name << "' on " << spec.vehicle_id
-         << ": " << spec.tasks.size() << " turns to do"
-         << (spec.done_before ? " (" + std::to_string(spec.done_before) + " done before)" : "")
+  db.set_mission_runner(spec.plan.mission_id, static_cast<std::int64_t>(::getpid()));
+  io.out << "mission " << spec.plan.mission_id << " '" << spec.plan.config.name << "' on "
+         << spec.vehicle_id << ": " << spec.plan.tasks.size() << " turns to do"
+         << (spec.plan.done_before ? " (" + std::to_string(spec.plan.done_before) + " done before)"
+                                   : "")
          << "\n";
   const auto wall_start = std::chrono::steady_clock::now();
   sim::SimMissionResult result;
@@ -193,16 +172,16 @@ int execute(store::Store& db, RunSpec spec, const Args& a, Io& io) {
   const double wall_s =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   recorder.flush();
-  db.set_mission_runner(spec.mission_id, std::nullopt);
+  db.set_mission_runner(spec.plan.mission_id, std::nullopt);
 
   std::int64_t ok = 0, aborted = 0, rejected = 0;
-  for (const auto& c : db.mission_cell_stats(spec.mission_id)) {
+  for (const auto& c : db.mission_cell_stats(spec.plan.mission_id)) {
     ok += c.n_ok;
     aborted += c.n_aborted;
     rejected += c.n_rejected;
   }
-  const auto m = db.get_mission(spec.mission_id);
-  io.out << "mission " << spec.mission_id << " " << store::to_string(m->status);
+  const auto m = db.get_mission(spec.plan.mission_id);
+  io.out << "mission " << spec.plan.mission_id << " " << store::to_string(m->status);
   if (!m->status_reason.empty()) io.out << " (" << m->status_reason << ")";
   io.out << ": " << ok << "/" << planned << " turns ok, " << aborted << " aborted, " << rejected
          << " rejected";
@@ -214,17 +193,9 @@ int execute(store::Store& db, RunSpec spec, const Args& a, Io& io) {
   return m->status == store::MissionStatus::done ? 0 : 1;
 }
 
-mission::MissionConfig parse_config(const std::string& text, double max_speed_mps,
-                                    const std::string& name, Io& io, bool& ok) {
-  try {
-    ok = true;
-    return mission::parse_mission_config(text, max_speed_mps);
-  } catch (const mission::MissionConfigError& e) {
-    for (const auto& f : e.errors())
-      io.err << name << ": " << f.field << ": " << f.message << "\n";
-    ok = false;
-    return {};
-  }
+void print_config_errors(const mission::MissionConfigError& e, const std::string& name, Io& io) {
+  for (const auto& f : e.errors())
+    io.err << name << ": " << f.field << ": " << f.message << "\n";
 }
 
 void require_sim(const Args& a) {
@@ -232,17 +203,6 @@ void require_sim(const Args& a) {
     throw UsageError(
         "give the vehicle: --sim runs the simulator (the M200 driver, --m200, is not built yet)");
   }
-}
-
-kinematics::Pose start_pose(const mission::MissionConfig& c) {
-  // At rest at the return point, facing the region's interior (the thesis starts dockside).
-  const mission::Container container(c.region);
-  const auto rp = c.region.return_point;
-  const auto in = container.interior_point();
-  const double heading = kinematics::distance_m(rp, in) > 1e-6
-                             ? kinematics::heading_of_deg(in.x_m - rp.x_m, in.y_m - rp.y_m)
-                             : 0.0;
-  return {rp.x_m, rp.y_m, heading};
 }
 
 const std::set<std::string> kRunValues = {"config",          "db",         "vehicle",
@@ -260,15 +220,15 @@ int run(const std::vector<std::string>& rest, Io& io) {
   spec.vehicle_id = a.get("vehicle-id").value_or("sim-" + spec.setup.vehicle.kind);
   spec.setup.vehicle.id = spec.vehicle_id;
   const std::string text = read_file(path, io.in);
-  bool ok = false;
-  spec.config = parse_config(text, spec.setup.vehicle_max_speed_mps(), path, io, ok);
-  if (!ok) return 1;
   store::Store db(db_path);
-  db.upsert_vehicle(
-      {spec.vehicle_id, spec.setup.vehicle.kind, spec.setup.vehicle_max_speed_mps(), std::nullopt});
-  spec.mission_id = db.create_mission(spec.vehicle_id, spec.config.name, text);
-  spec.tasks = mission::plan_turns(spec.config);
-  spec.start = start_pose(spec.config);
+  try {
+    spec.plan = create_mission_plan(db, text,
+                                    {spec.vehicle_id, spec.setup.vehicle.kind,
+                                     spec.setup.vehicle_max_speed_mps(), std::nullopt});
+  } catch (const mission::MissionConfigError& e) {
+    print_config_errors(e, path, io);
+    return 1;
+  }
   return execute(db, std::move(spec), a, io);
 }
 
@@ -287,18 +247,11 @@ int resume(const std::vector<std::string>& rest, Io& io) {
   const Args a(rest, kRunValues, kRunFlags);
   require_sim(a);
   store::Store db(a.require("db"));
-  const store::Mission m = find_mission(db, mission_id_arg(a));
-  const store::MissionStatus status = effective_status(m);
-  if (status == store::MissionStatus::done || status == store::MissionStatus::aborted) {
-    throw std::runtime_error("mission " + std::to_string(m.id) + " is " + store::to_string(status) +
-                             "; there is nothing to resume");
-  }
-  if (status == store::MissionStatus::running) {
-    throw std::runtime_error("mission " + std::to_string(m.id) + " is running in process " +
-                             std::to_string(m.runner_pid.value_or(0)));
-  }
-  const auto vehicle = db.get_vehicle(m.vehicle_id);
-  if (!vehicle) throw std::runtime_error("mission's vehicle '" + m.vehicle_id + "' is not stored");
+  const std::int64_t id = mission_id_arg(a);
+  const auto m = db.get_mission(id);
+  if (!m) throw std::runtime_error("no mission " + std::to_string(id) + " in the database");
+  const auto vehicle = db.get_vehicle(m->vehicle_id);
+  if (!vehicle) throw std::runtime_error("mission's vehicle '" + m->vehicle_id + "' is not stored");
   if (const auto kind = a.get("vehicle");
       kind && *kind != vehicle->kind &&
       "catamaran:" + kind->substr(kind->find(':') + 1) != vehicle->kind) {
@@ -306,29 +259,16 @@ int resume(const std::vector<std::string>& rest, Io& io) {
                      vehicle->kind + ")");
   }
   RunSpec spec;
-  spec.mission_id = m.id;
   spec.setup = sim_setup_from(a, io, vehicle->kind);
-  spec.vehicle_id = m.vehicle_id;
-  spec.setup.vehicle.id = m.vehicle_id;
-  bool ok = false;
-  spec.config = parse_config(m.config_json, spec.setup.vehicle_max_speed_mps(),
-                             "mission " + std::to_string(m.id), io, ok);
-  if (!ok) return 1;
-  std::vector<mission::CellCount> done;
-  for (const auto& c : db.mission_cell_stats(m.id)) {
-    done.push_back({c.speed_mps, c.dheading_deg, static_cast<int>(c.n_ok)});
-    spec.done_before += static_cast<int>(c.n_ok);
+  spec.vehicle_id = m->vehicle_id;
+  spec.setup.vehicle.id = m->vehicle_id;
+  try {
+    spec.plan = resume_mission_plan(db, id, spec.setup.vehicle_max_speed_mps());
+  } catch (const mission::MissionConfigError& e) {
+    print_config_errors(e, "mission " + std::to_string(id), io);
+    return 1;
   }
-  spec.tasks = mission::remaining_turns(mission::plan_turns(spec.config), done);
-  spec.start_time_s = db.mission_clock_end_s(m.id).value_or(0.0) + 1.0;
-  // The simulated vehicle restarts where it was last seen; its motion is not stored.
-  const auto nav = db.nav_for_mission(m.id);
-  spec.start = nav.empty()
-                   ? start_pose(spec.config)
-                   : kinematics::Pose{nav.back().x_m, nav.back().y_m, nav.back().heading_deg};
-  db.append_event(m.id, spec.start_time_s, "resume",
-                  "resumed from " + std::string(store::to_string(status)) + " with " +
-                      std::to_string(spec.tasks.size()) + " turns to do");
+  spec.plan.clock_after_s += 1.0;
   return execute(db, std::move(spec), a, io);
 }
 
@@ -459,9 +399,13 @@ int validate(const std::vector<std::string>& rest, Io& io) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("--vehicle: ") + e.what());
   }
-  bool ok = false;
-  const mission::MissionConfig c = parse_config(read_file(path, io.in), max_speed, path, io, ok);
-  if (!ok) return 1;
+  mission::MissionConfig c;
+  try {
+    c = mission::parse_mission_config(read_file(path, io.in), max_speed);
+  } catch (const mission::MissionConfigError& e) {
+    print_config_errors(e, path, io);
+    return 1;
+  }
   io.out << path << ": mission '" << c.name << "' is valid";
   if (c.kind == mission::MissionKind::turns)
     io.out << " (" << mission::plan_turns(c).size() << " turns)";

@@ -1,0 +1,65 @@
+#pragma once
+// What the HTTP transport and the station's handlers exchange, without Beast: the transport
+// parses a request into ApiRequest and writes ApiResponse back, so every handler is testable
+// without a socket and Beast's headers stay in the transport files.
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace avk::server {
+
+struct ApiRequest {
+  std::string method;                        // "GET", "POST", ...
+  std::string path;                          // decoded path, without the query
+  std::map<std::string, std::string> query;  // decoded; a repeated key keeps every value in multi
+  std::multimap<std::string, std::string> multi_query;
+  std::string body;
+  std::string content_type;  // as sent, e.g. "application/json; charset=utf-8"
+  std::string accept;
+  std::string authorization;
+  std::string origin;
+  std::string host;
+  std::string remote_address;
+  bool remote_is_loopback = true;
+};
+
+struct ApiResponse {
+  int status = 200;
+  std::string content_type = "application/json";
+  std::string body;
+  std::vector<std::pair<std::string, std::string>> headers;  // extra (Location, ...)
+};
+
+// The REST API behind /api/v1. Called concurrently from the transport's threads.
+class Api {
+ public:
+  virtual ~Api() = default;
+  virtual ApiResponse handle(const ApiRequest& request) = 0;
+};
+
+// --- the live stream --------------------------------------------------------------------
+
+// One message of the stream, serialised once and shared by every session that sends it.
+struct StreamMessage {
+  std::string topic;
+  std::uint64_t seq = 0;
+  // Telemetry (nav, helm) is latest-value-wins: an unsent older frame of the same topic is
+  // replaced. Events (mission, turn, status) are queued and never dropped silently.
+  bool latest_value_wins = false;
+  std::shared_ptr<const std::string> payload;  // {"topic","seq","t","data"} as text
+};
+
+// A stream client as the hub sees it. deliver() must not block: it hands the message to the
+// session's own queue (on its strand) and returns.
+class StreamSink {
+ public:
+  virtual ~StreamSink() = default;
+  virtual void deliver(std::shared_ptr<const StreamMessage> message) = 0;
+};
+
+}  // namespace avk::server

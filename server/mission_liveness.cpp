@@ -1,0 +1,43 @@
+#include "server/mission_liveness.hpp"
+
+#include <signal.h>
+
+#include <cerrno>
+#include <fstream>
+#include <string>
+
+namespace avk::server {
+
+bool process_alive(std::int64_t pid) {
+  if (pid <= 0 || (::kill(static_cast<pid_t>(pid), 0) != 0 && errno != EPERM)) return false;
+  // A killed process that its parent has not reaped yet still answers kill(0): a zombie.
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  if (!std::getline(stat, line)) return true;
+  const auto paren = line.rfind(')');
+  return paren == std::string::npos || paren + 2 >= line.size() || line[paren + 2] != 'Z';
+}
+
+store::MissionStatus effective_status(const store::Mission& m) {
+  if (m.status == store::MissionStatus::running &&
+      (!m.runner_pid || !process_alive(*m.runner_pid))) {
+    return store::MissionStatus::interrupted;
+  }
+  return m.status;
+}
+
+int mark_orphaned_missions_interrupted(store::Store& db, double t_s) {
+  int n = 0;
+  for (const auto& m : db.list_missions()) {
+    if (m.status == store::MissionStatus::running &&
+        effective_status(m) == store::MissionStatus::interrupted) {
+      db.set_mission_status(m.id, store::MissionStatus::interrupted,
+                            "the process running it stopped", t_s);
+      db.set_mission_runner(m.id, std::nullopt);
+      ++n;
+    }
+  }
+  return n;
+}
+
+}  // namespace avk::server

@@ -1,0 +1,64 @@
+#include "server/mission_plans.hpp"
+
+#include <stdexcept>
+
+#include "kinematics/angles.hpp"
+#include "mission/container.hpp"
+#include "server/mission_liveness.hpp"
+
+namespace avk::server {
+
+kinematics::Pose start_pose(const mission::MissionConfig& c) {
+  const mission::Container container(c.region);
+  const auto rp = c.region.return_point;
+  const auto in = container.interior_point();
+  const double heading = kinematics::distance_m(rp, in) > 1e-6
+                             ? kinematics::heading_of_deg(in.x_m - rp.x_m, in.y_m - rp.y_m)
+                             : 0.0;
+  return {rp.x_m, rp.y_m, heading};
+}
+
+MissionPlan create_mission_plan(store::Store& db, const std::string& config_text,
+                                const vehicle::VehicleInfo& vehicle) {
+  MissionPlan p;
+  p.config = mission::parse_mission_config(config_text, vehicle.max_speed_mps);
+  db.upsert_vehicle(vehicle);
+  p.mission_id = db.create_mission(vehicle.id, p.config.name, config_text);
+  p.tasks = mission::plan_turns(p.config);
+  p.start = start_pose(p.config);
+  return p;
+}
+
+MissionPlan resume_mission_plan(store::Store& db, std::int64_t mission_id, double max_speed_mps) {
+  const auto m = db.get_mission(mission_id);
+  if (!m) throw std::runtime_error("no mission " + std::to_string(mission_id) + " in the database");
+  const store::MissionStatus status = effective_status(*m);
+  if (status == store::MissionStatus::done || status == store::MissionStatus::aborted) {
+    throw std::runtime_error("mission " + std::to_string(m->id) + " is " +
+                             store::to_string(status) + "; there is nothing to resume");
+  }
+  if (status == store::MissionStatus::running) {
+    throw std::runtime_error("mission " + std::to_string(m->id) + " is running in process " +
+                             std::to_string(m->runner_pid.value_or(0)));
+  }
+  MissionPlan p;
+  p.mission_id = m->id;
+  p.config = mission::parse_mission_config(m->config_json, max_speed_mps);
+  std::vector<mission::CellCount> done;
+  for (const auto& c : db.mission_cell_stats(m->id)) {
+    done.push_back({c.speed_mps, c.dheading_deg, static_cast<int>(c.n_ok)});
+    p.done_before += static_cast<int>(c.n_ok);
+  }
+  p.tasks = mission::remaining_turns(mission::plan_turns(p.config), done);
+  p.clock_after_s = db.mission_clock_end_s(m->id).value_or(0.0);
+  // A restarted simulator puts the vehicle where it was last seen; its motion is not stored.
+  const auto nav = db.nav_for_mission(m->id);
+  p.start = nav.empty() ? start_pose(p.config)
+                        : kinematics::Pose{nav.back().x_m, nav.back().y_m, nav.back().heading_deg};
+  db.append_event(m->id, p.clock_after_s + 1.0, "resume",
+                  "resumed from " + std::string(store::to_string(status)) + " with " +
+                      std::to_string(p.tasks.size()) + " turns to do");
+  return p;
+}
+
+}  // namespace avk::server

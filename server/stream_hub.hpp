@@ -1,0 +1,61 @@
+#pragma once
+// Fan-out of the live stream: the mission thread publishes, each subscribed session gets the same
+// shared payload. Topics: nav, helm, mission, turn, status. Sequence numbers are per topic so a
+// client sees gaps. Status messages (what an operator must read) are rate-limited per kind.
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "server/api_types.hpp"
+
+namespace avk::server {
+
+class StreamHub {
+ public:
+  StreamHub();
+
+  static const std::vector<std::string>& topics();
+  static bool is_topic(const std::string& topic);
+
+  // A random id per server start: a client that sees a new one knows the server restarted.
+  const std::string& session_id() const { return session_id_; }
+  // The hello a new connection receives.
+  std::string hello(const std::string& server_version) const;
+
+  // The hub keeps weak references: a closed session simply stops receiving.
+  void subscribe(const std::shared_ptr<StreamSink>& sink, const std::string& topic);
+  void unsubscribe(const StreamSink* sink, const std::string& topic);
+  void unsubscribe_all(const StreamSink* sink);
+
+  // data_json is the "data" member, already serialised. t_s is the mission (or wall) clock.
+  void publish(const std::string& topic, double t_s, const std::string& data_json);
+  // Status: at most one message per kind per min_interval; suppressed ones are counted into the
+  // next message that goes out.
+  void status(double t_s, const std::string& kind, const std::string& level,
+              const std::string& message);
+
+  std::size_t subscriber_count(const std::string& topic) const;
+  std::uint64_t published(const std::string& topic) const;
+
+  std::chrono::milliseconds status_min_interval{1000};
+
+ private:
+  std::string session_id_;
+  mutable std::mutex mutex_;
+  std::map<std::string, std::vector<std::weak_ptr<StreamSink>>> subscribers_;
+  std::map<std::string, std::uint64_t> seq_;
+  struct StatusGate {
+    std::chrono::steady_clock::time_point last{};
+    std::uint64_t suppressed = 0;
+  };
+  std::map<std::string, StatusGate> status_gates_;
+};
+
+}  // namespace avk::server
