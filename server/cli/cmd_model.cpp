@@ -13,6 +13,7 @@
 #include "kinematics/yaw_identification.hpp"
 #include "kinematics/yaw_model_json.hpp"
 #include "mission/helm_mode.hpp"
+#include "server/analysis.hpp"
 #include "server/cli/args.hpp"
 #include "server/cli/commands.hpp"
 #include "server/cli/db_selection.hpp"
@@ -30,39 +31,6 @@ std::string fixed(double v, int decimals) {
   std::ostringstream s;
   s << std::fixed << std::setprecision(decimals) << v;
   return s.str();
-}
-
-// Navigation of the vehicle under guidance: samples while the helm commanded motion (or imported
-// logs, whose helm state is unknown). All-stop stretches are left out, so they split segments.
-bool guided(const std::string& helm_mode) {
-  if (helm_mode == "IMPORTED") return true;
-  const auto m = mission::helm_mode_from_string(helm_mode);
-  return m && mission::commands_motion(*m);
-}
-
-std::vector<kin::IdentSegment> identification_data(store::Store& db,
-                                                   const std::vector<std::int64_t>& missions,
-                                                   const kin::ResampleOptions& options) {
-  std::vector<kin::IdentSegment> out;
-  for (const std::int64_t id : missions) {
-    if (!db.get_mission(id)) throw std::runtime_error("no mission " + std::to_string(id));
-    kin::NavStreams s;
-    for (const auto& r : db.nav_for_mission(id)) {
-      if (!guided(r.helm_mode) || !r.desired_heading_deg) continue;
-      s.heading_deg.push_back({r.t_s, r.heading_deg});
-      s.desired_heading_deg.push_back({r.t_s, *r.desired_heading_deg});
-      s.x_m.push_back({r.t_s, r.x_m});
-      s.y_m.push_back({r.t_s, r.y_m});
-      s.speed_mps.push_back({r.t_s, r.speed_mps});
-      if (r.desired_speed_mps) s.desired_speed_mps.push_back({r.t_s, *r.desired_speed_mps});
-    }
-    if (s.desired_speed_mps.size() != s.heading_deg.size()) s.desired_speed_mps.clear();
-    for (auto& seg : kin::resample(s, options))
-      out.push_back(std::move(seg));
-  }
-  if (out.empty())
-    throw std::runtime_error("the missions hold no guided navigation to identify from");
-  return out;
 }
 
 kin::IdentificationOptions identification_options(const Args& a) {
@@ -94,19 +62,6 @@ kin::ResampleOptions resample_options(const Args& a) {
   return r;
 }
 
-json model_json(const store::StoredModel& m) {
-  json j = json::parse(kin::yaw_model_to_json(m.model));
-  j["id"] = m.id;
-  j["created_utc"] = m.created_utc;
-  j["vehicle_id"] = m.vehicle_id;
-  j["training_missions"] = m.training_missions;
-  j["train_one_step_rms_deg"] = m.train_one_step_rms_deg ? json(*m.train_one_step_rms_deg) : json();
-  j["validation_mse_m2"] = m.validation_mse_m2 ? json(*m.validation_mse_m2) : json();
-  j["validation_heading_rms_deg"] =
-      m.validation_heading_rms_deg ? json(*m.validation_heading_rms_deg) : json();
-  return j;
-}
-
 int model_fit(const std::vector<std::string>& rest, Io& io) {
   const Args a(rest, {"db", "form", "history", "ridge", "rate", "vehicle"}, {"refine"},
                {"mission"});
@@ -114,18 +69,10 @@ int model_fit(const std::vector<std::string>& rest, Io& io) {
   const auto missions = mission_ids(a);
   if (missions.empty()) throw UsageError("give the training data: --mission ID (repeatable)");
   const std::string vehicle = vehicle_of(a, db, missions);
-  const auto data = identification_data(db, missions, resample_options(a));
-  const auto r = kin::identify_yaw_model(data, identification_options(a));
-  store::StoredModel m;
-  m.vehicle_id = vehicle;
-  m.training_missions = missions;
-  m.model = r.model;
-  m.train_one_step_rms_deg = r.train_one_step_rms_deg;
-  if (r.validation.windows) {
-    m.validation_mse_m2 = r.validation.position_mse_m2;
-    m.validation_heading_rms_deg = r.validation.heading_rms_deg;
-  }
-  m.id = db.save_model(m);
+  const FittedModel fitted =
+      fit_and_store_model(db, vehicle, missions, identification_options(a), resample_options(a));
+  const auto& r = fitted.result;
+  const auto& m = fitted.stored;
   const auto& mo = r.model;
   io.out << "model " << m.id << " of " << vehicle << ": " << kin::to_string(mo.form) << " form, "
          << mo.history << " samples of history (" << fixed(mo.history / mo.rate_hz, 2) << " s at "
@@ -217,21 +164,6 @@ int model_show(const std::vector<std::string>& rest, Io& io) {
   return 0;
 }
 
-// Where each cell's turns started: the thesis form is not rotation invariant, so it is asked to
-// predict from the course the vehicle actually held (the circular mean of the cell's turns).
-double cell_course_deg(const kin::Ckt& table, double speed, double dheading) {
-  double sx = 0.0, sy = 0.0;
-  for (const auto& c : table.cells()) {
-    if (std::abs(c.speed_mps - speed) > 1e-9 || std::abs(c.dheading_deg - dheading) > 1e-9)
-      continue;
-    for (const auto& t : c.turns) {
-      sx += std::sin(kin::deg_to_rad(t.meta().initial_heading_deg));
-      sy += std::cos(kin::deg_to_rad(t.meta().initial_heading_deg));
-    }
-  }
-  return sx == 0.0 && sy == 0.0 ? 0.0 : kin::heading_of_deg(sx, sy);
-}
-
 int compare(const std::vector<std::string>& rest, Io& io) {
   const Args a(rest, {"db", "model", "vehicle", "format", "threshold"}, {"no-model"}, {"mission"});
   store::Store db(a.require("db"));
@@ -241,75 +173,17 @@ int compare(const std::vector<std::string>& rest, Io& io) {
   const double threshold = a.number("threshold").value_or(5.0);
   const auto missions = mission_ids(a);
   const std::string vehicle = vehicle_of(a, db, missions);
-  const auto turns = db.load_normalized_turns(missions, vehicle);
-  if (turns.empty()) throw std::runtime_error("no ok turns of " + vehicle + " to compare");
-  const kin::Ckt table = kin::Ckt::build(turns);
-  std::optional<store::StoredModel> model;
-  if (!a.flag("no-model")) model = pick_model(db, a, vehicle);
-  kin::TurnPredictor predictor;
-  if (model) {
-    predictor = [&](double u, double d) {
-      return kin::predict_normalized_turn(model->model, u, d, threshold,
-                                          cell_course_deg(table, u, d));
-    };
-  }
-  const auto cells = kin::compare_predictions(table, model ? &predictor : nullptr);
-  const auto opt = [](const std::optional<double>& v) { return v ? json(*v) : json(); };
-  const auto err_json = [&](const kin::MethodError& e) {
-    return json{{"mse_m2", e.mse_m2},
-                {"improvement_pct", opt(e.improvement_pct)},
-                {"advance_error_m", e.advance_error_m},
-                {"transfer_error_m", e.transfer_error_m}};
-  };
+  std::optional<store::StoredModel> chosen;
+  if (!a.flag("no-model")) chosen = pick_model(db, a, vehicle);
+  const Comparison comparison = compare_from_store(db, vehicle, missions, chosen, threshold);
+  const auto& cells = comparison.cells;
+  const auto& model = comparison.model;
   if (format == "json") {
-    json out = {{"vehicle_id", vehicle}, {"model_id", model ? json(model->id) : json()}};
-    json jc = json::array();
-    for (const auto& c : cells) {
-      json j = {{"speed_mps", c.speed_mps},
-                {"dheading_deg", c.dheading_deg},
-                {"n_turns", c.n_turns},
-                {"avk", err_json(c.avk)},
-                {"instantaneous", err_json(c.instantaneous)}};
-      j["model"] = c.model ? err_json(*c.model) : json();
-      j["outliers"] = std::count(c.outlier.begin(), c.outlier.end(), true);
-      if (c.without_outliers) {
-        j["without_outliers"] = {
-            {"n_turns", c.without_outliers->n_turns},
-            {"avk", err_json(c.without_outliers->avk)},
-            {"instantaneous", err_json(c.without_outliers->instantaneous)},
-            {"model", c.without_outliers->model ? err_json(*c.without_outliers->model) : json()}};
-      }
-      jc.push_back(std::move(j));
-    }
-    out["cells"] = std::move(jc);
-    for (const auto& [name, method] : {std::pair{"avk", kin::PredictionMethod::avk},
-                                       {"model", kin::PredictionMethod::model},
-                                       {"instantaneous", kin::PredictionMethod::instantaneous}}) {
-      out["median_mse_m2"][name] = opt(kin::median_mse_m2(cells, method));
-      out["median_mse_without_outliers_m2"][name] = opt(kin::median_mse_m2(cells, method, true));
-    }
-    io.out << out.dump(2) << "\n";
+    io.out << comparison_json(comparison).dump(2) << "\n";
     return 0;
   }
-  const auto mse = [](const kin::MethodError* e) { return e ? num(e->mse_m2) : std::string(); };
-  const auto pct = [](const kin::MethodError* e) {
-    return e && e->improvement_pct ? num(*e->improvement_pct) : std::string();
-  };
   if (format == "csv") {
-    io.out << "speed_mps,dheading_deg,n_turns,outliers,avk_mse_m2,model_mse_m2,"
-              "instantaneous_mse_m2,avk_improvement_pct,model_improvement_pct,"
-              "avk_advance_error_m,model_advance_error_m,instantaneous_advance_error_m,"
-              "avk_transfer_error_m,model_transfer_error_m,instantaneous_transfer_error_m\n";
-    for (const auto& c : cells) {
-      const kin::MethodError* m = c.model ? &*c.model : nullptr;
-      io.out << num(c.speed_mps) << ',' << num(c.dheading_deg) << ',' << c.n_turns << ','
-             << std::count(c.outlier.begin(), c.outlier.end(), true) << ',' << mse(&c.avk) << ','
-             << mse(m) << ',' << mse(&c.instantaneous) << ',' << pct(&c.avk) << ',' << pct(m) << ','
-             << num(c.avk.advance_error_m) << ',' << (m ? num(m->advance_error_m) : std::string())
-             << ',' << num(c.instantaneous.advance_error_m) << ',' << num(c.avk.transfer_error_m)
-             << ',' << (m ? num(m->transfer_error_m) : std::string()) << ','
-             << num(c.instantaneous.transfer_error_m) << '\n';
-    }
+    io.out << comparison_csv(comparison);
     return 0;
   }
   io.out << "vehicle " << vehicle;

@@ -7,14 +7,10 @@
 
 #include "server/cli/args.hpp"
 #include "server/cli/commands.hpp"
+#include "server/number_text.hpp"
 #include "sim/sim_config.hpp"
 
 namespace avk::server {
-
-// Shortest text that reads back as the same double.
-inline std::string num(double v) {
-  return nlohmann::json(v).dump();
-}
 
 // --vehicle (default_kind when absent), --sim-config, --ticks, --seed, --jitter. Throws
 // UsageError naming the option.

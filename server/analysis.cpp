@@ -1,0 +1,188 @@
+#include "server/analysis.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "kinematics/angles.hpp"
+#include "kinematics/yaw_model_json.hpp"
+#include "mission/helm_mode.hpp"
+#include "server/number_text.hpp"
+
+namespace avk::server {
+
+namespace kin = avk::kinematics;
+using nlohmann::json;
+
+namespace {
+
+// Navigation of the vehicle under guidance: samples while the helm commanded motion (or imported
+// logs, whose helm state is unknown). All-stop stretches are left out, so they split segments.
+bool guided(const std::string& helm_mode) {
+  if (helm_mode == "IMPORTED") return true;
+  const auto m = mission::helm_mode_from_string(helm_mode);
+  return m && mission::commands_motion(*m);
+}
+
+// Where each cell's turns started: the thesis form is not rotation invariant, so it is asked to
+// predict from the course the vehicle actually held (the circular mean of the cell's turns).
+double cell_course_deg(const kin::Ckt& table, double speed, double dheading) {
+  double sx = 0.0, sy = 0.0;
+  for (const auto& c : table.cells()) {
+    if (std::abs(c.speed_mps - speed) > 1e-9 || std::abs(c.dheading_deg - dheading) > 1e-9)
+      continue;
+    for (const auto& t : c.turns) {
+      sx += std::sin(kin::deg_to_rad(t.meta().initial_heading_deg));
+      sy += std::cos(kin::deg_to_rad(t.meta().initial_heading_deg));
+    }
+  }
+  return sx == 0.0 && sy == 0.0 ? 0.0 : kin::heading_of_deg(sx, sy);
+}
+
+}  // namespace
+
+std::vector<kin::IdentSegment> identification_data(store::Store& db,
+                                                   const std::vector<std::int64_t>& missions,
+                                                   const kin::ResampleOptions& options) {
+  std::vector<kin::IdentSegment> out;
+  for (const std::int64_t id : missions) {
+    if (!db.get_mission(id)) throw std::runtime_error("no mission " + std::to_string(id));
+    kin::NavStreams s;
+    for (const auto& r : db.nav_for_mission(id)) {
+      if (!guided(r.helm_mode) || !r.desired_heading_deg) continue;
+      s.heading_deg.push_back({r.t_s, r.heading_deg});
+      s.desired_heading_deg.push_back({r.t_s, *r.desired_heading_deg});
+      s.x_m.push_back({r.t_s, r.x_m});
+      s.y_m.push_back({r.t_s, r.y_m});
+      s.speed_mps.push_back({r.t_s, r.speed_mps});
+      if (r.desired_speed_mps) s.desired_speed_mps.push_back({r.t_s, *r.desired_speed_mps});
+    }
+    if (s.desired_speed_mps.size() != s.heading_deg.size()) s.desired_speed_mps.clear();
+    for (auto& seg : kin::resample(s, options))
+      out.push_back(std::move(seg));
+  }
+  if (out.empty())
+    throw std::runtime_error("the missions hold no guided navigation to identify from");
+  return out;
+}
+
+json model_json(const store::StoredModel& m) {
+  json j = json::parse(kin::yaw_model_to_json(m.model));
+  j["id"] = m.id;
+  j["created_utc"] = m.created_utc;
+  j["vehicle_id"] = m.vehicle_id;
+  j["training_missions"] = m.training_missions;
+  j["train_one_step_rms_deg"] = m.train_one_step_rms_deg ? json(*m.train_one_step_rms_deg) : json();
+  j["validation_mse_m2"] = m.validation_mse_m2 ? json(*m.validation_mse_m2) : json();
+  j["validation_heading_rms_deg"] =
+      m.validation_heading_rms_deg ? json(*m.validation_heading_rms_deg) : json();
+  return j;
+}
+
+FittedModel fit_and_store_model(store::Store& db, const std::string& vehicle_id,
+                                const std::vector<std::int64_t>& missions,
+                                const kin::IdentificationOptions& options,
+                                const kin::ResampleOptions& resample) {
+  FittedModel f;
+  f.result = kin::identify_yaw_model(identification_data(db, missions, resample), options);
+  store::StoredModel& m = f.stored;
+  m.vehicle_id = vehicle_id;
+  m.training_missions = missions;
+  m.model = f.result.model;
+  m.train_one_step_rms_deg = f.result.train_one_step_rms_deg;
+  if (f.result.validation.windows) {
+    m.validation_mse_m2 = f.result.validation.position_mse_m2;
+    m.validation_heading_rms_deg = f.result.validation.heading_rms_deg;
+  }
+  m.id = db.save_model(m);
+  return f;
+}
+
+Comparison compare_from_store(store::Store& db, const std::string& vehicle_id,
+                              const std::vector<std::int64_t>& missions,
+                              std::optional<store::StoredModel> model,
+                              double completion_threshold_deg) {
+  Comparison c;
+  c.vehicle_id = vehicle_id;
+  c.model = std::move(model);
+  const auto turns = db.load_normalized_turns(missions, vehicle_id);
+  if (turns.empty()) throw std::runtime_error("no ok turns of " + vehicle_id + " to compare");
+  c.table = kin::Ckt::build(turns);
+  kin::TurnPredictor predictor;
+  if (c.model) {
+    predictor = [&](double u, double d) {
+      return kin::predict_normalized_turn(c.model->model, u, d, completion_threshold_deg,
+                                          cell_course_deg(c.table, u, d));
+    };
+  }
+  c.cells = kin::compare_predictions(c.table, c.model ? &predictor : nullptr);
+  return c;
+}
+
+namespace {
+json opt(const std::optional<double>& v) {
+  return v ? json(*v) : json();
+}
+json err_json(const kin::MethodError& e) {
+  return json{{"mse_m2", e.mse_m2},
+              {"improvement_pct", opt(e.improvement_pct)},
+              {"advance_error_m", e.advance_error_m},
+              {"transfer_error_m", e.transfer_error_m}};
+}
+}  // namespace
+
+json comparison_json(const Comparison& c) {
+  json out = {{"vehicle_id", c.vehicle_id}, {"model_id", c.model ? json(c.model->id) : json()}};
+  json jc = json::array();
+  for (const auto& cell : c.cells) {
+    json j = {{"speed_mps", cell.speed_mps},
+              {"dheading_deg", cell.dheading_deg},
+              {"n_turns", cell.n_turns},
+              {"avk", err_json(cell.avk)},
+              {"instantaneous", err_json(cell.instantaneous)}};
+    j["model"] = cell.model ? err_json(*cell.model) : json();
+    j["outliers"] = std::count(cell.outlier.begin(), cell.outlier.end(), true);
+    if (cell.without_outliers) {
+      const auto& w = *cell.without_outliers;
+      j["without_outliers"] = {{"n_turns", w.n_turns},
+                               {"avk", err_json(w.avk)},
+                               {"instantaneous", err_json(w.instantaneous)},
+                               {"model", w.model ? err_json(*w.model) : json()}};
+    }
+    jc.push_back(std::move(j));
+  }
+  out["cells"] = std::move(jc);
+  for (const auto& [name, method] : {std::pair{"avk", kin::PredictionMethod::avk},
+                                     {"model", kin::PredictionMethod::model},
+                                     {"instantaneous", kin::PredictionMethod::instantaneous}}) {
+    out["median_mse_m2"][name] = opt(kin::median_mse_m2(c.cells, method));
+    out["median_mse_without_outliers_m2"][name] = opt(kin::median_mse_m2(c.cells, method, true));
+  }
+  return out;
+}
+
+std::string comparison_csv(const Comparison& c) {
+  const auto mse = [](const kin::MethodError* e) { return e ? num(e->mse_m2) : std::string(); };
+  const auto pct = [](const kin::MethodError* e) {
+    return e && e->improvement_pct ? num(*e->improvement_pct) : std::string();
+  };
+  std::string out =
+      "speed_mps,dheading_deg,n_turns,outliers,avk_mse_m2,model_mse_m2,"
+      "instantaneous_mse_m2,avk_improvement_pct,model_improvement_pct,"
+      "avk_advance_error_m,model_advance_error_m,instantaneous_advance_error_m,"
+      "avk_transfer_error_m,model_transfer_error_m,instantaneous_transfer_error_m\n";
+  for (const auto& cell : c.cells) {
+    const kin::MethodError* m = cell.model ? &*cell.model : nullptr;
+    out += num(cell.speed_mps) + ',' + num(cell.dheading_deg) + ',' + std::to_string(cell.n_turns) +
+           ',' + std::to_string(std::count(cell.outlier.begin(), cell.outlier.end(), true)) + ',' +
+           mse(&cell.avk) + ',' + mse(m) + ',' + mse(&cell.instantaneous) + ',' + pct(&cell.avk) +
+           ',' + pct(m) + ',' + num(cell.avk.advance_error_m) + ',' +
+           (m ? num(m->advance_error_m) : std::string()) + ',' +
+           num(cell.instantaneous.advance_error_m) + ',' + num(cell.avk.transfer_error_m) + ',' +
+           (m ? num(m->transfer_error_m) : std::string()) + ',' +
+           num(cell.instantaneous.transfer_error_m) + '\n';
+  }
+  return out;
+}
+
+}  // namespace avk::server

@@ -1,0 +1,80 @@
+#include "server/stream_publisher.hpp"
+
+#include <nlohmann/json.hpp>
+#include <set>
+
+namespace avk::server {
+
+using nlohmann::json;
+
+std::string cells_json(const std::vector<mission::CellProgress>& cells) {
+  json out = json::array();
+  for (const auto& c : cells) {
+    out.push_back({{"speed_mps", c.speed_mps},
+                   {"dheading_deg", c.dheading_deg},
+                   {"planned", c.planned},
+                   {"ok", c.ok},
+                   {"rejected", c.rejected},
+                   {"aborted", c.aborted},
+                   {"given_up", c.given_up},
+                   {"running", c.running}});
+  }
+  return out.dump();
+}
+
+void StreamPublisher::on_turn_started(const mission::TurnTask& task, double t_s,
+                                      double goal_heading_deg) {
+  hub_.publish("turn", t_s,
+               json{{"event", "started"},
+                    {"mission_id", mission_id_},
+                    {"speed_mps", task.speed_mps},
+                    {"dheading_deg", task.dheading_deg},
+                    {"goal_heading_deg", goal_heading_deg},
+                    {"attempt", task.attempts + 1}}
+                   .dump());
+}
+
+void StreamPublisher::on_turn(mission::TurnOutcome& t) {
+  json j = {{"event",
+             t.status == kinematics::TurnStatus::ok ? "finished" : kinematics::to_string(t.status)},
+            {"mission_id", mission_id_},
+            {"status", kinematics::to_string(t.status)},
+            {"reason", t.reason},
+            {"speed_mps", t.task.speed_mps},
+            {"goal_dheading_deg", t.raw.meta().goal_dheading_deg},
+            {"requeued", t.requeued},
+            {"given_up", t.given_up}};
+  j["id"] = t.stored_id ? json(*t.stored_id) : json();
+  j["advance_m"] = t.advance_m ? json(*t.advance_m) : json();
+  j["transfer_m"] = t.transfer_m ? json(*t.transfer_m) : json();
+  j["condition_set_time_s"] = t.condition_set_time_s ? json(*t.condition_set_time_s) : json();
+  const double t_s = t.raw.samples().empty() ? 0.0 : t.raw.samples().back().t_s;
+  hub_.publish("turn", t_s, j.dump());
+  publish_progress(t_s, state_);
+}
+
+void StreamPublisher::on_event(const mission::MissionEventRecord& e) {
+  static const std::set<std::string> warnings = {
+      "halted",        "aborted", "interrupted", "turn_aborted",         "turn_rejected",
+      "turn_given_up", "link",    "containment", "condition_set_timeout"};
+  hub_.status(e.t_s, e.kind, warnings.count(e.kind) ? "warning" : "info", e.message);
+}
+
+void StreamPublisher::on_state(mission::MissionState s, const std::string& reason, double t_s) {
+  state_ = mission::to_string(s);
+  publish_progress(t_s, state_);
+  if (!reason.empty()) hub_.status(t_s, "mission_" + state_, "info", reason);
+}
+
+void StreamPublisher::on_mode(mission::HelmMode, mission::HelmMode, double t_s) {
+  publish_progress(t_s, state_);
+}
+
+void StreamPublisher::publish_progress(double t_s, const std::string& state) {
+  hub_.publish("mission", t_s,
+               R"({"mission_id":)" + std::to_string(mission_id_) + R"(,"state":")" + state +
+                   R"(","helm_mode":")" + mission::to_string(runner_.mode()) + R"(","cells":)" +
+                   cells_json(runner_.cells()) + "}");
+}
+
+}  // namespace avk::server

@@ -1,0 +1,37 @@
+#pragma once
+// A running mission as the live stream tells it: turns started and ended (with the stored id to
+// fetch over REST), mission progress and state, and the events an operator must read.
+
+#include <cstdint>
+
+#include "mission/mission_observer.hpp"
+#include "mission/mission_runner.hpp"
+#include "server/stream_hub.hpp"
+
+namespace avk::server {
+
+class StreamPublisher final : public mission::MissionObserver {
+ public:
+  StreamPublisher(StreamHub& hub, std::int64_t mission_id, const mission::MissionRunner& runner)
+      : hub_(hub), mission_id_(mission_id), runner_(runner) {}
+
+  void on_turn_started(const mission::TurnTask& task, double t_s, double goal_heading_deg) override;
+  void on_turn(mission::TurnOutcome& t) override;
+  void on_event(const mission::MissionEventRecord& e) override;
+  void on_state(mission::MissionState s, const std::string& reason, double t_s) override;
+  void on_mode(mission::HelmMode from, mission::HelmMode to, double t_s) override;
+
+  // The mission topic's payload: state, mode and per-cell progress.
+  void publish_progress(double t_s, const std::string& state);
+
+ private:
+  StreamHub& hub_;
+  std::int64_t mission_id_;
+  const mission::MissionRunner& runner_;
+  std::string state_ = "running";
+};
+
+// Per-cell progress as JSON (shared by the stream and GET /missions/{id}).
+std::string cells_json(const std::vector<mission::CellProgress>& cells);
+
+}  // namespace avk::server

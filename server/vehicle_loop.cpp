@@ -1,0 +1,275 @@
+#include "server/vehicle_loop.hpp"
+
+#include <unistd.h>
+
+#include <condition_variable>
+#include <map>
+#include <nlohmann/json.hpp>
+
+#include "server/mission_recorder.hpp"
+#include "server/stream_publisher.hpp"
+#include "sim/scheduler.hpp"
+#include "sim/sim_vehicle.hpp"
+#include "store/store.hpp"
+
+namespace avk::server {
+
+namespace {
+
+sim::SimVehicleConfig vehicle_config(const VehicleLoopOptions& o) {
+  sim::SimVehicleConfig v = o.setup.vehicle;
+  v.start_x_m = o.start.x_m;
+  v.start_y_m = o.start.y_m;
+  v.start_heading_deg = o.start.heading_deg;
+  v.start_speed_mps = 0.0;
+  v.seed = o.setup.scheduler.seed;
+  return v;
+}
+
+sim::SchedulerOptions scheduler_options(const VehicleLoopOptions& o) {
+  sim::SchedulerOptions s = o.setup.scheduler;
+  s.start_time_s = o.start_clock_s;
+  return s;
+}
+
+std::string optional_number(const std::optional<double>& v) {
+  return v ? nlohmann::json(*v).dump() : "null";
+}
+
+}  // namespace
+
+struct VehicleLoop::Impl {
+  VehicleLoopOptions options;
+  std::string db_path;
+  StreamHub& hub;
+  sim::Scheduler scheduler;
+  sim::SimVehicle vehicle;
+  std::thread thread;
+  std::atomic<bool> stop_requested{false};
+  std::string stop_reason;
+
+  mutable std::mutex mutex;
+  std::condition_variable ticked;
+  std::uint64_t ticks = 0;
+  std::deque<std::function<void(double)>> pending;
+  std::optional<std::int64_t> attached;  // set when a mission is accepted, before it runs
+  VehicleSnapshot snapshot;
+  std::map<std::int64_t, MissionLive> live;
+
+  // Loop thread only.
+  std::unique_ptr<store::Store> store;
+  struct Running {
+    std::int64_t id;
+    std::unique_ptr<mission::MissionRunner> runner;
+    std::unique_ptr<MissionRecorder> recorder;
+    std::unique_ptr<StreamPublisher> publisher;
+  };
+  std::optional<Running> running;
+  bool idle_stopped = false;
+
+  Impl(VehicleLoopOptions o, std::string path, StreamHub& h)
+      : options(std::move(o)),
+        db_path(std::move(path)),
+        hub(h),
+        scheduler(scheduler_options(options)),
+        vehicle(vehicle_config(options), scheduler) {}
+
+  void helm_tick(double now) {
+    std::deque<std::function<void(double)>> todo;
+    {
+      std::lock_guard lock(mutex);
+      todo.swap(pending);
+    }
+    for (auto& f : todo)
+      f(now);
+    if (stop_requested.load()) {
+      if (running) {
+        running->runner->interrupt(now, stop_reason);
+        finish_running(now);
+      }
+      scheduler.request_stop();
+    } else if (running) {
+      running->runner->tick(now);
+      update_live();
+      if (running->runner->finished()) finish_running(now);
+    } else {
+      vehicle.take_nav();  // no mission: nothing records it, but the mailbox must not grow
+      if (!idle_stopped) vehicle.all_stop(now);
+      idle_stopped = true;
+    }
+    {
+      std::lock_guard lock(mutex);
+      ++ticks;
+    }
+    ticked.notify_all();
+  }
+
+  void start_running(MissionPlan plan, double now) {
+    mission::RunnerOptions ro;
+    ro.vehicle_id = vehicle.info().id;
+    ro.mission_label = std::to_string(plan.mission_id);
+    Running r;
+    r.id = plan.mission_id;
+    r.runner = std::make_unique<mission::MissionRunner>(plan.config, vehicle, plan.tasks, ro);
+    r.recorder = std::make_unique<MissionRecorder>(*store, plan.mission_id);
+    r.publisher = std::make_unique<StreamPublisher>(hub, plan.mission_id, *r.runner);
+    r.runner->add_observer(*r.recorder);
+    r.runner->add_observer(*r.publisher);
+    store->set_mission_runner(plan.mission_id, static_cast<std::int64_t>(::getpid()));
+    idle_stopped = false;
+    running = std::move(r);
+    hub.status(now, "mission_attached", "info",
+               "mission " + std::to_string(plan.mission_id) + " started with " +
+                   std::to_string(plan.tasks.size()) + " turns to do");
+  }
+
+  void finish_running(double now) {
+    running->recorder->flush();
+    store->set_mission_runner(running->id, std::nullopt);
+    update_live();
+    hub.status(
+        now, "mission_detached", "info",
+        "mission " + std::to_string(running->id) + " " +
+            (running->runner->state() ? mission::to_string(*running->runner->state()) : "ended"));
+    running.reset();
+    std::lock_guard lock(mutex);
+    attached.reset();
+  }
+
+  void update_live() {
+    MissionLive l;
+    l.mission_id = running->id;
+    l.state = running->runner->state() ? mission::to_string(*running->runner->state()) : "created";
+    l.helm_mode = mission::to_string(running->runner->mode());
+    l.cells = running->runner->cells();
+    std::lock_guard lock(mutex);
+    live[l.mission_id] = std::move(l);
+  }
+
+  void telemetry_tick(double now) {
+    VehicleSnapshot s;
+    s.info = vehicle.info();
+    s.link = vehicle.link_state(now);
+    s.nav = vehicle.last_nav();
+    s.t_s = now;
+    if (running) {
+      s.helm_mode = mission::to_string(running->runner->mode());
+      s.desired_heading_deg = running->runner->desired_heading_deg();
+      s.desired_speed_mps = running->runner->desired_speed_mps();
+      s.mission_id = running->id;
+    }
+    if (s.nav) {
+      hub.publish("nav", now,
+                  R"({"vehicle_id":")" + s.info.id + R"(","link":")" + vehicle::to_string(s.link) +
+                      R"(","t_s":)" + nlohmann::json(s.nav->t_s).dump() + R"(,"x_m":)" +
+                      nlohmann::json(s.nav->x_m).dump() + R"(,"y_m":)" +
+                      nlohmann::json(s.nav->y_m).dump() + R"(,"heading_deg":)" +
+                      nlohmann::json(s.nav->heading_deg).dump() + R"(,"speed_mps":)" +
+                      nlohmann::json(s.nav->speed_mps).dump() + "}");
+    }
+    hub.publish("helm", now,
+                R"({"vehicle_id":")" + s.info.id + R"(","mode":")" + s.helm_mode +
+                    R"(","desired_heading_deg":)" + optional_number(s.desired_heading_deg) +
+                    R"(,"desired_speed_mps":)" + optional_number(s.desired_speed_mps) +
+                    R"(,"mission_id":)" +
+                    (s.mission_id ? std::to_string(*s.mission_id) : std::string("null")) + "}");
+    std::lock_guard lock(mutex);
+    snapshot = std::move(s);
+  }
+
+  void run() {
+    store = std::make_unique<store::Store>(db_path);
+    sim::RealtimePacer pacer(options.realtime_factor);
+    while (!stop_requested.load() || running) {
+      if (!scheduler.run_until(scheduler.now_s() + 1.0, pacer)) break;
+    }
+    store.reset();
+  }
+};
+
+VehicleLoop::VehicleLoop(VehicleLoopOptions options, std::string db_path, StreamHub& hub)
+    : impl_(std::make_unique<Impl>(std::move(options), std::move(db_path), hub)),
+      info_(impl_->vehicle.info()) {
+  Impl& i = *impl_;
+  i.scheduler.add("helm", i.options.setup.helm_hz, [&i](double now) { i.helm_tick(now); });
+  i.scheduler.add("telemetry", i.options.telemetry_hz, [&i](double now) { i.telemetry_tick(now); });
+  i.snapshot.info = info_;
+}
+
+VehicleLoop::~VehicleLoop() {
+  stop();
+}
+
+void VehicleLoop::start() {
+  if (impl_->thread.joinable()) return;
+  impl_->thread = std::thread([this] { impl_->run(); });
+}
+
+void VehicleLoop::stop(const std::string& reason) {
+  if (!impl_->thread.joinable()) return;
+  {
+    std::lock_guard lock(impl_->mutex);
+    impl_->stop_reason = reason;
+  }
+  impl_->stop_requested.store(true);
+  impl_->thread.join();
+}
+
+VehicleSnapshot VehicleLoop::snapshot() const {
+  std::lock_guard lock(impl_->mutex);
+  return impl_->snapshot;
+}
+
+std::optional<MissionLive> VehicleLoop::live(std::int64_t mission_id) const {
+  std::lock_guard lock(impl_->mutex);
+  const auto it = impl_->live.find(mission_id);
+  if (it == impl_->live.end()) return std::nullopt;
+  return it->second;
+}
+
+std::optional<std::int64_t> VehicleLoop::attached_mission() const {
+  std::lock_guard lock(impl_->mutex);
+  return impl_->attached;
+}
+
+bool VehicleLoop::attach(MissionPlan plan) {
+  std::lock_guard lock(impl_->mutex);
+  if (impl_->attached || impl_->stop_requested.load()) return false;
+  impl_->attached = plan.mission_id;
+  Impl* i = impl_.get();
+  impl_->pending.push_back(
+      [i, p = std::move(plan)](double now) mutable { i->start_running(std::move(p), now); });
+  return true;
+}
+
+bool VehicleLoop::command(std::int64_t mission_id, Command c) {
+  std::lock_guard lock(impl_->mutex);
+  if (impl_->attached != mission_id) return false;
+  Impl* i = impl_.get();
+  impl_->pending.push_back([i, mission_id, c](double now) {
+    if (!i->running || i->running->id != mission_id) return;
+    auto& r = *i->running->runner;
+    switch (c) {
+      case Command::pause:
+        r.pause(now);
+        break;
+      case Command::resume:
+        r.resume(now);
+        break;
+      case Command::abort:
+        r.abort(now);
+        break;
+    }
+    i->update_live();
+    if (r.finished()) i->finish_running(now);
+  });
+  return true;
+}
+
+bool VehicleLoop::wait_for_tick(std::chrono::milliseconds timeout) {
+  std::unique_lock lock(impl_->mutex);
+  const std::uint64_t target = impl_->ticks + 2;  // one tick may be halfway through
+  return impl_->ticked.wait_for(lock, timeout, [&] { return impl_->ticks >= target; });
+}
+
+}  // namespace avk::server
