@@ -34,6 +34,21 @@ void usage(std::ostream& out) {
          "      advance/transfer per repetition and their coefficient of variation\n"
          "  avk mission validate --config FILE [--vehicle KIND]\n"
          "      check a mission file; every problem is listed with its field\n"
+         "  avk mission run --config FILE --db FILE --sim [--vehicle KIND] [--sim-config FILE]\n"
+         "                  [--seed N] [--realtime [--realtime-factor K]] [--quiet]\n"
+         "      run a collection mission on the simulator; every turn is stored\n"
+         "  avk mission resume ID --db FILE --sim | list --db FILE | report ID --db FILE\n"
+         "  avk ckt build|export --db FILE [--mission ID]... [--vehicle ID] [--out FILE]\n"
+         "  avk model fit|sweep --db FILE --mission ID... [--form thesis|invariant]\n"
+         "                  [--history S] [--refine] [--ridge auto|L]\n"
+         "  avk model list --db FILE | show --db FILE --model ID\n"
+         "  avk predict --db FILE --speed M/S --dheading DEG --method avk|model|instantaneous\n"
+         "                  [--model ID] [--speed-model] [--x M --y M --heading DEG]\n"
+         "  avk compare --db FILE [--model ID] [--format table|csv|json]\n"
+         "  avk serve [--db FILE] [--sim [--vehicle KIND] [--sim-config FILE]\n"
+         "                  [--realtime-factor K]] [--bind 127.0.0.1] [--port 8080] [--web DIR]\n"
+         "                  [--token T]\n"
+         "      the ground station: REST + WebSocket API under /api/v1 and the dashboard\n"
          "  avk import alog FILE --db FILE [--vehicle NAME] [--names NAV_X=X,NAV_Y=Y,...]\n"
          "                  [--turn-record VAR] [--threshold DEG] [--speed-tolerance M/S]\n"
          "                  [--max-yaw-rate DEG/S]\n"
@@ -59,6 +74,7 @@ int run_cli(const std::vector<std::string>& args, std::istream& in, std::ostream
     if (args[0] == "compare") return cmd_compare(rest, io);
     if (args[0] == "predict") return cmd_predict(rest, io);
     if (args[0] == "import") return cmd_import(rest, io);
+    if (args[0] == "serve") return cmd_serve(rest, io);
   } catch (const UsageError& e) {
     err << "avk " << args[0] << ": " << e.what() << "\n";
     return 2;

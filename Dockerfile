@@ -1,0 +1,26 @@
+# AVK Station serving the simulator. The build stage runs the same scripts as the README and CI;
+# the runtime stage holds only the binary, the dashboard, the examples and runtime libraries.
+#   docker build -t avk-station .
+#   docker run --rm -p 8080:8080 -v avk-data:/var/lib/avk avk-station
+FROM debian:12 AS build
+WORKDIR /src
+COPY . .
+RUN bash scripts/setup && bash scripts/build -DAVK_BUILD_TESTS=OFF -DAVK_BUILD_BENCH=OFF
+
+FROM debian:12-slim
+RUN apt-get update \
+ && apt-get install -y --no-install-recommends libsqlite3-0 curl \
+ && rm -rf /var/lib/apt/lists/* \
+ && useradd --system --create-home --home-dir /var/lib/avk --shell /usr/sbin/nologin avk
+COPY --from=build /src/build/server/avk /usr/local/bin/avk
+COPY --from=build /src/web /opt/avk/web
+COPY --from=build /src/examples /opt/avk/examples
+USER avk
+WORKDIR /var/lib/avk
+VOLUME ["/var/lib/avk"]
+EXPOSE 8080
+HEALTHCHECK --interval=10s --timeout=3s --start-period=5s \
+  CMD curl -fsS http://127.0.0.1:8080/api/v1/health || exit 1
+# The container's port is published on purpose, so the server binds every interface; control
+# endpoints still need the token printed at start (and stored in /var/lib/avk/station.db.token).
+ENTRYPOINT ["avk", "serve", "--db", "/var/lib/avk/station.db", "--sim", "--bind", "0.0.0.0", "--port", "8080", "--web", "/opt/avk/web"]

@@ -1,0 +1,62 @@
+#pragma once
+// The station's HTTP/WebSocket transport: REST under /api/v1 (handed to an Api), the live stream
+// at /api/v1/stream (fed by a StreamHub) and static files for the dashboard. Beast stays behind
+// the pimpl so that whoever starts a server does not compile it.
+
+#include <chrono>
+#include <cstddef>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "server/api_types.hpp"
+#include "server/stream_hub.hpp"
+
+namespace avk::server {
+
+struct HttpServerOptions {
+  std::string bind_address = "127.0.0.1";
+  unsigned short port = 0;  // 0: an ephemeral port (tests)
+  int threads = 2;
+  std::optional<std::string> web_root;  // static files; none: only the API
+  std::size_t header_limit = 8 * 1024;  // larger -> 431 and close
+  std::size_t body_limit = 1 << 20;     // larger -> 413 and close
+  // Exact decoded paths that may carry a larger (or smaller) body than body_limit: a CKT of a
+  // long campaign is bigger than any control request.
+  std::map<std::string, std::size_t> body_limit_by_path = {{"/api/v1/ckt/import", 64u << 20}};
+  // A client that has not sent a complete header by then is disconnected (slowloris).
+  std::chrono::milliseconds header_timeout{10000};
+  // Keep-alive: how long a connection may wait for its next request; also the longest pause
+  // inside a body or a response write, and the WebSocket's dead-peer detection (pings at half).
+  std::chrono::milliseconds idle_timeout{30000};
+  // How long a WebSocket close handshake (and a write stuck in front of it) may take before the
+  // socket is cut, and how long stop() waits for in-flight responses before it cuts the rest.
+  std::chrono::milliseconds close_timeout{5000};
+  std::size_t stream_event_queue_limit = 256;  // per WebSocket session
+  std::string server_version;                  // for the hello
+};
+
+class HttpServer {
+ public:
+  // api and hub must outlive the server.
+  HttpServer(HttpServerOptions options, Api& api, StreamHub& hub);
+  ~HttpServer();  // stops
+  HttpServer(const HttpServer&) = delete;
+  HttpServer& operator=(const HttpServer&) = delete;
+
+  // Binds (throws std::runtime_error naming address:port on failure) and runs the io threads.
+  // Once only: a stopped server is not restarted.
+  void start();
+  unsigned short port() const;  // the bound port (0 before start)
+  // Graceful: stops accepting, closes WebSockets with 1001 (going away), lets in-flight
+  // responses finish (at most close_timeout), joins the threads. Idempotent. Not from a handler.
+  void stop();
+  std::size_t open_stream_sessions() const;
+
+ private:
+  class Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace avk::server

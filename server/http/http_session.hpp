@@ -1,0 +1,64 @@
+#pragma once
+// One HTTP connection: reads requests one at a time (keep-alive), routes them — the stream
+// upgrade, the Api under /api/v1, static files otherwise — and writes each response before it
+// reads the next request. Every read and write has a deadline; malformed or oversized requests
+// get their 4xx and the connection is closed.
+
+#include <array>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "server/api_types.hpp"
+#include "server/http/beast.hpp"
+
+namespace avk::server {
+
+class ServerState;
+
+class HttpSession : public std::enable_shared_from_this<HttpSession> {
+ public:
+  HttpSession(tcp::socket&& socket, std::shared_ptr<ServerState> state);
+  ~HttpSession();
+
+  void run();
+  // Any thread: a session waiting for a request closes; one answering finishes first.
+  void shutdown();
+
+ private:
+  enum class Phase { reading, handling, writing, lingering, done };
+
+  void start_request();
+  void on_first_byte(beast::error_code ec, std::size_t bytes);
+  void read_header();
+  void on_header(beast::error_code ec, std::size_t bytes);
+  void on_continue_sent(beast::error_code ec, std::size_t bytes);
+  void read_body();
+  void on_body(beast::error_code ec, std::size_t bytes);
+  void on_read_error(beast::error_code ec);
+
+  void handle_request();
+  http::message_generator call_api(Request& req, std::string path, std::string_view raw_query,
+                                   bool keep_alive);
+  void reject(http::status status, std::string_view detail);
+  void send(http::message_generator message);
+  void on_write(bool keep_alive, beast::error_code ec, std::size_t bytes);
+  void linger();
+  void on_linger(beast::error_code ec, std::size_t bytes);
+  void close_now();
+
+  std::size_t body_limit_for(const std::string& path) const;
+
+  beast::tcp_stream stream_;
+  beast::flat_buffer buffer_;
+  std::optional<http::request_parser<http::string_body>> parser_;
+  std::shared_ptr<ServerState> state_;
+  std::string remote_address_;
+  bool remote_is_loopback_ = false;
+  Phase phase_ = Phase::reading;
+  bool first_request_ = true;
+  std::array<char, 4096> discard_{};
+};
+
+}  // namespace avk::server

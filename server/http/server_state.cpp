@@ -1,0 +1,75 @@
+#include "server/http/server_state.hpp"
+
+#include <utility>
+#include <vector>
+
+#include "server/http/http_session.hpp"
+#include "server/http/websocket_session.hpp"
+#include "server/http/websocket_stream_sink.hpp"
+
+namespace avk::server {
+
+ServerState::ServerState(HttpServerOptions options, Api& api, StreamHub& hub)
+    : options_(std::move(options)), api_(api), hub_(hub), static_files_(options_.web_root) {}
+
+void ServerState::add(const std::shared_ptr<HttpSession>& session) {
+  std::lock_guard lock(mutex_);
+  http_sessions_[session.get()] = session;
+}
+
+void ServerState::remove(const HttpSession* session) {
+  std::lock_guard lock(mutex_);
+  http_sessions_.erase(session);
+  if (http_sessions_.empty() && stream_sessions_.empty()) idle_.notify_all();
+}
+
+void ServerState::add(const std::shared_ptr<WebSocketSession>& session,
+                      const std::shared_ptr<WebSocketStreamSink>& sink) {
+  std::lock_guard lock(mutex_);
+  stream_sessions_[session.get()] = StreamEntry{session, sink};
+}
+
+void ServerState::remove(const WebSocketSession* session) {
+  std::lock_guard lock(mutex_);
+  stream_sessions_.erase(session);
+  if (http_sessions_.empty() && stream_sessions_.empty()) idle_.notify_all();
+}
+
+void ServerState::begin_stop() {
+  std::vector<std::shared_ptr<HttpSession>> http;
+  std::vector<std::shared_ptr<WebSocketSession>> streams;
+  {
+    // Under the lock so that a session added later sees the flag when it starts.
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+    for (const auto& [key, weak] : http_sessions_)
+      if (auto s = weak.lock()) http.push_back(std::move(s));
+    for (const auto& [key, entry] : stream_sessions_)
+      if (auto s = entry.session.lock()) streams.push_back(std::move(s));
+  }
+  for (const auto& s : http)
+    s->shutdown();
+  for (const auto& s : streams)
+    s->shutdown();
+}
+
+bool ServerState::wait_until_idle(std::chrono::steady_clock::time_point deadline) {
+  std::unique_lock lock(mutex_);
+  return idle_.wait_until(lock, deadline,
+                          [&] { return http_sessions_.empty() && stream_sessions_.empty(); });
+}
+
+void ServerState::detach_sinks() {
+  std::vector<std::shared_ptr<WebSocketStreamSink>> sinks;
+  {
+    // Detached outside the lock: a delivery in progress holds the sink's lock and may end by
+    // destroying its session, which takes this one.
+    std::lock_guard lock(mutex_);
+    for (const auto& [key, entry] : stream_sessions_)
+      sinks.push_back(entry.sink);
+  }
+  for (const auto& s : sinks)
+    s->detach();
+}
+
+}  // namespace avk::server

@@ -1,0 +1,72 @@
+#pragma once
+// What every connection of one server shares: the options, the Api and the hub, the static
+// files, and a registry of live sessions so that stop() can reach them.
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstddef>
+#include <map>
+#include <memory>
+#include <mutex>
+
+#include "server/api_types.hpp"
+#include "server/http/http_server.hpp"
+#include "server/http/static_files.hpp"
+#include "server/stream_hub.hpp"
+
+namespace avk::server {
+
+class HttpSession;
+class WebSocketSession;
+class WebSocketStreamSink;
+
+class ServerState {
+ public:
+  ServerState(HttpServerOptions options, Api& api, StreamHub& hub);
+
+  const HttpServerOptions& options() const { return options_; }
+  Api& api() { return api_; }
+  StreamHub& hub() { return hub_; }
+  const StaticFiles& static_files() const { return static_files_; }
+  bool stopping() const { return stopping_.load(); }
+
+  // Sessions add themselves when they start and remove themselves in their destructors.
+  void add(const std::shared_ptr<HttpSession>& session);
+  void remove(const HttpSession* session);
+  void add(const std::shared_ptr<WebSocketSession>& session,
+           const std::shared_ptr<WebSocketStreamSink>& sink);
+  void remove(const WebSocketSession* session);
+
+  // A session counts as open from its accepted handshake until it starts to close.
+  void stream_opened() { ++open_streams_; }
+  void stream_closed() { --open_streams_; }
+  std::size_t open_stream_sessions() const { return open_streams_.load(); }
+
+  // Sets stopping and asks every registered session to wind down (each on its own strand).
+  void begin_stop();
+  // Whether every session is gone by the deadline.
+  bool wait_until_idle(std::chrono::steady_clock::time_point deadline);
+  // After the io threads are joined: the hub may still hold the sinks, and a publisher must not
+  // reach a session whose io_context is about to be destroyed.
+  void detach_sinks();
+
+ private:
+  HttpServerOptions options_;
+  Api& api_;
+  StreamHub& hub_;
+  StaticFiles static_files_;
+  std::atomic<bool> stopping_{false};
+  std::atomic<std::size_t> open_streams_{0};
+
+  std::mutex mutex_;
+  std::condition_variable idle_;
+  std::map<const HttpSession*, std::weak_ptr<HttpSession>> http_sessions_;
+  struct StreamEntry {
+    std::weak_ptr<WebSocketSession> session;
+    std::shared_ptr<WebSocketStreamSink> sink;
+  };
+  std::map<const WebSocketSession*, StreamEntry> stream_sessions_;
+};
+
+}  // namespace avk::server

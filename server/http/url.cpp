@@ -1,0 +1,123 @@
+#include "server/http/url.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <optional>
+
+namespace avk::server {
+
+namespace {
+
+int hex_value(char c) {
+  if (c >= '0' && c <= '9') return c - '0';
+  if (c >= 'a' && c <= 'f') return c - 'a' + 10;
+  if (c >= 'A' && c <= 'F') return c - 'A' + 10;
+  return -1;
+}
+
+std::string lower(std::string_view s) {
+  std::string out(s);
+  std::transform(out.begin(), out.end(), out.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return out;
+}
+
+struct HostPort {
+  std::string host;
+  std::string port;  // empty: not given
+};
+
+// "host", "host:port", "[v6]", "[v6]:port"
+std::optional<HostPort> split_host_port(std::string_view authority) {
+  if (authority.empty()) return std::nullopt;
+  HostPort hp;
+  if (authority.front() == '[') {
+    const auto close = authority.find(']');
+    if (close == std::string_view::npos) return std::nullopt;
+    hp.host = lower(authority.substr(0, close + 1));
+    const auto rest = authority.substr(close + 1);
+    if (!rest.empty()) {
+      if (rest.front() != ':') return std::nullopt;
+      hp.port = std::string(rest.substr(1));
+    }
+  } else {
+    const auto colon = authority.rfind(':');
+    if (colon == std::string_view::npos) {
+      hp.host = lower(authority);
+    } else {
+      hp.host = lower(authority.substr(0, colon));
+      hp.port = std::string(authority.substr(colon + 1));
+    }
+  }
+  if (hp.host.empty()) return std::nullopt;
+  if (!std::all_of(hp.port.begin(), hp.port.end(),
+                   [](unsigned char c) { return std::isdigit(c) != 0; }))
+    return std::nullopt;
+  return hp;
+}
+
+}  // namespace
+
+std::string percent_decode(std::string_view text, bool plus_is_space) {
+  std::string out;
+  out.reserve(text.size());
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '%' && i + 2 < text.size()) {
+      const int hi = hex_value(text[i + 1]);
+      const int lo = hex_value(text[i + 2]);
+      if (hi >= 0 && lo >= 0) {
+        out.push_back(static_cast<char>(hi * 16 + lo));
+        i += 2;
+        continue;
+      }
+    }
+    out.push_back(plus_is_space && c == '+' ? ' ' : c);
+  }
+  return out;
+}
+
+SplitTarget split_target(std::string_view target) {
+  const auto q = target.find('?');
+  if (q == std::string_view::npos) return {target, {}};
+  return {target.substr(0, q), target.substr(q + 1)};
+}
+
+void parse_query(std::string_view raw_query, std::map<std::string, std::string>& query,
+                 std::multimap<std::string, std::string>& multi) {
+  while (!raw_query.empty()) {
+    const auto amp = raw_query.find('&');
+    const auto pair = raw_query.substr(0, amp);
+    raw_query = amp == std::string_view::npos ? std::string_view{} : raw_query.substr(amp + 1);
+    if (pair.empty()) continue;
+    const auto eq = pair.find('=');
+    std::string key = percent_decode(pair.substr(0, eq), true);
+    std::string value =
+        eq == std::string_view::npos ? std::string{} : percent_decode(pair.substr(eq + 1), true);
+    multi.emplace(key, value);
+    query[std::move(key)] = std::move(value);
+  }
+}
+
+bool same_origin(std::string_view origin, std::string_view host) {
+  const auto sep = origin.find("://");
+  if (sep == std::string_view::npos) return false;  // also "null" (sandboxed, file://)
+  const std::string scheme = lower(origin.substr(0, sep));
+  std::string_view authority = origin.substr(sep + 3);
+  authority = authority.substr(0, authority.find('/'));
+  const auto o = split_host_port(authority);
+  const auto h = split_host_port(host);
+  if (!o || !h) return false;
+  std::string default_port;
+  if (scheme == "http" || scheme == "ws")
+    default_port = "80";
+  else if (scheme == "https" || scheme == "wss")
+    default_port = "443";
+  else
+    return false;
+  const std::string& op = o->port.empty() ? default_port : o->port;
+  const std::string& hp = h->port.empty() ? default_port : h->port;
+  return o->host == h->host && op == hp;
+}
+
+}  // namespace avk::server

@@ -1,0 +1,42 @@
+#pragma once
+// The ground station behind /api/v1: vehicles, missions, turns, the CKT, predictions, models and
+// the comparison, over the store; missions run on the station's vehicle loop. Handlers parse and
+// validate, call the layers below and serialise; every error is problem+json (RFC 9457).
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "server/api_types.hpp"
+#include "server/stream_hub.hpp"
+#include "server/vehicle_loop.hpp"
+
+namespace avk::server {
+
+struct StationOptions {
+  std::string db_path;
+  std::string token;  // bearer token for control endpoints (and for any non-loopback client)
+  std::string server_version;
+  std::optional<VehicleLoopOptions> sim;  // the simulated vehicle; none: no vehicle connected
+};
+
+class Station final : public Api {
+ public:
+  Station(StationOptions options, StreamHub& hub);
+  ~Station() override;
+
+  // Marks missions whose process died as interrupted and starts the vehicle loop.
+  void start();
+  // Interrupts a running mission (stored, resumable), flushes and stops the vehicle.
+  void shutdown();
+
+  ApiResponse handle(const ApiRequest& request) override;
+
+  VehicleLoop* vehicle_loop();
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace avk::server

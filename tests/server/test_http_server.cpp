@@ -1,0 +1,858 @@
+// The HTTP/WebSocket transport on real loopback sockets: request decoding, keep-alive, error
+// paths (limits, malformed requests, slow and vanishing clients), static files, the live stream
+// and its slow-client policy, and shutdown. Every wait is bounded: a broken server fails a test
+// instead of hanging it.
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <array>
+#include <atomic>
+#include <boost/asio/connect.hpp>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/write.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <boost/beast/websocket.hpp>
+#include <chrono>
+#include <condition_variable>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "server/api_types.hpp"
+#include "server/http/http_server.hpp"
+#include "server/stream_hub.hpp"
+
+namespace {
+
+namespace beast = boost::beast;
+namespace http = boost::beast::http;
+namespace websocket = boost::beast::websocket;
+namespace net = boost::asio;
+namespace fs = std::filesystem;
+using tcp = boost::asio::ip::tcp;
+using json = nlohmann::json;
+using namespace std::chrono_literals;
+using Clock = std::chrono::steady_clock;
+
+using avk::server::Api;
+using avk::server::ApiRequest;
+using avk::server::ApiResponse;
+using avk::server::HttpServer;
+using avk::server::HttpServerOptions;
+using avk::server::StreamHub;
+
+// Echoes what the transport made of the request; /throw throws, /status/N answers N.
+class EchoApi final : public Api {
+ public:
+  ApiResponse handle(const ApiRequest& r) override {
+    ++calls;
+    if (r.path == "/api/v1/throw") throw std::runtime_error("boom");
+    ApiResponse res;
+    if (r.path.starts_with("/api/v1/status/")) {
+      res.status = std::stoi(r.path.substr(std::string("/api/v1/status/").size()));
+      res.headers = {{"Location", "/api/v1/things/1"}};
+    }
+    json multi = json::array();
+    for (const auto& [k, v] : r.multi_query)
+      multi.push_back({k, v});
+    res.body = json{{"method", r.method},
+                    {"path", r.path},
+                    {"query", r.query},
+                    {"multi_query", multi},
+                    {"body", r.body},
+                    {"content_type", r.content_type},
+                    {"accept", r.accept},
+                    {"authorization", r.authorization},
+                    {"origin", r.origin},
+                    {"host", r.host},
+                    {"remote_address", r.remote_address},
+                    {"remote_is_loopback", r.remote_is_loopback}}
+                   .dump();
+    return res;
+  }
+  std::atomic<int> calls{0};
+};
+
+tcp::endpoint loopback(unsigned short port) {
+  return {net::ip::make_address("127.0.0.1"), port};
+}
+
+template <class Predicate>
+bool wait_for(Predicate done, std::chrono::milliseconds limit = 5000ms) {
+  const auto deadline = Clock::now() + limit;
+  while (!done()) {
+    if (Clock::now() > deadline) return false;
+    std::this_thread::sleep_for(2ms);
+  }
+  return true;
+}
+
+// An HTTP/1.1 client on one connection; every exchange has a deadline.
+class HttpClient {
+ public:
+  explicit HttpClient(unsigned short port) : port_(port), stream_(ioc_) {
+    stream_.connect(loopback(port));
+  }
+
+  http::response<http::string_body> request(
+      http::verb method, const std::string& target, const std::string& body = "",
+      std::vector<std::pair<std::string, std::string>> headers = {}, unsigned version = 11) {
+    http::request<http::string_body> req{method, target, version};
+    req.set(http::field::host, "127.0.0.1:" + std::to_string(port_));
+    for (const auto& [k, v] : headers)
+      req.set(k, v);
+    req.body() = body;
+    if (!body.empty() || method == http::verb::post) req.prepare_payload();
+
+    beast::error_code ec;
+    http::response_parser<http::string_body> parser;
+    parser.body_limit(64u << 20);
+    if (method == http::verb::head) parser.skip(true);
+    stream_.expires_after(5s);
+    http::async_write(stream_, req, [&](beast::error_code e, std::size_t) {
+      if (e) {
+        ec = e;
+        return;
+      }
+      http::async_read(stream_, buffer_, parser,
+                       [&](beast::error_code e2, std::size_t) { ec = e2; });
+    });
+    ioc_.restart();
+    ioc_.run();
+    if (ec) throw beast::system_error(ec);
+    return parser.release();
+  }
+
+  // Whether the server closed the connection (EOF or reset) within the limit.
+  bool closed_by_server(std::chrono::milliseconds limit = 2000ms) {
+    std::array<char, 256> b{};
+    beast::error_code ec;
+    stream_.expires_after(limit);
+    std::function<void()> read = [&] {
+      stream_.async_read_some(net::buffer(b), [&](beast::error_code e, std::size_t) {
+        if (e)
+          ec = e;
+        else
+          read();
+      });
+    };
+    read();
+    ioc_.restart();
+    ioc_.run();
+    return ec && ec != beast::error::timeout;
+  }
+
+ private:
+  unsigned short port_;
+  net::io_context ioc_;
+  beast::tcp_stream stream_;
+  beast::flat_buffer buffer_;
+};
+
+http::response<http::string_body> get(unsigned short port, const std::string& target) {
+  return HttpClient(port).request(http::verb::get, target);
+}
+
+// Raw bytes in, everything until the server closes (or the limit) out.
+struct RawResult {
+  std::string data;
+  beast::error_code ec;  // how the read ended: eof/reset = closed by the server
+  std::chrono::milliseconds elapsed{};
+  bool closed() const { return ec && ec != beast::error::timeout; }
+};
+
+class RawClient {
+ public:
+  explicit RawClient(unsigned short port) : stream_(ioc_) { stream_.connect(loopback(port)); }
+
+  void send(std::string_view bytes) { net::write(stream_.socket(), net::buffer(bytes)); }
+
+  RawResult read_until_closed(std::chrono::milliseconds limit = 2000ms) {
+    RawResult result;
+    std::array<char, 4096> b{};
+    const auto t0 = Clock::now();
+    stream_.expires_after(limit);
+    std::function<void()> read = [&] {
+      stream_.async_read_some(net::buffer(b), [&](beast::error_code e, std::size_t n) {
+        result.data.append(b.data(), n);
+        if (e)
+          result.ec = e;
+        else
+          read();
+      });
+    };
+    read();
+    ioc_.restart();
+    ioc_.run();
+    result.elapsed = std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - t0);
+    return result;
+  }
+
+  void close() {
+    beast::error_code ec;
+    stream_.socket().close(ec);
+  }
+
+ private:
+  net::io_context ioc_;
+  beast::tcp_stream stream_;
+};
+
+RawResult raw_exchange(unsigned short port, std::string_view bytes) {
+  RawClient c(port);
+  c.send(bytes);
+  return c.read_until_closed();
+}
+
+int status_of(const std::string& raw) {
+  // "HTTP/1.1 400 Bad Request"
+  if (raw.size() < 12 || !raw.starts_with("HTTP/1.")) return 0;
+  return std::stoi(raw.substr(9, 3));
+}
+
+// A WebSocket client whose every operation has a deadline.
+class WsClient {
+ public:
+  WsClient(unsigned short port, const std::string& origin = "", int receive_buffer = 0)
+      : ws_(ioc_) {
+    auto& socket = ws_.next_layer();
+    socket.open(tcp::v4());
+    // A small receive window makes a client that stops reading stall the server sooner.
+    if (receive_buffer > 0)
+      socket.set_option(net::socket_base::receive_buffer_size(receive_buffer));
+    socket.connect(loopback(port));
+    ws_.set_option(websocket::stream_base::decorator([origin](websocket::request_type& req) {
+      if (!origin.empty()) req.set(http::field::origin, origin);
+    }));
+    const auto ec = run([&](auto handler) {
+      ws_.async_handshake(response_, "127.0.0.1:" + std::to_string(port), "/api/v1/stream",
+                          handler);
+    });
+    handshake_error_ = ec;
+  }
+
+  beast::error_code handshake_error() const { return handshake_error_; }
+  const websocket::response_type& handshake_response() const { return response_; }
+
+  // The next message as JSON; nullopt when the connection ended (error() says how).
+  std::optional<json> read(std::chrono::milliseconds limit = 5000ms) {
+    const auto text = read_text(limit);
+    if (!text) return std::nullopt;
+    return json::parse(*text);
+  }
+
+  std::optional<std::string> read_text(std::chrono::milliseconds limit = 5000ms) {
+    buffer_.consume(buffer_.size());
+    last_error_ = run([&](auto handler) { ws_.async_read(buffer_, handler); }, limit);
+    if (last_error_) return std::nullopt;
+    return beast::buffers_to_string(buffer_.data());
+  }
+
+  void send(const std::string& text, bool binary = false) {
+    ws_.binary(binary);
+    const auto ec = run([&](auto handler) { ws_.async_write(net::buffer(text), handler); });
+    if (ec) throw beast::system_error(ec);
+  }
+
+  beast::error_code error() const { return last_error_; }
+  websocket::close_reason close_reason() const { return ws_.reason(); }
+
+ private:
+  // Runs one asynchronous operation to completion or cancels it at the limit.
+  template <class Start>
+  beast::error_code run(Start start, std::chrono::milliseconds limit = 5000ms) {
+    bool done = false;
+    beast::error_code result;
+    start([&](beast::error_code ec, auto&&...) {
+      done = true;
+      result = ec;
+    });
+    ioc_.restart();
+    ioc_.run_for(limit);
+    if (!done) {
+      beast::error_code ignored;
+      ws_.next_layer().close(ignored);
+      ioc_.restart();
+      ioc_.run();
+      return beast::error::timeout;
+    }
+    return result;
+  }
+
+  net::io_context ioc_;
+  websocket::stream<tcp::socket> ws_;
+  websocket::response_type response_;
+  beast::flat_buffer buffer_;
+  beast::error_code handshake_error_;
+  beast::error_code last_error_;
+};
+
+class HttpServerTest : public ::testing::Test {
+ protected:
+  void start(HttpServerOptions options = {}) {
+    options.server_version = "test-1";
+    server = std::make_unique<HttpServer>(std::move(options), api, hub);
+    server->start();
+    port = server->port();
+    ASSERT_NE(port, 0);
+  }
+
+  EchoApi api;
+  StreamHub hub;  // before server: the server must go first
+  std::unique_ptr<HttpServer> server;
+  unsigned short port = 0;
+};
+
+// --- REST ----------------------------------------------------------------------------------
+
+TEST_F(HttpServerTest, DecodesPathAndQueryAndKeepsTheConnection) {
+  start();
+  HttpClient client(port);
+  auto res = client.request(http::verb::get, "/api/v1/echo/a%20b?x=1&y=%2F&y=2&z=a+b%2Bc", "",
+                            {{"Accept", "text/csv"}, {"Authorization", "Bearer t0k"}});
+  ASSERT_EQ(res.result_int(), 200);
+  EXPECT_EQ(res[http::field::content_type], "application/json");
+  EXPECT_TRUE(res.keep_alive());
+  const auto echo = json::parse(res.body());
+  EXPECT_EQ(echo["method"], "GET");
+  EXPECT_EQ(echo["path"], "/api/v1/echo/a b");
+  EXPECT_EQ(echo["query"]["x"], "1");
+  EXPECT_EQ(echo["query"]["y"], "2");  // the last one
+  EXPECT_EQ(echo["query"]["z"], "a b+c");
+  EXPECT_EQ(echo["multi_query"], json::parse(R"([["x","1"],["y","/"],["y","2"],["z","a b+c"]])"));
+  EXPECT_EQ(echo["accept"], "text/csv");
+  EXPECT_EQ(echo["authorization"], "Bearer t0k");
+  EXPECT_EQ(echo["host"], "127.0.0.1:" + std::to_string(port));
+  EXPECT_EQ(echo["remote_address"], "127.0.0.1");
+  EXPECT_EQ(echo["remote_is_loopback"], true);
+
+  // The same connection again, with a body this time.
+  res = client.request(http::verb::post, "/api/v1/missions", R"({"a":1})",
+                       {{"Content-Type", "application/json; charset=utf-8"}});
+  ASSERT_EQ(res.result_int(), 200);
+  const auto echo2 = json::parse(res.body());
+  EXPECT_EQ(echo2["method"], "POST");
+  EXPECT_EQ(echo2["body"], R"({"a":1})");
+  EXPECT_EQ(echo2["content_type"], "application/json; charset=utf-8");
+  EXPECT_EQ(api.calls.load(), 2);
+}
+
+TEST_F(HttpServerTest, Http10WithoutKeepAliveIsClosed) {
+  start();
+  HttpClient client(port);
+  const auto res = client.request(http::verb::get, "/api/v1/echo", "", {}, 10);
+  EXPECT_EQ(res.result_int(), 200);
+  EXPECT_FALSE(res.keep_alive());
+  EXPECT_TRUE(client.closed_by_server());
+}
+
+TEST_F(HttpServerTest, StatusAndExtraHeadersPassThrough) {
+  start();
+  const auto res = get(port, "/api/v1/status/201");
+  EXPECT_EQ(res.result_int(), 201);
+  EXPECT_EQ(res[http::field::location], "/api/v1/things/1");
+  EXPECT_EQ(res[http::field::content_length], std::to_string(res.body().size()));
+}
+
+TEST_F(HttpServerTest, ExceptionInTheApiIs500ProblemJsonAndTheServerGoesOn) {
+  start();
+  HttpClient client(port);
+  const auto res = client.request(http::verb::get, "/api/v1/throw");
+  EXPECT_EQ(res.result_int(), 500);
+  EXPECT_EQ(res[http::field::content_type], "application/problem+json");
+  const auto problem = json::parse(res.body());
+  EXPECT_EQ(problem["type"], "about:blank");
+  EXPECT_EQ(problem["title"], "Internal Server Error");
+  EXPECT_EQ(problem["status"], 500);
+  EXPECT_EQ(problem["detail"], "boom");
+  // Same connection, and a fresh one.
+  EXPECT_EQ(client.request(http::verb::get, "/api/v1/echo").result_int(), 200);
+  EXPECT_EQ(get(port, "/api/v1/echo").result_int(), 200);
+}
+
+TEST_F(HttpServerTest, StreamPathWithoutUpgradeIs426) {
+  start();
+  const auto res = get(port, "/api/v1/stream");
+  EXPECT_EQ(res.result_int(), 426);
+  EXPECT_EQ(api.calls.load(), 0);
+}
+
+// --- malformed, oversized, slow and vanishing clients ----------------------------------------
+
+TEST_F(HttpServerTest, BodyOverTheLimitIs413AndClosed) {
+  HttpServerOptions o;
+  o.body_limit = 1024;
+  o.body_limit_by_path = {{"/api/v1/ckt/import", 4096}};
+  start(o);
+  const std::string body(2000, 'x');
+  {
+    HttpClient client(port);
+    const auto res = client.request(http::verb::post, "/api/v1/missions", body,
+                                    {{"Content-Type", "application/json"}});
+    EXPECT_EQ(res.result_int(), 413);
+    EXPECT_EQ(res[http::field::content_type], "application/problem+json");
+    EXPECT_TRUE(client.closed_by_server());
+  }
+  // The larger limit of the import path.
+  const auto ok = HttpClient(port).request(http::verb::post, "/api/v1/ckt/import", body,
+                                           {{"Content-Type", "application/json"}});
+  EXPECT_EQ(ok.result_int(), 200);
+  EXPECT_EQ(json::parse(ok.body())["body"], body);
+  // A chunked body, whose size the header does not give.
+  const std::string chunked =
+      "POST /api/v1/missions HTTP/1.1\r\nHost: x\r\nTransfer-Encoding: chunked\r\n\r\n"
+      "800\r\n" +
+      std::string(0x800, 'y') + "\r\n0\r\n\r\n";
+  const auto raw = raw_exchange(port, chunked);
+  EXPECT_EQ(status_of(raw.data), 413) << raw.data;
+  EXPECT_TRUE(raw.closed());
+  EXPECT_EQ(api.calls.load(), 1);
+}
+
+TEST_F(HttpServerTest, ExpectContinueGetsContinue) {
+  start();
+  RawClient c(port);
+  c.send(
+      "POST /api/v1/missions HTTP/1.1\r\nHost: x\r\nContent-Length: 5\r\n"
+      "Expect: 100-continue\r\nConnection: close\r\n\r\n");
+  // Nothing but the 100 comes before the body is sent; read it with a short deadline.
+  auto first = c.read_until_closed(300ms);
+  EXPECT_TRUE(first.data.starts_with("HTTP/1.1 100 Continue")) << first.data;
+}
+
+TEST_F(HttpServerTest, HeaderOverTheLimitIs431) {
+  HttpServerOptions o;
+  o.header_limit = 1024;
+  start(o);
+  const auto raw = raw_exchange(port, "GET /api/v1/echo HTTP/1.1\r\nHost: x\r\nX-Big: " +
+                                          std::string(4000, 'b') + "\r\n\r\n");
+  EXPECT_EQ(status_of(raw.data), 431) << raw.data;
+  EXPECT_TRUE(raw.closed());
+  EXPECT_EQ(api.calls.load(), 0);
+}
+
+TEST_F(HttpServerTest, GarbageRequestLineIs400AndClosed) {
+  start();
+  const auto raw = raw_exchange(port, "HELLO\r\n\r\n");
+  EXPECT_EQ(status_of(raw.data), 400) << raw.data;
+  EXPECT_NE(raw.data.find("application/problem+json"), std::string::npos);
+  EXPECT_TRUE(raw.closed());
+  const auto bad_header = raw_exchange(port, "GET / HTTP/1.1\r\nNo colon here\r\n\r\n");
+  EXPECT_EQ(status_of(bad_header.data), 400) << bad_header.data;
+  EXPECT_TRUE(bad_header.closed());
+  EXPECT_EQ(get(port, "/api/v1/echo").result_int(), 200);
+}
+
+TEST_F(HttpServerTest, ClientThatStallsInTheHeaderIsDisconnected) {
+  HttpServerOptions o;
+  o.header_timeout = 200ms;
+  start(o);
+  RawClient slow(port);
+  slow.send("GET /api/v1/echo HTTP/1.1\r\nHost: x\r\n");  // and nothing more
+  const auto r = slow.read_until_closed(2000ms);
+  EXPECT_TRUE(r.closed()) << r.ec.message();
+  EXPECT_GE(r.elapsed, 150ms);
+  EXPECT_LT(r.elapsed, 2000ms);
+  EXPECT_TRUE(r.data.empty());
+  // A connection that sends nothing at all goes the same way.
+  RawClient silent(port);
+  EXPECT_TRUE(silent.read_until_closed(2000ms).closed());
+  EXPECT_EQ(api.calls.load(), 0);
+}
+
+TEST_F(HttpServerTest, IdleKeepAliveConnectionIsClosedAfterIdleTimeout) {
+  HttpServerOptions o;
+  o.idle_timeout = 200ms;
+  start(o);
+  HttpClient client(port);
+  EXPECT_EQ(client.request(http::verb::get, "/api/v1/echo").result_int(), 200);
+  EXPECT_TRUE(client.closed_by_server(2000ms));
+}
+
+TEST_F(HttpServerTest, ClientVanishingMidBodyDoesNotDisturbOthers) {
+  start();
+  std::vector<std::unique_ptr<RawClient>> open;
+  for (int i = 0; i < 5; ++i) {
+    auto c = std::make_unique<RawClient>(port);
+    c->send("POST /api/v1/missions HTTP/1.1\r\nHost: x\r\nContent-Length: 100000\r\n\r\n" +
+            std::string(1000, 'z'));
+    if (i % 2 == 0)
+      c->close();  // gone mid-body
+    else
+      open.push_back(std::move(c));  // still there, mid-body
+  }
+  for (int i = 0; i < 3; ++i)
+    EXPECT_EQ(get(port, "/api/v1/echo").result_int(), 200);
+  EXPECT_EQ(api.calls.load(), 3);
+}
+
+// --- static files --------------------------------------------------------------------------
+
+class StaticFilesTest : public HttpServerTest {
+ protected:
+  void SetUp() override {
+    base = fs::temp_directory_path() /
+           ("avk_http_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    fs::remove_all(base);
+    fs::create_directories(base / "web" / "sub");
+    write(base / "web" / "index.html", "<html>dashboard</html>");
+    write(base / "web" / "app.js", "console.log(1);");
+    write(base / "web" / "sub" / "style.css", "body{}");
+    write(base / "secret", "TOPSECRET");
+    fs::create_symlink(base / "secret", base / "web" / "link");
+  }
+  void TearDown() override {
+    server.reset();
+    std::error_code ec;
+    fs::remove_all(base, ec);
+  }
+  static void write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
+
+  fs::path base;
+  static inline int counter = 0;
+};
+
+TEST_F(StaticFilesTest, ServesFilesWithTheirTypes) {
+  HttpServerOptions o;
+  o.web_root = (base / "web").string();
+  start(o);
+  auto res = get(port, "/");
+  ASSERT_EQ(res.result_int(), 200);
+  EXPECT_TRUE(res[http::field::content_type].starts_with("text/html"));
+  EXPECT_EQ(res.body(), "<html>dashboard</html>");
+  res = get(port, "/app.js?v=3");
+  ASSERT_EQ(res.result_int(), 200);
+  EXPECT_TRUE(res[http::field::content_type].starts_with("text/javascript"));
+  EXPECT_EQ(res.body(), "console.log(1);");
+  res = get(port, "/sub/style.css");
+  EXPECT_TRUE(res[http::field::content_type].starts_with("text/css"));
+  res = HttpClient(port).request(http::verb::head, "/app.js");
+  EXPECT_EQ(res.result_int(), 200);
+  EXPECT_EQ(res[http::field::content_length], "15");
+  EXPECT_TRUE(res.body().empty());
+}
+
+TEST_F(StaticFilesTest, NothingOutsideTheRoot) {
+  HttpServerOptions o;
+  o.web_root = (base / "web").string();
+  start(o);
+  for (const std::string target :
+       {"/../secret", "/%2e%2e/secret", "/%2E%2E%2fsecret", "/a/../../secret", "/sub/../../secret",
+        "/..%5csecret", "/link", "/app.js%00.html", "/missing.html", "/sub", "/sub/"}) {
+    const auto res = get(port, target);
+    EXPECT_EQ(res.result_int(), 404) << target;
+    EXPECT_EQ(res.body().find("TOPSECRET"), std::string::npos) << target;
+    EXPECT_EQ(res[http::field::content_type], "application/problem+json") << target;
+  }
+}
+
+TEST_F(StaticFilesTest, OnlyGetAndHead) {
+  HttpServerOptions o;
+  o.web_root = (base / "web").string();
+  start(o);
+  const auto res = HttpClient(port).request(http::verb::post, "/index.html", "x");
+  EXPECT_EQ(res.result_int(), 405);
+  EXPECT_EQ(res[http::field::allow], "GET, HEAD");
+}
+
+TEST_F(StaticFilesTest, WithoutAWebRootOnlyTheApi) {
+  start();
+  EXPECT_EQ(get(port, "/").result_int(), 404);
+  EXPECT_EQ(get(port, "/index.html").result_int(), 404);
+  EXPECT_EQ(get(port, "/api/v1/echo").result_int(), 200);
+}
+
+TEST_F(StaticFilesTest, MissingWebRootIsAnError) {
+  HttpServerOptions o;
+  o.web_root = (base / "nope").string();
+  EXPECT_THROW(HttpServer(o, api, hub), std::runtime_error);
+}
+
+// --- the stream ----------------------------------------------------------------------------
+
+TEST_F(HttpServerTest, StreamHelloSubscribeAndPublish) {
+  start();
+  WsClient ws(port);
+  ASSERT_FALSE(ws.handshake_error()) << ws.handshake_error().message();
+  const auto hello = ws.read();
+  ASSERT_TRUE(hello);
+  EXPECT_EQ((*hello)["type"], "hello");
+  EXPECT_EQ((*hello)["session_id"], hub.session_id());
+  EXPECT_EQ((*hello)["server_version"], "test-1");
+  EXPECT_TRUE(wait_for([&] { return server->open_stream_sessions() == 1; }));
+
+  ws.send(R"({"subscribe":["turn"]})");
+  auto reply = ws.read();
+  ASSERT_TRUE(reply);
+  EXPECT_EQ(*reply, json::parse(R"({"type":"subscribed","topics":["turn"]})"));
+  EXPECT_EQ(hub.subscriber_count("turn"), 1u);
+
+  hub.publish("turn", 12.5, R"({"event":"finished","id":7})");
+  auto message = ws.read();
+  ASSERT_TRUE(message);
+  EXPECT_EQ((*message)["topic"], "turn");
+  EXPECT_EQ((*message)["seq"], 1);
+  EXPECT_EQ((*message)["t"], 12.5);
+  EXPECT_EQ((*message)["data"]["id"], 7);
+
+  // Errors are answered and the connection stays.
+  ws.send(R"({"subscribe":["turn","bogus"]})");
+  reply = ws.read();
+  ASSERT_TRUE(reply);
+  EXPECT_EQ((*reply)["type"], "error");
+  EXPECT_NE((*reply)["message"].get<std::string>().find("bogus"), std::string::npos);
+  ws.send("not json");
+  reply = ws.read();
+  ASSERT_TRUE(reply);
+  EXPECT_EQ((*reply)["type"], "error");
+  ws.send("\x01\x02", true);
+  reply = ws.read();
+  ASSERT_TRUE(reply);
+  EXPECT_EQ((*reply)["type"], "error");
+
+  ws.send(R"({"subscribe":["nav"],"unsubscribe":["turn"]})");
+  reply = ws.read();
+  ASSERT_TRUE(reply);
+  EXPECT_EQ(*reply, json::parse(R"({"type":"subscribed","topics":["nav"]})"));
+  EXPECT_EQ(hub.subscriber_count("turn"), 0u);
+  hub.publish("turn", 13.0, "{}");  // no longer subscribed
+  hub.publish("nav", 13.0, R"({"x":1})");
+  message = ws.read();
+  ASSERT_TRUE(message);
+  EXPECT_EQ((*message)["topic"], "nav");
+  EXPECT_EQ(server->open_stream_sessions(), 1u);
+}
+
+TEST_F(HttpServerTest, StreamChecksOrigin) {
+  start();
+  WsClient foreign(port, "http://evil.example");
+  EXPECT_EQ(foreign.handshake_error(), websocket::error::upgrade_declined);
+  EXPECT_EQ(foreign.handshake_response().result_int(), 403);
+  WsClient other_port(port, "http://127.0.0.1:1");
+  EXPECT_EQ(other_port.handshake_response().result_int(), 403);
+
+  WsClient same(port, "http://127.0.0.1:" + std::to_string(port));
+  ASSERT_FALSE(same.handshake_error()) << same.handshake_error().message();
+  EXPECT_TRUE(same.read());
+  EXPECT_TRUE(wait_for([&] { return server->open_stream_sessions() == 1; }));
+}
+
+// One client stops reading: it is closed with 1008 once its event queue overflows, while a
+// reading client gets every message in order and the publisher never waits.
+TEST_F(HttpServerTest, StalledEventClientIsClosedAndOthersKeepUp) {
+  HttpServerOptions o;
+  o.stream_event_queue_limit = 8;
+  // The close frame waits behind the write the stalled client blocks; give the test time to
+  // come back and read it (the default cuts such a client after 5 s).
+  o.close_timeout = 30s;
+  start(o);
+  WsClient stalled(port, "", 4096);
+  ASSERT_TRUE(stalled.read());
+  stalled.send(R"({"subscribe":["turn"]})");
+  ASSERT_TRUE(stalled.read());
+
+  constexpr int kMessages = 2000;
+  constexpr int kWindow = 4;  // below the queue limit: the reader is never the one too slow
+  std::mutex mutex;
+  std::condition_variable received_cv;
+  int received = 0;
+  bool reader_ok = true;
+  std::string reader_failure;
+
+  WsClient reader(port);
+  ASSERT_TRUE(reader.read());
+  reader.send(R"({"subscribe":["turn"]})");
+  ASSERT_TRUE(reader.read());
+  std::thread reader_thread([&] {
+    for (int i = 1; i <= kMessages; ++i) {
+      const auto m = reader.read(10000ms);
+      std::lock_guard lock(mutex);
+      if (!m || (*m)["seq"] != i || (*m)["data"]["i"] != i) {
+        reader_ok = false;
+        reader_failure = m ? "got seq " + (*m)["seq"].dump() + " for " + std::to_string(i)
+                           : "read failed: " + reader.error().message();
+        received_cv.notify_all();
+        return;
+      }
+      received = i;
+      received_cv.notify_all();
+    }
+  });
+
+  const std::string pad(64 * 1024, 'p');
+  std::chrono::nanoseconds publish_time{0};
+  std::chrono::nanoseconds slowest{0};
+  for (int i = 1; i <= kMessages; ++i) {
+    {
+      std::unique_lock lock(mutex);
+      const bool ok =
+          received_cv.wait_for(lock, 10s, [&] { return !reader_ok || received >= i - kWindow; });
+      if (!ok || !reader_ok) break;
+    }
+    const std::string data = R"({"i":)" + std::to_string(i) + R"(,"pad":")" + pad + R"("})";
+    const auto t0 = Clock::now();
+    hub.publish("turn", i * 0.1, data);
+    const auto dt = Clock::now() - t0;
+    publish_time += dt;
+    slowest = std::max(slowest, std::chrono::duration_cast<std::chrono::nanoseconds>(dt));
+  }
+  reader_thread.join();
+  EXPECT_TRUE(reader_ok) << reader_failure;
+  EXPECT_EQ(received, kMessages);
+  EXPECT_LT(publish_time, 2s);
+  EXPECT_LT(slowest, 200ms);
+
+  // The stalled session is gone from the hub and the open count; it still has its close frame
+  // to deliver behind what the socket holds.
+  EXPECT_TRUE(wait_for([&] { return hub.subscriber_count("turn") == 1; }));
+  EXPECT_TRUE(wait_for([&] { return server->open_stream_sessions() == 1; }));
+  int stalled_got = 0;
+  std::int64_t last_seq = 0;
+  while (auto m = stalled.read()) {
+    ++stalled_got;
+    ASSERT_GT((*m)["seq"].get<std::int64_t>(), last_seq);
+    last_seq = (*m)["seq"].get<std::int64_t>();
+  }
+  EXPECT_EQ(stalled.error(), websocket::error::closed) << stalled.error().message();
+  EXPECT_EQ(stalled.close_reason().code, websocket::close_code::policy_error);
+  const auto& reason = stalled.close_reason().reason;
+  EXPECT_EQ(std::string(reason.data(), reason.size()), "too slow: re-sync over REST");
+  EXPECT_LT(stalled_got, kMessages);
+}
+
+// Telemetry is latest-value-wins: a client that stops reading nav accumulates nothing and is
+// not closed; when it reads again the newest sample reaches it.
+TEST_F(HttpServerTest, StalledTelemetryClientStaysOpen) {
+  HttpServerOptions o;
+  o.stream_event_queue_limit = 8;
+  start(o);
+  WsClient stalled(port, "", 4096);
+  ASSERT_TRUE(stalled.read());
+  stalled.send(R"({"subscribe":["nav"]})");
+  ASSERT_TRUE(stalled.read());
+
+  constexpr int kMessages = 2000;
+  const std::string pad(64 * 1024, 'n');
+  const auto t0 = Clock::now();
+  for (int i = 1; i <= kMessages; ++i)
+    hub.publish("nav", i * 0.1, R"({"i":)" + std::to_string(i) + R"(,"pad":")" + pad + R"("})");
+  EXPECT_LT(Clock::now() - t0, 2s);
+
+  std::this_thread::sleep_for(200ms);  // let the session work through what was posted
+  EXPECT_EQ(server->open_stream_sessions(), 1u);
+  EXPECT_EQ(hub.subscriber_count("nav"), 1u);
+
+  int got = 0;
+  std::int64_t last_seq = 0;
+  while (last_seq < kMessages) {
+    const auto m = stalled.read();
+    ASSERT_TRUE(m) << stalled.error().message();
+    ++got;
+    ASSERT_GT((*m)["seq"].get<std::int64_t>(), last_seq);
+    last_seq = (*m)["seq"].get<std::int64_t>();
+  }
+  EXPECT_EQ(last_seq, kMessages);
+  EXPECT_LT(got, kMessages);  // older frames were replaced, not queued
+  EXPECT_EQ(server->open_stream_sessions(), 1u);
+}
+
+// --- lifecycle -----------------------------------------------------------------------------
+
+TEST_F(HttpServerTest, StopClosesStreamsWithGoingAway) {
+  start();
+  WsClient a(port);
+  WsClient b(port);
+  ASSERT_TRUE(a.read());
+  ASSERT_TRUE(b.read());
+  HttpClient idle(port);
+  EXPECT_EQ(idle.request(http::verb::get, "/api/v1/echo").result_int(), 200);
+
+  const auto t0 = Clock::now();
+  std::thread stopper([&] { server->stop(); });
+  EXPECT_FALSE(a.read());
+  EXPECT_EQ(a.error(), websocket::error::closed);
+  EXPECT_EQ(a.close_reason().code, websocket::close_code::going_away);
+  EXPECT_FALSE(b.read());
+  EXPECT_EQ(b.close_reason().code, websocket::close_code::going_away);
+  stopper.join();
+  EXPECT_LT(Clock::now() - t0, 3s);
+  EXPECT_TRUE(idle.closed_by_server(500ms));
+  EXPECT_EQ(server->open_stream_sessions(), 0u);
+  server->stop();                                      // idempotent
+  EXPECT_THROW(RawClient{port}, beast::system_error);  // no longer accepting
+}
+
+TEST_F(HttpServerTest, DestructionWithOpenConnectionsNeitherHangsNorCrashes) {
+  HttpServerOptions o;
+  o.close_timeout = 300ms;
+  start(o);
+  // A stream client that stopped reading with a write stuck in the socket, a half header,
+  // a half body and an idle keep-alive connection.
+  WsClient stalled(port, "", 4096);
+  ASSERT_TRUE(stalled.read());
+  stalled.send(R"({"subscribe":["turn"]})");
+  ASSERT_TRUE(stalled.read());
+  const std::string pad(64 * 1024, 'q');
+  for (int i = 0; i < 100; ++i)
+    hub.publish("turn", 0.0, R"({"pad":")" + pad + R"("})");
+  RawClient half_header(port);
+  half_header.send("GET / HTTP/1.1\r\nHost");
+  RawClient half_body(port);
+  half_body.send("POST /api/v1/x HTTP/1.1\r\nHost: x\r\nContent-Length: 10\r\n\r\nab");
+  HttpClient idle(port);
+  EXPECT_EQ(idle.request(http::verb::get, "/api/v1/echo").result_int(), 200);
+
+  std::atomic<bool> publishing{true};
+  std::thread publisher([&] {
+    // A publisher that keeps going while the server goes away must not touch a dead session.
+    while (publishing) {
+      hub.publish("turn", 0.0, "{}");
+      hub.publish("nav", 0.0, "{}");
+      std::this_thread::sleep_for(100us);
+    }
+  });
+  const auto t0 = Clock::now();
+  server.reset();
+  EXPECT_LT(Clock::now() - t0, 3s);
+  std::this_thread::sleep_for(20ms);
+  publishing = false;
+  publisher.join();
+  EXPECT_TRUE(half_header.read_until_closed(1000ms).closed());
+}
+
+TEST_F(HttpServerTest, StartThenStopWithoutClients) {
+  start();
+  server->stop();
+  server.reset();
+  HttpServer never_started(HttpServerOptions{}, api, hub);
+  EXPECT_EQ(never_started.port(), 0);
+}
+
+TEST_F(HttpServerTest, BindFailureNamesTheAddress) {
+  start();
+  HttpServerOptions o;
+  o.port = port;
+  HttpServer second(o, api, hub);
+  try {
+    second.start();
+    FAIL() << "a second server bound the same port";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("127.0.0.1:" + std::to_string(port)), std::string::npos)
+        << e.what();
+  }
+  HttpServerOptions bad;
+  bad.bind_address = "not-an-address";
+  EXPECT_THROW(HttpServer(bad, api, hub).start(), std::runtime_error);
+}
+
+}  // namespace
