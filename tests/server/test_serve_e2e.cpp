@@ -1,0 +1,206 @@
+// The ground station end to end: a real server on an ephemeral loopback port, a mission started
+// over REST and followed over a real WebSocket, and a kill -9 of a real `avk serve` process.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <fcntl.h>
+#include <chrono>
+#include <fstream>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
+#include <thread>
+
+#include "server/http/http_server.hpp"
+#include "server/station.hpp"
+#include "sim/sim_config.hpp"
+#include "support/http_client.hpp"
+#include "support/temp_db.hpp"
+
+extern char** environ;
+
+namespace {
+
+using avk::testing::http_call;
+using avk::testing::WsClient;
+using nlohmann::json;
+using Clock = std::chrono::steady_clock;
+
+constexpr const char* kToken = "e2e-token-0123456789";
+
+std::string small_mission() {
+  return json{{"name", "e2e"},
+              {"turn_array", {{"speeds_mps", {0.5, 1.0}}, {"dheadings_deg", {40, 100}}}},
+              {"operating_region",
+               {{"polygon_m", {{-100, -100}, {100, -100}, {100, 100}, {-100, 100}}},
+                {"buffer_m", 25},
+                {"return_point_m", {0, -70}}}}}
+      .dump();
+}
+
+std::map<std::string, std::string> control_headers() {
+  return {{"Authorization", std::string("Bearer ") + kToken}, {"Content-Type", "application/json"}};
+}
+
+TEST(ServeE2E, MissionOverRestFollowedOverTheStreamAndEveryTurnIsServed) {
+  avk::testing::TempDb db("avk_e2e");
+  avk::server::StreamHub hub;
+  avk::server::StationOptions so;
+  so.db_path = db.path();
+  so.token = kToken;
+  so.server_version = "e2e";
+  avk::server::VehicleLoopOptions v;
+  v.setup = avk::sim::default_sim_setup("usim");
+  v.setup.vehicle.id = "sim-usim";
+  v.realtime_factor = 100.0;
+  v.start = {0.0, -70.0, 0.0};
+  so.sim = v;
+  avk::server::Station station(so, hub);
+  station.start();
+  avk::server::HttpServer server({}, station, hub);
+  server.start();
+  const unsigned short port = server.port();
+
+  WsClient ws(port);
+  const json hello = json::parse(*ws.read(std::chrono::seconds(5)));
+  EXPECT_EQ(hello["type"], "hello");
+  EXPECT_EQ(hello["session_id"], hub.session_id());
+  ws.send(R"({"subscribe":["turn","mission","nav"]})");
+
+  const auto created = http_call(port, "POST", "/api/v1/vehicles/sim-usim/missions",
+                                 small_mission(), control_headers());
+  ASSERT_EQ(created.status, 201) << created.body;
+  EXPECT_EQ(created.headers.at("Location"), "/api/v1/missions/1");
+
+  std::set<std::int64_t> finished;
+  std::map<std::string, std::uint64_t> last_seq;
+  std::size_t nav = 0;
+  std::string state;
+  const auto deadline = Clock::now() + std::chrono::seconds(90);
+  while (state != "done" && Clock::now() < deadline) {
+    const auto text = ws.read(std::chrono::seconds(10));
+    ASSERT_TRUE(text.has_value()) << "the stream went quiet";
+    const json m = json::parse(*text);
+    if (!m.contains("topic")) continue;  // the subscription acknowledgement
+    const std::string topic = m["topic"];
+    const auto seq = m["seq"].get<std::uint64_t>();
+    EXPECT_GT(seq, last_seq[topic]) << topic;
+    last_seq[topic] = seq;
+    if (topic == "nav") ++nav;
+    if (topic == "turn" && m["data"]["event"] == "finished")
+      finished.insert(m["data"]["id"].get<std::int64_t>());
+    if (topic == "mission") state = m["data"]["state"];
+  }
+  ASSERT_EQ(state, "done");
+  EXPECT_GT(nav, 10u);
+  EXPECT_EQ(finished.size(), 4u);
+  // Every finished turn the stream announced is in /turns and in the table.
+  const json turns =
+      json::parse(http_call(port, "GET", "/api/v1/turns?mission=1&status=ok&limit=100").body);
+  std::set<std::int64_t> listed;
+  for (const auto& t : turns["items"])
+    listed.insert(t["id"].get<std::int64_t>());
+  EXPECT_EQ(listed, finished);
+  const json ckt = json::parse(http_call(port, "GET", "/api/v1/vehicles/sim-usim/ckt").body);
+  std::size_t in_table = 0;
+  for (const auto& c : ckt["cells"])
+    in_table += c["n_turns"].get<std::size_t>();
+  EXPECT_EQ(in_table, finished.size());
+  server.stop();
+  station.shutdown();
+}
+
+// --- a real `avk serve`, killed ----------------------------------------------------------
+
+struct ServeProcess {
+  pid_t pid = -1;
+  unsigned short port = 0;
+};
+
+ServeProcess spawn_serve(const std::string& db, const std::string& log) {
+  std::vector<std::string> args = {AVK_BINARY, "serve", "--db",    db,     "--sim",
+                                   "--port",   "0",     "--token", kToken, "--realtime-factor",
+                                   "100"};
+  std::vector<char*> argv;
+  for (auto& a : args)
+    argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t fa;
+  posix_spawn_file_actions_init(&fa);
+  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+  posix_spawn_file_actions_adddup2(&fa, 1, 2);
+  ServeProcess p;
+  if (posix_spawn(&p.pid, AVK_BINARY, &fa, nullptr, argv.data(), environ) != 0) p.pid = -1;
+  posix_spawn_file_actions_destroy(&fa);
+  // The server prints its address once it listens.
+  const std::regex listening(R"(http://127\.0\.0\.1:(\d+)/)");
+  const auto deadline = Clock::now() + std::chrono::seconds(20);
+  while (p.pid > 0 && Clock::now() < deadline) {
+    std::ifstream f(log);
+    std::string line;
+    std::smatch m;
+    while (std::getline(f, line))
+      if (std::regex_search(line, m, listening))
+        p.port = static_cast<unsigned short>(std::stoi(m[1]));
+    if (p.port) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return p;
+}
+
+json get_json(unsigned short port, const std::string& target) {
+  return json::parse(http_call(port, "GET", target).body);
+}
+
+TEST(ServeE2E, KillNineDuringAMissionLosesNoFinishedTurnAndTheMissionResumes) {
+  avk::testing::TempDb db("avk_e2e_kill");
+  const std::string log = db.path() + ".log";
+  ServeProcess first = spawn_serve(db.path(), log);
+  ASSERT_GT(first.port, 0) << "the server did not start";
+  ASSERT_EQ(http_call(first.port, "POST", "/api/v1/vehicles/sim-usim/missions", small_mission(),
+                      control_headers())
+                .status,
+            201);
+  json before;
+  const auto deadline = Clock::now() + std::chrono::seconds(60);
+  while (Clock::now() < deadline) {
+    before = get_json(first.port, "/api/v1/turns?mission=1&status=ok");
+    if (before["items"].size() >= 2) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ASSERT_GE(before["items"].size(), 2u);
+  ASSERT_EQ(kill(first.pid, SIGKILL), 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(first.pid, &status, 0), first.pid);
+
+  ServeProcess second = spawn_serve(db.path(), log);
+  ASSERT_GT(second.port, 0);
+  EXPECT_EQ(get_json(second.port, "/api/v1/missions/1")["status"], "interrupted");
+  for (const auto& t : before["items"]) {
+    const json again = get_json(second.port, "/api/v1/turns/" + t["id"].dump());
+    EXPECT_EQ(again["advance_m"], t["advance_m"]);
+  }
+  ASSERT_EQ(
+      http_call(second.port, "POST", "/api/v1/missions/1/resume", "", control_headers()).status,
+      200);
+  json m;
+  const auto done_by = Clock::now() + std::chrono::seconds(60);
+  while (Clock::now() < done_by) {
+    m = get_json(second.port, "/api/v1/missions/1");
+    if (m["status"] == "done") break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  EXPECT_EQ(m["status"], "done");
+  EXPECT_EQ(get_json(second.port, "/api/v1/turns?mission=1&status=ok")["items"].size(), 4u);
+  // SIGTERM: a graceful stop.
+  ASSERT_EQ(kill(second.pid, SIGTERM), 0);
+  ASSERT_EQ(waitpid(second.pid, &status, 0), second.pid);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  std::filesystem::remove(log);
+  std::filesystem::remove(db.path() + ".token");
+}
+
+}  // namespace
