@@ -6,12 +6,14 @@
 #include <sys/wait.h>
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <chrono>
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
 #include <set>
+#include <sstream>
 #include <thread>
 
 #include "server/http/http_server.hpp"
@@ -120,10 +122,13 @@ struct ServeProcess {
   unsigned short port = 0;
 };
 
-ServeProcess spawn_serve(const std::string& db, const std::string& log) {
-  std::vector<std::string> args = {AVK_BINARY, "serve", "--db",    db,     "--sim",
-                                   "--port",   "0",     "--token", kToken, "--realtime-factor",
-                                   "100"};
+ServeProcess spawn_serve(const std::string& db, const std::string& log, bool with_token = true) {
+  std::vector<std::string> args = {AVK_BINARY,          "serve", "--db", db, "--sim", "--port", "0",
+                                   "--realtime-factor", "100"};
+  if (with_token) {
+    args.push_back("--token");
+    args.push_back(kToken);
+  }
   std::vector<char*> argv;
   for (auto& a : args)
     argv.push_back(a.data());
@@ -201,6 +206,41 @@ TEST(ServeE2E, KillNineDuringAMissionLosesNoFinishedTurnAndTheMissionResumes) {
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
   std::filesystem::remove(log);
   std::filesystem::remove(db.path() + ".token");
+}
+
+TEST(ServeE2E, FirstStartWritesAPrivateTokenAndPrintsTheDashboardUrl) {
+  avk::testing::TempDb db("avk_e2e_token");
+  const std::string log = db.path() + ".log";
+  const std::string token_file = db.path() + ".token";
+  std::filesystem::remove(token_file);
+  ServeProcess p = spawn_serve(db.path(), log, false);
+  ASSERT_GT(p.port, 0);
+  struct stat st {};
+  ASSERT_EQ(::stat(token_file.c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 0777, 0600u);
+  std::string token;
+  std::getline(std::ifstream(token_file), token);
+  EXPECT_GE(token.size(), 16u);
+  std::stringstream printed;
+  printed << std::ifstream(log).rdbuf();
+  EXPECT_NE(printed.str().find("?token=" + token), std::string::npos) << printed.str();
+  // Control needs it; reads on loopback do not.
+  EXPECT_EQ(http_call(p.port, "POST", "/api/v1/vehicles/sim-usim/missions", small_mission(),
+                      {{"Content-Type", "application/json"}})
+                .status,
+            401);
+  EXPECT_EQ(http_call(p.port, "POST", "/api/v1/vehicles/sim-usim/missions", small_mission(),
+                      {{"Content-Type", "application/json"}, {"Authorization", "Bearer " + token}})
+                .status,
+            201);
+  EXPECT_EQ(http_call(p.port, "GET", "/api/v1/missions").status, 200);
+  ASSERT_EQ(kill(p.pid, SIGTERM), 0);
+  int status = 0;
+  waitpid(p.pid, &status, 0);
+  // The mission it was running is stored as interrupted, not lost.
+  EXPECT_TRUE(WIFEXITED(status));
+  std::filesystem::remove(log);
+  std::filesystem::remove(token_file);
 }
 
 }  // namespace
