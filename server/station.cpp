@@ -596,21 +596,7 @@ struct Station::Impl {
     const auto now = std::chrono::steady_clock::now();
     if (c.table && now - c.checked < std::chrono::seconds(1)) return {c.table, c.fine};
     c.checked = now;
-    store::TurnFilter f;
-    f.status = kin::TurnStatus::ok;
-    f.limit = 1;
-    // The newest ok turn id tells whether anything changed since the last build.
-    std::int64_t newest = 0;
-    for (std::int64_t after = 0;;) {
-      f.after_id = after;
-      f.limit = 1000;
-      const auto rows = db().list_turns(f);
-      if (rows.empty()) break;
-      for (const auto& r : rows)
-        if (r.vehicle_id == vid) newest = std::max(newest, r.id);
-      after = rows.back().id;
-      if (rows.size() < 1000) break;
-    }
+    const std::int64_t newest = db().newest_ok_turn_id(vid);
     const auto snap = db().latest_ckt_snapshot();
     const std::int64_t snap_id = snap && snap->table.vehicle_id == vid ? snap->id : 0;
     if (c.table && newest == c.turns_seen && snap_id == c.snapshot_seen) return {c.table, c.fine};

@@ -20,7 +20,7 @@ namespace {
 
 // Each step moves the schema from version i to i + 1. Steps are append-only: a released step is
 // never edited, because databases in the field have already run it.
-constexpr std::array<const char*, 3> kMigrations = {
+constexpr std::array<const char*, 4> kMigrations = {
     R"sql(
 CREATE TABLE vehicles (
   id            TEXT PRIMARY KEY,
@@ -125,6 +125,10 @@ CREATE TABLE yaw_models (
   document                TEXT NOT NULL
 );
 CREATE INDEX yaw_models_by_vehicle ON yaw_models (vehicle_id, id);
+)sql",
+    // The server asks every second whether a vehicle's table changed: its newest ok turn.
+    R"sql(
+CREATE INDEX turns_by_vehicle_status ON turns (vehicle_id, status, id);
 )sql",
 };
 
@@ -429,6 +433,14 @@ std::int64_t Store::store_turn(std::int64_t mission_id, const kinematics::TurnSe
   return id;
 }
 
+std::int64_t Store::newest_ok_turn_id(const std::string& vehicle_id) {
+  auto s =
+      db_.prepare("SELECT coalesce(max(id), 0) FROM turns WHERE vehicle_id = ? AND status = 'ok'");
+  s.bind(1, vehicle_id);
+  s.step();
+  return s.column_int64(0);
+}
+
 std::vector<TurnRow> Store::list_turns(const TurnFilter& filter) {
   // Every filter is always bound; a NULL parameter switches its condition off, so one fixed
   // statement serves all combinations. Ranges keep the (speed, goal) index usable.
@@ -686,8 +698,7 @@ StoredModel read_model(const Statement& s) {
   m.validation_mse_m2 = s.column_optional_double(5);
   m.validation_heading_rms_deg = s.column_optional_double(6);
   try {
-    m.training_missions =
-        nlohmann::json::parse(s.column_text(3)).get<std::vector<std::int64_t>>();
+    m.training_missions = nlohmann::json::parse(s.column_text(3)).get<std::vector<std::int64_t>>();
     m.model = kinematics::parse_yaw_model_json(s.column_text(7));
   } catch (const std::exception& e) {
     throw StoreError("yaw model " + std::to_string(m.id) + " is corrupt: " + e.what());

@@ -193,6 +193,9 @@ class Store {
   std::int64_t store_turn(std::int64_t mission_id, const kinematics::TurnSequence& raw,
                           kinematics::TurnStatus status, const std::string& reason,
                           std::optional<double> condition_set_time_s = std::nullopt);
+  // The id of the vehicle's newest ok turn (0 without any): tells a cache whether the vehicle's
+  // table changed.
+  std::int64_t newest_ok_turn_id(const std::string& vehicle_id);
   // Oldest first, at most filter.limit rows with id > filter.after_id.
   std::vector<TurnRow> list_turns(const TurnFilter& filter);
   // Throws StoreError naming the turn when its stored JSON is corrupt.

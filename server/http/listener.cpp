@@ -73,6 +73,10 @@ void Listener::on_accept(beast::error_code ec, tcp::socket socket) {
     });
     return;
   }
+  // Small frames (a stream message after a client's subscribe, an API answer) must not wait for
+  // the peer's delayed ACK: Nagle would hold them up to 40 ms.
+  beast::error_code nodelay_ec;
+  socket.set_option(tcp::no_delay(true), nodelay_ec);
   std::make_shared<HttpSession>(std::move(socket), state_)->run();
   do_accept();
 }

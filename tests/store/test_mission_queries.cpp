@@ -71,14 +71,15 @@ void expect_mean_sd(const std::optional<avk::kinematics::MeanSd>& got, double me
 
 }  // namespace
 
-TEST(MissionQueries, SchemaIsVersionThree) {
+TEST(MissionQueries, SchemaIsVersionFour) {
   Store s(":memory:");
-  EXPECT_EQ(schema_version(), 3);
-  EXPECT_EQ(s.user_version(), 3);
+  EXPECT_EQ(schema_version(), 4);
+  EXPECT_EQ(s.user_version(), 4);
   EXPECT_FALSE(migration_step_sql(0).empty());
   EXPECT_NE(migration_step_sql(1).find("normalized_samples"), std::string_view::npos);
   EXPECT_NE(migration_step_sql(2).find("yaw_models"), std::string_view::npos);
-  EXPECT_THROW(migration_step_sql(3), std::out_of_range);
+  EXPECT_NE(migration_step_sql(3).find("turns_by_vehicle_status"), std::string_view::npos);
+  EXPECT_THROW(migration_step_sql(4), std::out_of_range);
   EXPECT_THROW(migration_step_sql(-1), std::out_of_range);
 }
 
@@ -514,4 +515,14 @@ TEST(MissionQueries, YawModelsRoundTripAndAreFoundByVehicle) {
   EXPECT_FALSE(s.latest_model(std::string("otter")).has_value());
   EXPECT_EQ(s.list_models().size(), 2u);
   EXPECT_EQ(s.list_models(std::string("usim-1")).size(), 1u);
+}
+
+TEST(MissionQueries, NewestOkTurnIdPerVehicle) {
+  Store s(":memory:");
+  EXPECT_EQ(s.newest_ok_turn_id("usim-1"), 0);
+  const auto m = make_mission(s);
+  const auto a = s.store_turn(m, arc(1.0, 40.0, 1), TurnStatus::ok, "");
+  s.store_turn(m, arc(1.0, 40.0, 2), TurnStatus::aborted, "containment");
+  EXPECT_EQ(s.newest_ok_turn_id("usim-1"), a);
+  EXPECT_EQ(s.newest_ok_turn_id("other"), 0);
 }

@@ -1,0 +1,662 @@
+// Load on the live stream /api/v1/stream (issue 6, "Load"): 100 WebSocket clients subscribed to
+// nav while a mission runs, plus one client that subscribes to nav and turn and then never reads.
+// The target is p99 delivery latency < 50 ms, and the stalled client must not slow the others.
+//
+//   bench_stream_load [--clients N] [--seconds D] [--baseline-seconds B] [--realtime-factor K]
+//                     [--quickack]
+//
+// The vehicle loop publishes nav at 10 Hz by itself; its messages carry no send time, so the
+// bench publishes its own probes on nav too (10 Hz, {"probe_ns":…}) and the clients take
+// receive time - probe_ns. A baseline phase without the stalled client comes first, so its
+// effect is a comparison rather than a guess. The clients run asynchronously on one io thread
+// in this process, which shares the 2 cores with the server: the latency includes their own
+// queueing, as a dashboard's would.
+//
+// --quickack makes each client acknowledge at once after it sends its subscribe, instead of
+// delaying the ACK as Linux does for a peer that just sent data: a diagnostic for whether the
+// server's first frames after a client command wait on Nagle's algorithm.
+
+#include <netinet/in.h>
+#include <netinet/tcp.h>
+#include <sys/socket.h>
+
+#include <algorithm>
+#include <array>
+#include <atomic>
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <boost/beast/websocket.hpp>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "server/cli/cli.hpp"
+#include "server/http/http_server.hpp"
+#include "server/station.hpp"
+#include "sim/sim_config.hpp"
+#include "store/store.hpp"
+#include "support/temp_db.hpp"
+
+namespace {
+
+namespace beast = boost::beast;
+namespace http = beast::http;
+namespace websocket = beast::websocket;
+namespace net = boost::asio;
+using tcp = net::ip::tcp;
+using json = nlohmann::json;
+using Clock = std::chrono::steady_clock;
+using namespace std::chrono_literals;
+
+constexpr const char* kVehicle = "sim-usim";
+constexpr const char* kToken = "bench-stream-load-token";
+constexpr int kProbeHz = 10;
+
+struct Options {
+  int clients = 100;
+  double seconds = 20.0;
+  double baseline_seconds = 5.0;
+  double realtime_factor = 1.0;
+  bool quickack = false;
+};
+
+Options parse_options(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const auto value = [&]() -> double {
+      if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
+      return std::stod(argv[++i]);
+    };
+    if (a == "--clients")
+      o.clients = static_cast<int>(value());
+    else if (a == "--seconds")
+      o.seconds = value();
+    else if (a == "--baseline-seconds")
+      o.baseline_seconds = value();
+    else if (a == "--realtime-factor")
+      o.realtime_factor = value();
+    else if (a == "--quickack")
+      o.quickack = true;
+    else
+      throw std::invalid_argument(
+          "unknown option " + a +
+          " (--clients N, --seconds D, --baseline-seconds B, --realtime-factor K, --quickack)");
+  }
+  // Bounded so that a typo cannot start an endless or descriptor-exhausting run.
+  if (o.clients < 1 || o.clients > 1000) throw std::invalid_argument("--clients: 1..1000");
+  if (!(o.seconds >= 1.0 && o.seconds <= 120.0)) throw std::invalid_argument("--seconds: 1..120");
+  if (!(o.baseline_seconds >= 0.0 && o.baseline_seconds <= 60.0))
+    throw std::invalid_argument("--baseline-seconds: 0..60");
+  if (!(o.realtime_factor > 0.0 && o.realtime_factor <= 1000.0))
+    throw std::invalid_argument("--realtime-factor: (0, 1000]");
+  return o;
+}
+
+tcp::endpoint loopback(unsigned short port) {
+  return {net::ip::make_address("127.0.0.1"), port};
+}
+
+std::int64_t now_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(Clock::now().time_since_epoch())
+      .count();
+}
+
+// One request on its own connection; the deadline keeps a stuck server from hanging the bench.
+std::pair<int, std::string> http_call(unsigned short port, http::verb method,
+                                      const std::string& target, const std::string& body = "") {
+  net::io_context ioc;
+  beast::tcp_stream stream(ioc);
+  stream.expires_after(10s);
+  stream.connect(loopback(port));
+  http::request<http::string_body> req{method, target, 11};
+  req.set(http::field::host, "127.0.0.1:" + std::to_string(port));
+  req.set(http::field::authorization, std::string("Bearer ") + kToken);
+  if (method == http::verb::post) {
+    req.set(http::field::content_type, "application/json");
+    req.body() = body;
+    req.prepare_payload();
+  }
+  beast::flat_buffer buffer;
+  http::response<http::string_body> res;
+  beast::error_code ec;
+  http::async_write(stream, req, [&](beast::error_code e, std::size_t) {
+    if (e) {
+      ec = e;
+      return;
+    }
+    http::async_read(stream, buffer, res, [&](beast::error_code e2, std::size_t) { ec = e2; });
+  });
+  ioc.run();
+  if (ec) throw beast::system_error(ec);
+  return {static_cast<int>(res.result_int()), res.body()};
+}
+
+// The phase a message arrived in: set by the main thread, read by the io thread.
+std::atomic<int> g_phase{-1};
+constexpr int kPhases = 2;  // 0: baseline, 1: with the stalled client
+
+struct PhaseStats {
+  std::uint64_t messages = 0;  // every message that arrived in the phase
+  std::uint64_t nav = 0;       // nav messages (vehicle and probe)
+  std::vector<std::int64_t> latency_ns;
+};
+
+// A well-behaved dashboard: subscribes to nav and reads everything as fast as it comes.
+class Client : public std::enable_shared_from_this<Client> {
+ public:
+  Client(net::io_context& ioc, unsigned short port, std::size_t probes_total,
+         std::atomic<int>& subscribed_count, bool quickack)
+      : ws_(ioc), port_(port), quickack_(quickack), subscribed_count_(subscribed_count) {
+    got_probe.assign(probes_total, 0);
+    probe_latency_ns.assign(probes_total, -1);
+  }
+
+  void start() {
+    beast::get_lowest_layer(ws_).expires_after(10s);
+    beast::get_lowest_layer(ws_).async_connect(
+        loopback(port_), beast::bind_front_handler(&Client::on_connect, shared_from_this()));
+  }
+
+  // On the io thread.
+  void close() {
+    if (ended_ || closing_) return;
+    closing_ = true;
+    ws_.async_close(websocket::close_code::normal, [self = shared_from_this()](beast::error_code) {
+      beast::error_code ignored;
+      beast::get_lowest_layer(self->ws_).socket().close(ignored);
+    });
+  }
+
+  std::array<PhaseStats, kPhases> phase{};
+  std::uint64_t nav_seq_gaps = 0;  // nav messages skipped (latest-value-wins may drop some)
+  std::vector<std::uint8_t> got_probe;
+  std::vector<std::int64_t> probe_latency_ns;  // by probe id; -1: not received
+  bool subscribed = false;
+  beast::error_code end_error;  // how the read loop ended
+  std::string failure;
+
+ private:
+  void on_connect(beast::error_code ec) {
+    if (ec) return fail("connect", ec);
+    beast::get_lowest_layer(ws_).socket().set_option(tcp::no_delay(true));
+    // From here the websocket keeps its own deadlines; the tcp_stream's would cut a long read.
+    beast::get_lowest_layer(ws_).expires_never();
+    auto timeouts = websocket::stream_base::timeout::suggested(beast::role_type::client);
+    timeouts.handshake_timeout = 5s;
+    ws_.set_option(timeouts);
+    ws_.async_handshake("127.0.0.1:" + std::to_string(port_), "/api/v1/stream",
+                        beast::bind_front_handler(&Client::on_handshake, shared_from_this()));
+  }
+
+  void on_handshake(beast::error_code ec) {
+    if (ec) return fail("handshake", ec);
+    do_read();
+  }
+
+  void do_read() {
+    ws_.async_read(buffer_, beast::bind_front_handler(&Client::on_read, shared_from_this()));
+  }
+
+  void on_read(beast::error_code ec, std::size_t) {
+    const std::int64_t received_ns = now_ns();
+    if (ec) {
+      ended_ = true;
+      end_error = ec;
+      return;
+    }
+    const auto text = beast::buffers_to_string(buffer_.data());
+    buffer_.consume(buffer_.size());
+    handle(text, received_ns);
+    do_read();
+  }
+
+  void handle(const std::string& text, std::int64_t received_ns) {
+    const int p = g_phase.load(std::memory_order_relaxed);
+    if (p >= 0 && p < kPhases) ++phase[static_cast<std::size_t>(p)].messages;
+    const json m = json::parse(text, nullptr, false);
+    if (m.is_discarded()) return;
+    if (const auto type = m.find("type"); type != m.end()) {
+      if (*type == "hello") {
+        subscribe_text_ = R"({"subscribe":["nav"]})";
+        ws_.async_write(net::buffer(subscribe_text_),
+                        [self = shared_from_this()](beast::error_code e, std::size_t) {
+                          if (e) return self->fail("subscribe", e);
+                          if (self->quickack_) self->ack_at_once();
+                        });
+      } else if (*type == "subscribed" && !subscribed) {
+        subscribed = true;
+        ++subscribed_count_;
+      }
+      return;
+    }
+    if (m.value("topic", "") != "nav") return;
+    if (p >= 0 && p < kPhases) ++phase[static_cast<std::size_t>(p)].nav;
+    const auto seq = m.value("seq", std::uint64_t{0});
+    if (last_nav_seq_ != 0 && seq > last_nav_seq_ + 1) nav_seq_gaps += seq - last_nav_seq_ - 1;
+    last_nav_seq_ = std::max(last_nav_seq_, seq);
+    const auto data_it = m.find("data");
+    if (data_it == m.end() || !data_it->is_object() || !data_it->contains("probe_ns")) return;
+    const json& data = *data_it;
+    const auto id = data.value("probe", std::size_t{0});
+    const auto probe_phase = data.value("phase", -1);
+    const std::int64_t latency = received_ns - data["probe_ns"].get<std::int64_t>();
+    if (id < got_probe.size()) {
+      got_probe[id] = 1;
+      probe_latency_ns[id] = latency;
+    }
+    if (probe_phase >= 0 && probe_phase < kPhases)
+      phase[static_cast<std::size_t>(probe_phase)].latency_ns.push_back(latency);
+  }
+
+  void ack_at_once() {
+    int one = 1;
+    ::setsockopt(beast::get_lowest_layer(ws_).socket().native_handle(), IPPROTO_TCP, TCP_QUICKACK,
+                 &one, sizeof one);
+  }
+
+  void fail(const char* what, beast::error_code ec) {
+    if (failure.empty()) failure = std::string(what) + ": " + ec.message();
+    ended_ = true;
+    end_error = ec;
+  }
+
+  websocket::stream<beast::tcp_stream> ws_;
+  unsigned short port_;
+  bool quickack_;
+  bool ended_ = false;
+  bool closing_ = false;
+  beast::flat_buffer buffer_;
+  std::string subscribe_text_;
+  std::uint64_t last_nav_seq_ = 0;
+  std::atomic<int>& subscribed_count_;
+};
+
+// Connects and subscribes to nav and turn, then stops reading: its small receive window fills
+// and the server's writes to it stay pending. Every operation has a deadline.
+class StalledClient {
+ public:
+  explicit StalledClient(unsigned short port) : ws_(ioc_) {
+    auto& socket = ws_.next_layer();
+    socket.open(tcp::v4());
+    socket.set_option(net::socket_base::receive_buffer_size(4096));
+    socket.connect(loopback(port));
+    check(run([&](auto h) {
+            ws_.async_handshake("127.0.0.1:" + std::to_string(port), "/api/v1/stream", h);
+          }),
+          "handshake");
+    const std::string subscribe = R"({"subscribe":["nav","turn"]})";
+    check(run([&](auto h) { ws_.async_write(net::buffer(subscribe), h); }), "subscribe");
+  }
+
+  struct Drain {
+    std::uint64_t messages = 0;
+    std::uint64_t first_nav_seq = 0, last_nav_seq = 0;
+    std::uint64_t nav_gaps = 0;  // frames the server replaced while its write was stuck
+    std::uint64_t turn_messages = 0;
+    bool caught_up = false;                        // reached a nav frame published after the run
+    std::optional<websocket::close_reason> close;  // a close frame the server sent
+    beast::error_code end;
+  };
+
+  // Reads what has piled up, until a nav frame at or past live_seq (it has caught up with the
+  // live stream), the server's close, an error or the limit.
+  Drain drain(std::uint64_t live_seq, std::chrono::milliseconds limit) {
+    Drain d;
+    const auto deadline = Clock::now() + limit;
+    beast::flat_buffer buffer;
+    while (Clock::now() < deadline) {
+      buffer.consume(buffer.size());
+      const auto left =
+          std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
+      const auto ec = run([&](auto h) { ws_.async_read(buffer, h); }, std::max(left, 1ms));
+      if (ec) {
+        d.end = ec;
+        if (ec == websocket::error::closed) d.close = ws_.reason();
+        break;
+      }
+      ++d.messages;
+      const json m = json::parse(beast::buffers_to_string(buffer.data()), nullptr, false);
+      if (m.is_discarded() || !m.contains("topic")) continue;
+      if (m["topic"] == "turn") ++d.turn_messages;
+      if (m["topic"] == "nav") {
+        const auto seq = m.value("seq", std::uint64_t{0});
+        if (d.first_nav_seq == 0) d.first_nav_seq = seq;
+        if (d.last_nav_seq != 0 && seq > d.last_nav_seq + 1) d.nav_gaps += seq - d.last_nav_seq - 1;
+        d.last_nav_seq = seq;
+        if (seq >= live_seq) {
+          d.caught_up = true;
+          break;
+        }
+      }
+    }
+    return d;
+  }
+
+ private:
+  static void check(beast::error_code ec, const char* what) {
+    if (ec) throw std::runtime_error(std::string("stalled client: ") + what + ": " + ec.message());
+  }
+
+  template <class Start>
+  beast::error_code run(Start start, std::chrono::milliseconds limit = 5000ms) {
+    bool done = false;
+    beast::error_code result;
+    start([&](beast::error_code ec, auto&&...) {
+      done = true;
+      result = ec;
+    });
+    ioc_.restart();
+    ioc_.run_for(limit);
+    if (!done) {
+      beast::error_code ignored;
+      ws_.next_layer().close(ignored);
+      ioc_.restart();
+      ioc_.run();
+      return beast::error::timeout;
+    }
+    return result;
+  }
+
+  net::io_context ioc_;
+  websocket::stream<tcp::socket> ws_;
+};
+
+double percentile_ms(const std::vector<std::int64_t>& sorted, double q) {
+  if (sorted.empty()) return 0.0;
+  const auto i = static_cast<std::size_t>(q * static_cast<double>(sorted.size() - 1) + 0.5);
+  return static_cast<double>(sorted[std::min(i, sorted.size() - 1)]) * 1e-6;
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream f(path);
+  if (!f) throw std::runtime_error("cannot read " + path);
+  std::stringstream s;
+  s << f.rdbuf();
+  return s.str();
+}
+
+// Publishes probes on nav at kProbeHz for `seconds`, numbering them from `first`.
+std::size_t publish_probes(avk::server::StreamHub& hub, int phase, double seconds,
+                           std::size_t first, Clock::time_point bench_start) {
+  const auto count = static_cast<std::size_t>(seconds * kProbeHz);
+  const auto t0 = Clock::now();
+  for (std::size_t i = 0; i < count; ++i) {
+    std::this_thread::sleep_until(t0 + i * std::chrono::milliseconds(1000 / kProbeHz));
+    const std::string data = R"({"probe_ns":)" + std::to_string(now_ns()) + R"(,"probe":)" +
+                             std::to_string(first + i) + R"(,"phase":)" + std::to_string(phase) +
+                             "}";
+    hub.publish("nav", std::chrono::duration<double>(Clock::now() - bench_start).count(), data);
+  }
+  return count;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options o;
+  try {
+    o = parse_options(argc, argv);
+  } catch (const std::exception& e) {
+    std::cerr << "bench_stream_load: " << e.what() << "\n";
+    return 2;
+  }
+  const auto bench_start = Clock::now();
+  const std::string config_path = std::string(AVK_SOURCE_DIR) + "/examples/thesis-fig4-1.json";
+
+  avk::testing::TempDb db("avk_bench_stream_load");
+  {
+    std::istringstream in;
+    std::ostringstream out, err;
+    const int rc = avk::server::run_cli(
+        {"mission", "run", "--config", config_path, "--db", db.path(), "--sim", "--quiet"}, in, out,
+        err);
+    if (rc != 0) {
+      std::cerr << "bench_stream_load: the mission run failed (" << rc << "): " << err.str()
+                << "\n";
+      return 1;
+    }
+  }
+  double clock = 0.0;
+  {
+    avk::store::Store s(db.path());
+    for (const auto& m : s.list_missions())
+      clock = std::max(clock, s.mission_clock_end_s(m.id).value_or(0.0));
+  }
+
+  avk::server::StreamHub hub;
+  avk::server::StationOptions so;
+  so.db_path = db.path();
+  so.token = kToken;
+  so.server_version = "bench";
+  avk::server::VehicleLoopOptions v;
+  v.setup = avk::sim::default_sim_setup("usim");
+  v.setup.vehicle.id = kVehicle;
+  v.realtime_factor = o.realtime_factor;
+  v.start_clock_s = clock + 1.0;
+  v.start = {0.0, -70.0, 0.0};
+  so.sim = v;
+  avk::server::Station station(so, hub);
+  station.start();
+  avk::server::HttpServerOptions ho;
+  ho.port = 0;
+  ho.threads = 2;
+  ho.server_version = "bench";
+  avk::server::HttpServer server(ho, station, hub);
+  server.start();
+  const unsigned short port = server.port();
+
+  const auto probes_total = static_cast<std::size_t>(o.baseline_seconds * kProbeHz) +
+                            static_cast<std::size_t>(o.seconds * kProbeHz);
+  net::io_context ioc;
+  auto work = net::make_work_guard(ioc);
+  std::thread io([&] { ioc.run(); });
+  std::atomic<int> subscribed{0};
+  std::vector<std::shared_ptr<Client>> clients;
+  for (int i = 0; i < o.clients; ++i) {
+    clients.push_back(std::make_shared<Client>(ioc, port, probes_total, subscribed, o.quickack));
+    net::post(ioc, [c = clients.back()] { c->start(); });
+  }
+  const auto subscribe_deadline = Clock::now() + 15s;
+  while (subscribed.load() < o.clients && Clock::now() < subscribe_deadline)
+    std::this_thread::sleep_for(5ms);
+  const double subscribe_s = std::chrono::duration<double>(Clock::now() - bench_start).count();
+  int exit_code = 0;
+  if (subscribed.load() < o.clients) {
+    std::printf("only %d of %d clients subscribed within 15 s\n", subscribed.load(), o.clients);
+    exit_code = 1;
+  }
+
+  // The mission makes the server record turns and publish mission/turn events meanwhile.
+  const auto [mission_status, mission_body] =
+      http_call(port, http::verb::post, std::string("/api/v1/vehicles/") + kVehicle + "/missions",
+                read_file(config_path));
+  std::int64_t mission_id = 0;
+  if (mission_status == 201) {
+    mission_id = json::parse(mission_body)["id"].get<std::int64_t>();
+  } else {
+    std::printf("POST mission: %d %s\n", mission_status, mission_body.c_str());
+    exit_code = 1;
+  }
+
+  std::size_t probes_sent = 0;
+  std::array<std::size_t, kPhases> probes_in_phase{};
+  g_phase = 0;
+  probes_in_phase[0] = publish_probes(hub, 0, o.baseline_seconds, probes_sent, bench_start);
+  probes_sent += probes_in_phase[0];
+
+  std::optional<StalledClient> stalled;
+  std::string stalled_failure;
+  try {
+    stalled.emplace(port);
+  } catch (const std::exception& e) {
+    stalled_failure = e.what();
+    exit_code = 1;
+  }
+  // The stalled client is the only turn subscriber: the hub's count shows it arrived, and later
+  // whether the server dropped it.
+  for (const auto until = Clock::now() + 5s;
+       hub.subscriber_count("turn") == 0 && Clock::now() < until;)
+    std::this_thread::sleep_for(5ms);
+  const std::size_t stalled_subscribed = hub.subscriber_count("turn");
+
+  g_phase = 1;
+  probes_in_phase[1] = publish_probes(hub, 1, o.seconds, probes_sent, bench_start);
+  probes_sent += probes_in_phase[1];
+  // Let the last probes arrive before the numbers are read.
+  std::this_thread::sleep_for(500ms);
+  g_phase = -1;
+  const std::size_t stalled_still_subscribed = hub.subscriber_count("turn");
+  const std::size_t open_sessions = server.open_stream_sessions();
+  const auto turns_published = hub.published("turn");
+  const auto nav_published = hub.published("nav");
+  std::string mission_state = "?";
+  std::size_t mission_turns = 0;
+  if (mission_id > 0) {
+    const auto m =
+        http_call(port, http::verb::get, "/api/v1/missions/" + std::to_string(mission_id));
+    if (m.first == 200) mission_state = json::parse(m.second).value("status", "?");
+    const auto t = http_call(port, http::verb::get,
+                             "/api/v1/turns?mission=" + std::to_string(mission_id) + "&limit=1000");
+    if (t.first == 200) mission_turns = json::parse(t.second)["items"].size();
+  }
+
+  StalledClient::Drain drained;
+  if (stalled) drained = stalled->drain(nav_published, 5000ms);
+
+  // Close every client; the websocket's handshake timeout bounds each close, and the io thread
+  // is stopped outright if that still does not end it.
+  for (auto& c : clients)
+    net::post(ioc, [c] { c->close(); });
+  work.reset();
+  for (const auto until = Clock::now() + 8s; !ioc.stopped() && Clock::now() < until;)
+    std::this_thread::sleep_for(10ms);
+  ioc.stop();
+  io.join();
+
+  std::printf(
+      "bench_stream_load: %d clients subscribed to nav %.2f s after the start; mission %lld posted "
+      "(%d)\n",
+      subscribed.load(), subscribe_s, static_cast<long long>(mission_id), mission_status);
+  std::printf("\n%-22s %7s %7s %13s %13s %7s %7s %7s %9s %9s\n", "phase", "seconds", "probes",
+              "msgs/client", "nav/client", "p50 ms", "p99 ms", "max ms", "missed", "clients");
+  std::printf("%-22s %7s %7s %13s %13s %7s %7s %7s %9s %9s\n", "", "", "sent", "min/mean",
+              "min/mean", "", "", "", "probes", "missing");
+  for (int p = 0; p < kPhases; ++p) {
+    if (probes_in_phase[static_cast<std::size_t>(p)] == 0) continue;
+    std::vector<std::int64_t> lat;
+    std::uint64_t min_msgs = UINT64_MAX, min_nav = UINT64_MAX, sum_msgs = 0, sum_nav = 0;
+    std::size_t missed = 0, clients_missing = 0;
+    const std::size_t first = p == 0 ? 0 : probes_in_phase[0];
+    const std::size_t last = first + probes_in_phase[static_cast<std::size_t>(p)];
+    for (const auto& c : clients) {
+      const auto& s = c->phase[static_cast<std::size_t>(p)];
+      lat.insert(lat.end(), s.latency_ns.begin(), s.latency_ns.end());
+      min_msgs = std::min(min_msgs, s.messages);
+      min_nav = std::min(min_nav, s.nav);
+      sum_msgs += s.messages;
+      sum_nav += s.nav;
+      std::size_t m = 0;
+      for (std::size_t i = first; i < last; ++i)
+        m += c->got_probe[i] ? 0 : 1;
+      missed += m;
+      clients_missing += m ? 1 : 0;
+    }
+    std::sort(lat.begin(), lat.end());
+    const double n = static_cast<double>(clients.size());
+    char msgs[32], nav[32];
+    std::snprintf(msgs, sizeof msgs, "%llu/%.1f", static_cast<unsigned long long>(min_msgs),
+                  static_cast<double>(sum_msgs) / n);
+    std::snprintf(nav, sizeof nav, "%llu/%.1f", static_cast<unsigned long long>(min_nav),
+                  static_cast<double>(sum_nav) / n);
+    std::printf("%-22s %7.1f %7zu %13s %13s %7.2f %7.2f %7.2f %9zu %9zu\n",
+                p == 0 ? "baseline (no stall)" : "with stalled client",
+                static_cast<double>(probes_in_phase[static_cast<std::size_t>(p)]) / kProbeHz,
+                probes_in_phase[static_cast<std::size_t>(p)], msgs, nav, percentile_ms(lat, 0.5),
+                percentile_ms(lat, 0.99),
+                lat.empty() ? 0.0 : static_cast<double>(lat.back()) * 1e-6, missed,
+                clients_missing);
+  }
+  // Which probes were slow, and for how many clients: one slow publish (all clients late) is a
+  // stall on the server or the io thread, scattered ones are scheduling.
+  std::vector<std::pair<std::int64_t, std::size_t>> worst;  // (max latency over clients, probe)
+  for (std::size_t i = 0; i < probes_sent; ++i) {
+    std::int64_t m = -1;
+    for (const auto& c : clients)
+      m = std::max(m, c->probe_latency_ns[i]);
+    worst.emplace_back(m, i);
+  }
+  std::sort(worst.rbegin(), worst.rend());
+  std::printf(
+      "\nslowest probes (id, phase, s into the phase: latest client ms, clients over 10 ms):");
+  for (std::size_t k = 0; k < worst.size() && k < 5; ++k) {
+    const std::size_t i = worst[k].second;
+    std::size_t over = 0;
+    for (const auto& c : clients)
+      over += c->probe_latency_ns[i] > 10'000'000 ? 1 : 0;
+    const bool base = i < probes_in_phase[0];
+    std::printf("\n  #%zu, %s, %.1f s: %.2f ms, %zu", i, base ? "baseline" : "stalled",
+                static_cast<double>(base ? i : i - probes_in_phase[0]) / kProbeHz,
+                static_cast<double>(worst[k].first) * 1e-6, over);
+  }
+  std::printf("\n");
+  std::uint64_t gaps = 0, max_gaps = 0;
+  std::size_t clients_with_gaps = 0, ended_early = 0;
+  for (const auto& c : clients) {
+    gaps += c->nav_seq_gaps;
+    max_gaps = std::max(max_gaps, c->nav_seq_gaps);
+    clients_with_gaps += c->nav_seq_gaps ? 1 : 0;
+    if (!c->failure.empty()) {
+      ++ended_early;
+      if (ended_early == 1) std::printf("client failure: %s\n", c->failure.c_str());
+    }
+  }
+  std::printf(
+      "\nnav published: %llu (vehicle + %zu probes); nav seq gaps over the whole run: %llu in "
+      "total, %zu clients with any, at most %llu for one client (latest-value-wins may drop)\n",
+      static_cast<unsigned long long>(nav_published), probes_sent,
+      static_cast<unsigned long long>(gaps), clients_with_gaps,
+      static_cast<unsigned long long>(max_gaps));
+  std::printf("mission %lld: %s, %zu turns stored, %llu turn events published\n",
+              static_cast<long long>(mission_id), mission_state.c_str(), mission_turns,
+              static_cast<unsigned long long>(turns_published));
+  if (!stalled_failure.empty()) {
+    std::printf("stalled client: %s\n", stalled_failure.c_str());
+  } else {
+    const std::string ended = drained.caught_up ? "it caught up with the live stream (still open)"
+                              : drained.end == beast::error::timeout
+                                  ? "nothing more within 5 s (still open)"
+                                  : "the connection ended: " + drained.end.message();
+    std::printf(
+        "stalled client: subscribed=%zu, still subscribed after the run=%zu, open stream "
+        "sessions=%zu of %d.\n  Reading afterwards: %llu messages buffered (%llu turn; nav seq "
+        "%llu..%llu, %llu skipped by latest-value-wins, %llu published); %s",
+        stalled_subscribed, stalled_still_subscribed, open_sessions, o.clients + 1,
+        static_cast<unsigned long long>(drained.messages),
+        static_cast<unsigned long long>(drained.turn_messages),
+        static_cast<unsigned long long>(drained.first_nav_seq),
+        static_cast<unsigned long long>(drained.last_nav_seq),
+        static_cast<unsigned long long>(drained.nav_gaps),
+        static_cast<unsigned long long>(nav_published), ended.c_str());
+    if (drained.close)
+      std::printf(", close code %d \"%s\"", static_cast<int>(drained.close->code),
+                  std::string(drained.close->reason.data(), drained.close->reason.size()).c_str());
+    std::printf("\n");
+  }
+  std::printf("target (issue 6): p99 < 50 ms, and the stalled client does not slow the others\n");
+
+  server.stop();
+  station.shutdown();
+  return ended_early > 0 ? 1 : exit_code;
+}
