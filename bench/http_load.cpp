@@ -28,6 +28,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench_station.hpp"
 #include "server/cli/cli.hpp"
 #include "server/http/http_server.hpp"
 #include "server/station.hpp"
@@ -255,47 +256,10 @@ int main(int argc, char** argv) {
     return 2;
   }
 
-  avk::testing::TempDb db("avk_bench_http_load");
   const auto t_setup = Clock::now();
-  {
-    std::istringstream in;
-    std::ostringstream out, err;
-    const int rc = avk::server::run_cli(
-        {"mission", "run", "--config", std::string(AVK_SOURCE_DIR) + "/examples/thesis-fig4-1.json",
-         "--db", db.path(), "--sim", "--quiet"},
-        in, out, err);
-    if (rc != 0) {
-      std::cerr << "bench_http_load: the mission run failed (" << rc << "): " << err.str() << "\n";
-      return 1;
-    }
-  }
-  double clock = 0.0;
-  {
-    avk::store::Store s(db.path());
-    for (const auto& m : s.list_missions())
-      clock = std::max(clock, s.mission_clock_end_s(m.id).value_or(0.0));
-  }
-
-  avk::server::StreamHub hub;
-  avk::server::StationOptions so;
-  so.db_path = db.path();
-  so.token = "bench-http-load-token";
-  so.server_version = "bench";
-  avk::server::VehicleLoopOptions v;
-  v.setup = avk::sim::default_sim_setup("usim");
-  v.setup.vehicle.id = kVehicle;
-  v.realtime_factor = 1.0;
-  v.start_clock_s = clock + 1.0;
-  v.start = {0.0, -70.0, 0.0};
-  so.sim = v;
-  avk::server::Station station(so, hub);
-  station.start();
-  avk::server::HttpServerOptions ho;
-  ho.port = 0;
-  ho.threads = 2;
-  ho.server_version = "bench";
-  avk::server::HttpServer server(ho, station, hub);
-  server.start();
+  avk::bench::BenchStation bench_station("avk_bench_http_load", "bench-http-load-token", 1.0);
+  auto& station = *bench_station.station;
+  auto& server = *bench_station.http;
   const double setup_s = std::chrono::duration<double>(Clock::now() - t_setup).count();
 
   std::printf(

@@ -41,6 +41,7 @@
 #include <thread>
 #include <vector>
 
+#include "bench_station.hpp"
 #include "server/cli/cli.hpp"
 #include "server/http/http_server.hpp"
 #include "server/station.hpp"
@@ -415,46 +416,10 @@ int main(int argc, char** argv) {
   const auto bench_start = Clock::now();
   const std::string config_path = std::string(AVK_SOURCE_DIR) + "/examples/thesis-fig4-1.json";
 
-  avk::testing::TempDb db("avk_bench_stream_load");
-  {
-    std::istringstream in;
-    std::ostringstream out, err;
-    const int rc = avk::server::run_cli(
-        {"mission", "run", "--config", config_path, "--db", db.path(), "--sim", "--quiet"}, in, out,
-        err);
-    if (rc != 0) {
-      std::cerr << "bench_stream_load: the mission run failed (" << rc << "): " << err.str()
-                << "\n";
-      return 1;
-    }
-  }
-  double clock = 0.0;
-  {
-    avk::store::Store s(db.path());
-    for (const auto& m : s.list_missions())
-      clock = std::max(clock, s.mission_clock_end_s(m.id).value_or(0.0));
-  }
-
-  avk::server::StreamHub hub;
-  avk::server::StationOptions so;
-  so.db_path = db.path();
-  so.token = kToken;
-  so.server_version = "bench";
-  avk::server::VehicleLoopOptions v;
-  v.setup = avk::sim::default_sim_setup("usim");
-  v.setup.vehicle.id = kVehicle;
-  v.realtime_factor = o.realtime_factor;
-  v.start_clock_s = clock + 1.0;
-  v.start = {0.0, -70.0, 0.0};
-  so.sim = v;
-  avk::server::Station station(so, hub);
-  station.start();
-  avk::server::HttpServerOptions ho;
-  ho.port = 0;
-  ho.threads = 2;
-  ho.server_version = "bench";
-  avk::server::HttpServer server(ho, station, hub);
-  server.start();
+  avk::bench::BenchStation bench_station("avk_bench_stream_load", kToken, o.realtime_factor);
+  auto& hub = bench_station.hub;
+  auto& station = *bench_station.station;
+  auto& server = *bench_station.http;
   const unsigned short port = server.port();
 
   const auto probes_total = static_cast<std::size_t>(o.baseline_seconds * kProbeHz) +

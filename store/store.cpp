@@ -1,5 +1,6 @@
 #include "store/store.hpp"
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -543,6 +544,13 @@ std::optional<double> Store::mission_clock_end_s(std::int64_t mission_id) {
   s.bind(1, mission_id);
   s.step();
   return s.column_optional_double(0);
+}
+
+double Store::station_clock_end_s() {
+  double end = 0.0;
+  for (const auto& m : list_missions())
+    end = std::max(end, mission_clock_end_s(m.id).value_or(0.0));
+  return end;
 }
 
 std::vector<CellStats> Store::mission_cell_stats(std::int64_t mission_id) {

@@ -184,6 +184,9 @@ class Store {
   // event t_s, condition set end_s); empty when nothing was. A resumed run continues its clock
   // after this so that times never repeat.
   std::optional<double> mission_clock_end_s(std::int64_t mission_id);
+  // The latest of mission_clock_end_s over every mission (0 without any): a station that runs
+  // missions continues its clock after it, so stored times never repeat.
+  double station_clock_end_s();
   // Ordered by speed, then heading change.
   std::vector<CellStats> mission_cell_stats(std::int64_t mission_id);
 

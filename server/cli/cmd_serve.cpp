@@ -91,12 +91,7 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
   if (!(factor > 0.0 && factor <= 10000.0))
     throw UsageError("--realtime-factor must be in (0, 10000]");
 
-  double clock = 0.0;
-  {
-    store::Store db(db_path);
-    for (const auto& m : db.list_missions())
-      clock = std::max(clock, db.mission_clock_end_s(m.id).value_or(0.0));
-  }
+  const double clock = store::Store(db_path).station_clock_end_s();
   if (a.flag("sim")) {
     VehicleLoopOptions v;
     v.setup = sim_setup_from(a, io);

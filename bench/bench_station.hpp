@@ -1,0 +1,63 @@
+#pragma once
+// The station the load benchmarks measure: a database holding one Figure 4-1 mission (so the CKT
+// has turns), the station with its simulated usim vehicle, and the HTTP server on an ephemeral
+// loopback port with two io threads — as `avk serve --sim` runs it.
+
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "server/cli/cli.hpp"
+#include "server/http/http_server.hpp"
+#include "server/station.hpp"
+#include "sim/sim_config.hpp"
+#include "store/store.hpp"
+#include "support/temp_db.hpp"
+
+namespace avk::bench {
+
+struct BenchStation {
+  BenchStation(const std::string& name, const std::string& token, double realtime_factor)
+      : db(name) {
+    std::istringstream in;
+    std::ostringstream out, err;
+    const int rc = server::run_cli(
+        {"mission", "run", "--config", std::string(AVK_SOURCE_DIR) + "/examples/thesis-fig4-1.json",
+         "--db", db.path(), "--sim", "--quiet"},
+        in, out, err);
+    if (rc != 0) throw std::runtime_error("the mission run failed: " + err.str());
+    server::StationOptions so;
+    so.db_path = db.path();
+    so.token = token;
+    so.server_version = "bench";
+    server::VehicleLoopOptions v;
+    v.setup = sim::default_sim_setup("usim");
+    v.setup.vehicle.id = vehicle_id;
+    v.realtime_factor = realtime_factor;
+    v.start_clock_s = store::Store(db.path()).station_clock_end_s() + 1.0;
+    v.start = {0.0, -70.0, 0.0};
+    so.sim = v;
+    station = std::make_unique<server::Station>(so, hub);
+    station->start();
+    server::HttpServerOptions ho;
+    ho.port = 0;
+    ho.threads = 2;
+    ho.server_version = "bench";
+    http = std::make_unique<server::HttpServer>(ho, *station, hub);
+    http->start();
+  }
+  ~BenchStation() {
+    http->stop();
+    station->shutdown();
+  }
+  unsigned short port() const { return http->port(); }
+
+  static constexpr const char* vehicle_id = "sim-usim";
+  testing::TempDb db;
+  server::StreamHub hub;
+  std::unique_ptr<server::Station> station;
+  std::unique_ptr<server::HttpServer> http;
+};
+
+}  // namespace avk::bench
