@@ -19,14 +19,13 @@
 #include "server/cli/cli.hpp"
 #include "store/store.hpp"
 #include "support/cli_run.hpp"
+#include "support/spawn_avk.hpp"
 #include "support/temp_db.hpp"
 
 namespace fs = std::filesystem;
 using avk::store::Store;
 using avk::testing::TempDb;
 using nlohmann::json;
-
-extern char** environ;
 
 namespace {
 
@@ -277,22 +276,7 @@ TEST_F(MissionCli, PersistentExcitationLogsNavigationForIdentification) {
 
 // --- a real process, killed -------------------------------------------------------------
 
-pid_t spawn_avk(const std::vector<std::string>& args, const std::string& log) {
-  std::vector<std::string> argv_s = {AVK_BINARY};
-  argv_s.insert(argv_s.end(), args.begin(), args.end());
-  std::vector<char*> argv;
-  for (auto& a : argv_s)
-    argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&fa, 1, 2);
-  pid_t pid = 0;
-  const int rc = posix_spawn(&pid, AVK_BINARY, &fa, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  return rc == 0 ? pid : -1;
-}
+using avk::testing::spawn_avk;
 
 // Waits (bounded) until the running mission has stored at least n ok turns.
 bool wait_for_ok_turns(const std::string& db, std::int64_t n, pid_t child) {

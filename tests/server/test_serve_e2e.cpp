@@ -20,9 +20,8 @@
 #include "server/station.hpp"
 #include "sim/sim_config.hpp"
 #include "support/http_client.hpp"
+#include "support/spawn_avk.hpp"
 #include "support/temp_db.hpp"
-
-extern char** environ;
 
 namespace {
 
@@ -123,23 +122,14 @@ struct ServeProcess {
 };
 
 ServeProcess spawn_serve(const std::string& db, const std::string& log, bool with_token = true) {
-  std::vector<std::string> args = {AVK_BINARY,          "serve", "--db", db, "--sim", "--port", "0",
-                                   "--realtime-factor", "100"};
+  std::vector<std::string> args = {"serve", "--db", db, "--sim", "--port", "0", "--realtime-factor",
+                                   "100"};
   if (with_token) {
     args.push_back("--token");
     args.push_back(kToken);
   }
-  std::vector<char*> argv;
-  for (auto& a : args)
-    argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&fa, 1, 2);
   ServeProcess p;
-  if (posix_spawn(&p.pid, AVK_BINARY, &fa, nullptr, argv.data(), environ) != 0) p.pid = -1;
-  posix_spawn_file_actions_destroy(&fa);
+  p.pid = avk::testing::spawn_avk(args, log);
   // The server prints its address once it listens.
   const std::regex listening(R"(http://127\.0\.0\.1:(\d+)/)");
   const auto deadline = Clock::now() + std::chrono::seconds(20);
