@@ -1,0 +1,84 @@
+// The REST API (docs/api.md). Errors arrive as RFC 9457 problem+json; they become ApiError with
+// the status, the detail and, for mission validation, errors[] with JSON-pointer fields.
+
+import { getToken, requestToken } from './auth.js';
+
+export const BASE = '/api/v1';
+
+export class ApiError extends Error {
+  constructor(status, problem) {
+    super(problem?.detail || problem?.title || `HTTP ${status}`);
+    this.status = status;
+    this.problem = problem || {};
+    this.errors = Array.isArray(problem?.errors) ? problem.errors : [];
+  }
+}
+
+export function apiUrl(path, params) {
+  const url = new URL(BASE + path, window.location.origin);
+  if (params) {
+    for (const [k, v] of Object.entries(params)) {
+      if (v === undefined || v === null || v === '') continue;
+      if (Array.isArray(v)) v.forEach((item) => url.searchParams.append(k, item));
+      else url.searchParams.set(k, v);
+    }
+  }
+  return url.pathname + url.search;
+}
+
+async function problemOf(res) {
+  const text = await res.text();
+  try {
+    return JSON.parse(text);
+  } catch {
+    return { detail: text.slice(0, 200) || res.statusText };
+  }
+}
+
+export async function getJson(path, params, { signal } = {}) {
+  const res = await fetch(apiUrl(path, params), { headers: { Accept: 'application/json' }, signal });
+  if (!res.ok) throw new ApiError(res.status, await problemOf(res));
+  return res.json();
+}
+
+/** GET as text (CSV); returns {text, headers}. */
+export async function getText(path, params, accept = 'text/csv') {
+  const res = await fetch(apiUrl(path, params), { headers: { Accept: accept } });
+  if (!res.ok) throw new ApiError(res.status, await problemOf(res));
+  return { text: await res.text(), headers: res.headers };
+}
+
+/** POST with the bearer token. A 401 asks for the token inline and retries once with it. */
+export async function postJson(path, body) {
+  for (let attempt = 0; ; attempt++) {
+    const headers = { Accept: 'application/json' };
+    const token = getToken();
+    if (token) headers.Authorization = `Bearer ${token}`;
+    if (body !== undefined) headers['Content-Type'] = 'application/json';
+    const res = await fetch(apiUrl(path), {
+      method: 'POST',
+      headers,
+      body: body === undefined ? undefined : JSON.stringify(body),
+    });
+    if (res.status === 401 && attempt === 0) {
+      await requestToken(); // rejects when the operator cancels
+      continue;
+    }
+    if (!res.ok) throw new ApiError(res.status, await problemOf(res));
+    const text = await res.text();
+    return text ? JSON.parse(text) : {};
+  }
+}
+
+/** Every page of a keyset collection (`{items, next}`), up to maxItems. */
+export async function getAllItems(path, params = {}, maxItems = 10000) {
+  const out = [];
+  let after;
+  for (;;) {
+    const page = await getJson(path, { ...params, limit: 1000, after });
+    out.push(...page.items);
+    if (page.next === null || page.next === undefined || out.length >= maxItems) break;
+    after = page.next;
+  }
+  return out;
+}

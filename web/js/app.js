@@ -1,0 +1,70 @@
+// Start-up: the token, the plots' frames, the views, the router, the REST catch-up and the stream.
+
+import { state, on } from './state.js';
+import { adoptTokenFromUrl, initTokenBar } from './auth.js';
+import { framePlot } from './plots.js';
+import { Stream } from './stream.js';
+import { attachStream, catchUp, onHello, onMessage, onStreamClose, onGap, updateLink } from './sync.js';
+import { initRouter } from './router.js';
+import { initLive, showLive } from './live.js';
+import { initMission, showMission } from './mission.js';
+import { initCkt, showCkt } from './ckt.js';
+import { initCompare, showCompare } from './compare.js';
+import { initModel, showModel } from './model.js';
+import { initExport, showExport } from './export.js';
+import { installTestHooks } from './testhooks.js';
+
+function renderBadge(link) {
+  const b = document.getElementById('link-badge');
+  b.textContent = link;
+  b.className = `badge badge-${link.toLowerCase()}`;
+  b.title = {
+    LIVE: 'Stream connected, navigation fresh',
+    STALE: 'Stream connected, but no fresh navigation from the vehicle',
+    DISCONNECTED: 'No stream: reconnecting with backoff',
+  }[link];
+}
+
+function renderVehicle() {
+  const v = state.vehicle;
+  document.getElementById('vehicle-name').textContent = v
+    ? `${v.id} (${v.kind}, ≤ ${v.max_speed_mps} m/s)`
+    : state.vehicleId ?? 'no vehicle';
+}
+
+function main() {
+  adoptTokenFromUrl();
+  const params = new URLSearchParams(window.location.search);
+  if (params.get('test') === '1') installTestHooks();
+  initTokenBar();
+  for (const el of document.querySelectorAll('.plot')) framePlot(el);
+  initLive();
+  initMission();
+  initCkt();
+  initCompare();
+  initModel();
+  initExport();
+  on('link', renderBadge);
+  on('vehicle', renderVehicle);
+  renderBadge(state.link);
+
+  initRouter({ live: showLive, mission: showMission, ckt: showCkt, compare: showCompare, model: showModel, export: showExport });
+
+  const stream = new Stream({
+    onHello,
+    onMessage,
+    onClose: onStreamClose,
+    onOpen: updateLink,
+    onGap,
+  });
+  attachStream(stream);
+  // REST first (the views have something to show at once), then the stream, whose hello triggers
+  // another catch-up that fills anything missed in between.
+  catchUp()
+    .catch((e) => console.warn('initial read failed; the stream will retry', e))
+    .finally(() => stream.start());
+  // The link badge ages by itself: no message for 2 s turns LIVE into STALE.
+  setInterval(updateLink, 500);
+}
+
+main();

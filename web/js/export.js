@@ -1,0 +1,107 @@
+// The Export view: the CKT (JSON, CSV), the turns (CSV, every page) and the comparison (CSV) as
+// downloads, and a PNG of every plot drawn so far.
+
+import { state, on } from './state.js';
+import { apiUrl, getText } from './api.js';
+import { drawnPlots, downloadPng, onPlotsChanged } from './plots.js';
+import { el, setStatus } from './format.js';
+import { refreshTurnCount } from './sync.js';
+
+const $ = (id) => document.getElementById(id);
+let visible = false;
+
+/** Saves a URL (same origin) as a file through a temporary <a download>. */
+function downloadUrl(url, filename) {
+  const a = el('a', { href: url, download: filename });
+  document.body.append(a);
+  a.click();
+  a.remove();
+}
+
+function downloadText(text, filename, type) {
+  const url = URL.createObjectURL(new Blob([text], { type }));
+  downloadUrl(url, filename);
+  setTimeout(() => URL.revokeObjectURL(url), 10000);
+}
+
+async function needTurns() {
+  await refreshTurnCount().catch(() => {});
+  if (state.okTurns > 0) return true;
+  setStatus($('exp-status'), 'No ok turns yet: there is nothing to export.', 'error');
+  return false;
+}
+
+async function cktDownload(format) {
+  if (!state.vehicleId || !(await needTurns())) return;
+  const vid = encodeURIComponent(state.vehicleId);
+  // The server sends Content-Disposition with its own name; `download` names it if it does not.
+  downloadUrl(apiUrl(`/vehicles/${vid}/ckt/export`, { format }), `ckt-${state.vehicleId}.${format}`);
+  setStatus($('exp-status'), `CKT ${format.toUpperCase()} requested.`, 'ok');
+}
+
+/** Turns as CSV: the collection is paged (at most 1000 a page, cursor in X-Next-After), so the
+ *  pages are fetched and joined here into one file. */
+async function turnsCsv() {
+  const mission = $('exp-turns-mission').value;
+  const status = $('exp-status');
+  setStatus(status, 'Collecting turns…');
+  try {
+    let after;
+    let header = null;
+    const lines = [];
+    for (let page = 0; page < 1000; page++) {
+      const { text, headers } = await getText('/turns', { format: 'csv', limit: 1000, after, mission: mission || undefined });
+      const rows = text.split('\n').filter((l) => l.length > 0);
+      if (rows.length === 0) break;
+      if (header === null) header = rows[0];
+      lines.push(...rows.slice(1));
+      const next = headers.get('X-Next-After');
+      if (!next) break;
+      after = next;
+    }
+    downloadText(`${[header ?? '', ...lines].join('\n')}\n`, `turns${mission ? `-mission-${mission}` : ''}.csv`, 'text/csv');
+    setStatus(status, `Turns CSV: ${lines.length} turns.`, 'ok');
+  } catch (e) {
+    setStatus(status, e.message, 'error');
+  }
+}
+
+async function compareCsv() {
+  if (!state.vehicleId || !(await needTurns())) return;
+  downloadUrl(apiUrl(`/vehicles/${encodeURIComponent(state.vehicleId)}/compare`, { format: 'csv' }), `compare-${state.vehicleId}.csv`);
+  setStatus($('exp-status'), 'Comparison CSV requested.', 'ok');
+}
+
+function renderPlotList() {
+  if (!visible) return;
+  const list = $('exp-plots');
+  const plots = drawnPlots();
+  list.replaceChildren(
+    ...plots.map((p) => el('li', {}, el('button', { type: 'button', class: 'secondary', text: `PNG: ${p.title}`, onclick: () => downloadPng(p.el) }))),
+  );
+  if (plots.length === 0) list.append(el('li', { class: 'small muted', text: 'No plot drawn yet: open the other views first.' }));
+}
+
+function renderMissionChoice() {
+  const sel = $('exp-turns-mission');
+  const keep = sel.value;
+  sel.replaceChildren(el('option', { value: '', text: 'all' }), ...[...state.missions].sort((a, b) => b.id - a.id).map((m) => el('option', { value: m.id, text: `${m.id} · ${m.name}` })));
+  sel.value = keep;
+}
+
+export function initExport() {
+  $('exp-ckt-json').addEventListener('click', () => cktDownload('json'));
+  $('exp-ckt-csv').addEventListener('click', () => cktDownload('csv'));
+  $('exp-turns-csv').addEventListener('click', turnsCsv);
+  $('exp-compare-csv').addEventListener('click', compareCsv);
+  on('missions', renderMissionChoice);
+  onPlotsChanged(renderPlotList);
+}
+
+export function showExport(isVisible) {
+  visible = isVisible;
+  if (visible) {
+    renderMissionChoice();
+    renderPlotList();
+  }
+}

@@ -1,0 +1,401 @@
+// The Live view: the track in the local grid with the region and its buffer, the vehicle and its
+// heading, the turn in progress with its predictions and its commanded goal, the helm readout,
+// the mission's turn-array grid and the event log.
+//
+// Drawing is decoupled from the stream: messages only mark the view dirty, and one
+// requestAnimationFrame redraws at most once a frame, and only while the view is on screen, so a
+// 72,000-point track at 10 Hz costs one plot update per nav message at most.
+
+import { state, on } from './state.js';
+import { C, METHOD_STYLE, baseLayout, equalAxes, draw, showEmpty } from './plots.js';
+import { insetPolygon, ring, along } from './geometry.js';
+import { TrackDecimator } from './decimate.js';
+import { num, meanSd, headingDiff, el } from './format.js';
+
+const RAY_M = 20; // length of the goal-heading and heading rays
+
+let plotEl;
+let visible = false;
+let dirtyPlot = true;
+let dirtyText = true;
+let dirtyProgress = true;
+let frameRequested = false;
+let uirevision = 1;
+// Arrays handed to Plotly keep their identity while unchanged, so Plotly.react recomputes only
+// the traces that did change.
+let regionCache = { key: undefined, region: null, buffer: null, ret: null };
+let recordedCache = { n: -1, x: [], y: [] };
+let trackCache = { version: -1, older: null, tail: null };
+let decimator = null;
+let turnPlotKey = null;
+
+export function initLive() {
+  plotEl = document.getElementById('live-plot');
+  const markPlot = () => request(true);
+  const markText = () => request(false);
+  on('nav', markPlot);
+  on('helm', markText);
+  on('mission', () => {
+    dirtyProgress = true; // the grid is rebuilt on mission messages only, not at 10 Hz
+    request(true);
+  });
+  on('turn', markPlot);
+  on('predictions', markPlot);
+  on('recorded-turns', markPlot);
+  on('restart', markPlot);
+  on('events', renderEvents);
+  on('link', markText);
+  // A "fit" control: double-click already resets the zoom in Plotly; this is the keyboard way.
+  const fit = el('button', { type: 'button', class: 'png', text: 'Fit view', 'aria-label': 'Fit the live plot to the track' });
+  fit.addEventListener('click', () => {
+    uirevision++;
+    request(true);
+  });
+  plotEl.parentElement.querySelector('.plot-buttons')?.prepend(fit);
+}
+
+export function showLive(isVisible) {
+  visible = isVisible;
+  if (visible) {
+    dirtyPlot = true;
+    dirtyText = true;
+    dirtyProgress = true;
+    renderEvents();
+    request(true);
+  }
+}
+
+function request(plot) {
+  if (plot) dirtyPlot = true;
+  dirtyText = true;
+  if (!visible || frameRequested) return;
+  frameRequested = true;
+  requestAnimationFrame(frame);
+}
+
+function frame() {
+  frameRequested = false;
+  if (!visible) return;
+  if (dirtyText) {
+    dirtyText = false;
+    renderReadout();
+    renderTurnPanel();
+  }
+  if (dirtyProgress) {
+    dirtyProgress = false;
+    renderProgress();
+  }
+  if (dirtyPlot) {
+    dirtyPlot = false;
+    const t0 = performance.now();
+    renderPlot();
+    renderTimes.push(performance.now() - t0);
+    if (renderTimes.length > 1000) renderTimes.shift();
+  }
+}
+
+// How long the plot updates took (ms), newest last: the test hook reports them.
+export const renderTimes = [];
+
+/** Forces a synchronous redraw (the test hook measures what a real update costs). */
+export function renderNow() {
+  dirtyPlot = true;
+  dirtyText = true;
+  frame();
+}
+
+// ---------------------------------------------------------------- plot
+
+function regionTraces() {
+  const region = state.mission?.config?.operating_region;
+  const key = region ? JSON.stringify(region) : null;
+  if (key !== regionCache.key) {
+    regionCache.key = key;
+    if (region?.polygon_m?.length >= 3) {
+      const buffer = region.buffer_m ?? 10;
+      regionCache.region = ring(region.polygon_m);
+      regionCache.buffer = ring(insetPolygon(region.polygon_m, buffer));
+      regionCache.bufferM = buffer;
+      regionCache.ret = region.return_point_m ? { x: [region.return_point_m[0]], y: [region.return_point_m[1]] } : { x: [], y: [] };
+    } else {
+      regionCache.region = { x: [], y: [] };
+      regionCache.buffer = { x: [], y: [] };
+      regionCache.ret = { x: [], y: [] };
+    }
+  }
+  return regionCache;
+}
+
+function recordedArrays() {
+  const paths = state.recordedTurns;
+  if (paths.length !== recordedCache.n || paths !== recordedCache.src) {
+    const x = [];
+    const y = [];
+    for (const p of paths) {
+      x.push(...p.x, NaN); // NaN breaks the line between turns
+      y.push(...p.y, NaN);
+    }
+    recordedCache = { n: paths.length, src: paths, x, y };
+  }
+  return recordedCache;
+}
+
+function trackArrays() {
+  if (trackCache.version !== state.track.version) {
+    decimator ??= new TrackDecimator(state.track);
+    const { older, tail } = decimator.update();
+    trackCache = { version: state.track.version, older, tail };
+  }
+  return trackCache;
+}
+
+function renderPlot() {
+  const reg = regionTraces();
+  const rec = recordedArrays();
+  const trk = trackArrays();
+  const nav = state.nav;
+  const turn = state.shownTurn; // in progress, or the last one (ended) until the next starts
+  const faded = turn?.ended ? 0.7 : 1;
+
+  // The current turn: the track since its start, highlighted.
+  let turnX = [];
+  let turnY = [];
+  if (turn?.start) {
+    // From the start pose on: at a high real-time factor a turn may span only a sample or two.
+    const from = state.track.indexAtOrAfter(turn.start.t + 1e-6);
+    const to = turn.ended && turn.endT !== null ? state.track.indexAtOrAfter(turn.endT + 1e-6) : state.track.length;
+    const a = state.track.arrays(from, to);
+    turnX = [turn.start.x, ...a.x];
+    turnY = [turn.start.y, ...a.y];
+  }
+  const pred = (method) => {
+    const p = turn?.predictions?.[method];
+    const s = METHOD_STYLE[method];
+    return {
+      type: 'scatter',
+      mode: 'lines',
+      name: `${s.name} prediction${turn?.ended ? ' (last turn)' : ''}`,
+      opacity: faded,
+      x: p ? p.trajectory.map((q) => q[0]) : [],
+      y: p ? p.trajectory.map((q) => q[1]) : [],
+      line: { color: s.color, dash: s.dash, width: 2 },
+      visible: p ? true : 'legendonly',
+      hoverinfo: 'name',
+    };
+  };
+  // Commanded: the goal heading from the turn's start. Measured: the heading from the vehicle.
+  let goalRay = { x: [], y: [] };
+  if (turn?.start) {
+    const [gx, gy] = along(turn.start.x, turn.start.y, turn.goalHeading, RAY_M);
+    goalRay = { x: [turn.start.x, gx], y: [turn.start.y, gy] };
+  }
+  let headingRay = { x: [], y: [] };
+  if (nav) {
+    const [hx, hy] = along(nav.x_m, nav.y_m, nav.heading_deg, RAY_M);
+    headingRay = { x: [nav.x_m, hx], y: [nav.y_m, hy] };
+  }
+
+  const traces = [
+    { type: 'scatter', mode: 'lines', name: 'region', x: reg.region.x, y: reg.region.y, line: { color: C.black, width: 2 }, hoverinfo: 'skip' },
+    { type: 'scatter', mode: 'lines', name: `buffer (${reg.bufferM ?? '–'} m)`, x: reg.buffer.x, y: reg.buffer.y, line: { color: C.grey, width: 1.5, dash: 'dash' }, hoverinfo: 'skip' },
+    { type: 'scatter', mode: 'markers', name: 'return point', x: reg.ret.x, y: reg.ret.y, marker: { symbol: 'x-thin-open', size: 12, color: C.black, line: { width: 2 } } },
+    // Stored turns as a wide halo under the track: where the turns were, and the history (from
+    // REST) of a mission that ran before the page was opened.
+    { type: 'scatter', mode: 'lines', name: 'recorded turns', x: rec.x, y: rec.y, line: { color: C.sky, width: 6 }, opacity: 0.55, hoverinfo: 'skip', connectgaps: false },
+    // The track: its simplified older part (unchanged between updates) and the raw newest minute.
+    { type: 'scatter', mode: 'lines', name: 'track', legendgroup: 'track', showlegend: false, x: trk.older.x, y: trk.older.y, line: { color: C.blue, width: 1.5 }, hoverinfo: 'skip' },
+    { type: 'scatter', mode: 'lines', name: 'track', legendgroup: 'track', x: trk.tail.x, y: trk.tail.y, line: { color: C.blue, width: 1.5 }, hoverinfo: 'skip' },
+    { type: 'scatter', mode: 'lines', name: turn?.ended ? `last turn (${turn.outcome})` : 'current turn', x: turnX, y: turnY, opacity: faded, line: { color: C.orange, width: 5 }, hoverinfo: 'skip' },
+    pred('avk'),
+    pred('model'),
+    pred('instantaneous'),
+    { type: 'scatter', mode: 'lines', name: 'commanded goal heading', x: goalRay.x, y: goalRay.y, opacity: faded, line: { color: C.vermillion, width: 2.5, dash: 'longdash' }, hoverinfo: 'name' },
+    { type: 'scatter', mode: 'lines', name: 'measured heading', x: headingRay.x, y: headingRay.y, line: { color: C.green, width: 2.5 }, hoverinfo: 'name' },
+    {
+      type: 'scatter',
+      mode: 'markers',
+      name: 'vehicle',
+      x: nav ? [nav.x_m] : [],
+      y: nav ? [nav.y_m] : [],
+      marker: { symbol: 'triangle-up', size: 18, angle: nav?.heading_deg ?? 0, color: C.yellow, line: { color: C.black, width: 2 } },
+      hovertemplate: 'x %{x:.1f} m<br>y %{y:.1f} m<extra>vehicle</extra>',
+    },
+  ];
+  const layout = {
+    ...baseLayout({ margin: { l: 56, r: 10, t: 40, b: 40 } }),
+    ...equalAxes(),
+    uirevision,
+    showlegend: true,
+  };
+  draw(plotEl, traces, layout, { scrollZoom: true });
+  renderTurnPlot(turn, { turnX, turnY, goalRay, preds: [pred('avk'), pred('model'), pred('instantaneous')], nav, faded });
+}
+
+/** The turn close-up: the turn and its predictions at a scale where they can be told apart (the
+ *  track plot shows the whole region). Redrawn only when something in it changed. */
+function renderTurnPlot(turn, { turnX, turnY, goalRay, preds, nav, faded }) {
+  const el = document.getElementById('turn-plot');
+  if (!turn?.start) {
+    if (turnPlotKey !== 'empty') {
+      turnPlotKey = 'empty';
+      showEmpty(el, 'No turn yet.');
+    }
+    return;
+  }
+  const running = !turn.ended;
+  const key = running
+    ? `${turn.start.t}|${turnX.length}|${Object.keys(turn.predictions).length}|${nav?.t_s}`
+    : `${turn.start.t}|ended|${turnX.length}|${Object.keys(turn.predictions).length}`;
+  if (key === turnPlotKey) return;
+  turnPlotKey = key;
+  const traces = [
+    { type: 'scatter', mode: 'lines+markers', name: running ? 'turn so far' : `turn (${turn.outcome})`, x: turnX, y: turnY, line: { color: C.orange, width: 4 }, marker: { size: 4 }, opacity: faded },
+    ...preds.map((t) => ({ ...t, showlegend: false, visible: t.visible === true })),
+    { type: 'scatter', mode: 'lines', name: 'goal heading', showlegend: false, x: goalRay.x, y: goalRay.y, line: { color: C.vermillion, width: 2, dash: 'longdash' }, opacity: faded },
+    {
+      type: 'scatter',
+      mode: 'markers',
+      name: 'vehicle',
+      showlegend: false,
+      x: running && nav ? [nav.x_m] : [],
+      y: running && nav ? [nav.y_m] : [],
+      marker: { symbol: 'triangle-up', size: 14, angle: nav?.heading_deg ?? 0, color: C.yellow, line: { color: C.black, width: 2 } },
+    },
+  ];
+  draw(el, traces, { ...baseLayout({ margin: { l: 44, r: 8, t: 8, b: 36 } }), ...equalAxes('x (m)', 'y (m)'), showlegend: false });
+}
+
+// ---------------------------------------------------------------- text panels
+
+function text(id, v) {
+  const e = document.getElementById(id);
+  if (e && e.textContent !== v) e.textContent = v;
+}
+
+function renderReadout() {
+  const nav = state.nav;
+  const helm = state.helm;
+  text('live-mode', helm?.mode ?? '–');
+  text('live-x', num(nav?.x_m, 1));
+  text('live-y', num(nav?.y_m, 1));
+  text('live-speed', num(nav?.speed_mps, 2));
+  text('live-heading', num(nav?.heading_deg, 1));
+  text('live-dspeed', num(helm?.desired_speed_mps, 2));
+  text('live-dheading', num(helm?.desired_heading_deg, 1));
+  text('live-t', num(nav?.t_s, 1));
+}
+
+function renderTurnPanel() {
+  const turn = state.turn;
+  const nav = state.nav;
+  const last = state.lastTurn;
+  const shown = state.shownTurn;
+  const preds = shown ? Object.keys(shown.predictions) : [];
+  if (turn) {
+    text('turn-cmd-speed', num(turn.speed, 2));
+    text('turn-cmd-dpsi', num(turn.dheading, 0));
+    text('turn-cmd-goal', num(turn.goalHeading, 1));
+    text('turn-meas-speed', num(nav?.speed_mps, 2));
+    text('turn-meas-dpsi', turn.start && nav ? num(headingDiff(nav.heading_deg, turn.start.heading), 1) : '–');
+    text('turn-meas-heading', num(nav?.heading_deg, 1));
+    text('turn-status', `Turn running (attempt ${turn.attempt ?? 1}) · predictions: ${preds.length ? preds.join(', ') : 'none yet'}`);
+  } else {
+    // Between turns the commanded column shows the helm's desired values, the measured the nav.
+    text('turn-cmd-speed', num(state.helm?.desired_speed_mps, 2));
+    text('turn-cmd-dpsi', '–');
+    text('turn-cmd-goal', num(state.helm?.desired_heading_deg, 1));
+    text('turn-meas-speed', num(nav?.speed_mps, 2));
+    text('turn-meas-dpsi', '–');
+    text('turn-meas-heading', num(nav?.heading_deg, 1));
+    text(
+      'turn-status',
+      last
+        ? `No turn running. Last turn: ${last.event}${last.reason ? ` (${last.reason})` : ''}, ${num(last.speed_mps, 2)} m/s, Δψ ${num(last.goal_dheading_deg, 0)}°, advance ${num(last.advance_m, 1)} m, transfer ${num(last.transfer_m, 1)} m${preds.length ? `; drawn with its predictions: ${preds.join(', ')}` : ''}.`
+        : 'No turn running.',
+    );
+  }
+  const parts = [];
+  if (state.conditioningSinceT !== null && nav) parts.push(`conditioning for ${num(nav.t_s - state.conditioningSinceT, 1)} s`);
+  if (typeof last?.condition_set_time_s === 'number') parts.push(`last ${num(last.condition_set_time_s, 1)} s`);
+  if (state.mission?.condition_set_time_s) parts.push(`mission mean ${meanSd(state.mission.condition_set_time_s, 1, ' s')}`);
+  text('live-cst', parts.length ? parts.join(' · ') : '–');
+}
+
+/** A cell's state for the grid: running, done, aborted (given up, or the mission ended without
+ *  it), pending. Each has a mark as well as a colour. */
+export function cellState(c, missionStatus) {
+  if (c.running) return 'running';
+  const planned = c.planned ?? 1;
+  if ((c.ok ?? 0) >= planned) return 'done';
+  if ((c.given_up ?? 0) > 0) return 'aborted';
+  const ended = ['done', 'aborted', 'halted'].includes(missionStatus);
+  if (ended) return 'aborted'; // the mission ended without it
+  // Aborted attempts that will be re-queued stay pending (the label counts them with ✗n).
+  return 'pending';
+}
+
+const MARK = { pending: '·', running: '▶', done: '✓', aborted: '✗' };
+
+function renderProgress() {
+  const grid = document.getElementById('progress-grid');
+  const m = state.mission;
+  text('progress-title', m ? `· mission ${m.id} “${m.name}” · ${m.status}${m.helm_mode ? ` · ${m.helm_mode}` : ''}` : '');
+  if (!m) {
+    grid.replaceChildren(el('p', { class: 'small muted', text: 'No mission yet. Start one in the Mission view.' }));
+    text('progress-counts', '');
+    return;
+  }
+  const cells = m.cells ?? [];
+  if (cells.length === 0) {
+    grid.replaceChildren(el('p', { class: 'small muted', text: m.config?.kind === 'persistent_excitation' ? 'Persistent excitation: no turn array.' : 'No cells.' }));
+    text('progress-counts', '');
+    return;
+  }
+  const speeds = [...new Set(cells.map((c) => c.speed_mps))].sort((a, b) => a - b);
+  const dpsis = [...new Set(cells.map((c) => c.dheading_deg))].sort((a, b) => a - b);
+  const counts = { pending: 0, running: 0, done: 0, aborted: 0 };
+  const table = el('table', { 'aria-label': 'Turn array: rows are speeds, columns heading changes' });
+  table.append(el('tr', {}, el('th', { scope: 'col', text: 'm/s \\ Δψ' }), ...dpsis.map((d) => el('th', { scope: 'col', text: `${d}°` }))));
+  for (const s of speeds) {
+    const tr = el('tr', {}, el('th', { scope: 'row', text: s.toFixed(2) }));
+    for (const d of dpsis) {
+      const c = cells.find((q) => q.speed_mps === s && q.dheading_deg === d);
+      if (!c) {
+        tr.append(el('td'));
+        continue;
+      }
+      const st = cellState(c, m.status);
+      counts[st]++;
+      const extra = (c.aborted ?? 0) + (c.rejected ?? 0);
+      const label = `${MARK[st]} ${c.ok ?? 0}/${c.planned ?? 1}${extra ? ` ✗${extra}` : ''}`;
+      tr.append(
+        el('td', {
+          class: `st-${st}`,
+          text: label,
+          title: `${s} m/s, ${d}°: ${st}; ok ${c.ok ?? 0} of ${c.planned ?? 1}, aborted ${c.aborted ?? 0}, rejected ${c.rejected ?? 0}${c.given_up ? `, given up ${c.given_up}` : ''}`,
+        }),
+      );
+    }
+    table.append(tr);
+  }
+  grid.replaceChildren(table);
+  text('progress-counts', `pending ${counts.pending} · running ${counts.running} · done ${counts.done} · aborted ${counts.aborted}`);
+}
+
+function renderEvents() {
+  if (!visible) return;
+  const list = document.getElementById('event-log');
+  const items = state.events.slice(-200).reverse(); // newest first
+  list.replaceChildren(
+    ...items.map((e) =>
+      el(
+        'li',
+        { class: `lvl-${e.level}` },
+        el('span', { class: 't', text: e.t === null || e.t === undefined ? '' : `${num(e.t, 1)} s` }),
+        el('span', { class: 'kind', text: e.kind }),
+        el('span', { text: e.message + (e.suppressed ? ` (+${e.suppressed} suppressed)` : '') }),
+      ),
+    ),
+  );
+  if (items.length === 0) list.replaceChildren(el('li', { class: 'muted', text: 'No events yet.' }));
+}

@@ -1,0 +1,178 @@
+// Plotly helpers: the palette, common layouts, equal-aspect axes for trajectories, a PNG button on
+// every plot, and the registry of plots the Export view lists.
+
+/** Okabe-Ito: distinguishable with the common colour-vision deficiencies. */
+export const C = {
+  black: '#000000',
+  orange: '#E69F00',
+  sky: '#56B4E9',
+  green: '#009E73',
+  yellow: '#F0E442',
+  blue: '#0072B2',
+  vermillion: '#D55E00',
+  purple: '#CC79A7',
+  grey: '#8a8f98',
+};
+
+/** One colour per speed, in order; with a marker symbol each so the series differ without colour. */
+export const SERIES = [C.blue, C.orange, C.green, C.vermillion, C.purple, C.sky, C.black, C.yellow];
+export const SYMBOLS = ['circle', 'square', 'diamond', 'triangle-up', 'cross', 'x', 'star', 'hexagon'];
+
+/** The prediction methods, drawn the same way in every view. */
+export const METHOD_STYLE = {
+  avk: { color: C.black, dash: 'solid', name: 'AVK (CKT)' },
+  model: { color: C.purple, dash: 'dash', name: 'model' },
+  instantaneous: { color: C.orange, dash: 'dot', name: 'instantaneous' },
+};
+
+const plots = new Map(); // element id -> {el, title, file}
+let onRegistryChange = () => {};
+
+export function onPlotsChanged(fn) {
+  onRegistryChange = fn;
+}
+
+export function drawnPlots() {
+  return [...plots.values()].filter((p) => p.drawn);
+}
+
+function Plotly() {
+  // Loaded by a classic <script defer> before the modules run; looked up lazily all the same.
+  if (!window.Plotly) throw new Error('Plotly did not load (web/node_modules missing? run scripts/web-deps)');
+  return window.Plotly;
+}
+
+/** Wraps a .plot element in a frame with its title and a PNG button (once). */
+export function framePlot(el) {
+  if (plots.has(el.id)) return;
+  const title = el.dataset.title || el.id;
+  const file = el.dataset.file || el.id;
+  const frame = document.createElement('div');
+  frame.className = 'plot-frame';
+  const tools = document.createElement('div');
+  tools.className = 'plot-tools';
+  const label = document.createElement('span');
+  label.className = 'plot-title';
+  label.textContent = title;
+  const btn = document.createElement('button');
+  btn.type = 'button';
+  btn.className = 'png';
+  btn.textContent = 'PNG';
+  btn.setAttribute('aria-label', `Download “${title}” as PNG`);
+  btn.addEventListener('click', () => downloadPng(el));
+  const buttons = document.createElement('span');
+  buttons.className = 'plot-buttons';
+  buttons.append(btn);
+  tools.append(label, buttons);
+  el.replaceWith(frame);
+  frame.append(tools, el);
+  el.setAttribute('role', 'img');
+  el.setAttribute('aria-label', title);
+  plots.set(el.id, { el, title, file, drawn: false, button: btn });
+  btn.disabled = true;
+}
+
+export function downloadPng(el) {
+  const p = plots.get(el.id);
+  if (!p?.drawn) return Promise.resolve();
+  return Plotly().downloadImage(el, {
+    format: 'png',
+    filename: p.file,
+    width: Math.max(600, el.clientWidth),
+    height: Math.max(400, el.clientHeight),
+    scale: 2,
+  });
+}
+
+export function baseLayout(extra = {}) {
+  return {
+    margin: { l: 58, r: 14, t: 34, b: 48 },
+    font: { family: 'system-ui, sans-serif', size: 12, color: '#1b1f24' },
+    paper_bgcolor: '#ffffff',
+    plot_bgcolor: '#ffffff',
+    // Above the plot: below it the legend collides with the x-axis title.
+    legend: { orientation: 'h', x: 0, y: 1.01, yanchor: 'bottom' },
+    hovermode: 'closest',
+    ...extra,
+  };
+}
+
+export function axis(title, extra = {}) {
+  return { title: { text: title }, gridcolor: '#e3e7ee', zerolinecolor: '#b9c0ca', automargin: true, ...extra };
+}
+
+/** Metres on both axes, one metre the same length on each (trajectories are never distorted). */
+export function equalAxes(xTitle = 'x east (m)', yTitle = 'y north (m)') {
+  return {
+    xaxis: axis(xTitle, { constrain: 'domain' }),
+    yaxis: axis(yTitle, { scaleanchor: 'x', scaleratio: 1, constrain: 'domain' }),
+  };
+}
+
+const CONFIG = {
+  responsive: true,
+  displaylogo: false,
+  modeBarButtonsToRemove: ['lasso2d', 'select2d'],
+};
+
+/** Draws (or redraws in place: Plotly.react diffs) a figure into a framed plot element. */
+export function draw(el, traces, layout, config = {}) {
+  if (el.classList.contains('plot-empty')) {
+    el.classList.remove('plot-empty');
+    el.textContent = '';
+  }
+  const p = plots.get(el.id);
+  const res = Plotly().react(el, traces, layout, { ...CONFIG, ...config });
+  if (p && !p.drawn) {
+    p.drawn = true;
+    p.button.disabled = false;
+    onRegistryChange();
+  }
+  return res;
+}
+
+/** Replaces a plot with a short message (no data yet, an error). */
+export function showEmpty(el, message) {
+  if (window.Plotly && el._fullLayout) window.Plotly.purge(el);
+  el.classList.add('plot-empty');
+  el.textContent = message;
+  const p = plots.get(el.id);
+  if (p?.drawn) {
+    p.drawn = false;
+    p.button.disabled = true;
+    onRegistryChange();
+  }
+}
+
+/** Plots drawn while their view was hidden have the wrong size: fit them once shown. */
+export function resizeWithin(container) {
+  if (!window.Plotly) return;
+  for (const el of container.querySelectorAll('.plot')) {
+    if (el._fullLayout) window.Plotly.Plots.resize(el);
+  }
+}
+
+/** Creates a framed plot element on the fly (the Compare view has one per speed). */
+export function makePlot(parent, id, title, file) {
+  const el = document.createElement('div');
+  el.id = id;
+  el.className = 'plot';
+  el.dataset.title = title;
+  el.dataset.file = file;
+  const panel = document.createElement('div');
+  panel.className = 'panel';
+  panel.append(el);
+  parent.append(panel);
+  framePlot(el);
+  return el;
+}
+
+export function forgetPlot(id) {
+  if (plots.delete(id)) onRegistryChange();
+}
+
+export function onPlotClick(el, fn) {
+  if (el.dataset.clickBound) return;
+  el.dataset.clickBound = '1';
+  el.on?.('plotly_click', fn);
+}

@@ -1,0 +1,384 @@
+// Keeps `state` in step with the station: reads everything over REST at start and after every
+// reconnection (catch-up), then applies the stream's messages. A new session_id in the hello means
+// the server restarted: the live track is cleared because the vehicle's history no longer joins.
+
+import { state, emit, addEvent } from './state.js';
+import { getJson, getAllItems } from './api.js';
+import { headingDiff, wrap360 } from './format.js';
+import { simplify } from './decimate.js';
+
+const WARNING_KINDS = new Set([
+  'halted', 'aborted', 'interrupted', 'turn_aborted', 'turn_rejected', 'turn_given_up', 'link',
+  'containment', 'condition_set_timeout',
+]);
+const STALE_AFTER_MS = 2000;
+const MAX_RECORDED_TURNS = 60; // drawn as history in Live; older ones are in the CKT view
+
+let stream = null;
+let catchingUp = null;
+let lastCatchUpMs = -Infinity;
+let helloSeen = false;
+let ckTimer = null;
+
+export function attachStream(s) {
+  stream = s;
+}
+
+/** Re-reads the station over REST. Concurrent calls share one run. */
+export function catchUp() {
+  if (!catchingUp) {
+    catchingUp = doCatchUp().finally(() => {
+      catchingUp = null;
+      lastCatchUpMs = performance.now();
+    });
+  }
+  return catchingUp;
+}
+
+async function doCatchUp() {
+  const health = await getJson('/health');
+  state.serverVersion = health.server_version;
+  if (state.sessionId === null) state.sessionId = health.session_id;
+  state.vehicleId = health.vehicle_id ?? null;
+  const vid = state.vehicleId;
+  if (vid) {
+    const v = await getJson(`/vehicles/${encodeURIComponent(vid)}`);
+    state.vehicle = v;
+    if (v.nav) applyNav({ ...v.nav, link: v.link, vehicle_id: vid }, false);
+    state.helm = {
+      vehicle_id: vid,
+      mode: v.helm_mode,
+      desired_heading_deg: v.desired_heading_deg,
+      desired_speed_mps: v.desired_speed_mps,
+      mission_id: v.mission_id,
+    };
+  }
+  emit('vehicle', state.vehicle);
+  emit('helm', state.helm);
+  await Promise.all([refreshMissions(), refreshTurnCount(), refreshModels()]);
+  const mine = state.missions.filter((m) => !vid || m.vehicle_id === vid);
+  const currentId = state.helm?.mission_id ?? (mine.length ? Math.max(...mine.map((m) => m.id)) : null);
+  if (currentId) await loadMission(currentId, { force: true });
+  else {
+    state.mission = null;
+    state.events = [];
+    emit('mission', null);
+    emit('events', state.events);
+  }
+  await refreshCktSummary();
+  emit('synced');
+}
+
+export async function refreshMissions() {
+  state.missions = await getJson('/missions');
+  emit('missions', state.missions);
+}
+
+export async function refreshModels() {
+  if (!state.vehicleId) return;
+  state.models = await getJson(`/vehicles/${encodeURIComponent(state.vehicleId)}/models`);
+  emit('models', state.models);
+}
+
+/** Whether the vehicle has stored ok turns: without them the CKT and the comparison are 404s, so
+ *  the views say "no turns yet" instead of asking. */
+export async function refreshTurnCount() {
+  if (!state.vehicleId) return;
+  const page = await getJson('/turns', { status: 'ok', limit: 1 });
+  state.okTurns = page.items.length;
+}
+
+/** The CKT's grid (speed range, heading changes): predictions are only asked inside it. */
+export async function refreshCktSummary() {
+  if (!state.vehicleId || state.okTurns === 0) {
+    state.ckt = null;
+    return;
+  }
+  try {
+    state.ckt = await getJson(`/vehicles/${encodeURIComponent(state.vehicleId)}/ckt`);
+  } catch {
+    state.ckt = null;
+  }
+  emit('ckt', state.ckt);
+}
+
+/** Loads a mission's detail; a mission not seen before also brings its event log and the raw
+ *  paths of its recorded turns (the history drawn under the live track). */
+export async function loadMission(id, { force = false } = {}) {
+  const seqBefore = missionMessages;
+  const m = await getJson(`/missions/${id}`);
+  const isNew = force || state.mission?.id !== id;
+  if (!isNew && missionMessages !== seqBefore && state.mission) {
+    // A stream message overtook this answer: its progress is the newer one.
+    m.cells = state.mission.cells;
+    m.status = state.mission.status;
+    m.helm_mode = state.mission.helm_mode;
+    m.live = state.mission.live;
+  }
+  state.mission = m;
+  emit('mission', m);
+  if (isNew) {
+    await Promise.all([loadEvents(id), loadRecordedTurns(id)]);
+  }
+}
+
+async function loadEvents(id) {
+  const items = await getAllItems(`/missions/${id}/events`, {}, 2000);
+  state.events = items.map((e) => ({
+    t: e.t_s,
+    kind: e.kind,
+    level: WARNING_KINDS.has(e.kind) ? 'warning' : 'info',
+    message: e.message,
+  }));
+  emit('events', state.events);
+}
+
+async function loadRecordedTurns(id) {
+  const items = await getAllItems('/turns', { mission: id }, 5000);
+  const recent = items.slice(-MAX_RECORDED_TURNS);
+  const paths = [];
+  // A few requests at a time: the station serves missions, we must not crowd it.
+  for (let i = 0; i < recent.length; i += 4) {
+    const batch = await Promise.all(recent.slice(i, i + 4).map((t) => fetchRawPath(t.id)));
+    paths.push(...batch.filter(Boolean));
+  }
+  state.recordedTurns = paths;
+  emit('recorded-turns', paths);
+}
+
+async function fetchRawPath(turnId) {
+  try {
+    const t = await getJson(`/turns/${turnId}`);
+    const s = t.raw?.samples ?? [];
+    const xs = s.map((p) => p[1]);
+    const ys = s.map((p) => p[2]);
+    // Simplified like the live track (within 0.1 m): 60 turns stay cheap to redraw at 10 Hz.
+    const keep = simplify(xs, ys, 0, xs.length - 1, 0.1);
+    return { id: t.id, status: t.status, x: keep.map((i) => xs[i]), y: keep.map((i) => ys[i]) };
+  } catch {
+    return null;
+  }
+}
+
+// ---------------------------------------------------------------- stream messages
+
+export function onHello(hello) {
+  const restarted = state.sessionId !== null && hello.session_id !== state.sessionId;
+  state.sessionId = hello.session_id;
+  state.serverVersion = hello.server_version;
+  if (restarted) {
+    state.track.clear();
+    state.turn = null;
+    state.shownTurn = null;
+    state.recordedTurns = [];
+    addEvent({ t: null, kind: 'station', level: 'warning', message: 'the server restarted: state re-read' });
+    emit('restart');
+  }
+  // Whatever happened while we were away (turns, events) is read back over REST; the very first
+  // hello follows the start-up read closely, so that one is not repeated.
+  const justRead = !helloSeen && performance.now() - lastCatchUpMs < 3000;
+  helloSeen = true;
+  if (restarted || !justRead) catchUp().catch((e) => console.warn('catch-up failed', e));
+  updateLink();
+}
+
+export function onStreamClose() {
+  updateLink();
+}
+
+export function onGap() {
+  // An event was lost (a slow tab): the REST state is the truth.
+  catchUp().catch((e) => console.warn('catch-up failed', e));
+}
+
+export function onMessage(msg) {
+  const d = msg.data;
+  switch (msg.topic) {
+    case 'nav':
+      if (!state.testFeed) applyNav(d, true); // a ?test=1 hook is feeding nav instead
+      break;
+    case 'helm':
+      applyHelm(d);
+      break;
+    case 'mission':
+      applyMission(d, msg.t);
+      break;
+    case 'turn':
+      applyTurn(d, msg.t);
+      break;
+    case 'status':
+      addEvent({ t: msg.t, kind: d.kind, level: d.level, message: d.message, suppressed: d.suppressed_before });
+      break;
+    default:
+  }
+}
+
+/** A nav sample: the readout and the bounded live track. Samples that repeat the last position
+ *  are not stored: an idle vehicle must not push the track out. */
+export function applyNav(d, live) {
+  if (state.vehicleId && d.vehicle_id && d.vehicle_id !== state.vehicleId) return;
+  state.nav = d;
+  if (live) state.navWallMs = performance.now();
+  if (Number.isFinite(d.x_m) && Number.isFinite(d.y_m)) {
+    const last = state.track.last();
+    const still = last && Math.abs(last.x - d.x_m) < 0.01 && Math.abs(last.y - d.y_m) < 0.01 && d.t_s - last.t < 5;
+    if (!still) state.track.push(d.t_s, d.x_m, d.y_m);
+  }
+  emit('nav', d);
+}
+
+function applyHelm(d) {
+  const prevMode = state.helm?.mode;
+  state.helm = d;
+  if (d.mode === 'CONDITIONING' && prevMode !== 'CONDITIONING') state.conditioningSinceT = state.nav?.t_s ?? null;
+  if (d.mode !== 'CONDITIONING') state.conditioningSinceT = null;
+  emit('helm', d);
+}
+
+let missionMessages = 0; // stream mission messages so far (to order them against REST answers)
+
+function applyMission(d, t) {
+  missionMessages++;
+  if (!state.mission || state.mission.id !== d.mission_id) {
+    // A mission started elsewhere (another tab, the CLI over the API): read it whole.
+    loadMission(d.mission_id).then(refreshMissions).catch((e) => console.warn(e));
+    return;
+  }
+  const stateChanged = state.mission.status !== d.state;
+  state.mission.cells = d.cells;
+  state.mission.status = d.state;
+  state.mission.helm_mode = d.helm_mode;
+  state.mission.live = true;
+  emit('mission', state.mission);
+  if (stateChanged) {
+    // Ended, paused, resumed: the REST detail has the reason and the end time.
+    loadMission(d.mission_id).then(refreshMissions).catch((e) => console.warn(e));
+  }
+}
+
+function applyTurn(d, t) {
+  if (d.event === 'started') {
+    const nav = state.nav;
+    // The event carries the cell's magnitude; the side is where the goal heading lies. The goal
+    // is the initial heading ± Δψ, so the initial heading follows exactly from it.
+    const side = headingDiff(d.goal_heading_deg, nav?.heading_deg ?? 0) < 0 ? -1 : 1;
+    const dheading = side * d.dheading_deg;
+    const heading = wrap360(d.goal_heading_deg - dheading);
+    // The start position: the track at the event's time (a nav frame may lag it).
+    const at = positionAt(t) ?? (nav ? { x: nav.x_m, y: nav.y_m } : null);
+    state.turn = {
+      missionId: d.mission_id,
+      speed: d.speed_mps,
+      dheading,
+      goalHeading: d.goal_heading_deg,
+      attempt: d.attempt,
+      start: at ? { t: typeof t === 'number' ? t : nav.t_s, x: at.x, y: at.y, heading } : null,
+      predictions: {},
+    };
+    state.shownTurn = state.turn;
+    emit('turn', state.turn);
+    fetchPredictions(state.turn);
+    return;
+  }
+  state.lastTurn = { ...d, t };
+  // The ended turn stays drawn (faded) with its predictions until the next one starts, so the
+  // operator can see how the predictions compared with what the vehicle did.
+  if (state.turn) {
+    state.turn.ended = true;
+    state.turn.endT = state.nav?.t_s ?? null;
+    state.turn.outcome = d.event;
+  }
+  state.turn = null;
+  emit('turn', null);
+  if (d.id) {
+    fetchRawPath(d.id).then((p) => {
+      if (!p) return;
+      state.recordedTurns.push(p);
+      if (state.recordedTurns.length > MAX_RECORDED_TURNS) state.recordedTurns.shift();
+      emit('recorded-turns', state.recordedTurns);
+    });
+  }
+  // The mission's detail has the time-to-set-conditions statistics: read it again.
+  if (state.mission?.id === d.mission_id) loadMission(d.mission_id).catch((e) => console.warn(e));
+  if (d.status === 'ok') {
+    state.okTurns++;
+    // The CKT is rebuilt at most once a second on the server; ask a little later, once.
+    clearTimeout(ckTimer);
+    ckTimer = setTimeout(async () => {
+      await refreshCktSummary();
+      emit('turns-changed');
+      // The turn just drawn may have started before the table covered its speed: complete its
+      // predictions now, for the comparison with what the vehicle did.
+      if (state.shownTurn?.ended) fetchPredictions(state.shownTurn);
+    }, 1500);
+  }
+}
+
+/** The vehicle's position at sim time t, interpolated along the live track; null outside it. */
+function positionAt(t) {
+  const tr = state.track;
+  if (typeof t !== 'number' || tr.length === 0) return null;
+  const i = tr.indexAtOrAfter(t);
+  const at = (k) => {
+    const j = (tr.start + k) % tr.capacity;
+    return { t: tr.t[j], x: tr.x[j], y: tr.y[j] };
+  };
+  if (i >= tr.length) {
+    const last = at(tr.length - 1);
+    return t - last.t < 1 ? last : null; // the newest sample, if it is that recent
+  }
+  const b = at(i);
+  if (i === 0 || b.t === t) return b;
+  const a = at(i - 1);
+  const f = (t - a.t) / (b.t - a.t || 1);
+  return { x: a.x + f * (b.x - a.x), y: a.y + f * (b.y - a.y) };
+}
+
+/** AVK, model and instantaneous predictions placed at the turn's start pose. Only asked where
+ *  they exist (a CKT covering the speed, a stored model), so nothing answers 4xx routinely. */
+async function fetchPredictions(turn) {
+  if (!turn.start || !state.vehicleId) return;
+  const covers = (ckt) =>
+    ckt?.speed_range_mps && turn.speed >= ckt.speed_range_mps[0] - 1e-9 && turn.speed <= ckt.speed_range_mps[1] + 1e-9;
+  // Turns finished since the table was last read may cover this speed now: read it again first.
+  if (!covers(state.ckt) && state.okTurns > 0) await refreshCktSummary();
+  let methods = ['instantaneous'];
+  if (covers(state.ckt)) methods.push('avk');
+  if (state.models.length > 0) methods.push('model');
+  methods = methods.filter((m) => !turn.predictions[m]);
+  await Promise.all(
+    methods.map(async (method) => {
+      try {
+        const p = await getJson(`/vehicles/${encodeURIComponent(state.vehicleId)}/predict`, {
+          speed: turn.speed,
+          dheading: turn.dheading,
+          method,
+          x: turn.start.x,
+          y: turn.start.y,
+          heading: turn.start.heading,
+        });
+        if (state.shownTurn !== turn) return; // a newer turn is drawn now
+        turn.predictions[method] = p;
+        emit('predictions', turn);
+      } catch (e) {
+        console.warn(`no ${method} prediction`, e.message);
+      }
+    }),
+  );
+}
+
+// ---------------------------------------------------------------- link state
+
+/** LIVE: stream open and a fresh nav sample from a vehicle whose link is LIVE. STALE: the stream is
+ *  open but navigation is old or the vehicle's link is not LIVE. DISCONNECTED: no stream. */
+export function updateLink() {
+  let link = 'DISCONNECTED';
+  if (stream?.open) {
+    const fresh = performance.now() - state.navWallMs < STALE_AFTER_MS;
+    link = fresh && (state.nav?.link ?? 'LIVE') === 'LIVE' ? 'LIVE' : 'STALE';
+  }
+  if (link !== state.link) {
+    state.link = link;
+    emit('link', link);
+  }
+}

@@ -1,0 +1,73 @@
+// Hooks for the browser tests, installed only with ?test=1 in the address: they load a long
+// synthetic track and feed navigation through the same path as the stream, so the test measures
+// what a real 2-hour mission at 10 Hz costs the page.
+
+import { state } from './state.js';
+import { applyNav } from './sync.js';
+import { renderNow, renderTimes } from './live.js';
+
+/** A lawn-mower survey at 1 m/s sampled at 10 Hz: long straight legs joined by half circles,
+ *  which is what two hours of turn collection looks like to the renderer. */
+function pathPoint(i) {
+  const t = i * 0.1; // s
+  const legM = 300;
+  const turnR = 10;
+  const period = legM + Math.PI * turnR; // metres per leg + turn
+  const s = t * 1.0; // metres travelled
+  const k = Math.floor(s / period);
+  const u = s - k * period;
+  const dir = k % 2 === 0 ? 1 : -1;
+  const y0 = (k * 2 * turnR) % 2000;
+  if (u < legM) {
+    const x = dir > 0 ? -150 + u : 150 - u;
+    return { x, y: -1000 + y0, heading: dir > 0 ? 90 : 270 };
+  }
+  const a = (u - legM) / turnR; // radians round the half circle
+  const cx = dir > 0 ? 150 : -150;
+  const x = cx + dir * turnR * Math.sin(a);
+  const y = -1000 + y0 + turnR - turnR * Math.cos(a);
+  return { x, y, heading: (dir > 0 ? 90 : 270) - dir * (a * 180) / Math.PI };
+}
+
+let next = 0;
+let seed = 1;
+// Deterministic GNSS-like jitter (a few centimetres), so the track is not perfectly straight
+// lines that any renderer would simplify away.
+function jitter() {
+  seed = (seed * 1103515245 + 12345) % 2147483648;
+  return (seed / 2147483648 - 0.5) * 2 * NOISE_M;
+}
+const NOISE_M = 0.05;
+
+function feed(i) {
+  const p = pathPoint(i);
+  applyNav({ vehicle_id: state.vehicleId, link: 'LIVE', t_s: i * 0.1, x_m: p.x + jitter(), y_m: p.y + jitter(), heading_deg: ((p.heading % 360) + 360) % 360, speed_mps: 1.0 }, true);
+}
+
+export function installTestHooks() {
+  window.avkTest = {
+    /** Replaces the live track with n synthetic samples; stream nav is ignored from now on. */
+    loadTrack(n) {
+      state.testFeed = true;
+      state.track.clear();
+      for (let i = 0; i < n - 1; i++) {
+        const p = pathPoint(i);
+        state.track.push(i * 0.1, p.x + jitter(), p.y + jitter());
+      }
+      next = n - 1;
+      feed(next++); // the last one through applyNav, so the readout and the plot update
+      renderNow();
+      return state.track.length;
+    },
+    /** One more nav sample (the test calls it at 10 Hz). */
+    pushNav() {
+      feed(next++);
+      return state.track.length;
+    },
+    trackLength: () => state.track.length,
+    /** Durations (ms) of the Live plot updates so far; `reset` empties the list. */
+    renderTimes: (reset = false) => (reset ? renderTimes.splice(0) : renderTimes.slice()),
+    trackCapacity: () => state.track.capacity,
+    state: () => ({ link: state.link, sessionId: state.sessionId, vehicleId: state.vehicleId, mission: state.mission?.id ?? null, okTurns: state.okTurns }),
+  };
+}
