@@ -66,6 +66,86 @@ std::vector<kin::IdentSegment> identification_data(store::Store& db,
   return out;
 }
 
+ModelHeadings model_headings(store::Store& db, const kin::YawModel& model, std::int64_t mission,
+                             std::size_t max_samples, double restart_step_deg) {
+  kin::ResampleOptions resample;
+  resample.rate_hz = model.rate_hz;  // the model steps at its own rate only
+  const auto data = identification_data(db, {mission}, resample);
+  ModelHeadings out;
+  out.dt_s = model.dt_s();
+  out.warmup = model.warmup();
+  out.restart_step_deg = restart_step_deg;
+  const std::size_t w = model.warmup();
+  kin::PredictOptions one;
+  one.steps = 1;
+  // predict() with one step from a history ending at k, the desired heading of sample k held:
+  // exactly the model's next-sample equation on that history.
+  const auto next = [&](const kin::YawHistory& h, double desired) {
+    return predict(model, h, desired, kin::Pose{}, 0.0, one)[1].heading_deg;
+  };
+  const auto finite = [](double v) { return std::isfinite(v) ? std::optional(v) : std::nullopt; };
+  std::size_t left = max_samples;
+  for (const auto& full : data) {
+    if (left == 0) break;
+    kin::IdentSegment s = full;
+    const std::size_t n = std::min(s.size(), left);
+    s.heading_deg.resize(n);
+    s.desired_heading_deg.resize(n);
+    left -= n;
+    HeadingSegment seg;
+    seg.t0_s = s.t0_s;
+    seg.heading_deg = s.heading_deg;
+    // Shown within 180 deg of the measured heading at the same sample: the resampled desired
+    // heading is unwrapped on its own and may drift whole turns away after long turns one way,
+    // which the model never sees (it uses the wrapped error) but a plot would.
+    seg.desired_heading_deg.resize(n);
+    for (std::size_t k = 0; k < n; ++k)
+      seg.desired_heading_deg[k] =
+          s.heading_deg[k] + kin::angle180_deg(s.desired_heading_deg[k] - s.heading_deg[k]);
+    seg.one_step_deg.assign(n, std::nullopt);
+    seg.simulated_deg.assign(n, std::nullopt);
+    if (n > w) {
+      std::vector<double> sim = s.heading_deg;  // the free run's own history
+      kin::YawHistory h;
+      for (std::size_t k = w - 1; k + 1 < n; ++k) {
+        seg.one_step_deg[k + 1] =
+            finite(next(kin::history_at(model, s, k), s.desired_heading_deg[k]));
+        const bool step = k >= 1 && std::abs(s.desired_heading_deg[k] -
+                                             s.desired_heading_deg[k - 1]) >= restart_step_deg;
+        if (step || !std::isfinite(sim[k]))
+          std::copy_n(s.heading_deg.begin() + (k + 1 - w), w, sim.begin() + (k + 1 - w));
+        h.heading_deg.assign(sim.begin() + (k + 1 - w), sim.begin() + k + 1);
+        h.desired_heading_deg.assign(s.desired_heading_deg.begin() + (k + 1 - w),
+                                     s.desired_heading_deg.begin() + k + 1);
+        sim[k + 1] = next(h, s.desired_heading_deg[k]);
+        seg.simulated_deg[k + 1] = finite(sim[k + 1]);
+      }
+    }
+    out.segments.push_back(std::move(seg));
+  }
+  return out;
+}
+
+json model_headings_json(const ModelHeadings& h) {
+  const auto optional_array = [](const std::vector<std::optional<double>>& v) {
+    json a = json::array();
+    for (const auto& x : v)
+      a.push_back(x ? json(*x) : json());
+    return a;
+  };
+  json segments = json::array();
+  for (const auto& s : h.segments)
+    segments.push_back({{"t0_s", s.t0_s},
+                        {"heading_deg", s.heading_deg},
+                        {"desired_heading_deg", s.desired_heading_deg},
+                        {"one_step_deg", optional_array(s.one_step_deg)},
+                        {"simulated_deg", optional_array(s.simulated_deg)}});
+  return {{"dt_s", h.dt_s},
+          {"warmup_samples", h.warmup},
+          {"restart_step_deg", h.restart_step_deg},
+          {"segments", segments}};
+}
+
 json model_json(const store::StoredModel& m) {
   json j = json::parse(kin::yaw_model_to_json(m.model));
   j["id"] = m.id;

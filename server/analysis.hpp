@@ -22,6 +22,36 @@ std::vector<kinematics::IdentSegment> identification_data(
     store::Store& db, const std::vector<std::int64_t>& missions,
     const kinematics::ResampleOptions& options);
 
+// A model's view of one mission (the Model view's plot): the mission's identification data at the
+// model's rate with the model's one-step-ahead and simulated headings beside the measured ones.
+// Headings are unwrapped, as in IdentSegment; the desired heading is shown within 180 deg of the
+// measured one at each sample. Samples without a prediction are empty.
+struct HeadingSegment {
+  double t0_s = 0.0;
+  std::vector<double> heading_deg;
+  std::vector<double> desired_heading_deg;
+  // Predicted from the measured history ending one sample earlier: empty for the first warmup().
+  std::vector<std::optional<double>> one_step_deg;
+  // Free run: each prediction is fed back as history, driven by the measured desired heading.
+  // It starts from the segment's first full history and restarts from the measured history at
+  // every desired-heading step of at least restart_step_deg (one turn of the mission each), so
+  // the plot shows how each turn is predicted rather than an hour-long drift. Empty for the first
+  // warmup() samples.
+  std::vector<std::optional<double>> simulated_deg;
+};
+struct ModelHeadings {
+  double dt_s = 0.0;
+  std::size_t warmup = 0;
+  double restart_step_deg = 0.0;
+  std::vector<HeadingSegment> segments;
+};
+// At most max_samples samples in all, first segments first. Throws std::runtime_error for an
+// unknown mission or one without guided navigation.
+ModelHeadings model_headings(store::Store& db, const kinematics::YawModel& model,
+                             std::int64_t mission, std::size_t max_samples,
+                             double restart_step_deg = 5.0);
+nlohmann::json model_headings_json(const ModelHeadings& h);
+
 struct FittedModel {
   store::StoredModel stored;  // with its id
   kinematics::IdentificationResult result;

@@ -294,12 +294,15 @@ struct Station::Impl {
       const std::int64_t id = path_id(p[1], "mission");
       if (p.size() == 2) return only(get, "GET"), mission(id);
       if (p.size() == 3 && p[2] == "events") return only(get, "GET"), events(r, id);
+      if (p.size() == 3 && p[2] == "nav") return only(get, "GET"), nav(r, id);
       if (p.size() == 3 && (p[2] == "pause" || p[2] == "resume" || p[2] == "abort"))
         return only(post, "POST"), control(id, p[2]);
     }
     if (p.size() == 1 && p[0] == "turns") return only(get, "GET"), turns(r);
     if (p.size() == 2 && p[0] == "turns") return only(get, "GET"), turn(path_id(p[1], "turn"));
     if (p.size() == 2 && p[0] == "models") return only(get, "GET"), model(path_id(p[1], "model"));
+    if (p.size() == 3 && p[0] == "models" && p[2] == "headings")
+      return only(get, "GET"), headings(r, path_id(p[1], "model"));
     throw ApiError(404, "Not Found", "no resource at " + r.path);
   }
 
@@ -497,6 +500,29 @@ struct Station::Impl {
     }
     return json_response(
         {{"items", items}, {"next", static_cast<int>(evs.size()) == limit ? json(last) : json()}});
+  }
+
+  // The mission's stored track, oldest first. The cursor is the last rowid of a full page: rows
+  // recorded while a client pages are appended after it, so nothing is skipped or repeated.
+  ApiResponse nav(const ApiRequest& r, std::int64_t id) {
+    if (!db().get_mission(id)) throw ApiError(404, "Not Found", "no mission " + std::to_string(id));
+    const auto after = id_param(r, "after").value_or(0);
+    const double limit_d = number_param(r, "limit", 1, 10000).value_or(5000);
+    if (std::floor(limit_d) != limit_d) throw bad_parameter("limit", "must be a whole number");
+    const int limit = static_cast<int>(limit_d);
+    const auto rows = db().nav_page(id, after, limit);
+    json items = json::array();
+    for (const auto& [rowid, n] : rows)
+      items.push_back({{"t_s", n.t_s},
+                       {"x_m", n.x_m},
+                       {"y_m", n.y_m},
+                       {"heading_deg", n.heading_deg},
+                       {"speed_mps", n.speed_mps},
+                       {"desired_heading_deg", optional_json(n.desired_heading_deg)},
+                       {"desired_speed_mps", optional_json(n.desired_speed_mps)},
+                       {"helm_mode", n.helm_mode}});
+    const bool full = static_cast<int>(rows.size()) == limit;
+    return json_response({{"items", items}, {"next", full ? json(rows.back().rowid) : json()}});
   }
 
   ApiResponse control(std::int64_t id, const std::string& action) {
@@ -792,6 +818,28 @@ struct Station::Impl {
     const auto m = db().get_model(id);
     if (!m) throw ApiError(404, "Not Found", "no model " + std::to_string(id));
     return json_response(model_json(*m));
+  }
+
+  ApiResponse headings(const ApiRequest& r, std::int64_t model_id) {
+    const auto mission = id_param(r, "mission");
+    if (!mission) throw bad_parameter("mission", "missing");
+    const double limit = number_param(r, "limit", 1, 100000).value_or(2400);
+    if (std::floor(limit) != limit) throw bad_parameter("limit", "must be a whole number");
+    const auto m = db().get_model(model_id);
+    if (!m) throw ApiError(404, "Not Found", "no model " + std::to_string(model_id));
+    if (!db().get_mission(*mission))
+      throw ApiError(404, "Not Found", "no mission " + std::to_string(*mission));
+    ModelHeadings h;
+    try {
+      h = model_headings(db(), m->model, *mission, static_cast<std::size_t>(limit));
+    } catch (const std::runtime_error& e) {
+      if (dynamic_cast<const store::StoreError*>(&e)) throw;
+      throw ApiError(422, "Unprocessable Content", e.what());
+    }
+    json j = model_headings_json(h);
+    j["model_id"] = model_id;
+    j["mission_id"] = *mission;
+    return json_response(j);
   }
 
   kin::IdentificationOptions identification(const json& body) {

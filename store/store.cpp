@@ -21,7 +21,7 @@ namespace {
 
 // Each step moves the schema from version i to i + 1. Steps are append-only: a released step is
 // never edited, because databases in the field have already run it.
-constexpr std::array<const char*, 4> kMigrations = {
+constexpr std::array<const char*, 5> kMigrations = {
     R"sql(
 CREATE TABLE vehicles (
   id            TEXT PRIMARY KEY,
@@ -130,6 +130,11 @@ CREATE INDEX yaw_models_by_vehicle ON yaw_models (vehicle_id, id);
     // The server asks every second whether a vehicle's table changed: its newest ok turn.
     R"sql(
 CREATE INDEX turns_by_vehicle_status ON turns (vehicle_id, status, id);
+)sql",
+    // Navigation pages by (mission, rowid): an index on mission_id holds the rowid in order, so
+    // a page is a range scan, not a sort of the whole mission.
+    R"sql(
+CREATE INDEX nav_by_mission ON nav_samples (mission_id);
 )sql",
 };
 
@@ -661,6 +666,22 @@ std::vector<NavRow> Store::nav_for_mission(std::int64_t mission_id) {
     out.push_back({s.column_double(0), s.column_double(1), s.column_double(2), s.column_double(3),
                    s.column_double(4), s.column_optional_double(5), s.column_optional_double(6),
                    s.column_text(7)});
+  return out;
+}
+
+std::vector<NavPageRow> Store::nav_page(std::int64_t mission_id, std::int64_t after_rowid,
+                                        int limit) {
+  auto s = db_.prepare(
+      "SELECT rowid, t_s, x_m, y_m, heading_deg, speed_mps, desired_heading_deg, "
+      "desired_speed_mps, helm_mode FROM nav_samples WHERE mission_id = ? AND rowid > ? "
+      "ORDER BY rowid LIMIT ?");
+  s.bind(1, mission_id).bind(2, after_rowid).bind(3, limit);
+  std::vector<NavPageRow> out;
+  while (s.step())
+    out.push_back({s.column_int64(0),
+                   {s.column_double(1), s.column_double(2), s.column_double(3), s.column_double(4),
+                    s.column_double(5), s.column_optional_double(6), s.column_optional_double(7),
+                    s.column_text(8)}});
   return out;
 }
 

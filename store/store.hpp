@@ -96,6 +96,12 @@ struct NavRow {
   friend bool operator==(const NavRow&, const NavRow&) = default;
 };
 
+// A navigation row with its rowid: the keyset cursor of nav_page.
+struct NavPageRow {
+  std::int64_t rowid = 0;
+  NavRow row;
+};
+
 // One ConditionSet episode (thesis: the time spent establishing a turn's initial conditions).
 struct ConditionSetTiming {
   double start_s = 0.0;
@@ -213,6 +219,9 @@ class Store {
   // One transaction, one prepared statement for the whole batch.
   void append_nav(std::int64_t mission_id, std::span<const NavRow> rows);
   std::vector<NavRow> nav_for_mission(std::int64_t mission_id);
+  // Keyset pagination in insertion (rowid) order: at most `limit` rows with rowid > after_rowid.
+  // Insertion order, not time order, so that a page boundary never moves while a mission records.
+  std::vector<NavPageRow> nav_page(std::int64_t mission_id, std::int64_t after_rowid, int limit);
 
   std::int64_t save_ckt_snapshot(const kinematics::Ckt& table,
                                  const std::vector<std::int64_t>& mission_ids);

@@ -71,15 +71,16 @@ void expect_mean_sd(const std::optional<avk::kinematics::MeanSd>& got, double me
 
 }  // namespace
 
-TEST(MissionQueries, SchemaIsVersionFour) {
+TEST(MissionQueries, SchemaIsVersionFive) {
   Store s(":memory:");
-  EXPECT_EQ(schema_version(), 4);
-  EXPECT_EQ(s.user_version(), 4);
+  EXPECT_EQ(schema_version(), 5);
+  EXPECT_EQ(s.user_version(), 5);
   EXPECT_FALSE(migration_step_sql(0).empty());
   EXPECT_NE(migration_step_sql(1).find("normalized_samples"), std::string_view::npos);
   EXPECT_NE(migration_step_sql(2).find("yaw_models"), std::string_view::npos);
   EXPECT_NE(migration_step_sql(3).find("turns_by_vehicle_status"), std::string_view::npos);
-  EXPECT_THROW(migration_step_sql(4), std::out_of_range);
+  EXPECT_NE(migration_step_sql(4).find("nav_by_mission"), std::string_view::npos);
+  EXPECT_THROW(migration_step_sql(5), std::out_of_range);
   EXPECT_THROW(migration_step_sql(-1), std::out_of_range);
 }
 
@@ -182,6 +183,48 @@ TEST(MissionQueries, EventsKeysetPaginationOldestFirst) {
   EXPECT_TRUE(s.list_events(m, ids.back()).empty());
   EXPECT_EQ(s.list_events(other).size(), 25u);
   EXPECT_TRUE(s.list_events(other + 10).empty());
+}
+
+TEST(MissionQueries, NavPageCoversEveryRowOnceInInsertionOrder) {
+  Store s(":memory:");
+  const auto m = make_mission(s);
+  const auto other = make_mission(s);
+  EXPECT_TRUE(s.nav_page(m, 0, 10).empty());
+  // Interleaved batches of two missions, and a batch stamped earlier than the one before it: the
+  // pages follow insertion order, skip the other mission and never repeat or lose a row.
+  std::vector<NavRow> expected;
+  for (int batch = 0; batch < 5; ++batch) {
+    auto rows = nav_until(10.0);
+    for (auto& r : rows) {
+      r.t_s += batch == 3 ? -100.0 : 20.0 * batch;
+      r.x_m = static_cast<double>(expected.size() + (&r - rows.data()));
+      r.desired_heading_deg = batch % 2 ? std::optional<double>(45.0 + batch) : std::nullopt;
+      r.helm_mode = batch % 2 ? "TURNING" : "idle";
+    }
+    s.append_nav(m, rows);
+    expected.insert(expected.end(), rows.begin(), rows.end());
+    s.append_nav(other, nav_until(3.0));
+  }
+  ASSERT_EQ(expected.size(), 105u);
+  std::vector<NavRow> seen;
+  std::int64_t after = 0;
+  int pages = 0;
+  for (;;) {
+    const auto page = s.nav_page(m, after, 20);
+    if (page.empty()) break;
+    ++pages;
+    EXPECT_LE(page.size(), 20u);
+    for (const auto& r : page) {
+      EXPECT_GT(r.rowid, after);
+      after = r.rowid;
+      seen.push_back(r.row);
+    }
+  }
+  EXPECT_EQ(pages, 6);
+  EXPECT_EQ(seen, expected);
+  EXPECT_TRUE(s.nav_page(m, after, 20).empty());
+  EXPECT_EQ(s.nav_page(other, 0, 1000).size(), 5u * nav_until(3.0).size());
+  EXPECT_TRUE(s.nav_page(other + 10, 0, 1000).empty());
 }
 
 TEST(MissionQueries, ClockEndIsTheLatestOfEverySource) {

@@ -43,6 +43,7 @@ export function initLive() {
   on('predictions', markPlot);
   on('recorded-turns', markPlot);
   on('restart', markPlot);
+  on('nav-history', markPlot);
   on('events', renderEvents);
   on('link', markText);
   // A "fit" control: double-click already resets the zoom in Plotly; this is the keyboard way.

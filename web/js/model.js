@@ -1,9 +1,10 @@
 // The Model view: the stored black-box yaw models (thesis §3.4), the validation error per history
-// length for chosen missions (Figure 3-9), and a form to fit a new model from chosen missions.
+// length for chosen missions (Figure 3-9), a form to fit a new model from chosen missions, and a
+// model's identification data: measured, desired, one-step and simulated heading against time.
 
 import { state, on } from './state.js';
 import { getJson, postJson } from './api.js';
-import { C, baseLayout, axis, draw, showEmpty } from './plots.js';
+import { C, baseLayout, axis, draw, showEmpty, makePlot } from './plots.js';
 import { el, fillTable, num, setStatus } from './format.js';
 import { refreshModels } from './sync.js';
 
@@ -16,6 +17,88 @@ export function initModel() {
   $('model-sweep-run').addEventListener('click', sweep);
   on('models', renderModels);
   on('missions', renderMissions);
+  initHeadings();
+}
+
+// ---------------------------------------------------------------- identification data plot
+
+let headingsPlot = null;
+
+/** The panel is built here (index.html stays as it is): model and mission pickers, a button,
+ *  and a framed plot with the usual PNG button. */
+function initHeadings() {
+  const panel = el(
+    'div',
+    { class: 'panel', id: 'model-headings-panel' },
+    el('h3', { text: 'Identification data' }),
+    el('p', { class: 'small', text: 'A mission’s guided navigation at the model’s rate: measured and desired heading, the model’s one-step-ahead prediction from measured history, and its free-run simulation driven by the desired heading (restarted from measured history at each desired-heading step). Headings are unwrapped.' }),
+    el('div', { class: 'row' },
+      el('div', { class: 'field' }, el('label', { for: 'model-h-model', text: 'Model' }), el('select', { id: 'model-h-model' })),
+      el('div', { class: 'field' }, el('label', { for: 'model-h-mission', text: 'Mission' }), el('select', { id: 'model-h-mission' })),
+      el('button', { type: 'button', id: 'model-h-show', class: 'secondary', text: 'Show headings' })),
+    el('p', { id: 'model-h-status', class: 'small', role: 'status', 'aria-live': 'polite' }),
+  );
+  $('view-model').append(panel);
+  headingsPlot = makePlot($('view-model'), 'model-headings', 'Heading: measured, desired, one-step and simulated', 'avk-headings');
+  showEmpty(headingsPlot, 'Choose a model and a mission and press “Show headings”.');
+  $('model-h-show').addEventListener('click', showHeadings);
+}
+
+function fillSelect(select, options) {
+  const keep = select.value;
+  select.replaceChildren(...options.map(([value, label]) => el('option', { value, text: label })));
+  if (options.some(([v]) => String(v) === keep)) select.value = keep;
+}
+
+function renderHeadingPickers() {
+  const models = [...state.models].sort((a, b) => b.id - a.id);
+  fillSelect($('model-h-model'), models.map((m) => [m.id, `${m.id} · ${m.form}, ${m.history} samples`]));
+  const mine = state.missions.filter((m) => !state.vehicleId || m.vehicle_id === state.vehicleId).sort((a, b) => b.id - a.id);
+  fillSelect($('model-h-mission'), mine.map((m) => [m.id, `${m.id} · ${m.name}`]));
+  $('model-h-show').disabled = models.length === 0 || mine.length === 0;
+}
+
+async function showHeadings() {
+  const out = $('model-h-status');
+  const model = $('model-h-model').value;
+  const mission = $('model-h-mission').value;
+  if (!model || !mission) {
+    setStatus(out, 'Choose a model and a mission.', 'error');
+    return;
+  }
+  setStatus(out, 'Loading…');
+  try {
+    const h = await getJson(`/models/${model}/headings`, { mission });
+    // Segments joined with a null between them: the lines break at gaps instead of bridging them.
+    const t = [];
+    const cols = { heading_deg: [], desired_heading_deg: [], one_step_deg: [], simulated_deg: [] };
+    let n = 0;
+    for (const seg of h.segments) {
+      if (t.length) {
+        t.push(null);
+        for (const c of Object.values(cols)) c.push(null);
+      }
+      seg.heading_deg.forEach((_, k) => t.push(seg.t0_s + k * h.dt_s));
+      for (const [k, c] of Object.entries(cols)) c.push(...seg[k]);
+      n += seg.heading_deg.length;
+    }
+    const line = (name, y, style) => ({ type: 'scatter', mode: 'lines', name, x: t, y, connectgaps: false, line: style });
+    draw(headingsPlot, [
+      line('measured', cols.heading_deg, { color: C.blue, width: 2 }),
+      line('desired', cols.desired_heading_deg, { color: C.black, width: 1.5, dash: 'dash' }),
+      line('one-step', cols.one_step_deg, { color: C.green, width: 1.5, dash: 'dot' }),
+      line('simulated', cols.simulated_deg, { color: C.vermillion, width: 2, dash: 'dashdot' }),
+    ], {
+      ...baseLayout(),
+      xaxis: axis('mission time (s)'),
+      yaxis: axis('heading (°, unwrapped)'),
+      showlegend: true,
+    });
+    setStatus(out, `Model ${model} on mission ${mission}: ${n} samples in ${h.segments.length} segment(s) at ${num(1 / h.dt_s, 1)} Hz; predictions start after ${h.warmup_samples} samples of history.`, 'ok');
+  } catch (e) {
+    showEmpty(headingsPlot, e.message);
+    setStatus(out, e.message, 'error');
+  }
 }
 
 export function showModel(isVisible) {
@@ -23,6 +106,7 @@ export function showModel(isVisible) {
   if (visible) {
     renderModels();
     renderMissions();
+    renderHeadingPickers();
     if (!autoSwept && !$('model-sweep')._fullLayout) showEmpty($('model-sweep'), 'Choose missions and press “Sweep history”.');
     maybeAutoSweep();
     refreshModels().catch(() => {});
@@ -31,6 +115,7 @@ export function showModel(isVisible) {
 
 function renderModels() {
   if (!visible) return;
+  renderHeadingPickers();
   const models = [...state.models].sort((a, b) => b.id - a.id);
   fillTable(
     $('models-table'),
@@ -54,6 +139,7 @@ function renderModels() {
 
 function renderMissions() {
   if (!visible) return;
+  renderHeadingPickers();
   const box = $('model-missions');
   const checked = new Set([...box.querySelectorAll('input:checked')].map((i) => Number(i.value)));
   const mine = state.missions.filter((m) => !state.vehicleId || m.vehicle_id === state.vehicleId).sort((a, b) => b.id - a.id);

@@ -2,7 +2,7 @@
 // synthetic track and feed navigation through the same path as the stream, so the test measures
 // what a real 2-hour mission at 10 Hz costs the page.
 
-import { state } from './state.js';
+import { state, on } from './state.js';
 import { applyNav } from './sync.js';
 import { renderNow, renderTimes } from './live.js';
 
@@ -44,7 +44,12 @@ function feed(i) {
   applyNav({ vehicle_id: state.vehicleId, link: 'LIVE', t_s: i * 0.1, x_m: p.x + jitter(), y_m: p.y + jitter(), heading_deg: ((p.heading % 360) + 360) % 360, speed_mps: 1.0 }, true);
 }
 
+let navHistory = null; // the last stored-track read: {missionId, rows}
+
 export function installTestHooks() {
+  on('nav-history', (h) => {
+    navHistory = { ...h, trackLength: state.track.length };
+  });
   window.avkTest = {
     /** Replaces the live track with n synthetic samples; stream nav is ignored from now on. */
     loadTrack(n) {
@@ -65,6 +70,8 @@ export function installTestHooks() {
       return state.track.length;
     },
     trackLength: () => state.track.length,
+    /** The last read of a mission's stored track ({missionId, rows, trackLength} right after it). */
+    navHistory: () => navHistory,
     /** Durations (ms) of the Live plot updates so far; `reset` empties the list. */
     renderTimes: (reset = false) => (reset ? renderTimes.splice(0) : renderTimes.slice()),
     trackCapacity: () => state.track.capacity,

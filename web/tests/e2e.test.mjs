@@ -268,6 +268,26 @@ test('starting a small mission from the Mission view makes the vehicle move in L
   await shot('live-running');
   const cells = await page.locator('#progress-grid td').count();
   assert.equal(cells, 4, 'the turn-array grid shows 2 speeds × 2 heading changes');
+  // A second page opened mid-mission reads the stored track over REST (GET /missions/{id}/nav):
+  // right after it loads, its track holds the mission so far, not only what the stream sent since.
+  await sleep(1500);
+  const second = await newPage();
+  try {
+    await second.goto(`${server.base}/?test=1#live`, { waitUntil: 'load', timeout: 20000 });
+    const history = await (
+      await second.waitForFunction((id) => {
+        const h = window.avkTest?.navHistory();
+        return h && h.missionId === id ? h : null;
+      }, missionId, { timeout: 20000 })
+    ).jsonValue();
+    const stillRunning = (await api(`/missions/${missionId}`)).status;
+    assert.ok(history.rows >= 200, `only ${history.rows} stored nav rows were read (mission ${stillRunning})`);
+    assert.ok(history.trackLength >= 100, `the track holds ${history.trackLength} points right after the history read`);
+    assert.ok(await second.evaluate(() => window.avkTest.trackLength()) >= history.trackLength);
+    await shot('live-second-page', second);
+  } finally {
+    await second.close();
+  }
   // For the README: the finished mission, its last turn still drawn with its AVK prediction (from
   // the CKT of the turns before it). The prediction is best effort; the screenshot is taken anyway.
   await until('the mission to finish', async () => (await api(`/missions/${missionId}`)).status === 'done', 60000, 500);
@@ -324,8 +344,27 @@ test('the Compare and Model views draw (screenshots)', { timeout: 60000 }, async
   await goView('compare');
   await until('the comparison', async () => (await page.textContent('#cmp-status')).length > 0 && !/Loading/.test(await page.textContent('#cmp-status')), 15000);
   await shot('compare');
+  // A model of the finished mission (POST with the token), then its identification data plot.
+  const fitted = await fetch(`${server.base}/api/v1/vehicles/sim-usim/models`, {
+    method: 'POST',
+    headers: { Authorization: `Bearer ${server.token}`, 'Content-Type': 'application/json' },
+    body: JSON.stringify({ missions: [missionId], history_s: 3 }),
+    signal: AbortSignal.timeout(30000),
+  });
+  const fittedText = await fitted.text();
+  assert.equal(fitted.status, 201, fittedText);
+  const modelId = JSON.parse(fittedText).id;
   await goView('model');
-  await sleep(500);
+  await page.waitForSelector(`#model-h-model option[value="${modelId}"]`, { state: 'attached', timeout: 10000 });
+  await page.selectOption('#model-h-model', String(modelId));
+  await page.selectOption('#model-h-mission', String(missionId));
+  await page.click('#model-h-show');
+  await page.waitForSelector('#model-headings .main-svg', { timeout: 15000 });
+  const traces = await page.evaluate(() => document.getElementById('model-headings').data.map((t) => ({ name: t.name, n: t.y.filter((v) => v !== null).length })));
+  assert.deepEqual(traces.map((t) => t.name), ['measured', 'desired', 'one-step', 'simulated']);
+  for (const t of traces) assert.ok(t.n > 50, `trace ${t.name} has ${t.n} points`);
+  assert.equal(await page.isDisabled('.plot-frame:has(#model-headings) button.png'), false, 'the PNG button is enabled');
+  await sleep(300);
   await shot('model');
   await goView('mission');
   await sleep(500);
