@@ -178,6 +178,21 @@ FittedModel fit_and_store_model(store::Store& db, const std::string& vehicle_id,
   return f;
 }
 
+kin::Polyline model_turn(const kin::YawModel& m, double speed_mps, double dheading_deg,
+                         double completion_threshold_deg, bool use_speed_model) {
+  kin::Polyline line = kin::predict_normalized_turn(
+      m, speed_mps, std::abs(dheading_deg), completion_threshold_deg, 0.0, 400, use_speed_model);
+  if (dheading_deg < 0)
+    for (auto& p : line)
+      p.x_m = -p.x_m;
+  return line;
+}
+
+kin::Polyline instantaneous_turn_ray(double speed_mps, double dheading_deg) {
+  const kin::Point d = kin::rotate_by_heading({0.0, 1.0}, dheading_deg);
+  return {{0.0, 0.0}, {d.x_m * speed_mps * 20.0, d.y_m * speed_mps * 20.0}};
+}
+
 Comparison compare_from_store(store::Store& db, const std::string& vehicle_id,
                               const std::vector<std::int64_t>& missions,
                               std::optional<store::StoredModel> model,

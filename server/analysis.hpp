@@ -62,6 +62,14 @@ FittedModel fit_and_store_model(store::Store& db, const std::string& vehicle_id,
                                 const kinematics::ResampleOptions& resample = {});
 nlohmann::json model_json(const store::StoredModel& m);
 
+// The two non-table predictions `avk predict` and GET /predict answer, in the CKT's frame: from
+// the origin heading north, a left turn (dheading < 0) the mirror image of the right one.
+kinematics::Polyline model_turn(const kinematics::YawModel& m, double speed_mps,
+                                double dheading_deg, double completion_threshold_deg = 5.0,
+                                bool use_speed_model = false);
+// The current practice: the vehicle is on the new heading at once; drawn for 20 s of travel.
+kinematics::Polyline instantaneous_turn_ray(double speed_mps, double dheading_deg);
+
 struct Comparison {
   std::string vehicle_id;
   std::optional<store::StoredModel> model;

@@ -772,14 +772,10 @@ struct Station::Impl {
         throw ApiError(
             404, "Not Found",
             id ? "no model " + std::to_string(*id) : "no model of '" + vid + "' is stored");
-      line = kin::predict_normalized_turn(m->model, speed, std::abs(dheading), 5.0);
-      if (dheading < 0)
-        for (auto& p : line)
-          p.x_m = -p.x_m;
+      line = model_turn(m->model, speed, dheading);
       j["model_id"] = m->id;
     } else if (method == "instantaneous") {
-      const kin::Point d = kin::rotate_by_heading({0.0, 1.0}, dheading);
-      line = {{0.0, 0.0}, {d.x_m * speed * 20.0, d.y_m * speed * 20.0}};
+      line = instantaneous_turn_ray(speed, dheading);
     } else {
       throw bad_parameter("method", "must be avk, model or instantaneous");
     }

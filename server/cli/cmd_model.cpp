@@ -258,20 +258,13 @@ int predict(const std::vector<std::string>& rest, Io& io) {
              {"extrapolated", p.extrapolated}};
   } else if (method == "model") {
     const auto m = pick_model(db, a, vehicle);
-    // Normalised turns are right turns; a left turn is its mirror image, as the CKT answers.
     if (a.flag("speed-model") && !m.model.speed)
       throw std::runtime_error("model " + std::to_string(m.id) + " has no speed model");
-    line = kin::predict_normalized_turn(m.model, *speed, std::abs(*dheading),
-                                        a.number("threshold").value_or(5.0), 0.0, 400,
-                                        a.flag("speed-model"));
-    if (*dheading < 0)
-      for (auto& p : line)
-        p.x_m = -p.x_m;
+    line = model_turn(m.model, *speed, *dheading, a.number("threshold").value_or(5.0),
+                      a.flag("speed-model"));
     extra = {{"model_id", m.id}, {"speed_model", a.flag("speed-model")}};
   } else if (method == "instantaneous") {
-    // The current practice: the vehicle is on the new heading at once. Drawn for 20 s of travel.
-    const kin::Point dir = kin::rotate_by_heading({0.0, 1.0}, *dheading);
-    line = {{0.0, 0.0}, {dir.x_m * *speed * 20.0, dir.y_m * *speed * 20.0}};
+    line = instantaneous_turn_ray(*speed, *dheading);
   } else {
     throw UsageError("--method must be avk, model or instantaneous, got '" + method + "'");
   }
