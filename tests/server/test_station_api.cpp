@@ -255,7 +255,15 @@ TEST_F(StationApi, TurnsPageByKeysetAndComeAsCsv) {
   EXPECT_NE(c.body.find("advance_m"), std::string::npos);
   const auto tid = first["items"][0]["id"].get<std::int64_t>();
   const json t = body(call(get("/api/v1/turns/" + std::to_string(tid))));
-  EXPECT_TRUE(t["raw"]["samples"].is_array() || t["raw"].is_object());
+  // The raw and normalised records of the same turn: same samples count, the normalised one
+  // starting at the origin.
+  ASSERT_TRUE(t["raw"]["samples"].is_array());
+  ASSERT_TRUE(t["normalized"]["samples"].is_array());
+  EXPECT_GT(t["raw"]["samples"].size(), 3u);
+  EXPECT_EQ(t["raw"]["samples"].size(), t["normalized"]["samples"].size());
+  EXPECT_EQ(t["normalized"]["normalized"], true);
+  EXPECT_DOUBLE_EQ(t["normalized"]["samples"][0][1].get<double>(), 0.0);
+  EXPECT_DOUBLE_EQ(t["normalized"]["samples"][0][2].get<double>(), 0.0);
   EXPECT_TRUE(t["normalized"].is_object());
   EXPECT_EQ(call(get("/api/v1/turns/999999")).status, 404);
 }
