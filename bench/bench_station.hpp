@@ -37,7 +37,7 @@ struct BenchStation {
     v.realtime_factor = realtime_factor;
     v.start_clock_s = store::Store(db.path()).station_clock_end_s() + 1.0;
     v.start = {0.0, -70.0, 0.0};
-    so.sim = v;
+    so.vehicle = v;
     station = std::make_unique<server::Station>(so, hub);
     station->start();
     server::HttpServerOptions ho;

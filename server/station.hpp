@@ -17,7 +17,8 @@ struct StationOptions {
   std::string db_path;
   std::string token;  // bearer token for control endpoints (and for any non-loopback client)
   std::string server_version;
-  std::optional<VehicleLoopOptions> sim;  // the simulated vehicle; none: no vehicle connected
+  // The vehicle missions run on (simulated, or an M200 over its link); none: no vehicle.
+  std::optional<VehicleLoopOptions> vehicle;
 };
 
 class Station final : public Api {

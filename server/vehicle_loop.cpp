@@ -38,12 +38,25 @@ std::string optional_number(const std::optional<double>& v) {
 
 }  // namespace
 
+// Paces the loop's scheduler to the M200's clock, so helm ticks and navigation share one time.
+class ClockPacer final : public sim::Pacer {
+ public:
+  explicit ClockPacer(const vehicle::ScaledClock& clock) : clock_(clock) {}
+  void wait_until(double t_s) override { clock_.sleep_until(t_s); }
+
+ private:
+  const vehicle::ScaledClock& clock_;
+};
+
 struct VehicleLoop::Impl {
   VehicleLoopOptions options;
   std::string db_path;
   StreamHub& hub;
   sim::Scheduler scheduler;
-  sim::SimVehicle vehicle;
+  std::unique_ptr<sim::SimVehicle> sim_vehicle;
+  std::unique_ptr<vehicle::ScaledClock> clock;
+  std::unique_ptr<vehicle::M200> m200;
+  vehicle::Vehicle* vehicle_ptr = nullptr;
   std::thread thread;
   std::atomic<bool> stop_requested{false};
   std::string stop_reason;
@@ -71,8 +84,19 @@ struct VehicleLoop::Impl {
       : options(std::move(o)),
         db_path(std::move(path)),
         hub(h),
-        scheduler(scheduler_options(options)),
-        vehicle(vehicle_config(options), scheduler) {}
+        scheduler(scheduler_options(options)) {
+    if (options.m200) {
+      clock =
+          std::make_unique<vehicle::ScaledClock>(options.realtime_factor, options.start_clock_s);
+      m200 = std::make_unique<vehicle::M200>(*options.m200, *clock);
+      vehicle_ptr = m200.get();
+    } else {
+      sim_vehicle = std::make_unique<sim::SimVehicle>(vehicle_config(options), scheduler);
+      vehicle_ptr = sim_vehicle.get();
+    }
+  }
+
+  vehicle::Vehicle& vehicle() { return *vehicle_ptr; }
 
   void helm_tick(double now) {
     std::deque<std::function<void(double)>> todo;
@@ -93,8 +117,8 @@ struct VehicleLoop::Impl {
       update_live();
       if (running->runner->finished()) finish_running(now);
     } else {
-      vehicle.take_nav();  // no mission: nothing records it, but the mailbox must not grow
-      if (!idle_stopped) vehicle.all_stop(now);
+      vehicle().take_nav();  // no mission: nothing records it, but the mailbox must not grow
+      if (!idle_stopped) vehicle().all_stop(now);
       idle_stopped = true;
     }
     {
@@ -106,11 +130,11 @@ struct VehicleLoop::Impl {
 
   void start_running(MissionPlan plan, double now) {
     mission::RunnerOptions ro;
-    ro.vehicle_id = vehicle.info().id;
+    ro.vehicle_id = vehicle().info().id;
     ro.mission_label = std::to_string(plan.mission_id);
     Running r;
     r.id = plan.mission_id;
-    r.runner = std::make_unique<mission::MissionRunner>(plan.config, vehicle, plan.tasks, ro);
+    r.runner = std::make_unique<mission::MissionRunner>(plan.config, vehicle(), plan.tasks, ro);
     r.recorder = std::make_unique<MissionRecorder>(*store, plan.mission_id);
     r.publisher = std::make_unique<StreamPublisher>(hub, plan.mission_id, *r.runner);
     r.runner->add_observer(*r.recorder);
@@ -148,9 +172,10 @@ struct VehicleLoop::Impl {
 
   void telemetry_tick(double now) {
     VehicleSnapshot s;
-    s.info = vehicle.info();
-    s.link = vehicle.link_state(now);
-    s.nav = vehicle.last_nav();
+    s.info = vehicle().info();
+    s.link = vehicle().link_state(now);
+    s.nav = vehicle().last_nav();
+    if (m200) s.m200 = m200->status();
     s.t_s = now;
     if (running) {
       s.helm_mode = mission::to_string(running->runner->mode());
@@ -179,9 +204,20 @@ struct VehicleLoop::Impl {
 
   void run() {
     store = std::make_unique<store::Store>(db_path);
-    sim::RealtimePacer pacer(options.realtime_factor);
+    std::unique_ptr<sim::Pacer> pacer;
+    if (clock) {
+      pacer = std::make_unique<ClockPacer>(*clock);
+    } else {
+      pacer = std::make_unique<sim::RealtimePacer>(options.realtime_factor);
+    }
     while (!stop_requested.load() || running) {
-      if (!scheduler.run_until(scheduler.now_s() + 1.0, pacer)) break;
+      if (!scheduler.run_until(scheduler.now_s() + 1.0, *pacer)) break;
+    }
+    if (m200) {
+      // Stopped by our own command before the link closes, not by the frontseat's watchdog.
+      m200->all_stop(clock->now_s());
+      clock->sleep_until(clock->now_s() + 3.0 / options.m200->config.controller_hz);
+      m200->stop();
     }
     store.reset();
   }
@@ -189,7 +225,7 @@ struct VehicleLoop::Impl {
 
 VehicleLoop::VehicleLoop(VehicleLoopOptions options, std::string db_path, StreamHub& hub)
     : impl_(std::make_unique<Impl>(std::move(options), std::move(db_path), hub)),
-      info_(impl_->vehicle.info()) {
+      info_(impl_->vehicle().info()) {
   Impl& i = *impl_;
   i.scheduler.add("helm", i.options.setup.helm_hz, [&i](double now) { i.helm_tick(now); });
   i.scheduler.add("telemetry", i.options.telemetry_hz, [&i](double now) { i.telemetry_tick(now); });

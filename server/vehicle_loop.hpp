@@ -1,6 +1,7 @@
 #pragma once
-// The station's simulated vehicle, always running (at rest under all stop when no mission runs),
-// paced to the wall clock x a factor. Missions attach to it; the helm ticks the attached mission,
+// The station's vehicle, always running (at rest under all stop when no mission runs): the
+// simulator paced to the wall clock x a factor, or an M200 over its frontseat link on a clock at
+// the same factor. Missions attach to it; the helm ticks the attached mission,
 // a 10 Hz telemetry tick publishes nav and helm to the stream. Operator commands from other
 // threads are queued and applied at the next helm tick, on the loop's own thread.
 
@@ -19,6 +20,7 @@
 #include "server/mission_plans.hpp"
 #include "server/stream_hub.hpp"
 #include "sim/sim_config.hpp"
+#include "vehicle/m200.hpp"
 #include "vehicle/vehicle.hpp"
 
 namespace avk::server {
@@ -32,6 +34,7 @@ struct VehicleSnapshot {
   std::string helm_mode = "IDLE";
   std::optional<std::int64_t> mission_id;
   double t_s = 0.0;
+  std::optional<vehicle::M200Status> m200;  // link counters and battery of a real vehicle
 };
 
 struct MissionLive {
@@ -43,7 +46,9 @@ struct MissionLive {
 };
 
 struct VehicleLoopOptions {
-  sim::SimSetup setup;
+  sim::SimSetup setup;  // the simulated vehicle, and the helm rate for either kind
+  // Set: the station drives an M200 over its frontseat link instead of simulating a vehicle.
+  std::optional<vehicle::M200Options> m200;
   double realtime_factor = 1.0;
   double start_clock_s = 0.0;  // the station clock continues after everything stored
   kinematics::Pose start{};

@@ -310,4 +310,16 @@ double CatamaranPlant::right_thrust_n() const {
   return params_.thrust_from_actuator_n(now_(7));
 }
 
+TruthSample CatamaranPlant::truth() const {
+  TruthSample t;
+  t.t_s = time_s();
+  t.x_m = state_.x_m;
+  t.y_m = state_.y_m;
+  t.heading_deg = state_.heading_deg;
+  t.speed_over_ground_mps = speed_over_ground_mps();
+  t.course_over_ground_deg = course_over_ground_deg();
+  t.yaw_rate_dps = yaw_rate_dps();
+  return t;
+}
+
 }  // namespace avk::sim

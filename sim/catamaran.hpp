@@ -16,6 +16,7 @@
 #include <Eigen/Core>
 
 #include "sim/environment.hpp"
+#include "sim/sensors.hpp"
 
 namespace avk::sim {
 
@@ -111,6 +112,8 @@ class CatamaranPlant {
   // Direction of travel over ground; the heading when not moving.
   double course_over_ground_deg() const;
   double yaw_rate_dps() const;
+  // What a navigation sensor measures now, stamped with time_s().
+  TruthSample truth() const;
   // [u_r, v_r, r]: velocity through the water in body axes.
   Eigen::Vector3d water_relative_velocity() const;
   double left_thrust_n() const;

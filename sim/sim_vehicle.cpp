@@ -94,13 +94,7 @@ TruthSample SimVehicle::truth() const {
     t.course_over_ground_deg = u->state().heading_deg;
     t.yaw_rate_dps = u->yaw_rate_dps();
   } else {
-    const auto& c = std::get<CatamaranPlant>(plant_);
-    t.x_m = c.state().x_m;
-    t.y_m = c.state().y_m;
-    t.heading_deg = c.state().heading_deg;
-    t.speed_over_ground_mps = c.speed_over_ground_mps();
-    t.course_over_ground_deg = c.course_over_ground_deg();
-    t.yaw_rate_dps = c.yaw_rate_dps();
+    t = std::get<CatamaranPlant>(plant_).truth();
   }
   t.t_s = last_plant_time_s_.value_or(0.0);
   return t;

@@ -37,7 +37,12 @@ void usage(std::ostream& out) {
          "  avk mission run --config FILE --db FILE --sim [--vehicle KIND] [--sim-config FILE]\n"
          "                  [--seed N] [--realtime [--realtime-factor K]] [--quiet]\n"
          "      run a collection mission on the simulator; every turn is stored\n"
-         "  avk mission resume ID --db FILE --sim | list --db FILE | report ID --db FILE\n"
+         "  avk mission run --config FILE --db FILE --m200 HOST[:29500] [--datum LAT,LON]\n"
+         "                  [--pid m200_in_water|thesis_sim] [--controller-hz 10]\n"
+         "                  [--realtime-factor K] [--vehicle-id ID]\n"
+         "      the same on a Kingfisher M200 over its frontseat link (K matches an emulator's)\n"
+         "  avk mission resume ID --db FILE (--sim | --m200 HOST:PORT) | list --db FILE\n"
+         "  avk mission report ID --db FILE\n"
          "  avk ckt build|export --db FILE [--mission ID]... [--vehicle ID] [--out FILE]\n"
          "  avk model fit|sweep --db FILE --mission ID... [--form thesis|invariant]\n"
          "                  [--history S] [--refine] [--ridge auto|L]\n"
@@ -46,9 +51,15 @@ void usage(std::ostream& out) {
          "                  [--model ID] [--speed-model] [--x M --y M --heading DEG]\n"
          "  avk compare --db FILE [--model ID] [--format table|csv|json]\n"
          "  avk serve [--db FILE] [--sim [--vehicle KIND] [--sim-config FILE]\n"
-         "                  [--realtime-factor K]] [--bind 127.0.0.1] [--port 8080] [--web DIR]\n"
-         "                  [--token T]\n"
+         "                  | --m200 HOST:PORT [--datum LAT,LON] [--pid P]] [--realtime-factor K]\n"
+         "                  [--bind 127.0.0.1] [--port 8080] [--web DIR] [--token T]\n"
          "      the ground station: REST + WebSocket API under /api/v1 and the dashboard\n"
+         "  avk frontseat-emulator [--port 29500] [--bind 127.0.0.1] [--vehicle catamaran:m200]\n"
+         "                  [--sim-config FILE] [--datum LAT,LON] [--seed N]\n"
+         "                  [--realtime-factor K] [--start X,Y,HEADING] [--drop F]\n"
+         "                  [--corrupt F] [--nav-delay S] [--watchdog S]\n"
+         "      a Kingfisher M200 frontseat (Clearpath protocol over TCP) on the simulated\n"
+         "      catamaran, for trying a backseat without a boat; runs until SIGINT/SIGTERM\n"
          "  avk import alog FILE --db FILE [--vehicle NAME] [--names NAV_X=X,NAV_Y=Y,...]\n"
          "                  [--turn-record VAR] [--threshold DEG] [--speed-tolerance M/S]\n"
          "                  [--max-yaw-rate DEG/S]\n"
@@ -75,6 +86,7 @@ int run_cli(const std::vector<std::string>& args, std::istream& in, std::ostream
     if (args[0] == "predict") return cmd_predict(rest, io);
     if (args[0] == "import") return cmd_import(rest, io);
     if (args[0] == "serve") return cmd_serve(rest, io);
+    if (args[0] == "frontseat-emulator") return cmd_frontseat_emulator(rest, io);
   } catch (const UsageError& e) {
     err << "avk " << args[0] << ": " << e.what() << "\n";
     return 2;

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "kinematics/angles.hpp"
+#include "mission/helm_loop.hpp"
 #include "mission/mission_config.hpp"
 #include "mission/mission_runner.hpp"
 #include "mission/turn_plan.hpp"
@@ -18,12 +19,15 @@
 #include "server/cli/commands.hpp"
 #include "server/cli/db_selection.hpp"
 #include "server/cli/files.hpp"
+#include "server/cli/m200_options.hpp"
 #include "server/cli/sim_options.hpp"
 #include "server/mission_liveness.hpp"
 #include "server/mission_plans.hpp"
 #include "server/mission_recorder.hpp"
 #include "sim/sim_mission.hpp"
 #include "store/store.hpp"
+#include "vehicle/m200.hpp"
+#include "vehicle/scaled_clock.hpp"
 
 namespace avk::server {
 
@@ -129,25 +133,63 @@ struct RunSpec {
   MissionPlan plan;
   sim::SimSetup setup;
   std::string vehicle_id;
+  // Set: the mission drives an M200 over its frontseat link instead of the simulator.
+  std::optional<vehicle::M200Options> m200;
 };
 
-int execute(store::Store& db, RunSpec spec, const Args& a, Io& io) {
-  sim::SimMissionOptions so;
-  so.setup = spec.setup;
-  so.start = spec.plan.start;
-  so.start_time_s = spec.plan.clock_after_s;
+struct RunResult {
+  double start_time_s = 0.0;
+  double end_time_s = 0.0;
+  bool stopped = false;
+};
+
+double realtime_factor(const Args& a) {
+  const double f = a.number("realtime-factor").value_or(1.0);
+  if (!(f > 0.0 && f <= 10000.0)) throw UsageError("--realtime-factor must be in (0, 10000]");
+  return f;
+}
+
+// Connects before anything is stored, so an unreachable vehicle leaves no mission behind.
+std::unique_ptr<vehicle::M200> connect_m200(const vehicle::M200Options& o,
+                                            const vehicle::ScaledClock& clock, Io& io) {
+  auto m = std::make_unique<vehicle::M200>(o, clock);
+  io.out << "connecting to the M200 frontseat at " << o.endpoint.host << ":" << o.endpoint.port
+         << std::endl;
+  if (!m->wait_for_nav(std::chrono::seconds(10))) {
+    const auto st = m->status();
+    throw std::runtime_error("no navigation from the M200 at " + o.endpoint.host + ":" +
+                             std::to_string(o.endpoint.port) + " within 10 s" +
+                             (st.last_link_error.empty()
+                                  ? std::string(" (connected, but no $CPNVG with a position)")
+                                  : " (" + st.last_link_error + ")"));
+  }
+  return m;
+}
+
+int execute(store::Store& db, RunSpec spec, const Args& a, Io& io,
+            const vehicle::ScaledClock* clock = nullptr, vehicle::M200* m200 = nullptr) {
+  double max_duration_s = 86400.0;
   if (const auto limit = a.number("max-sim-time")) {
     if (!(*limit > 0.0)) throw UsageError("--max-sim-time must be positive (s)");
-    so.max_duration_s = *limit;
+    max_duration_s = *limit;
   }
-  sim::SimMission sim(so);
+  std::optional<sim::SimMission> sim;
+  if (!m200) {
+    sim::SimMissionOptions so;
+    so.setup = spec.setup;
+    so.start = spec.plan.start;
+    so.start_time_s = spec.plan.clock_after_s;
+    so.max_duration_s = max_duration_s;
+    sim.emplace(so);
+  }
+  vehicle::Vehicle& vehicle = m200 ? static_cast<vehicle::Vehicle&>(*m200) : sim->vehicle();
   MissionRecorder recorder(db, spec.plan.mission_id);
   const int planned = static_cast<int>(mission::plan_turns(spec.plan.config).size());
   ProgressPrinter printer(io.out, planned, spec.plan.done_before, a.flag("quiet"));
   mission::RunnerOptions ro;
   ro.vehicle_id = spec.vehicle_id;
   ro.mission_label = std::to_string(spec.plan.mission_id);
-  mission::MissionRunner runner(spec.plan.config, sim.vehicle(), spec.plan.tasks, ro);
+  mission::MissionRunner runner(spec.plan.config, vehicle, spec.plan.tasks, ro);
   runner.add_observer(recorder);
   runner.add_observer(printer);
 
@@ -158,15 +200,24 @@ int execute(store::Store& db, RunSpec spec, const Args& a, Io& io) {
                                    : "")
          << "\n";
   const auto wall_start = std::chrono::steady_clock::now();
-  sim::SimMissionResult result;
+  RunResult result;
   {
     StopSignals signals;
-    if (a.flag("realtime")) {
-      sim::RealtimePacer pacer(a.number("realtime-factor").value_or(1.0));
-      result = sim.run(runner, pacer, &g_stop);
+    if (m200) {
+      const auto r =
+          mission::run_helm_loop(runner, *clock, spec.setup.helm_hz, max_duration_s, &g_stop);
+      result = {r.start_time_s, r.end_time_s, r.stopped};
+      // Leave the vehicle stopped by our own command, not by the frontseat's watchdog.
+      m200->all_stop(clock->now_s());
+      clock->sleep_until(clock->now_s() + 3.0 / spec.m200->config.controller_hz);
+    } else if (a.flag("realtime")) {
+      sim::RealtimePacer pacer(realtime_factor(a));
+      const auto r = sim->run(runner, pacer, &g_stop);
+      result = {r.start_time_s, r.end_time_s, r.stopped};
     } else {
       sim::FastPacer pacer;
-      result = sim.run(runner, pacer, &g_stop);
+      const auto r = sim->run(runner, pacer, &g_stop);
+      result = {r.start_time_s, r.end_time_s, r.stopped};
     }
   }
   const double wall_s =
@@ -186,9 +237,22 @@ int execute(store::Store& db, RunSpec spec, const Args& a, Io& io) {
   io.out << ": " << ok << "/" << planned << " turns ok, " << aborted << " aborted, " << rejected
          << " rejected";
   if (runner.turns_given_up()) io.out << ", " << runner.turns_given_up() << " given up";
-  io.out << "; simulated " << fixed(result.end_time_s - result.start_time_s, 1) << " s in "
-         << fixed(wall_s, 3) << " s of wall time ("
+  io.out << "; " << (m200 ? "ran " : "simulated ")
+         << fixed(result.end_time_s - result.start_time_s, 1) << " s in " << fixed(wall_s, 3)
+         << " s of wall time ("
          << fixed((result.end_time_s - result.start_time_s) / std::max(wall_s, 1e-9), 0) << "x)\n";
+  if (m200) {
+    const auto st = m200->status();
+    const auto& c = st.counters;
+    io.out << "M200 link: " << c.sentences << " sentences, " << c.errors << " bad lines";
+    for (const auto& [code, n] : c.errors_by_code)
+      io.out << (code == c.errors_by_code.begin()->first ? " (" : ", ") << code << " " << n;
+    if (!c.errors_by_code.empty()) io.out << ")";
+    io.out << ", " << c.nav_samples << " nav samples, " << c.pydir_sent << " $PYDIR sent, "
+           << c.failsafe_stops << " failsafe stops, " << c.disconnects << " disconnects";
+    if (st.battery) io.out << ", battery " << fixed(st.battery->stack_v, 2) << " V";
+    io.out << "\n";
+  }
   if (result.stopped) return 130;
   return m->status == store::MissionStatus::done ? 0 : 1;
 }
@@ -198,38 +262,54 @@ void print_config_errors(const mission::MissionConfigError& e, const std::string
     io.err << name << ": " << f.field << ": " << f.message << "\n";
 }
 
-void require_sim(const Args& a) {
-  if (!a.flag("sim")) {
+void require_vehicle(const Args& a) {
+  if (a.flag("sim") == a.get("m200").has_value()) {
     throw UsageError(
-        "give the vehicle: --sim runs the simulator (the M200 driver, --m200, is not built yet)");
+        "give the vehicle: --sim runs the simulator, --m200 HOST:PORT drives an M200 (one of "
+        "them)");
   }
 }
 
-const std::set<std::string> kRunValues = {"config",          "db",         "vehicle",
-                                          "sim-config",      "ticks",      "seed",
-                                          "realtime-factor", "vehicle-id", "max-sim-time"};
+const std::set<std::string> kRunValues = {"config",       "db",   "vehicle",         "sim-config",
+                                          "ticks",        "seed", "realtime-factor", "vehicle-id",
+                                          "max-sim-time", "m200", "datum",           "pid",
+                                          "controller-hz"};
 const std::set<std::string> kRunFlags = {"sim", "realtime", "jitter", "quiet"};
 
 int run(const std::vector<std::string>& rest, Io& io) {
   const Args a(rest, kRunValues, kRunFlags);
-  require_sim(a);
+  require_vehicle(a);
   const std::string path = a.require("config");
   const std::string db_path = a.require("db");
   RunSpec spec;
-  spec.setup = sim_setup_from(a, io);
-  spec.vehicle_id = a.get("vehicle-id").value_or("sim-" + spec.setup.vehicle.kind);
-  spec.setup.vehicle.id = spec.vehicle_id;
+  spec.m200 = m200_options_from(a);
+  vehicle::VehicleInfo info;
+  if (spec.m200) {
+    info = vehicle::M200Session(spec.m200->config).info();
+  } else {
+    spec.setup = sim_setup_from(a, io);
+    spec.setup.vehicle.id = a.get("vehicle-id").value_or("sim-" + spec.setup.vehicle.kind);
+    info = {spec.setup.vehicle.id, spec.setup.vehicle.kind, spec.setup.vehicle_max_speed_mps(),
+            std::nullopt};
+  }
+  spec.vehicle_id = info.id;
   const std::string text = read_file(path, io.in);
-  store::Store db(db_path);
+  // Validate before connecting: a mission file with mistakes needs no vehicle to say so.
   try {
-    spec.plan = create_mission_plan(db, text,
-                                    {spec.vehicle_id, spec.setup.vehicle.kind,
-                                     spec.setup.vehicle_max_speed_mps(), std::nullopt});
+    (void)mission::parse_mission_config(text, info.max_speed_mps);
   } catch (const mission::MissionConfigError& e) {
     print_config_errors(e, path, io);
     return 1;
   }
-  return execute(db, std::move(spec), a, io);
+  store::Store db(db_path);
+  std::optional<vehicle::ScaledClock> clock;
+  std::unique_ptr<vehicle::M200> m200;
+  if (spec.m200) {
+    clock.emplace(realtime_factor(a), db.station_clock_end_s() + 1.0);
+    m200 = connect_m200(*spec.m200, *clock, io);
+  }
+  spec.plan = create_mission_plan(db, text, info);
+  return execute(db, std::move(spec), a, io, clock ? &*clock : nullptr, m200.get());
 }
 
 std::int64_t mission_id_arg(const Args& a) {
@@ -245,31 +325,49 @@ store::Mission find_mission(store::Store& db, std::int64_t id) {
 
 int resume(const std::vector<std::string>& rest, Io& io) {
   const Args a(rest, kRunValues, kRunFlags);
-  require_sim(a);
+  require_vehicle(a);
   store::Store db(a.require("db"));
   const std::int64_t id = mission_id_arg(a);
   const auto m = db.get_mission(id);
   if (!m) throw std::runtime_error("no mission " + std::to_string(id) + " in the database");
   const auto vehicle = db.get_vehicle(m->vehicle_id);
   if (!vehicle) throw std::runtime_error("mission's vehicle '" + m->vehicle_id + "' is not stored");
-  if (const auto kind = a.get("vehicle");
-      kind && *kind != vehicle->kind &&
-      "catamaran:" + kind->substr(kind->find(':') + 1) != vehicle->kind) {
-    throw UsageError("--vehicle " + *kind + " differs from the mission's vehicle (" +
-                     vehicle->kind + ")");
-  }
   RunSpec spec;
-  spec.setup = sim_setup_from(a, io, vehicle->kind);
+  spec.m200 = m200_options_from(a);
+  if (spec.m200.has_value() != (vehicle->kind == "m200")) {
+    throw UsageError("mission " + std::to_string(id) + " ran on " + vehicle->kind +
+                     (spec.m200 ? "; resume it with --sim" : "; resume it with --m200 HOST:PORT"));
+  }
+  std::optional<vehicle::ScaledClock> clock;
+  std::unique_ptr<vehicle::M200> m200;
+  double max_speed = 0.0;
+  if (spec.m200) {
+    spec.m200->config.id = m->vehicle_id;
+    max_speed = spec.m200->config.max_speed_mps;
+  } else {
+    if (const auto kind = a.get("vehicle");
+        kind && *kind != vehicle->kind &&
+        "catamaran:" + kind->substr(kind->find(':') + 1) != vehicle->kind) {
+      throw UsageError("--vehicle " + *kind + " differs from the mission's vehicle (" +
+                       vehicle->kind + ")");
+    }
+    spec.setup = sim_setup_from(a, io, vehicle->kind);
+    spec.setup.vehicle.id = m->vehicle_id;
+    max_speed = spec.setup.vehicle_max_speed_mps();
+  }
   spec.vehicle_id = m->vehicle_id;
-  spec.setup.vehicle.id = m->vehicle_id;
+  if (spec.m200) {
+    clock.emplace(realtime_factor(a), db.station_clock_end_s() + 1.0);
+    m200 = connect_m200(*spec.m200, *clock, io);
+  }
   try {
-    spec.plan = resume_mission_plan(db, id, spec.setup.vehicle_max_speed_mps());
+    spec.plan = resume_mission_plan(db, id, max_speed);
   } catch (const mission::MissionConfigError& e) {
     print_config_errors(e, "mission " + std::to_string(id), io);
     return 1;
   }
   spec.plan.clock_after_s += 1.0;
-  return execute(db, std::move(spec), a, io);
+  return execute(db, std::move(spec), a, io, clock ? &*clock : nullptr, m200.get());
 }
 
 int list(const std::vector<std::string>& rest, Io& io) {

@@ -1,5 +1,6 @@
 // avk serve: the ground station. The REST + WebSocket API and the dashboard over one database,
-// with the simulated vehicle (--sim) that missions run on.
+// with the vehicle missions run on: the simulator (--sim) or an M200 over its frontseat link
+// (--m200 HOST:PORT).
 #include <fcntl.h>
 #include <signal.h>
 #include <sys/stat.h>
@@ -13,6 +14,7 @@
 
 #include "server/cli/args.hpp"
 #include "server/cli/commands.hpp"
+#include "server/cli/m200_options.hpp"
 #include "server/cli/sim_options.hpp"
 #include "server/http/http_server.hpp"
 #include "server/station.hpp"
@@ -64,15 +66,19 @@ std::string station_token(const std::string& db_path, std::ostream& err) {
   return t;
 }
 
+std::string vehicle_id(const VehicleLoopOptions& v) {
+  return v.m200 ? v.m200->config.id : v.setup.vehicle.id;
+}
+
 }  // namespace
 
 int cmd_serve(const std::vector<std::string>& args, Io& io) {
   const Args a(args,
                {"db", "vehicle", "sim-config", "realtime-factor", "seed", "ticks", "m200", "bind",
-                "port", "web", "token", "threads"},
+                "port", "web", "token", "threads", "datum", "pid", "controller-hz", "vehicle-id"},
                {"sim", "jitter"});
-  if (a.get("m200"))
-    throw UsageError("--m200: the M200 frontseat driver is not built yet (issue 8); use --sim");
+  if (a.flag("sim") && a.get("m200")) throw UsageError("give one vehicle: --sim or --m200");
+  auto m200 = m200_options_from(a);  // option mistakes show before anything is opened
   const std::string db_path = a.get("db").value_or(default_db_path());
   StationOptions so;
   so.db_path = db_path;
@@ -99,7 +105,13 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
     v.realtime_factor = factor;
     // The station clock continues after everything stored, so mission times never repeat.
     v.start_clock_s = clock + 1.0;
-    so.sim = v;
+    so.vehicle = v;
+  } else if (m200) {
+    VehicleLoopOptions v;
+    v.m200 = std::move(m200);
+    v.realtime_factor = factor;
+    v.start_clock_s = clock + 1.0;
+    so.vehicle = v;
   }
   HttpServerOptions ho;
   ho.bind_address = a.get("bind").value_or("127.0.0.1");
@@ -112,9 +124,9 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
   } else if (a.get("web")) {
     throw UsageError("--web " + web + " is not a directory");
   }
-  if (so.sim)
-    ho.body_limit_by_path["/api/v1/vehicles/" + so.sim->setup.vehicle.id + "/ckt/import"] = 64u
-                                                                                            << 20;
+  if (so.vehicle)
+    ho.body_limit_by_path["/api/v1/vehicles/" + vehicle_id(*so.vehicle) + "/ckt/import"] = 64u
+                                                                                           << 20;
 
   // Signals are taken by this thread alone (sigwait), so block them before any thread starts.
   sigset_t signals;
@@ -130,7 +142,7 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
   http.start();
   const std::string host = ho.bind_address == "0.0.0.0" ? "127.0.0.1" : ho.bind_address;
   io.out << "AVK Station on http://" << host << ":" << http.port() << "/ (database " << db_path
-         << (so.sim ? ", vehicle " + so.sim->setup.vehicle.id : std::string(", no vehicle"))
+         << (so.vehicle ? ", vehicle " + vehicle_id(*so.vehicle) : std::string(", no vehicle"))
          << ")\n"
          << "dashboard with control: http://" << host << ":" << http.port()
          << "/?token=" << so.token << std::endl;

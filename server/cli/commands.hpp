@@ -23,6 +23,7 @@ int cmd_compare(const std::vector<std::string>& args, Io& io);
 int cmd_predict(const std::vector<std::string>& args, Io& io);
 int cmd_import(const std::vector<std::string>& args, Io& io);
 int cmd_serve(const std::vector<std::string>& args, Io& io);
+int cmd_frontseat_emulator(const std::vector<std::string>& args, Io& io);
 
 // Current UTC time as ISO 8601 (seconds).
 std::string utc_now_iso8601();

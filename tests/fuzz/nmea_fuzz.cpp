@@ -1,4 +1,4 @@
-// libFuzzer target for the frontseat protocol parser (not built by CMake: it needs clang).
+// libFuzzer target for the frontseat protocol parser (built by CMake when clang++ is found).
 //   clang++ -std=c++20 -g -O1 -fsanitize=fuzzer,address,undefined -I. -o nmea_fuzz
 //     tests/fuzz/nmea_fuzz.cpp vehicle/nmea.cpp
 //   ./nmea_fuzz -runs=10000000 -max_len=300

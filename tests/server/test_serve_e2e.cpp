@@ -58,7 +58,7 @@ TEST(ServeE2E, MissionOverRestFollowedOverTheStreamAndEveryTurnIsServed) {
   v.setup.vehicle.id = "sim-usim";
   v.realtime_factor = 100.0;
   v.start = {0.0, -70.0, 0.0};
-  so.sim = v;
+  so.vehicle = v;
   avk::server::Station station(so, hub);
   station.start();
   avk::server::HttpServer server({}, station, hub);

@@ -76,7 +76,7 @@ class StationApi : public ::testing::Test {
     v.setup.vehicle.id = "sim-usim";
     v.realtime_factor = 400.0;
     v.start = {0.0, -70.0, 0.0};
-    o.sim = v;
+    o.vehicle = v;
     station_ = std::make_unique<Station>(o, hub_);
     station_->start();
   }

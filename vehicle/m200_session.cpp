@@ -1,0 +1,196 @@
+#include "vehicle/m200_session.hpp"
+
+#include <cmath>
+#include <stdexcept>
+#include <type_traits>
+
+#include "kinematics/angles.hpp"
+
+namespace avk::vehicle {
+
+const char* to_string(Failsafe f) {
+  switch (f) {
+    case Failsafe::none:
+      return "none";
+    case Failsafe::stopped:
+      return "stopped";
+    case Failsafe::no_command:
+      return "no_command";
+    case Failsafe::command_stale:
+      return "command_stale";
+    case Failsafe::no_nav:
+      return "no_nav";
+    case Failsafe::nav_stale:
+      return "nav_stale";
+  }
+  return "?";
+}
+
+M200Session::M200Session(M200Config config)
+    : config_(std::move(config)),
+      grid_(config_.datum.lat_deg, config_.datum.lon_deg),
+      pid_(config_.pid) {
+  if (!(config_.controller_hz > 0.0) || !(config_.command_stale_s > 0.0) ||
+      !(config_.nav_stale_s > 0.0) || !(config_.link_stale_limit_s > 0.0) ||
+      !(config_.fix_max_age_s > 0.0)) {
+    throw std::invalid_argument("M200 rates and stale limits must be positive");
+  }
+  info_.id = config_.id;
+  info_.kind = "m200";
+  info_.max_speed_mps = config_.max_speed_mps;
+  info_.length_m = config_.length_m;
+}
+
+void M200Session::on_line(std::string_view line, double now_s) {
+  ++counters_.lines;
+  const NmeaParseResult r = parse_sentence(line, NmeaDirection::frontseat_to_backseat);
+  if (const NmeaError* e = r.error()) {
+    ++counters_.errors;
+    ++counters_.errors_by_code[to_string(e->code)];
+    counters_.last_error = e->message;
+    return;
+  }
+  ++counters_.sentences;
+  if (r.checksum == NmeaChecksum::lower_case) ++counters_.lower_case_checksums;
+  std::visit(
+      [&](const auto& s) {
+        using T = std::decay_t<decltype(s)>;
+        if constexpr (std::is_same_v<T, Cpnvg>) {
+          on_cpnvg(s, now_s);
+        } else if constexpr (std::is_same_v<T, Cpnvr>) {
+          speed_ = Speed{now_s, std::hypot(s.v_east_mps, s.v_north_mps)};
+          yaw_rate_ = {{now_s, s.yaw_rate_dps}};
+        } else if constexpr (std::is_same_v<T, Gprmc>) {
+          if (!s.valid) return;
+          if (s.lat_deg && s.lon_deg) {
+            const GridPoint p = grid_.to_grid(*s.lat_deg, *s.lon_deg);
+            gps_fix_ = Fix{now_s, p.x_m, p.y_m, *s.lat_deg, *s.lon_deg};
+          }
+          if (const auto v = s.speed_mps()) speed_ = Speed{now_s, *v};
+        } else if constexpr (std::is_same_v<T, Gpgga>) {
+          if (s.quality > 0 && s.lat_deg && s.lon_deg) {
+            const GridPoint p = grid_.to_grid(*s.lat_deg, *s.lon_deg);
+            gps_fix_ = Fix{now_s, p.x_m, p.y_m, *s.lat_deg, *s.lon_deg};
+          }
+        } else if constexpr (std::is_same_v<T, Gpvtg>) {
+          if (const auto v = s.speed_mps()) speed_ = Speed{now_s, *v};
+        } else if constexpr (std::is_same_v<T, Cprbs>) {
+          battery_ = M200Battery{now_s, s.stack_v, s.min_v, s.max_v, s.temperature_c};
+        } else {
+          // Compass, IMU, CPALT, backseat sentences echoed back and unknown types carry
+          // nothing the navigation solution needs.
+          ++counters_.unknown_sentences;
+        }
+      },
+      *r.sentence());
+}
+
+void M200Session::on_cpnvg(const Cpnvg& s, double now_s) {
+  // The heading is the frontseat's (CPNVG). Its position is used when it has GPS quality; else
+  // a fresh GPRMC/GPGGA fix. Speed over ground comes from the newest GPRMC, GPVTG or CPNVR.
+  NavSample n;
+  n.t_s = now_s;
+  n.heading_deg = s.heading_deg;
+  if (s.position_ok) {
+    const GridPoint p = grid_.to_grid(s.lat_deg, s.lon_deg);
+    n.x_m = p.x_m;
+    n.y_m = p.y_m;
+    n.lat_deg = s.lat_deg;
+    n.lon_deg = s.lon_deg;
+  } else if (gps_fix_ && now_s - gps_fix_->t_s <= config_.fix_max_age_s) {
+    n.x_m = gps_fix_->x_m;
+    n.y_m = gps_fix_->y_m;
+    n.lat_deg = gps_fix_->lat_deg;
+    n.lon_deg = gps_fix_->lon_deg;
+  } else {
+    ++counters_.nav_without_position;
+    return;
+  }
+  if (speed_ && now_s - speed_->t_s <= config_.fix_max_age_s) {
+    n.speed_mps = speed_->mps;
+  } else if (last_nav_ && n.t_s > last_nav_->t_s) {
+    // No speed sentence: the track's own rate, as a last resort.
+    n.speed_mps =
+        std::hypot(n.x_m - last_nav_->x_m, n.y_m - last_nav_->y_m) / (n.t_s - last_nav_->t_s);
+  }
+  if (yaw_rate_ && now_s - yaw_rate_->first <= config_.fix_max_age_s)
+    n.yaw_rate_dps = yaw_rate_->second;
+  ++counters_.nav_samples;
+  last_nav_ = n;
+  mailbox_.push_back(n);
+  // A mission that never drains its mail must not grow the driver without bound.
+  constexpr std::size_t kMailboxLimit = 100000;
+  if (mailbox_.size() > kMailboxLimit) mailbox_.erase(mailbox_.begin());
+}
+
+std::string M200Session::send_stop(Failsafe why) {
+  if (why != Failsafe::stopped && failsafe_ != why) ++counters_.failsafe_stops;
+  failsafe_ = why;
+  pid_.reset();  // nothing from before the stop may jolt the vehicle when it lifts
+  ActuatorCommand a;
+  a.left_pct = 0.0;
+  a.right_pct = 0.0;
+  actuators_ = a;
+  ++counters_.pydir_sent;
+  return format_pydir(0.0, 0.0);
+}
+
+std::string M200Session::control_tick(double now_s) {
+  if (!connected_) return {};
+  if (stopped_) return send_stop(Failsafe::stopped);
+  if (!desired_) return send_stop(Failsafe::no_command);
+  if (now_s - desired_->t_s > config_.command_stale_s) return send_stop(Failsafe::command_stale);
+  if (!last_nav_) return send_stop(Failsafe::no_nav);
+  if (now_s - last_nav_->t_s > config_.nav_stale_s) return send_stop(Failsafe::nav_stale);
+  failsafe_ = Failsafe::none;
+  ActuatorCommand a = pid_.step(now_s, last_nav_, desired_);
+  const DifferentialThrust lr = mix_differential(a.rudder_pct, a.thrust_pct, config_.mix);
+  a.left_pct = lr.left_pct;
+  a.right_pct = lr.right_pct;
+  actuators_ = a;
+  ++counters_.pydir_sent;
+  return format_pydir(lr.left_pct, lr.right_pct);
+}
+
+void M200Session::on_connected(double) {
+  connected_ = true;
+  ++counters_.connects;
+}
+
+void M200Session::on_disconnected(double) {
+  if (!connected_) return;
+  connected_ = false;
+  ++counters_.disconnects;
+  // Partial state from the old link must not be combined with the new one's.
+  gps_fix_.reset();
+  speed_.reset();
+  yaw_rate_.reset();
+  pid_.reset();
+}
+
+std::vector<NavSample> M200Session::take_nav() {
+  std::vector<NavSample> out;
+  out.swap(mailbox_);
+  return out;
+}
+
+LinkState M200Session::link_state(double now_s) const {
+  return link_state_from(last_nav_, connected_, now_s, config_.link_stale_limit_s);
+}
+
+void M200Session::command(const DesiredCommand& desired) {
+  if (!std::isfinite(desired.heading_deg) || !std::isfinite(desired.speed_mps) ||
+      !std::isfinite(desired.t_s) || desired.speed_mps < 0.0) {
+    throw std::invalid_argument("desired heading and speed must be finite, speed >= 0");
+  }
+  desired_ = desired;
+  desired_->heading_deg = kinematics::wrap360_deg(desired.heading_deg);
+  stopped_ = false;
+}
+
+void M200Session::all_stop(double now_s) {
+  stopped_ = true;
+  desired_ = DesiredCommand{now_s, desired_ ? desired_->heading_deg : 0.0, 0.0};
+}
+
+}  // namespace avk::vehicle

@@ -1,0 +1,135 @@
+#pragma once
+// The backseat side of the Clearpath frontseat protocol for a Kingfisher M200, without any I/O:
+// lines from the frontseat in, navigation samples and battery state out; at each controller tick
+// the $PYDIR to send, from the backseat PID (pMarinePID) and the differential mixing, or all stop
+// when the helm's commands or the navigation have gone stale. The transport (vehicle/m200.hpp)
+// feeds it bytes and sends what it returns, so everything here is tested without a socket.
+// Not thread-safe: the transport serialises access.
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "vehicle/local_grid.hpp"
+#include "vehicle/marine_pid.hpp"
+#include "vehicle/nmea.hpp"
+#include "vehicle/thrust_mixing.hpp"
+#include "vehicle/vehicle.hpp"
+
+namespace avk::vehicle {
+
+struct M200Config {
+  std::string id = "m200";
+  // The local grid's origin; the emulator's default is the same (MIT Sailing Pavilion, the
+  // MOOS-IvP Charles River datum).
+  LatLon datum{42.358456, -71.087589};
+  // Thesis Table 3.1: the gains the thesis ran the M200 with in the water.
+  MarinePidConfig pid = MarinePidConfig::m200_in_water();
+  MixConfig mix{};
+  double controller_hz = 10.0;  // $PYDIR rate (iM200 on the thesis' vehicles)
+  // The backseat sends all stop when the helm's newest command, or the newest navigation, is
+  // older than this (issue 8; the frontseat's own watchdog is 1.0 s on $PYDIR).
+  double command_stale_s = 1.5;
+  double nav_stale_s = 1.5;
+  // The Vehicle interface's link rule: navigation older than this is a stale link.
+  double link_stale_limit_s = 2.0;
+  // A GPS fix or speed older than this is not combined with a newer heading.
+  double fix_max_age_s = 1.0;
+  double max_speed_mps = 1.7;  // the M200's rated speed
+  double length_m = 1.35;
+};
+
+// Why the last $PYDIR was all stop, when it was.
+enum class Failsafe { none, stopped, no_command, command_stale, no_nav, nav_stale };
+const char* to_string(Failsafe f);
+
+struct M200Battery {
+  double t_s = 0.0;
+  double stack_v = 0.0;
+  double min_v = 0.0;
+  double max_v = 0.0;
+  double temperature_c = 0.0;
+};
+
+struct M200Counters {
+  std::uint64_t lines = 0;
+  std::uint64_t sentences = 0;  // parsed
+  std::uint64_t errors = 0;     // lines that did not parse
+  std::map<std::string, std::uint64_t> errors_by_code;
+  std::string last_error;  // the newest parse error's message
+  std::uint64_t lower_case_checksums = 0;
+  std::uint64_t unknown_sentences = 0;  // well formed, of a type not used
+  std::uint64_t nav_samples = 0;
+  std::uint64_t nav_without_position = 0;  // CPNVG with no usable position anywhere
+  std::uint64_t pydir_sent = 0;
+  std::uint64_t failsafe_stops = 0;  // $PYDIR 0,0 sent because of stale commands or navigation
+  std::uint64_t connects = 0;
+  std::uint64_t disconnects = 0;
+};
+
+class M200Session {
+ public:
+  // Throws std::invalid_argument for a datum off the earth or rates that are not positive.
+  explicit M200Session(M200Config config);
+
+  const M200Config& config() const { return config_; }
+  const VehicleInfo& info() const { return info_; }
+
+  // One line from the frontseat, received at now_s on the mission clock. Whatever the bytes, it
+  // never throws: a line that does not parse is counted with its error.
+  void on_line(std::string_view line, double now_s);
+
+  // The sentence to send at a controller tick (with its CRLF), or empty when not connected.
+  std::string control_tick(double now_s);
+
+  void on_connected(double now_s);
+  void on_disconnected(double now_s);
+  bool connected() const { return connected_; }
+
+  // The Vehicle interface, served by the transport.
+  std::vector<NavSample> take_nav();
+  std::optional<NavSample> last_nav() const { return last_nav_; }
+  LinkState link_state(double now_s) const;
+  void command(const DesiredCommand& desired);  // throws std::invalid_argument when not finite
+  void all_stop(double now_s);
+  std::optional<DesiredCommand> last_command() const { return desired_; }
+  std::optional<ActuatorCommand> last_actuators() const { return actuators_; }
+
+  std::optional<M200Battery> battery() const { return battery_; }
+  Failsafe failsafe() const { return failsafe_; }
+  const M200Counters& counters() const { return counters_; }
+
+ private:
+  struct Fix {
+    double t_s;  // received
+    double x_m, y_m, lat_deg, lon_deg;
+  };
+  struct Speed {
+    double t_s;
+    double mps;
+  };
+  void on_cpnvg(const Cpnvg& s, double now_s);
+  std::string send_stop(Failsafe why);
+
+  M200Config config_;
+  VehicleInfo info_;
+  LocalGrid grid_;
+  MarinePid pid_;
+  bool connected_ = false;
+  bool stopped_ = false;
+  std::optional<Fix> gps_fix_;
+  std::optional<Speed> speed_;
+  std::optional<std::pair<double, double>> yaw_rate_;  // (received, deg/s)
+  std::vector<NavSample> mailbox_;
+  std::optional<NavSample> last_nav_;
+  std::optional<DesiredCommand> desired_;
+  std::optional<ActuatorCommand> actuators_;
+  std::optional<M200Battery> battery_;
+  Failsafe failsafe_ = Failsafe::none;
+  M200Counters counters_;
+};
+
+}  // namespace avk::vehicle
