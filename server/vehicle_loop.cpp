@@ -36,6 +36,18 @@ std::string optional_number(const std::optional<double>& v) {
   return v ? nlohmann::json(*v).dump() : "null";
 }
 
+// A real vehicle's battery and link health ride along with its navigation, so an operator sees
+// a sagging pack or a noisy link while the turns come in.
+std::string frontseat_fields(const VehicleSnapshot& s) {
+  if (!s.m200) return "";
+  const auto& m = *s.m200;
+  return R"(,"battery_v":)" +
+         optional_number(m.battery ? std::optional(m.battery->stack_v) : std::nullopt) +
+         R"(,"failsafe":")" + vehicle::to_string(m.failsafe) + R"(","bad_lines":)" +
+         std::to_string(m.counters.errors) + R"(,"disconnects":)" +
+         std::to_string(m.counters.disconnects);
+}
+
 }  // namespace
 
 // Paces the loop's scheduler to the M200's clock, so helm ticks and navigation share one time.
@@ -190,7 +202,7 @@ struct VehicleLoop::Impl {
                       nlohmann::json(s.nav->x_m).dump() + R"(,"y_m":)" +
                       nlohmann::json(s.nav->y_m).dump() + R"(,"heading_deg":)" +
                       nlohmann::json(s.nav->heading_deg).dump() + R"(,"speed_mps":)" +
-                      nlohmann::json(s.nav->speed_mps).dump() + "}");
+                      nlohmann::json(s.nav->speed_mps).dump() + frontseat_fields(s) + "}");
     }
     hub.publish("helm", now,
                 R"({"vehicle_id":")" + s.info.id + R"(","mode":")" + s.helm_mode +

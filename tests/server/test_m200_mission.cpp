@@ -13,6 +13,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <numeric>
 #include <thread>
@@ -377,6 +378,17 @@ TEST(M200Mission, TheStationServesAnM200AndRunsAMissionOnIt) {
   v.m200 = driver_options(emulator);
   v.realtime_factor = kFactor;
   so.vehicle = v;
+  // The live stream's nav frames carry the frontseat's battery and link health.
+  struct LastNav final : server::StreamSink {
+    void deliver(std::shared_ptr<const server::StreamMessage> m) override {
+      std::lock_guard lock(mutex);
+      payload = *m->payload;
+    }
+    std::mutex mutex;
+    std::string payload;
+  };
+  const auto sink = std::make_shared<LastNav>();
+  hub.subscribe(sink, "nav");
   server::Station station(so, hub);
   station.start();
   const auto get = [&](const std::string& path) {
@@ -397,6 +409,15 @@ TEST(M200Mission, TheStationServesAnM200AndRunsAMissionOnIt) {
   EXPECT_EQ(m200["frontseat"]["connected"], true);
   EXPECT_GT(m200["frontseat"]["battery_v"].get<double>(), 10.0);
   EXPECT_EQ(m200["frontseat"]["bad_lines"], 0);
+  {
+    std::lock_guard lock(sink->mutex);
+    ASSERT_FALSE(sink->payload.empty());
+    const auto nav = nlohmann::json::parse(sink->payload)["data"];
+    EXPECT_GT(nav["battery_v"].get<double>(), 10.0);
+    EXPECT_EQ(nav["bad_lines"], 0);
+    EXPECT_EQ(nav["disconnects"], 0);
+    EXPECT_TRUE(nav["failsafe"].is_string());
+  }
 
   server::ApiRequest post;
   post.method = "POST";

@@ -42,9 +42,9 @@ let phase = 'load';
 
 // ---------------------------------------------------------------- helpers
 
-function startServer(port = 0) {
+function startServer(port = 0, vehicle = ['--sim', '--realtime-factor', '50'], db = 'station.db') {
   return new Promise((resolve, reject) => {
-    const args = ['serve', '--db', path.join(tmp, 'station.db'), '--sim', '--port', String(port), '--web', webDir, '--realtime-factor', '50'];
+    const args = ['serve', '--db', path.join(tmp, db), ...vehicle, '--port', String(port), '--web', webDir];
     const child = spawn(AVK, args, { stdio: ['ignore', 'pipe', 'pipe'] });
     const s = { child, port: null, token: null, base: null, log: '' };
     const timer = setTimeout(() => {
@@ -488,6 +488,58 @@ test('the link badge shows DISCONNECTED when the server stops and LIVE with a ne
   assert.notEqual(afterId, before);
   // It caught up from REST: the finished mission is still the one shown.
   await until('the mission after catch-up', async () => (await page.evaluate(() => window.avkTest.state().mission)) === missionId, 15000);
+});
+
+/** `avk frontseat-emulator` on a free port: resolves {child, port} once it listens. */
+function startEmulator() {
+  return new Promise((resolve, reject) => {
+    const child = spawn(AVK, ['frontseat-emulator', '--port', '0', '--realtime-factor', '20', '--start', '0,-70,0'], { stdio: ['ignore', 'pipe', 'pipe'] });
+    let log = '';
+    const timer = setTimeout(() => {
+      child.kill('SIGKILL');
+      reject(new Error(`the emulator did not listen within ${SERVER_START_MS} ms:\n${log}`));
+    }, SERVER_START_MS);
+    const onData = (chunk) => {
+      log = (log + chunk.toString()).slice(-20000);
+      const m = log.match(/listening on 127\.0\.0\.1:(\d+)/);
+      if (m) {
+        clearTimeout(timer);
+        resolve({ child, port: Number(m[1]) });
+      }
+    };
+    child.stdout.on('data', onData);
+    child.stderr.on('data', onData);
+    child.on('error', (e) => {
+      clearTimeout(timer);
+      reject(e);
+    });
+  });
+}
+
+test('an M200 behind the frontseat emulator shows its battery and frontseat link in Live', { timeout: 60000 }, async () => {
+  phase = 'm200';
+  const emulator = await startEmulator();
+  let m200 = null;
+  const p = await newPage();
+  try {
+    m200 = await startServer(0, ['--m200', `127.0.0.1:${emulator.port}`, '--realtime-factor', '20'], 'm200.db');
+    await p.goto(`${m200.base}/?token=${m200.token}#live`, { waitUntil: 'load', timeout: 20000 });
+    await p.waitForFunction(() => document.getElementById('link-badge')?.textContent === 'LIVE', null, { timeout: 20000 });
+    await p.waitForFunction(() => /^\d+\.\d\d$/.test(document.getElementById('live-battery')?.textContent ?? ''), null, { timeout: 20000 });
+    assert.ok(await p.isVisible('#live-battery'), 'the battery is shown for a real vehicle');
+    assert.match(await p.textContent('#live-frontseat'), /bad lines, \d+ disconnects/);
+    assert.match(await p.textContent('#vehicle-name'), /m200/);
+    await shot('live-m200', p);
+  } finally {
+    await p.close();
+    await stopServer(m200).catch(() => {});
+    emulator.child.kill('SIGTERM');
+  }
+});
+
+test('the simulator shows no battery row', async () => {
+  await goView('live');
+  assert.ok(await page.isHidden('#live-battery'));
 });
 
 test('no unexpected console errors during the run', () => {
