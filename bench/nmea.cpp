@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "vehicle/m200_session.hpp"
 #include "vehicle/nmea.hpp"
 
 namespace {
@@ -98,5 +99,28 @@ void BM_FormatPydir(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 BENCHMARK(BM_FormatPydir);
+
+// The M200 driver's whole receive path per line (parse, local grid, navigation sample) and one
+// controller tick (PID, mixing, $PYDIR) per CPNVG: the driver's budget on its network thread.
+void BM_M200SessionReceive(benchmark::State& state) {
+  const std::vector<std::string>& v = lines(0);
+  M200Session session{M200Config{}};
+  session.on_connected(0.0);
+  double t = 0.0;
+  for (auto _ : state) {
+    for (const std::string& s : v) {
+      t += 0.0667;
+      session.on_line(s, t);
+      if (s[3] == 'N' && s[4] == 'V' && s[5] == 'G') {
+        session.command({t, 90.0, 1.0});
+        std::string out = session.control_tick(t);
+        benchmark::DoNotOptimize(out);
+      }
+    }
+    benchmark::DoNotOptimize(session.take_nav());
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * v.size()));
+}
+BENCHMARK(BM_M200SessionReceive);
 
 }  // namespace
