@@ -63,9 +63,7 @@ int cmd_frontseat_emulator(const std::vector<std::string>& args, Io& io) {
   if (port < 0 || port > 65535 || port != std::floor(port))
     throw UsageError("--port must be a whole number from 0 to 65535");
   o.port = static_cast<unsigned short>(port);
-  o.realtime_factor = a.number("realtime-factor").value_or(1.0);
-  if (!(o.realtime_factor > 0.0 && o.realtime_factor <= 10000.0))
-    throw UsageError("--realtime-factor must be in (0, 10000]");
+  o.realtime_factor = realtime_factor_from(a);
   if (const auto d = a.get("datum")) o.datum = parse_datum(*d);
   if (a.get("start")) {
     const auto s = number_list(a, "start", 3, "X,Y,HEADING (m east, m north, deg)");

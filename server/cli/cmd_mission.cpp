@@ -143,12 +143,6 @@ struct RunResult {
   bool stopped = false;
 };
 
-double realtime_factor(const Args& a) {
-  const double f = a.number("realtime-factor").value_or(1.0);
-  if (!(f > 0.0 && f <= 10000.0)) throw UsageError("--realtime-factor must be in (0, 10000]");
-  return f;
-}
-
 // Connects before anything is stored, so an unreachable vehicle leaves no mission behind.
 std::unique_ptr<vehicle::M200> connect_m200(const vehicle::M200Options& o,
                                             const vehicle::ScaledClock& clock, Io& io) {
@@ -211,7 +205,7 @@ int execute(store::Store& db, RunSpec spec, const Args& a, Io& io,
       m200->all_stop(clock->now_s());
       clock->sleep_until(clock->now_s() + 3.0 / spec.m200->config.controller_hz);
     } else if (a.flag("realtime")) {
-      sim::RealtimePacer pacer(realtime_factor(a));
+      sim::RealtimePacer pacer(realtime_factor_from(a));
       const auto r = sim->run(runner, pacer, &g_stop);
       result = {r.start_time_s, r.end_time_s, r.stopped};
     } else {
@@ -305,7 +299,7 @@ int run(const std::vector<std::string>& rest, Io& io) {
   std::optional<vehicle::ScaledClock> clock;
   std::unique_ptr<vehicle::M200> m200;
   if (spec.m200) {
-    clock.emplace(realtime_factor(a), db.station_clock_end_s() + 1.0);
+    clock.emplace(realtime_factor_from(a), db.station_clock_end_s() + 1.0);
     m200 = connect_m200(*spec.m200, *clock, io);
   }
   spec.plan = create_mission_plan(db, text, info);
@@ -357,7 +351,7 @@ int resume(const std::vector<std::string>& rest, Io& io) {
   }
   spec.vehicle_id = m->vehicle_id;
   if (spec.m200) {
-    clock.emplace(realtime_factor(a), db.station_clock_end_s() + 1.0);
+    clock.emplace(realtime_factor_from(a), db.station_clock_end_s() + 1.0);
     m200 = connect_m200(*spec.m200, *clock, io);
   }
   try {

@@ -93,9 +93,7 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
   const double threads = a.number("threads").value_or(2);
   if (threads < 1 || threads > 64 || threads != static_cast<int>(threads))
     throw UsageError("--threads must be a whole number from 1 to 64");
-  const double factor = a.number("realtime-factor").value_or(1.0);
-  if (!(factor > 0.0 && factor <= 10000.0))
-    throw UsageError("--realtime-factor must be in (0, 10000]");
+  const double factor = realtime_factor_from(a);
 
   const double clock = store::Store(db_path).station_clock_end_s();
   if (a.flag("sim")) {

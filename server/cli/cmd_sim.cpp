@@ -53,7 +53,7 @@ int sim_turn(const std::vector<std::string>& rest, Io& io) {
   const sim::TurnScenarioConfig c = scenario_from(a, setup);
   sim::TurnScenarioResult r;
   if (a.flag("realtime")) {
-    sim::RealtimePacer pacer(a.number("realtime-factor").value_or(1.0));
+    sim::RealtimePacer pacer(realtime_factor_from(a));
     r = sim::run_turn_scenario(c, pacer);
   } else {
     r = sim::run_turn_scenario(c);

@@ -71,4 +71,10 @@ sim::SimSetup sim_setup_from(const Args& a, Io& io, const std::string& default_k
   return setup;
 }
 
+double realtime_factor_from(const Args& a) {
+  const double f = a.number("realtime-factor").value_or(1.0);
+  if (!(f > 0.0 && f <= 10000.0)) throw UsageError("--realtime-factor must be in (0, 10000]");
+  return f;
+}
+
 }  // namespace avk::server

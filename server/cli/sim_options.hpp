@@ -16,4 +16,8 @@ namespace avk::server {
 // UsageError naming the option.
 sim::SimSetup sim_setup_from(const Args& a, Io& io, const std::string& default_kind = "usim");
 
+// --realtime-factor K (default 1): the clock of a paced simulator, an emulator or a driver runs
+// at K x the wall clock. Throws UsageError outside (0, 10000].
+double realtime_factor_from(const Args& a);
+
 }  // namespace avk::server
