@@ -3,8 +3,6 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "kinematics/angles.hpp"
-
 namespace avk::sim {
 
 namespace {
@@ -149,12 +147,7 @@ vehicle::LinkState SimVehicle::link_state(double now_s) const {
 }
 
 void SimVehicle::command(const vehicle::DesiredCommand& desired) {
-  if (!std::isfinite(desired.heading_deg) || !std::isfinite(desired.speed_mps) ||
-      desired.speed_mps < 0.0) {
-    throw std::invalid_argument("desired heading and speed must be finite, speed >= 0");
-  }
-  desired_ = desired;
-  desired_->heading_deg = kinematics::wrap360_deg(desired.heading_deg);
+  desired_ = vehicle::checked_command(desired);
   stopped_ = false;
 }
 

@@ -4,8 +4,6 @@
 #include <stdexcept>
 #include <type_traits>
 
-#include "kinematics/angles.hpp"
-
 namespace avk::vehicle {
 
 const char* to_string(Failsafe f) {
@@ -179,12 +177,7 @@ LinkState M200Session::link_state(double now_s) const {
 }
 
 void M200Session::command(const DesiredCommand& desired) {
-  if (!std::isfinite(desired.heading_deg) || !std::isfinite(desired.speed_mps) ||
-      !std::isfinite(desired.t_s) || desired.speed_mps < 0.0) {
-    throw std::invalid_argument("desired heading and speed must be finite, speed >= 0");
-  }
-  desired_ = desired;
-  desired_->heading_deg = kinematics::wrap360_deg(desired.heading_deg);
+  desired_ = checked_command(desired);
   stopped_ = false;
 }
 

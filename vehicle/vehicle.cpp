@@ -1,5 +1,10 @@
 #include "vehicle/vehicle.hpp"
 
+#include <cmath>
+#include <stdexcept>
+
+#include "kinematics/angles.hpp"
+
 namespace avk::vehicle {
 
 const char* to_string(LinkState s) {
@@ -12,6 +17,16 @@ const char* to_string(LinkState s) {
       return "DISCONNECTED";
   }
   return "?";
+}
+
+DesiredCommand checked_command(const DesiredCommand& desired) {
+  if (!std::isfinite(desired.t_s) || !std::isfinite(desired.heading_deg) ||
+      !std::isfinite(desired.speed_mps) || desired.speed_mps < 0.0) {
+    throw std::invalid_argument("desired heading and speed must be finite, speed >= 0");
+  }
+  DesiredCommand d = desired;
+  d.heading_deg = kinematics::wrap360_deg(desired.heading_deg);
+  return d;
 }
 
 LinkState link_state_from(const std::optional<NavSample>& last, bool connected, double now_s,

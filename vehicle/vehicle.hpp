@@ -73,6 +73,10 @@ class Vehicle {
   virtual std::optional<ActuatorCommand> last_actuators() const = 0;
 };
 
+// The command rule shared by every implementation: the heading wrapped to [0, 360). Throws
+// std::invalid_argument for a time, heading or speed that is not finite, or a negative speed.
+DesiredCommand checked_command(const DesiredCommand& desired);
+
 // The link-state rule shared by every implementation.
 LinkState link_state_from(const std::optional<NavSample>& last, bool connected, double now_s,
                           double stale_limit_s);
