@@ -81,11 +81,7 @@ FrontseatEmulatorOptions checked(FrontseatEmulatorOptions o) {
         "frontseat emulator: vehicle kind usim has no left and right thrusters for $PYDIR; use "
         "catamaran, catamaran:m200 or catamaran:otter");
   }
-  if (!o.vehicle.catamaran) {
-    const SimVehicleConfig d = sim_vehicle_defaults(o.vehicle.kind);
-    o.vehicle.catamaran = d.catamaran;
-    o.vehicle.kind = d.kind;
-  }
+  o.vehicle = with_kind_defaults(std::move(o.vehicle));
   require(o.plant_hz > 0.0 && o.plant_hz <= 1000.0, "plant_hz must be in (0, 1000]");
   // Sentences go out on plant steps, so they cannot come faster than the plant.
   require(o.nav_hz > 0.0 && o.nav_hz <= o.plant_hz, "nav_hz must be in (0, plant_hz]");
@@ -101,15 +97,15 @@ FrontseatEmulatorOptions checked(FrontseatEmulatorOptions o) {
   return o;
 }
 
-CatamaranPlant make_plant(const FrontseatEmulatorOptions& o) {
-  CatamaranState s;
-  s.x_m = o.start_x_m;
-  s.y_m = o.start_y_m;
-  s.heading_deg = kinematics::wrap360_deg(o.start_heading_deg);
-  // Seeded as SimVehicle seeds its plant, so the same seed gives the same gusts.
-  EnvironmentConfig env = o.vehicle.environment;
-  env.seed = o.seed * 0xD1B54A32D192ED03ULL + 7;
-  return CatamaranPlant(*o.vehicle.catamaran, env, s);
+// The simulator's vehicle config at the emulator's start pose and seed.
+SimVehicleConfig plant_config(const FrontseatEmulatorOptions& o) {
+  SimVehicleConfig c = o.vehicle;
+  c.start_x_m = o.start_x_m;
+  c.start_y_m = o.start_y_m;
+  c.start_heading_deg = kinematics::wrap360_deg(o.start_heading_deg);
+  c.start_speed_mps = 0.0;
+  c.seed = o.seed;
+  return c;
 }
 
 struct Client {
@@ -133,8 +129,8 @@ struct FrontseatEmulator::Impl {
   explicit Impl(FrontseatEmulatorOptions o)
       : opt(checked(std::move(o))),
         grid(opt.datum.lat_deg, opt.datum.lon_deg),
-        plant(make_plant(opt)),
-        sensor(opt.vehicle.sensors, opt.seed * 0x9E3779B97F4A7C15ULL + 1),
+        plant(make_catamaran_plant(plant_config(opt))),
+        sensor(make_nav_sensor(plant_config(opt))),
         fault_rng(opt.seed * 0xBF58476D1CE4E5B9ULL + 3),
         faults(opt.faults),
         clock(opt.realtime_factor) {

@@ -12,6 +12,13 @@ std::variant<UsimPlant, CatamaranPlant> make_plant(const SimVehicleConfig& c) {
     return UsimPlant(c.usim,
                      UsimState{c.start_x_m, c.start_y_m, c.start_heading_deg, c.start_speed_mps});
   }
+  return make_catamaran_plant(c);
+}
+
+}  // namespace
+
+CatamaranPlant make_catamaran_plant(const SimVehicleConfig& c) {
+  if (!c.catamaran) throw std::invalid_argument("vehicle kind '" + c.kind + "' is no catamaran");
   CatamaranState s;
   s.x_m = c.start_x_m;
   s.y_m = c.start_y_m;
@@ -23,7 +30,18 @@ std::variant<UsimPlant, CatamaranPlant> make_plant(const SimVehicleConfig& c) {
   return CatamaranPlant(*c.catamaran, env, s);
 }
 
-}  // namespace
+NavSensor make_nav_sensor(const SimVehicleConfig& c) {
+  return NavSensor(c.sensors, c.seed * 0x9E3779B97F4A7C15ULL + 1);
+}
+
+SimVehicleConfig with_kind_defaults(SimVehicleConfig config) {
+  if (config.kind != "usim" && !config.catamaran) {
+    const SimVehicleConfig d = sim_vehicle_defaults(config.kind);
+    config.catamaran = d.catamaran;
+    config.kind = d.kind;
+  }
+  return config;
+}
 
 SimVehicleConfig sim_vehicle_defaults(const std::string& kind) {
   SimVehicleConfig c;
@@ -62,16 +80,9 @@ double max_speed_mps(const SimVehicleConfig& c) {
 }
 
 SimVehicle::SimVehicle(SimVehicleConfig config, Scheduler& scheduler)
-    : config_([&] {
-        if (config.kind != "usim" && !config.catamaran) {
-          const SimVehicleConfig d = sim_vehicle_defaults(config.kind);
-          config.catamaran = d.catamaran;
-          config.kind = d.kind;
-        }
-        return config;
-      }()),
+    : config_(with_kind_defaults(std::move(config))),
       plant_(make_plant(config_)),
-      sensor_(config_.sensors, config_.seed * 0x9E3779B97F4A7C15ULL + 1),
+      sensor_(make_nav_sensor(config_)),
       pid_(config_.pid) {
   info_.id = config_.id;
   info_.kind = config_.kind;

@@ -46,6 +46,16 @@ struct SimVehicleConfig {
 // unknown kind, naming it.
 SimVehicleConfig sim_vehicle_defaults(const std::string& kind);
 
+// The config with the catamaran parameters of its kind filled in when absent (kind "catamaran"
+// becomes "catamaran:m200"); usim configs unchanged.
+SimVehicleConfig with_kind_defaults(SimVehicleConfig config);
+
+// A catamaran config's plant at its start pose and its navigation sensor, seeded from
+// config.seed exactly as a SimVehicle seeds them (so the frontseat emulator with the same seed
+// sees the same gusts and noise). The config must have its catamaran parameters.
+CatamaranPlant make_catamaran_plant(const SimVehicleConfig& config);
+NavSensor make_nav_sensor(const SimVehicleConfig& config);
+
 // The top operating speed: the catamaran's rating, or uSimMarine's full thrust over its thrust
 // factor (or the end of its thrust map).
 double max_speed_mps(const SimVehicleConfig& config);
