@@ -344,20 +344,8 @@ struct Station::Impl {
                             {"heading_deg", s.nav->heading_deg},
                             {"speed_mps", s.nav->speed_mps}}
                      : json();
-    if (s.m200) {
-      // A real vehicle's link health: what an operator checks before trusting the turns.
-      const auto& c = s.m200->counters;
-      j["frontseat"] = {{"connected", s.m200->connected},
-                        {"failsafe", vehicle::to_string(s.m200->failsafe)},
-                        {"battery_v", s.m200->battery ? json(s.m200->battery->stack_v) : json()},
-                        {"sentences", c.sentences},
-                        {"bad_lines", c.errors},
-                        {"last_error", c.last_error},
-                        {"pydir_sent", c.pydir_sent},
-                        {"failsafe_stops", c.failsafe_stops},
-                        {"disconnects", c.disconnects},
-                        {"last_link_error", s.m200->last_link_error}};
-    }
+    // A real vehicle's link health: what an operator checks before trusting the turns.
+    if (s.m200) j["frontseat"] = frontseat_json(*s.m200);
     return j;
   }
 

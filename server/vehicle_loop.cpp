@@ -36,19 +36,21 @@ std::string optional_number(const std::optional<double>& v) {
   return v ? nlohmann::json(*v).dump() : "null";
 }
 
-// A real vehicle's battery and link health ride along with its navigation, so an operator sees
-// a sagging pack or a noisy link while the turns come in.
-std::string frontseat_fields(const VehicleSnapshot& s) {
-  if (!s.m200) return "";
-  const auto& m = *s.m200;
-  return R"(,"battery_v":)" +
-         optional_number(m.battery ? std::optional(m.battery->stack_v) : std::nullopt) +
-         R"(,"failsafe":")" + vehicle::to_string(m.failsafe) + R"(","bad_lines":)" +
-         std::to_string(m.counters.errors) + R"(,"disconnects":)" +
-         std::to_string(m.counters.disconnects);
-}
-
 }  // namespace
+
+nlohmann::json frontseat_json(const vehicle::M200Status& s) {
+  const auto& c = s.counters;
+  return {{"connected", s.connected},
+          {"failsafe", vehicle::to_string(s.failsafe)},
+          {"battery_v", s.battery ? nlohmann::json(s.battery->stack_v) : nlohmann::json()},
+          {"sentences", c.sentences},
+          {"bad_lines", c.errors},
+          {"last_error", c.last_error},
+          {"pydir_sent", c.pydir_sent},
+          {"failsafe_stops", c.failsafe_stops},
+          {"disconnects", c.disconnects},
+          {"last_link_error", s.last_link_error}};
+}
 
 // Paces the loop's scheduler to the M200's clock, so helm ticks and navigation share one time.
 class ClockPacer final : public sim::Pacer {
@@ -202,7 +204,10 @@ struct VehicleLoop::Impl {
                       nlohmann::json(s.nav->x_m).dump() + R"(,"y_m":)" +
                       nlohmann::json(s.nav->y_m).dump() + R"(,"heading_deg":)" +
                       nlohmann::json(s.nav->heading_deg).dump() + R"(,"speed_mps":)" +
-                      nlohmann::json(s.nav->speed_mps).dump() + frontseat_fields(s) + "}");
+                      nlohmann::json(s.nav->speed_mps).dump() +
+                      // A real vehicle's battery and link health ride along with its
+                      // navigation, so an operator sees a sagging pack or a noisy link live.
+                      (s.m200 ? R"(,"frontseat":)" + frontseat_json(*s.m200).dump() : "") + "}");
     }
     hub.publish("helm", now,
                 R"({"vehicle_id":")" + s.info.id + R"(","mode":")" + s.helm_mode +

@@ -11,6 +11,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 #include <thread>
@@ -36,6 +37,11 @@ struct VehicleSnapshot {
   double t_s = 0.0;
   std::optional<vehicle::M200Status> m200;  // link counters and battery of a real vehicle
 };
+
+// A real vehicle's frontseat link as the API and the live stream show it (docs/api.md):
+// connected, failsafe, battery_v, sentences, bad_lines, last_error, pydir_sent, failsafe_stops,
+// disconnects, last_link_error.
+nlohmann::json frontseat_json(const vehicle::M200Status& s);
 
 struct MissionLive {
   std::int64_t mission_id = 0;

@@ -412,11 +412,11 @@ TEST(M200Mission, TheStationServesAnM200AndRunsAMissionOnIt) {
   {
     std::lock_guard lock(sink->mutex);
     ASSERT_FALSE(sink->payload.empty());
-    const auto nav = nlohmann::json::parse(sink->payload)["data"];
-    EXPECT_GT(nav["battery_v"].get<double>(), 10.0);
-    EXPECT_EQ(nav["bad_lines"], 0);
-    EXPECT_EQ(nav["disconnects"], 0);
-    EXPECT_TRUE(nav["failsafe"].is_string());
+    const auto fs = nlohmann::json::parse(sink->payload)["data"]["frontseat"];
+    EXPECT_GT(fs["battery_v"].get<double>(), 10.0);
+    EXPECT_EQ(fs["bad_lines"], 0);
+    EXPECT_EQ(fs["disconnects"], 0);
+    EXPECT_TRUE(fs["failsafe"].is_string());
   }
 
   server::ApiRequest post;

@@ -285,11 +285,11 @@ function renderReadout() {
   text('live-dheading', num(helm?.desired_heading_deg, 1));
   text('live-t', num(nav?.t_s, 1));
   // Only a real vehicle (the M200 driver) reports a battery and a frontseat link.
-  const real = nav && 'battery_v' in nav;
-  for (const e of document.querySelectorAll('.frontseat')) e.hidden = !real;
-  if (real) {
-    text('live-battery', num(nav.battery_v, 2));
-    text('live-frontseat', `${nav.failsafe === 'none' ? 'ok' : `all stop (${nav.failsafe})`}, ${nav.bad_lines} bad lines, ${nav.disconnects} disconnects`);
+  const fs = nav?.frontseat;
+  for (const e of document.querySelectorAll('.frontseat')) e.hidden = !fs;
+  if (fs) {
+    text('live-battery', num(fs.battery_v, 2));
+    text('live-frontseat', `${fs.failsafe === 'none' ? 'ok' : `all stop (${fs.failsafe})`}, ${fs.bad_lines} bad lines, ${fs.disconnects} disconnects`);
   }
 }
 
