@@ -124,7 +124,6 @@ struct M200::Impl {
 
   void received(std::size_t n) {
     const double now = clock.now_s();
-    bool nav = false;
     std::lock_guard lock(mutex);
     const std::uint64_t before = session.counters().nav_samples;
     for (std::size_t i = 0; i < n; ++i) {
@@ -142,8 +141,7 @@ struct M200::Impl {
         }
       }
     }
-    nav = session.counters().nav_samples != before;
-    if (nav) nav_arrived.notify_all();
+    if (session.counters().nav_samples != before) nav_arrived.notify_all();
   }
 
   void fail(const std::string& why) {

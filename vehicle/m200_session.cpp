@@ -33,10 +33,11 @@ M200Session::M200Session(M200Config config)
       !(config_.fix_max_age_s > 0.0)) {
     throw std::invalid_argument("M200 rates and stale limits must be positive");
   }
-  info_.id = config_.id;
-  info_.kind = "m200";
-  info_.max_speed_mps = config_.max_speed_mps;
-  info_.length_m = config_.length_m;
+  info_ = m200_info(config_);
+}
+
+VehicleInfo m200_info(const M200Config& config) {
+  return {config.id, "m200", config.max_speed_mps, config.length_m};
 }
 
 void M200Session::on_line(std::string_view line, double now_s) {
@@ -56,22 +57,22 @@ void M200Session::on_line(std::string_view line, double now_s) {
         if constexpr (std::is_same_v<T, Cpnvg>) {
           on_cpnvg(s, now_s);
         } else if constexpr (std::is_same_v<T, Cpnvr>) {
-          speed_ = Speed{now_s, std::hypot(s.v_east_mps, s.v_north_mps)};
-          yaw_rate_ = {{now_s, s.yaw_rate_dps}};
+          speed_mps_ = Stamped{now_s, std::hypot(s.v_east_mps, s.v_north_mps)};
+          yaw_rate_dps_ = Stamped{now_s, s.yaw_rate_dps};
         } else if constexpr (std::is_same_v<T, Gprmc>) {
           if (!s.valid) return;
           if (s.lat_deg && s.lon_deg) {
             const GridPoint p = grid_.to_grid(*s.lat_deg, *s.lon_deg);
             gps_fix_ = Fix{now_s, p.x_m, p.y_m, *s.lat_deg, *s.lon_deg};
           }
-          if (const auto v = s.speed_mps()) speed_ = Speed{now_s, *v};
+          if (const auto v = s.speed_mps()) speed_mps_ = Stamped{now_s, *v};
         } else if constexpr (std::is_same_v<T, Gpgga>) {
           if (s.quality > 0 && s.lat_deg && s.lon_deg) {
             const GridPoint p = grid_.to_grid(*s.lat_deg, *s.lon_deg);
             gps_fix_ = Fix{now_s, p.x_m, p.y_m, *s.lat_deg, *s.lon_deg};
           }
         } else if constexpr (std::is_same_v<T, Gpvtg>) {
-          if (const auto v = s.speed_mps()) speed_ = Speed{now_s, *v};
+          if (const auto v = s.speed_mps()) speed_mps_ = Stamped{now_s, *v};
         } else if constexpr (std::is_same_v<T, Cprbs>) {
           battery_ = M200Battery{now_s, s.stack_v, s.min_v, s.max_v, s.temperature_c};
         } else {
@@ -104,15 +105,15 @@ void M200Session::on_cpnvg(const Cpnvg& s, double now_s) {
     ++counters_.nav_without_position;
     return;
   }
-  if (speed_ && now_s - speed_->t_s <= config_.fix_max_age_s) {
-    n.speed_mps = speed_->mps;
+  if (speed_mps_ && now_s - speed_mps_->t_s <= config_.fix_max_age_s) {
+    n.speed_mps = speed_mps_->value;
   } else if (last_nav_ && n.t_s > last_nav_->t_s) {
     // No speed sentence: the track's own rate, as a last resort.
     n.speed_mps =
         std::hypot(n.x_m - last_nav_->x_m, n.y_m - last_nav_->y_m) / (n.t_s - last_nav_->t_s);
   }
-  if (yaw_rate_ && now_s - yaw_rate_->first <= config_.fix_max_age_s)
-    n.yaw_rate_dps = yaw_rate_->second;
+  if (yaw_rate_dps_ && now_s - yaw_rate_dps_->t_s <= config_.fix_max_age_s)
+    n.yaw_rate_dps = yaw_rate_dps_->value;
   ++counters_.nav_samples;
   last_nav_ = n;
   mailbox_.push_back(n);
@@ -161,8 +162,8 @@ void M200Session::on_disconnected(double) {
   ++counters_.disconnects;
   // Partial state from the old link must not be combined with the new one's.
   gps_fix_.reset();
-  speed_.reset();
-  yaw_rate_.reset();
+  speed_mps_.reset();
+  yaw_rate_dps_.reset();
   pid_.reset();
 }
 

@@ -42,6 +42,9 @@ struct M200Config {
   double length_m = 1.35;
 };
 
+// What the mission and the store know of the vehicle a config drives.
+VehicleInfo m200_info(const M200Config& config);
+
 // Why the last $PYDIR was all stop, when it was.
 enum class Failsafe { none, stopped, no_command, command_stale, no_nav, nav_stale };
 const char* to_string(Failsafe f);
@@ -107,9 +110,9 @@ class M200Session {
     double t_s;  // received
     double x_m, y_m, lat_deg, lon_deg;
   };
-  struct Speed {
-    double t_s;
-    double mps;
+  struct Stamped {
+    double t_s;  // received
+    double value;
   };
   void on_cpnvg(const Cpnvg& s, double now_s);
   std::string send_stop(Failsafe why);
@@ -121,8 +124,8 @@ class M200Session {
   bool connected_ = false;
   bool stopped_ = false;
   std::optional<Fix> gps_fix_;
-  std::optional<Speed> speed_;
-  std::optional<std::pair<double, double>> yaw_rate_;  // (received, deg/s)
+  std::optional<Stamped> speed_mps_;
+  std::optional<Stamped> yaw_rate_dps_;
   std::vector<NavSample> mailbox_;
   std::optional<NavSample> last_nav_;
   std::optional<DesiredCommand> desired_;

@@ -28,6 +28,9 @@ class Args {
   std::string require(const std::string& name) const;
   bool flag(const std::string& name) const { return flags_.count(name) > 0; }
   std::optional<double> number(const std::string& name) const;  // finite, else UsageError
+  // "a,b,c": exactly `count` finite numbers; the UsageError names the option and `shape`.
+  std::optional<std::vector<double>> number_list(const std::string& name, std::size_t count,
+                                                 const std::string& shape) const;
   std::vector<std::string> all(const std::string& name) const;  // every value given, in order
   const std::vector<std::string>& positional() const { return positional_; }
 

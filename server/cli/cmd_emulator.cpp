@@ -2,7 +2,6 @@
 // (docs/frontseat-emulator.md), so a backseat (the M200 driver, or nc) can be tried without a boat.
 #include <signal.h>
 
-#include <charconv>
 #include <cmath>
 #include <ostream>
 
@@ -15,26 +14,6 @@
 namespace avk::server {
 
 namespace {
-
-// "a,b,c": exactly `count` finite numbers.
-std::vector<double> number_list(const Args& a, const std::string& name, std::size_t count,
-                                const char* shape) {
-  const std::string text = *a.get(name);
-  std::vector<double> out;
-  std::size_t pos = 0;
-  while (pos <= text.size()) {
-    std::size_t end = text.find(',', pos);
-    if (end == std::string::npos) end = text.size();
-    double v = 0.0;
-    const auto r = std::from_chars(text.data() + pos, text.data() + end, v);
-    if (r.ec != std::errc() || r.ptr != text.data() + end || !std::isfinite(v)) break;
-    out.push_back(v);
-    pos = end + 1;
-  }
-  if (out.size() != count || pos <= text.size())
-    throw UsageError("--" + name + " expects " + shape + ", got '" + text + "'");
-  return out;
-}
 
 double fraction(const Args& a, const std::string& name) {
   const double f = a.number(name).value_or(0.0);
@@ -64,12 +43,11 @@ int cmd_frontseat_emulator(const std::vector<std::string>& args, Io& io) {
     throw UsageError("--port must be a whole number from 0 to 65535");
   o.port = static_cast<unsigned short>(port);
   o.realtime_factor = realtime_factor_from(a);
-  if (const auto d = a.get("datum")) o.datum = parse_datum(*d);
-  if (a.get("start")) {
-    const auto s = number_list(a, "start", 3, "X,Y,HEADING (m east, m north, deg)");
-    o.start_x_m = s[0];
-    o.start_y_m = s[1];
-    o.start_heading_deg = s[2];
+  if (const auto d = datum_from(a)) o.datum = *d;
+  if (const auto s = a.number_list("start", 3, "X,Y,HEADING (m east, m north, deg)")) {
+    o.start_x_m = (*s)[0];
+    o.start_y_m = (*s)[1];
+    o.start_heading_deg = (*s)[2];
   }
   o.faults.drop_fraction = fraction(a, "drop");
   o.faults.corrupt_fraction = fraction(a, "corrupt");

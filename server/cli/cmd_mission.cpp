@@ -279,7 +279,7 @@ int run(const std::vector<std::string>& rest, Io& io) {
   spec.m200 = m200_options_from(a);
   vehicle::VehicleInfo info;
   if (spec.m200) {
-    info = vehicle::M200Session(spec.m200->config).info();
+    info = vehicle::m200_info(spec.m200->config);
   } else {
     spec.setup = sim_setup_from(a, io);
     spec.setup.vehicle.id = a.get("vehicle-id").value_or("sim-" + spec.setup.vehicle.kind);

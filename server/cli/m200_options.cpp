@@ -1,30 +1,16 @@
 #include "server/cli/m200_options.hpp"
 
-#include <charconv>
 #include <cmath>
 
 namespace avk::server {
 
-namespace {
-
-std::optional<double> to_number(const std::string& s) {
-  double v = 0.0;
-  const auto r = std::from_chars(s.data(), s.data() + s.size(), v);
-  if (r.ec != std::errc() || r.ptr != s.data() + s.size() || !std::isfinite(v)) return std::nullopt;
-  return v;
-}
-
-}  // namespace
-
-vehicle::LatLon parse_datum(const std::string& text, const std::string& option) {
-  const auto comma = text.find(',');
-  const auto lat = comma == std::string::npos ? std::nullopt : to_number(text.substr(0, comma));
-  const auto lon = comma == std::string::npos ? std::nullopt : to_number(text.substr(comma + 1));
-  if (!lat || !lon)
-    throw UsageError(option + " expects LAT,LON in decimal degrees, got '" + text + "'");
-  if (std::abs(*lat) > 90.0 || std::abs(*lon) > 180.0)
-    throw UsageError(option + " " + text + ": latitude must be within ±90, longitude ±180");
-  return {*lat, *lon};
+std::optional<vehicle::LatLon> datum_from(const Args& a) {
+  const auto d = a.number_list("datum", 2, "LAT,LON in decimal degrees");
+  if (!d) return std::nullopt;
+  if (std::abs((*d)[0]) > 90.0 || std::abs((*d)[1]) > 180.0)
+    throw UsageError("--datum " + *a.get("datum") +
+                     ": latitude must be within ±90, longitude ±180");
+  return vehicle::LatLon{(*d)[0], (*d)[1]};
 }
 
 std::optional<vehicle::M200Options> m200_options_from(const Args& a) {
@@ -36,7 +22,7 @@ std::optional<vehicle::M200Options> m200_options_from(const Args& a) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("--m200 ") + e.what());
   }
-  if (const auto d = a.get("datum")) o.config.datum = parse_datum(*d);
+  if (const auto d = datum_from(a)) o.config.datum = *d;
   if (const auto pid = a.get("pid")) {
     if (*pid == "thesis_sim") {
       o.config.pid = vehicle::MarinePidConfig::thesis_sim();

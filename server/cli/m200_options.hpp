@@ -11,8 +11,8 @@
 
 namespace avk::server {
 
-// "LAT,LON" in decimal degrees. Throws UsageError naming the option.
-vehicle::LatLon parse_datum(const std::string& text, const std::string& option = "--datum");
+// --datum LAT,LON in decimal degrees, when given. Throws UsageError naming the option.
+std::optional<vehicle::LatLon> datum_from(const Args& a);
 
 // The driver options when --m200 is given, nullopt otherwise. Throws UsageError naming the
 // option that is wrong.
