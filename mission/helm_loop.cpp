@@ -5,6 +5,20 @@
 
 namespace avk::mission {
 
+void helm_tick(MissionRunner& runner, double now_s, double end_s, const std::atomic<bool>* stop,
+               const std::function<void(double)>& before_tick, HelmLoopResult& result) {
+  if (stop && stop->load()) {
+    result.stopped = true;
+    runner.interrupt(now_s, "stopped by a signal");
+  } else if (now_s >= end_s) {
+    result.horizon_reached = true;
+    runner.interrupt(now_s, "time limit reached");
+  } else {
+    if (before_tick) before_tick(now_s);
+    runner.tick(now_s);
+  }
+}
+
 HelmLoopResult run_helm_loop(MissionRunner& runner, const vehicle::ScaledClock& clock,
                              double helm_hz, double max_duration_s, const std::atomic<bool>* stop,
                              const std::function<void(double)>& before_tick) {
@@ -16,17 +30,7 @@ HelmLoopResult run_helm_loop(MissionRunner& runner, const vehicle::ScaledClock& 
   double due = result.start_time_s;
   while (!runner.finished()) {
     clock.sleep_until(due);
-    const double now = clock.now_s();
-    if (stop && stop->load()) {
-      result.stopped = true;
-      runner.interrupt(now, "stopped by a signal");
-    } else if (now >= end) {
-      result.horizon_reached = true;
-      runner.interrupt(now, "time limit reached");
-    } else {
-      if (before_tick) before_tick(now);
-      runner.tick(now);
-    }
+    helm_tick(runner, clock.now_s(), end, stop, before_tick, result);
     due += period;
     if (due < clock.now_s()) due = std::ceil(clock.now_s() / period) * period;
   }

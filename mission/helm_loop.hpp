@@ -19,6 +19,12 @@ struct HelmLoopResult {
   bool horizon_reached = false;  // max_duration_s ran out
 };
 
+// One helm tick at now_s, shared by this loop and the simulator's scheduler: a raised stop flag
+// or the passing of end_s interrupts the mission (recorded in result); otherwise before_tick
+// (operator commands queued from other threads) and the runner's tick.
+void helm_tick(MissionRunner& runner, double now_s, double end_s, const std::atomic<bool>* stop,
+               const std::function<void(double now_s)>& before_tick, HelmLoopResult& result);
+
 // A tick that comes due while the previous one is still running is skipped, not made up: a late
 // helm acts on the newest navigation anyway. before_tick runs before each of the runner's ticks
 // (operator commands queued from other threads).

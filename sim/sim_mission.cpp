@@ -34,16 +34,7 @@ SimMissionResult SimMission::run(mission::MissionRunner& runner, Pacer& pacer,
   result.start_time_s = scheduler_.now_s();
   const double end = result.start_time_s + options_.max_duration_s;
   scheduler_.add("helm", options_.setup.helm_hz, [&](double now) {
-    if (stop && stop->load()) {
-      result.stopped = true;
-      runner.interrupt(now, "stopped by a signal");
-    } else if (now >= end) {
-      result.horizon_reached = true;
-      runner.interrupt(now, "simulated time limit reached");
-    } else {
-      if (before_tick) before_tick(now);
-      runner.tick(now);
-    }
+    mission::helm_tick(runner, now, end, stop, before_tick, result);
     if (runner.finished()) scheduler_.request_stop();
   });
   scheduler_.run_until(end + 1.0, pacer);

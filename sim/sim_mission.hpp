@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "kinematics/geometry.hpp"
+#include "mission/helm_loop.hpp"
 #include "mission/mission_runner.hpp"
 #include "sim/scheduler.hpp"
 #include "sim/sim_config.hpp"
@@ -22,12 +23,7 @@ struct SimMissionOptions {
   double max_duration_s = 86400;  // simulated; the mission is interrupted when it is reached
 };
 
-struct SimMissionResult {
-  double start_time_s = 0.0;
-  double end_time_s = 0.0;
-  bool stopped = false;          // the stop flag was raised
-  bool horizon_reached = false;  // max_duration_s ran out
-};
+using SimMissionResult = mission::HelmLoopResult;
 
 class SimMission {
  public:
