@@ -22,6 +22,7 @@
 
 #include "kinematics/angles.hpp"
 #include "sim/frontseat_emulator.hpp"
+#include "support/nmea_sentence.hpp"
 #include "vehicle/local_grid.hpp"
 #include "vehicle/nmea.hpp"
 
@@ -412,12 +413,8 @@ TEST(FrontseatEmulator, CorruptsAboutTheConfiguredFractionInTheChecksumOnly) {
     ++bad;
     EXPECT_EQ(p.error()->code, veh::NmeaError::Code::bad_checksum) << r.line;
     // Only the checksum was touched: with the right one the sentence reads again.
-    std::string fixed = r.line;
-    const auto star = fixed.rfind('*');
-    char hex[3];
-    std::snprintf(hex, sizeof hex, "%02X",
-                  veh::nmea_checksum(std::string_view(fixed).substr(1, star - 1)));
-    fixed.replace(star + 1, 2, hex);
+    const std::string fixed =
+        avk::testing::nmea_sentence(std::string_view(r.line).substr(1, r.line.rfind('*') - 1));
     EXPECT_TRUE(parse_fs(fixed).ok()) << fixed;
   }
   const double fraction = static_cast<double>(bad) / c.lines().size();

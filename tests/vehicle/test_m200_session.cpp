@@ -7,6 +7,7 @@
 #include <random>
 #include <string>
 
+#include "support/nmea_sentence.hpp"
 #include "vehicle/m200_session.hpp"
 
 namespace {
@@ -98,14 +99,7 @@ TEST(M200Session, WithoutGpsQualityThePositionComesFromAFreshFix) {
 
 TEST(M200Session, BatteryWithAndWithoutTheBatteryId) {
   M200Session s(config());
-  s.on_line(
-      "$CPRBS,120000.000,14.9,3.71,3.76,28.5*" +
-          [] {
-            char b[3];
-            std::snprintf(b, 3, "%02X", nmea_checksum("CPRBS,120000.000,14.9,3.71,3.76,28.5"));
-            return std::string(b);
-          }(),
-      1.0);
+  s.on_line(avk::testing::nmea_sentence("CPRBS,120000.000,14.9,3.71,3.76,28.5"), 1.0);
   ASSERT_TRUE(s.battery());
   EXPECT_DOUBLE_EQ(s.battery()->stack_v, 14.9);
   Cprbs b;

@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "support/nmea_sentence.hpp"
 #include "vehicle/nmea.hpp"
 
 namespace {
@@ -21,14 +22,8 @@ using Code = NmeaError::Code;
 constexpr auto kFromFrontseat = NmeaDirection::frontseat_to_backseat;
 constexpr auto kToFrontseat = NmeaDirection::backseat_to_frontseat;
 
-// `$body*HH\r\n` with the right checksum.
 std::string sentence(std::string_view body) {
-  char sum[8];
-  std::snprintf(sum, sizeof sum, "*%02X\r\n", static_cast<unsigned>(nmea_checksum(body)));
-  std::string out = "$";
-  out += body;
-  out += sum;
-  return out;
+  return avk::testing::nmea_sentence(body);
 }
 
 double hms(int h, int m, double s) {
