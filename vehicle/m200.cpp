@@ -97,7 +97,6 @@ struct M200::Impl {
     boost::system::error_code ignored;
     socket.set_option(tcp::no_delay(true), ignored);
     link_up = true;
-    backoff_s = options.reconnect_min_s;
     partial.clear();
     discarding = false;
     {
@@ -141,7 +140,12 @@ struct M200::Impl {
         }
       }
     }
-    if (session.counters().nav_samples != before) nav_arrived.notify_all();
+    if (session.counters().nav_samples != before) {
+      // Only navigation proves the link healthy: a frontseat that accepts and drops us at once
+      // (rebooting, or refusing while its radio is down) keeps the backoff growing.
+      backoff_s = options.reconnect_min_s;
+      nav_arrived.notify_all();
+    }
   }
 
   void fail(const std::string& why) {
