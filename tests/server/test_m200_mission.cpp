@@ -45,20 +45,32 @@ struct CellTurns {
   std::vector<double> advance_m, transfer_m;
 };
 
-// Collects the finished turns per cell, and the aborted ones with their reasons.
+// Collects the finished turns per cell, and the aborted and the rejected ones with their
+// reasons. Aborted (the turn was cut short: link lost, containment) and rejected (it ended but
+// is unusable: a navigation gap, the wrong way) are two statuses in the store too; a loaded
+// machine turns late navigation into gaps, so rejections come and go with the load.
 class Collector final : public mission::MissionObserver {
  public:
   void on_turn(mission::TurnOutcome& t) override {
-    if (t.status == kinematics::TurnStatus::ok) {
-      auto& c = cells[{t.task.speed_mps, std::abs(t.task.dheading_deg)}];
-      c.advance_m.push_back(*t.advance_m);
-      c.transfer_m.push_back(*t.transfer_m);
-    } else {
-      aborted.push_back(t.reason + (t.requeued ? " (re-queued)" : ""));
+    const std::string why = t.reason + (t.requeued ? " (re-queued)" : "");
+    switch (t.status) {
+      case kinematics::TurnStatus::ok: {
+        auto& c = cells[{t.task.speed_mps, std::abs(t.task.dheading_deg)}];
+        c.advance_m.push_back(*t.advance_m);
+        c.transfer_m.push_back(*t.transfer_m);
+        break;
+      }
+      case kinematics::TurnStatus::aborted:
+        aborted.push_back(why);
+        break;
+      case kinematics::TurnStatus::rejected:
+        rejected.push_back(why);
+        break;
     }
   }
   std::map<Cell, CellTurns> cells;
   std::vector<std::string> aborted;
+  std::vector<std::string> rejected;
 };
 
 std::string mission_text() {
@@ -99,6 +111,7 @@ struct DriverRun {
   mission::MissionState state = mission::MissionState::running;
   std::int64_t stored_ok = 0;
   std::int64_t stored_aborted = 0;
+  std::int64_t stored_rejected = 0;
   std::vector<std::string> link_events;
   vehicle::M200Status status;
   double mission_s = 0.0;
@@ -131,6 +144,7 @@ DriverRun run_through_emulator(
   for (const auto& c : db.mission_cell_stats(plan.mission_id)) {
     out.stored_ok += c.n_ok;
     out.stored_aborted += c.n_aborted;
+    out.stored_rejected += c.n_rejected;
   }
   for (const auto& e : db.list_events(plan.mission_id, 0, 10000))
     if (e.kind == "link") out.link_events.push_back(e.message);
@@ -234,7 +248,14 @@ TEST(M200Mission, FivePercentDroppedAndFivePercentCorruptedStillCompletes) {
   for (const auto& [cell, t] : run.turns.cells)
     ok += t.advance_m.size();
   EXPECT_EQ(static_cast<std::int64_t>(ok), run.stored_ok);
+  // Aborted and rejected counted apart, as the store counts them (tests/server/
+  // test_mission_recorder.cpp checks the same on the simulator's clock, with each status forced).
   EXPECT_EQ(static_cast<std::int64_t>(run.turns.aborted.size()), run.stored_aborted);
+  EXPECT_EQ(static_cast<std::int64_t>(run.turns.rejected.size()), run.stored_rejected);
+  for (const auto& why : run.turns.aborted)
+    std::printf("aborted: %s\n", why.c_str());
+  for (const auto& why : run.turns.rejected)
+    std::printf("rejected: %s\n", why.c_str());
   const auto es = emulator.status();
   EXPECT_GT(es.sentences_dropped, 0u);
   EXPECT_GT(es.sentences_corrupted, 0u);
@@ -244,13 +265,13 @@ TEST(M200Mission, FivePercentDroppedAndFivePercentCorruptedStillCompletes) {
                                static_cast<double>(run.status.counters.lines);
   std::printf(
       "dropped %llu and corrupted %llu of %llu sentences; the driver saw %llu bad lines "
-      "of %llu (%.1f %%); %zu turns aborted\n",
+      "of %llu (%.1f %%); %zu turns aborted, %zu rejected\n",
       static_cast<unsigned long long>(es.sentences_dropped),
       static_cast<unsigned long long>(es.sentences_corrupted),
       static_cast<unsigned long long>(es.sentences_sent + es.sentences_dropped),
       static_cast<unsigned long long>(run.status.counters.errors),
       static_cast<unsigned long long>(run.status.counters.lines), 100.0 * corrupt_share,
-      run.turns.aborted.size());
+      run.turns.aborted.size(), run.turns.rejected.size());
   EXPECT_GT(corrupt_share, 0.03);
   EXPECT_LT(corrupt_share, 0.07);
   EXPECT_EQ(run.status.counters.disconnects, 0u);
