@@ -436,6 +436,9 @@ struct Station::Impl {
     const auto live = loop ? loop->live(id) : std::nullopt;
     if (live && loop->attached_mission() == id) {
       j["live"] = true;
+      // Status and helm mode from the same live snapshot: the store's status may be a step
+      // ahead of or behind what this response shows of the helm.
+      j["status"] = live->state;
       j["helm_mode"] = live->helm_mode;
       j["cells"] = json::parse(cells_json(live->cells));
     } else {

@@ -94,6 +94,20 @@ struct VehicleLoop::Impl {
   std::optional<Running> running;
   bool idle_stopped = false;
 
+  // Publishes the runner's mode and state to live() and the snapshot's helm fields the moment
+  // they change, inside the runner's own call. It is the runner's first observer, so a reader
+  // that sees a status in the store (written by the recorder after it) sees the helm that goes
+  // with it: a mission is never `paused` while the vehicle still shows CONDITIONING.
+  struct HelmSync final : mission::MissionObserver {
+    explicit HelmSync(Impl& i) : impl(i) {}
+    void on_mode(mission::HelmMode, mission::HelmMode, double) override { impl.update_live(); }
+    void on_state(mission::MissionState, const std::string&, double) override {
+      impl.update_live();
+    }
+    Impl& impl;
+  };
+  HelmSync helm_sync{*this};
+
   Impl(VehicleLoopOptions o, std::string path, StreamHub& h)
       : options(std::move(o)),
         db_path(std::move(path)),
@@ -149,6 +163,7 @@ struct VehicleLoop::Impl {
     Running r;
     r.id = plan.mission_id;
     r.runner = std::make_unique<mission::MissionRunner>(plan.config, vehicle(), plan.tasks, ro);
+    r.runner->add_observer(helm_sync);  // first: see HelmSync
     r.recorder = std::make_unique<MissionRecorder>(*store, plan.mission_id);
     r.publisher = std::make_unique<StreamPublisher>(hub, plan.mission_id, *r.runner);
     r.runner->add_observer(*r.recorder);
@@ -174,13 +189,21 @@ struct VehicleLoop::Impl {
     attached.reset();
   }
 
+  // The mission's live view and the vehicle's helm fields in one step (one lock), so that
+  // GET /missions/{id} and GET /vehicles/{vid} never disagree about the helm.
   void update_live() {
+    if (!running) return;  // observers are added before `running` is set
+    const mission::MissionRunner& r = *running->runner;
     MissionLive l;
     l.mission_id = running->id;
-    l.state = running->runner->state() ? mission::to_string(*running->runner->state()) : "created";
-    l.helm_mode = mission::to_string(running->runner->mode());
-    l.cells = running->runner->cells();
+    l.state = r.state() ? mission::to_string(*r.state()) : "created";
+    l.helm_mode = mission::to_string(r.mode());
+    l.cells = r.cells();
     std::lock_guard lock(mutex);
+    snapshot.helm_mode = l.helm_mode;
+    snapshot.desired_heading_deg = r.desired_heading_deg();
+    snapshot.desired_speed_mps = r.desired_speed_mps();
+    snapshot.mission_id = running->id;
     live[l.mission_id] = std::move(l);
   }
 

@@ -66,7 +66,8 @@ class StationApi : public ::testing::Test {
   void SetUp() override { start(); }
   void TearDown() override { station_.reset(); }
 
-  void start() {
+  // telemetry_hz: how often the vehicle's snapshot is refreshed besides the helm's own updates.
+  void start(double realtime_factor = 400.0, double telemetry_hz = 10.0) {
     avk::server::StationOptions o;
     o.db_path = db_.path();
     o.token = kToken;
@@ -74,7 +75,8 @@ class StationApi : public ::testing::Test {
     avk::server::VehicleLoopOptions v;
     v.setup = avk::sim::default_sim_setup("usim");
     v.setup.vehicle.id = "sim-usim";
-    v.realtime_factor = 400.0;
+    v.realtime_factor = realtime_factor;
+    v.telemetry_hz = telemetry_hz;
     v.start = {0.0, -70.0, 0.0};
     o.vehicle = v;
     station_ = std::make_unique<Station>(o, hub_);
@@ -114,7 +116,8 @@ TEST_F(StationApi, HealthAndVehicle) {
   EXPECT_EQ(h["vehicle_id"], "sim-usim");
   // The simulated vehicle runs from the start: navigation arrives and the link goes live.
   json v;
-  for (int i = 0; i < 500; ++i) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (std::chrono::steady_clock::now() < deadline) {
     v = body(call(get("/api/v1/vehicles/sim-usim")));
     if (v["link"] == "LIVE") break;
     std::this_thread::sleep_for(std::chrono::milliseconds(10));
@@ -200,6 +203,47 @@ TEST_F(StationApi, MissionRunsPausesResumesAndEveryTurnIsServed) {
   EXPECT_EQ(n, 4);
   // Control of a finished mission is a conflict.
   EXPECT_EQ(call(post("/api/v1/missions/" + std::to_string(id) + "/pause")).status, 409);
+}
+
+// Pause is one step across mission and helm: whoever reads the mission as paused reads the
+// vehicle's helm as PAUSED too. The vehicle's telemetry refreshes only every 20 s of mission
+// clock here (a second of wall time), so a helm mode that waited for it would show the mode from
+// before the pause; the helm's own update must carry it.
+TEST_F(StationApi, APausedMissionIsNeverShownWithAHelmThatIsNotPaused) {
+  station_.reset();
+  start(20.0, 0.05);
+  const std::int64_t id = start_mission();
+  const std::string mission_path = "/api/v1/missions/" + std::to_string(id);
+  // Wait until the helm has taken the mission up (the vehicle names it).
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  json v;
+  while (std::chrono::steady_clock::now() < deadline) {
+    v = body(call(get("/api/v1/vehicles/sim-usim")));
+    if (v["mission_id"] == id) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ASSERT_EQ(v["mission_id"], id) << v.dump();
+  const ApiResponse paused = call(post(mission_path + "/pause"));
+  ASSERT_EQ(paused.status, 200) << paused.body;
+  // The answer may come before the helm tick applied the pause (under load); if it says paused,
+  // its helm says so too.
+  const json answer = body(paused);
+  if (answer["status"] == "paused") {
+    EXPECT_EQ(answer["helm_mode"], "PAUSED") << paused.body;
+  }
+  const json m = wait_for(id, {"paused"});
+  EXPECT_EQ(m["helm_mode"], "PAUSED") << m.dump();
+  v = body(call(get("/api/v1/vehicles/sim-usim")));
+  EXPECT_EQ(v["helm_mode"], "PAUSED") << v.dump();
+  EXPECT_EQ(v["mission_id"], id);
+  EXPECT_TRUE(v["desired_speed_mps"].is_null()) << v.dump();  // all stop
+  // The mission list reads the store, which records the pause after the helm has it.
+  const json list = body(call(get("/api/v1/missions")));
+  ASSERT_EQ(list.size(), 1u);
+  EXPECT_EQ(list[0]["status"], "paused");
+  EXPECT_EQ(body(call(get("/api/v1/vehicles/sim-usim")))["helm_mode"], "PAUSED");
+  EXPECT_EQ(call(post(mission_path + "/abort")).status, 200);
+  EXPECT_EQ(wait_for(id, {"aborted"})["status"], "aborted");
 }
 
 TEST_F(StationApi, AbortStopsTheVehicle) {
