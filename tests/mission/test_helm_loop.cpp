@@ -1,5 +1,7 @@
 // The helm's tick on a scaled wall clock (vehicles on the network): its rate, the stop flag and
 // the time limit. The clock runs 100x or 1000x, so ten seconds of mission take at most 0.1 s.
+// A loaded machine may skip ticks (the loop does not catch up), so the tests bound the tick count
+// from above only and never assert how much wall or mission time a step took.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -58,9 +60,9 @@ TEST(HelmLoop, TicksAtTheHelmRateUntilTheTimeLimit) {
   EXPECT_GE(r.end_time_s - r.start_time_s, 10.0);
   EXPECT_EQ(*runner.state(), mission::MissionState::interrupted);
   EXPECT_TRUE(monotonic);
-  // 4 Hz for 10 s: 40 ticks, fewer only if the machine was too slow to keep 100x.
+  // 4 Hz for 10 s: 40 ticks, never more; fewer only if the machine was too slow to keep 100x.
   EXPECT_LE(ticks, 41);
-  EXPECT_GE(ticks, 20);
+  EXPECT_GE(ticks, 1);
 }
 
 TEST(HelmLoop, TheStopFlagInterruptsAtTheNextTick) {
@@ -70,14 +72,14 @@ TEST(HelmLoop, TheStopFlagInterruptsAtTheNextTick) {
   const vehicle::ScaledClock clock(1000.0);
   std::atomic<bool> stop{false};
   int ticks = 0;
-  const auto r = mission::run_helm_loop(runner, clock, 4.0, 1000.0, &stop, [&](double) {
+  // A horizon of 10^6 s (1000 s of wall time): only the flag can end this loop.
+  const auto r = mission::run_helm_loop(runner, clock, 4.0, 1e6, &stop, [&](double) {
     if (++ticks == 5) stop = true;
   });
   EXPECT_TRUE(r.stopped);
   EXPECT_FALSE(r.horizon_reached);
-  EXPECT_EQ(ticks, 5);
+  EXPECT_EQ(ticks, 5);  // the tick after the flag went up interrupted without running the hook
   EXPECT_EQ(*runner.state(), mission::MissionState::interrupted);
-  EXPECT_LT(r.end_time_s - r.start_time_s, 10.0);
 }
 
 TEST(HelmLoop, RejectsARateThatIsNotPositive) {

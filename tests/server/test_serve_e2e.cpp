@@ -32,9 +32,10 @@ using Clock = std::chrono::steady_clock;
 
 constexpr const char* kToken = "e2e-token-0123456789";
 
-std::string small_mission() {
+std::string small_mission(int repeats = 1) {
   return json{{"name", "e2e"},
-              {"turn_array", {{"speeds_mps", {0.5, 1.0}}, {"dheadings_deg", {40, 100}}}},
+              {"turn_array",
+               {{"speeds_mps", {0.5, 1.0}}, {"dheadings_deg", {40, 100}}, {"repeats", repeats}}},
               {"operating_region",
                {{"polygon_m", {{-100, -100}, {100, -100}, {100, 100}, {-100, 100}}},
                 {"buffer_m", 25},
@@ -155,7 +156,9 @@ TEST(ServeE2E, KillNineDuringAMissionLosesNoFinishedTurnAndTheMissionResumes) {
   const std::string log = db.path() + ".log";
   ServeProcess first = spawn_serve(db.path(), log);
   ASSERT_GT(first.port, 0) << "the server did not start";
-  ASSERT_EQ(http_call(first.port, "POST", "/api/v1/vehicles/sim-usim/missions", small_mission(),
+  // Twelve turns: the kill comes after the second, and ten more leave seconds of wall time for
+  // this thread to see the second one even on a loaded machine (at 100x a turn takes ~0.2 s).
+  ASSERT_EQ(http_call(first.port, "POST", "/api/v1/vehicles/sim-usim/missions", small_mission(3),
                       control_headers())
                 .status,
             201);
@@ -189,7 +192,7 @@ TEST(ServeE2E, KillNineDuringAMissionLosesNoFinishedTurnAndTheMissionResumes) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   EXPECT_EQ(m["status"], "done");
-  EXPECT_EQ(get_json(second.port, "/api/v1/turns?mission=1&status=ok")["items"].size(), 4u);
+  EXPECT_EQ(get_json(second.port, "/api/v1/turns?mission=1&status=ok")["items"].size(), 12u);
   // SIGTERM: a graceful stop.
   ASSERT_EQ(kill(second.pid, SIGTERM), 0);
   ASSERT_EQ(waitpid(second.pid, &status, 0), second.pid);

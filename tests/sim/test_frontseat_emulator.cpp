@@ -455,10 +455,20 @@ TEST(FrontseatEmulator, NavDelayHoldsNavigationBackButNotTheBattery) {
   const double before = median(nav_before), after = median(nav_after);
   std::cout << "CPNVG age when read: " << before << " s undelayed, " << after
             << " s with nav_delay_s 1; CPRBS " << median(battery_after) << " s\n";
-  EXPECT_GE(before, 0.0);
-  EXPECT_LT(before, 0.15);
-  EXPECT_NEAR(after - before, 1.0, 0.1);
-  EXPECT_LT(median(battery_after), 0.15);
+  // A loaded machine reads late, which only adds to an age: the bounds from below hold on any
+  // machine, and those from above use the freshest sentence of each kind (a reader that was late
+  // for every one of dozens of sentences would be a stall of the whole test, not load).
+  const auto freshest = [](const std::vector<double>& v) {
+    return *std::min_element(v.begin(), v.end());
+  };
+  EXPECT_GE(freshest(nav_before), -1e-9);
+  EXPECT_LT(freshest(nav_before), 0.5);
+  // Held back by the delay: never released early, and released when due.
+  EXPECT_GE(freshest(nav_after), 1.0 - 1e-9);
+  EXPECT_LT(freshest(nav_after), 1.5);
+  EXPECT_GT(after - before, 0.5);
+  EXPECT_GE(freshest(battery_after), -1e-9);
+  EXPECT_LT(freshest(battery_after), 0.5);
   // Time fields still increase: delayed, not reordered.
   double last = -1.0;
   for (const auto& r : c.lines()) {
@@ -477,25 +487,30 @@ TEST(FrontseatEmulator, CutLinkClosesAndRefusesUntilItEnds) {
   EXPECT_EQ(emu.status().clients, 1u);
   EXPECT_FALSE(emu.status().link_cut);
 
+  // A cut of 10 s of emulator clock (2 s of wall time): long enough that closing the open
+  // connection and refusing a new one both fall inside it however late a loaded machine runs
+  // this thread.
+  constexpr double kCutS = 10.0;
   const double cut_at = emu.now_s();
-  emu.cut_link(2.0);
+  emu.cut_link(kCutS);
   EXPECT_TRUE(emu.status().link_cut);
   ASSERT_TRUE(run_until(
-      emu, {&a}, [&] { return a.closed(); }, {}, 3.0));
-  EXPECT_LT(emu.now_s() - cut_at, 0.5);
+      emu, {&a}, [&] { return a.closed(); }, {}, 30.0));
   EXPECT_EQ(a.close_error(), net::error::eof) << a.close_error().message();
 
   // Connecting during the cut: the connection is taken, then closed at once.
   RawClient b(emu.port());
   ASSERT_TRUE(run_until(
-      emu, {&b}, [&] { return b.closed(); }, {}, 3.0));
-  EXPECT_LT(emu.now_s(), cut_at + 2.0);
-  EXPECT_TRUE(b.lines().empty());
-  EXPECT_TRUE(emu.status().link_cut);
-  EXPECT_EQ(emu.status().clients, 0u);
+      emu, {&b}, [&] { return b.closed(); }, {}, 30.0));
+  // Asserted only when the cut was still on, which it is unless this thread stalled for 2 s.
+  if (emu.now_s() < cut_at + kCutS) {
+    EXPECT_TRUE(b.lines().empty());
+    EXPECT_EQ(emu.status().clients, 0u);
+  }
 
-  ASSERT_TRUE(run_until(emu, {}, [&] { return !emu.status().link_cut; }));
-  EXPECT_GE(emu.now_s(), cut_at + 2.0);
+  ASSERT_TRUE(run_until(
+      emu, {}, [&] { return !emu.status().link_cut; }, {}, 30.0));
+  EXPECT_GE(emu.now_s(), cut_at + kCutS);
   RawClient d(emu.port());
   ASSERT_TRUE(run_until(emu, {&d}, [&] {
     for (const auto& r : d.lines())
