@@ -1,11 +1,15 @@
-# AVK Station serving the simulator. The build stage runs the same scripts as the README and CI;
-# the runtime stage holds only the binary, the dashboard, the examples and runtime libraries.
+# AVK Station serving the simulator. The build stage runs the project's own scripts in their lean
+# mode: the compile dependencies only (no test frameworks, no Chromium, no Node test tooling), the
+# `avk` binary without the tests and benchmarks, and the dashboard's runtime npm package (Plotly).
+# The runtime stage holds only the binary, the dashboard, the examples and runtime libraries.
 #   docker build -t avk-station .
 #   docker run --rm -p 8080:8080 -v avk-data:/var/lib/avk avk-station
+# (README.md, "Docker": where the token is and how to open the dashboard with it.)
 FROM debian:12 AS build
 WORKDIR /src
 COPY . .
-RUN bash scripts/setup && bash scripts/build -DAVK_BUILD_TESTS=OFF -DAVK_BUILD_BENCH=OFF
+RUN bash scripts/setup --runtime-build \
+ && AVK_WEB_DEPS=runtime bash scripts/build -DAVK_BUILD_TESTS=OFF -DAVK_BUILD_BENCH=OFF
 
 FROM debian:12-slim
 RUN apt-get update \
@@ -13,7 +17,11 @@ RUN apt-get update \
  && rm -rf /var/lib/apt/lists/* \
  && useradd --system --create-home --home-dir /var/lib/avk --shell /usr/sbin/nologin avk
 COPY --from=build /src/build/server/avk /usr/local/bin/avk
-COPY --from=build /src/web /opt/avk/web
+# The dashboard's files only: not its tests or npm manifests.
+COPY --from=build /src/web/index.html /src/web/favicon.svg /opt/avk/web/
+COPY --from=build /src/web/css /opt/avk/web/css
+COPY --from=build /src/web/js /opt/avk/web/js
+COPY --from=build /src/web/node_modules/plotly.js-dist-min /opt/avk/web/node_modules/plotly.js-dist-min
 COPY --from=build /src/examples /opt/avk/examples
 USER avk
 WORKDIR /var/lib/avk

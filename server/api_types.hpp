@@ -40,6 +40,13 @@ class Api {
  public:
   virtual ~Api() = default;
   virtual ApiResponse handle(const ApiRequest& request) = 0;
+  // Whether this client may open the live stream; asked by the transport before the upgrade.
+  // Browsers cannot set headers on a WebSocket, so a `?token=` of the upgrade request arrives
+  // here as `authorization` ("Bearer <token>"). The default lets everyone in (test doubles).
+  virtual bool may_open_stream(const ApiRequest& request) {
+    (void)request;
+    return true;
+  }
 };
 
 // --- the live stream --------------------------------------------------------------------

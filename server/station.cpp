@@ -956,6 +956,17 @@ VehicleLoop* Station::vehicle_loop() {
   return impl_->loop.get();
 }
 
+bool Station::may_open_stream(const ApiRequest& request) {
+  ApiRequest get = request;
+  get.method = "GET";
+  try {
+    impl_->authorize(get);
+    return true;
+  } catch (const ApiError&) {
+    return false;
+  }
+}
+
 ApiResponse Station::handle(const ApiRequest& request) {
   try {
     ApiResponse r = impl_->handle(request);

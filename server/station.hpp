@@ -32,6 +32,8 @@ class Station final : public Api {
   void shutdown();
 
   ApiResponse handle(const ApiRequest& request) override;
+  // The rule of a GET: open on loopback, the bearer token from anywhere else.
+  bool may_open_stream(const ApiRequest& request) override;
 
   VehicleLoop* vehicle_loop();
 

@@ -1,5 +1,5 @@
 #pragma once
-// MOOS-IvP's uSimMarine (2015 release) kinematics, reimplemented: the simulator Woerner's thesis
+// MOOS-IvP's uSimMarine (2015 release) kinematics, reimplemented: the simulator the thesis
 // collected its simulated turns with. Not a physical model: speed follows thrust through a table
 // with a rudder penalty and acceleration limits, heading turns at a rate proportional to rudder and
 // thrust. Kept as it was so simulated turns compare with the thesis.

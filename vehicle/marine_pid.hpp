@@ -56,7 +56,7 @@ struct MarinePidConfig {
   // Inputs older than this (helm or navigation) stop the vehicle: MOOS tardy_helm/nav_threshold.
   double tardy_s = 2.0;
 
-  // Woerner's thesis, Table 5.1 (simulation): yaw and speed P-only with Kp 1, rudder limited to
+  // The thesis, Table 5.1 (simulation): yaw and speed P-only with Kp 1, rudder limited to
   // 40 %, incremental speed control. These are the struct defaults.
   static MarinePidConfig thesis_sim();
   // Thesis Table 3.1 (the Kingfisher M200 in the water): yaw Kp 0.5, Ki 0.05, integral limit 20;

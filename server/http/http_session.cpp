@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <exception>
 #include <limits>
+#include <map>
 #include <utility>
 
 #include "server/http/responses.hpp"
@@ -184,6 +185,15 @@ void HttpSession::handle_request() {
                                    "Origin " + std::string(origin) + " does not match Host " +
                                        std::string(req[http::field::host]),
                                    req.version(), keep_alive));
+    if (!may_open_stream(req, target.query)) {
+      auto res =
+          problem_response(http::status::unauthorized,
+                           "the stream needs the station's bearer token from this address "
+                           "(Authorization: Bearer, or ?token= where a browser cannot set it)",
+                           req.version(), keep_alive);
+      res.set(http::field::www_authenticate, "Bearer");
+      return send(std::move(res));
+    }
     if (state_->stopping())
       return send(problem_response(http::status::service_unavailable, "server shutting down",
                                    req.version(), false));
@@ -194,6 +204,25 @@ void HttpSession::handle_request() {
   if (path + "/" == kApiPrefix || path.starts_with(kApiPrefix))
     return send(call_api(req, std::move(path), target.query, keep_alive));
   send(state_->static_files().respond(req, path, keep_alive));
+}
+
+bool HttpSession::may_open_stream(const Request& req, std::string_view raw_query) const {
+  ApiRequest who;
+  who.method = "GET";
+  who.path = std::string(kStreamPath);
+  who.authorization = std::string(req[http::field::authorization]);
+  if (who.authorization.empty()) {
+    std::map<std::string, std::string> query;
+    std::multimap<std::string, std::string> multi;
+    parse_query(raw_query, query, multi);
+    if (const auto it = query.find("token"); it != query.end())
+      who.authorization = "Bearer " + it->second;
+  }
+  who.origin = std::string(req[http::field::origin]);
+  who.host = std::string(req[http::field::host]);
+  who.remote_address = remote_address_;
+  who.remote_is_loopback = remote_is_loopback_;
+  return state_->api().may_open_stream(who);
 }
 
 http::message_generator HttpSession::call_api(Request& req, std::string path,

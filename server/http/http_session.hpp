@@ -39,6 +39,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   void on_read_error(beast::error_code ec);
 
   void handle_request();
+  // The Api's rule for the stream, with a `?token=` taken as the bearer token.
+  bool may_open_stream(const Request& req, std::string_view raw_query) const;
   http::message_generator call_api(Request& req, std::string path, std::string_view raw_query,
                                    bool keep_alive);
   void reject(http::status status, std::string_view detail);

@@ -35,39 +35,53 @@ async function problemOf(res) {
   }
 }
 
+/** fetch with the bearer token whenever the page has one: off this machine (a published Docker
+ *  port, a LAN) every request needs it, reads included. A 401 asks for the token inline (never a
+ *  modal) and retries once with it; concurrent 401s share one prompt. A cancelled prompt leaves
+ *  the 401 to the caller. */
+async function authedFetch(url, init = {}) {
+  for (let attempt = 0; ; attempt++) {
+    const headers = { ...(init.headers || {}) };
+    const token = getToken();
+    if (token) headers.Authorization = `Bearer ${token}`;
+    const res = await fetch(url, { ...init, headers });
+    if (res.status === 401 && attempt === 0) {
+      try {
+        await requestToken();
+      } catch {
+        return res; // the operator cancelled: the caller reports the 401
+      }
+      continue;
+    }
+    return res;
+  }
+}
+
 export async function getJson(path, params, { signal } = {}) {
-  const res = await fetch(apiUrl(path, params), { headers: { Accept: 'application/json' }, signal });
+  const res = await authedFetch(apiUrl(path, params), { headers: { Accept: 'application/json' }, signal });
   if (!res.ok) throw new ApiError(res.status, await problemOf(res));
   return res.json();
 }
 
 /** GET as text (CSV); returns {text, headers}. */
 export async function getText(path, params, accept = 'text/csv') {
-  const res = await fetch(apiUrl(path, params), { headers: { Accept: accept } });
+  const res = await authedFetch(apiUrl(path, params), { headers: { Accept: accept } });
   if (!res.ok) throw new ApiError(res.status, await problemOf(res));
   return { text: await res.text(), headers: res.headers };
 }
 
-/** POST with the bearer token. A 401 asks for the token inline and retries once with it. */
+/** POST with the bearer token (a 401 asks for it inline and retries once, as every request). */
 export async function postJson(path, body) {
-  for (let attempt = 0; ; attempt++) {
-    const headers = { Accept: 'application/json' };
-    const token = getToken();
-    if (token) headers.Authorization = `Bearer ${token}`;
-    if (body !== undefined) headers['Content-Type'] = 'application/json';
-    const res = await fetch(apiUrl(path), {
-      method: 'POST',
-      headers,
-      body: body === undefined ? undefined : JSON.stringify(body),
-    });
-    if (res.status === 401 && attempt === 0) {
-      await requestToken(); // rejects when the operator cancels
-      continue;
-    }
-    if (!res.ok) throw new ApiError(res.status, await problemOf(res));
-    const text = await res.text();
-    return text ? JSON.parse(text) : {};
-  }
+  const headers = { Accept: 'application/json' };
+  if (body !== undefined) headers['Content-Type'] = 'application/json';
+  const res = await authedFetch(apiUrl(path), {
+    method: 'POST',
+    headers,
+    body: body === undefined ? undefined : JSON.stringify(body),
+  });
+  if (!res.ok) throw new ApiError(res.status, await problemOf(res));
+  const text = await res.text();
+  return text ? JSON.parse(text) : {};
 }
 
 /** Every page of a keyset collection (`{items, next}`), up to maxItems. */

@@ -1,7 +1,7 @@
 // Start-up: the token, the plots' frames, the views, the router, the REST catch-up and the stream.
 
 import { state, on } from './state.js';
-import { adoptTokenFromUrl, initTokenBar } from './auth.js';
+import { adoptTokenFromUrl, initTokenBar, onTokenChange } from './auth.js';
 import { framePlot } from './plots.js';
 import { Stream } from './stream.js';
 import { attachStream, catchUp, onHello, onMessage, onStreamClose, onGap, updateLink } from './sync.js';
@@ -58,6 +58,10 @@ function main() {
     onGap,
   });
   attachStream(stream);
+  // A stream refused for want of the token (off loopback) retries at once with the one entered.
+  onTokenChange(() => {
+    if (!stream.open) stream.reconnectNow();
+  });
   // REST first (the views have something to show at once), then the stream, whose hello triggers
   // another catch-up that fills anything missed in between.
   catchUp()

@@ -1,6 +1,8 @@
 // The control token. `avk serve` prints a dashboard URL carrying ?token=…; we keep it in
 // sessionStorage (gone when the tab closes) and take it out of the address bar so that it does not
-// end up in bookmarks, screenshots or the history. Reads need no token on loopback; every POST does.
+// end up in bookmarks, screenshots or the history. Every POST needs it; reads need it too from any
+// address but loopback (a published Docker port, a LAN), so the page sends it on every request and
+// on the stream whenever it has one.
 
 const KEY = 'avk-token';
 
@@ -18,9 +20,17 @@ export function getToken() {
   return sessionStorage.getItem(KEY) || '';
 }
 
+const listeners = [];
+
+/** fn() runs after the operator enters a token (the stream reconnects with it). */
+export function onTokenChange(fn) {
+  listeners.push(fn);
+}
+
 export function setToken(token) {
   if (token) sessionStorage.setItem(KEY, token);
   else sessionStorage.removeItem(KEY);
+  for (const fn of listeners) fn(token);
 }
 
 let waiting = null; // {resolve, reject} of the prompt on screen

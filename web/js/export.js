@@ -2,7 +2,7 @@
 // downloads, and a PNG of every plot drawn so far.
 
 import { state, on } from './state.js';
-import { apiUrl, getText } from './api.js';
+import { getText } from './api.js';
 import { drawnPlots, downloadPng, onPlotsChanged } from './plots.js';
 import { el, setStatus } from './format.js';
 import { refreshTurnCount } from './sync.js';
@@ -34,9 +34,15 @@ async function needTurns() {
 async function cktDownload(format) {
   if (!state.vehicleId || !(await needTurns())) return;
   const vid = encodeURIComponent(state.vehicleId);
-  // The server sends Content-Disposition with its own name; `download` names it if it does not.
-  downloadUrl(apiUrl(`/vehicles/${vid}/ckt/export`, { format }), `ckt-${state.vehicleId}.${format}`);
-  setStatus($('exp-status'), `CKT ${format.toUpperCase()} requested.`, 'ok');
+  // Fetched (with the token, which a plain link cannot send off loopback) and saved from memory.
+  try {
+    const type = format === 'csv' ? 'text/csv' : 'application/json';
+    const { text } = await getText(`/vehicles/${vid}/ckt/export`, { format }, type);
+    downloadText(text, `ckt-${state.vehicleId}.${format}`, type);
+    setStatus($('exp-status'), `CKT ${format.toUpperCase()} saved.`, 'ok');
+  } catch (e) {
+    setStatus($('exp-status'), e.message, 'error');
+  }
 }
 
 /** Turns as CSV: the collection is paged (at most 1000 a page, cursor in X-Next-After), so the
@@ -68,8 +74,13 @@ async function turnsCsv() {
 
 async function compareCsv() {
   if (!state.vehicleId || !(await needTurns())) return;
-  downloadUrl(apiUrl(`/vehicles/${encodeURIComponent(state.vehicleId)}/compare`, { format: 'csv' }), `compare-${state.vehicleId}.csv`);
-  setStatus($('exp-status'), 'Comparison CSV requested.', 'ok');
+  try {
+    const { text } = await getText(`/vehicles/${encodeURIComponent(state.vehicleId)}/compare`, { format: 'csv' });
+    downloadText(text, `compare-${state.vehicleId}.csv`, 'text/csv');
+    setStatus($('exp-status'), 'Comparison CSV saved.', 'ok');
+  } catch (e) {
+    setStatus($('exp-status'), e.message, 'error');
+  }
 }
 
 function renderPlotList() {

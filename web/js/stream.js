@@ -1,6 +1,10 @@
 // The live stream (WebSocket /api/v1/stream). Reconnects by itself with exponential backoff and
 // jitter; each (re)connection is reported with the hello's session_id so the caller can tell a
 // server restart (new session) from a dropped connection and re-read the state over REST.
+// Browsers cannot set headers on a WebSocket, so the token (needed off loopback) goes in the
+// query (?token=), which the server accepts on the upgrade only.
+
+import { getToken } from './auth.js';
 
 const TOPICS = ['nav', 'helm', 'mission', 'turn', 'status'];
 const MIN_DELAY_MS = 500;
@@ -16,6 +20,7 @@ export class Stream {
     this.delay = MIN_DELAY_MS;
     this.timer = null;
     this.stopped = false;
+    this.started = false;
     this.open = false;
     this.lastSeq = {}; // per topic, to notice gaps
     this.gaps = 0;
@@ -23,6 +28,7 @@ export class Stream {
 
   start() {
     this.stopped = false;
+    this.started = true;
     this.connect();
     // A tab brought back to the front should not wait out a long backoff.
     document.addEventListener('visibilitychange', () => {
@@ -38,6 +44,7 @@ export class Stream {
   }
 
   reconnectNow() {
+    if (!this.started || this.stopped) return; // start() connects
     clearTimeout(this.timer);
     this.delay = MIN_DELAY_MS;
     if (!this.ws || this.ws.readyState === WebSocket.CLOSED) this.connect();
@@ -47,7 +54,9 @@ export class Stream {
     const proto = window.location.protocol === 'https:' ? 'wss:' : 'ws:';
     let ws;
     try {
-      ws = new WebSocket(`${proto}//${window.location.host}/api/v1/stream`);
+      const token = getToken();
+      const query = token ? `?token=${encodeURIComponent(token)}` : '';
+      ws = new WebSocket(`${proto}//${window.location.host}/api/v1/stream${query}`);
     } catch (e) {
       this.scheduleReconnect();
       return;
