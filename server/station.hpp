@@ -32,6 +32,8 @@ class Station final : public Api {
   void shutdown();
 
   ApiResponse handle(const ApiRequest& request) override;
+  // From the header: the token (401 before any body is read) and the route's body limit.
+  Admission admit(const ApiRequest& head) override;
 
   VehicleLoop* vehicle_loop();
 
