@@ -3,10 +3,12 @@
 // parses a request into ApiRequest and writes ApiResponse back, so every handler is testable
 // without a socket and Beast's headers stay in the transport files.
 
+#include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -35,6 +37,14 @@ struct ApiResponse {
   std::vector<std::pair<std::string, std::string>> headers;  // extra (Location, ...)
 };
 
+// What the API decides from a request's header alone, before the transport reads its body: a
+// client without the token must not make the server hold 64 MB for it, and the route (not the
+// transport) knows how large its body may be.
+struct Admission {
+  std::optional<ApiResponse> refusal;           // sent as is; the body is never read
+  std::optional<std::size_t> body_limit_bytes;  // none: the transport's default
+};
+
 // The REST API behind /api/v1. Called concurrently from the transport's threads.
 class Api {
  public:
@@ -46,6 +56,12 @@ class Api {
   virtual bool may_open_stream(const ApiRequest& request) {
     (void)request;
     return true;
+  }
+
+  // head: the request with an empty body. Default: admitted with the transport's limit.
+  virtual Admission admit(const ApiRequest& head) {
+    (void)head;
+    return {};
   }
 };
 

@@ -1,12 +1,14 @@
 #include "server/station.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <map>
 #include <mutex>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <string_view>
 
 #include "kinematics/ckt_file.hpp"
 #include "kinematics/parse_error.hpp"
@@ -214,6 +216,34 @@ json mission_json(const store::Mission& m) {
           {"ended_s", optional_json(m.ended_s)}};
 }
 
+// A value a client sent, for an error message: a scalar shortened, a container by its kind only
+// (dumping it whole would grow the message with the input, and recurse as deep as it nests).
+std::string describe_value(const json& v) {
+  if (v.is_structured()) return std::string("an ") + v.type_name();
+  std::string text = v.dump(-1, ' ', false, json::error_handler_t::replace);
+  constexpr std::size_t kMax = 40;
+  if (text.size() > kMax) text = text.substr(0, kMax) + "...";
+  return text;
+}
+
+// RFC 7235: the scheme is case-insensitive, one or more spaces follow it. The token is compared
+// in time independent of where it differs.
+bool bearer_token_matches(const std::string& authorization, const std::string& token) {
+  constexpr std::string_view scheme = "bearer";
+  if (token.empty() || authorization.size() <= scheme.size()) return false;
+  for (std::size_t i = 0; i < scheme.size(); ++i)
+    if (std::tolower(static_cast<unsigned char>(authorization[i])) != scheme[i]) return false;
+  std::size_t start = scheme.size();
+  if (authorization[start] != ' ') return false;
+  while (start < authorization.size() && authorization[start] == ' ')
+    ++start;
+  const std::string_view given = std::string_view(authorization).substr(start);
+  unsigned char diff = given.size() == token.size() ? 0 : 1;
+  for (std::size_t i = 0; i < token.size(); ++i)
+    diff |= static_cast<unsigned char>(token[i] ^ (i < given.size() ? given[i] : 0));
+  return diff == 0;
+}
+
 }  // namespace
 
 struct Station::Impl {
@@ -311,12 +341,19 @@ struct Station::Impl {
     // Anything that commands the boat needs the token; so does anything from off this machine.
     const bool needs = r.method != "GET" && r.method != "HEAD";
     if (!needs && r.remote_is_loopback) return;
-    const std::string expected = "Bearer " + options.token;
-    if (r.authorization == expected) return;
+    if (bearer_token_matches(r.authorization, options.token)) return;
     ApiError e(401, "Unauthorized",
                r.authorization.empty() ? "this endpoint needs the station's bearer token"
                                        : "the bearer token is not the station's");
     throw e;
+  }
+
+  // The CKT of a long campaign is bigger than any control request.
+  static std::optional<std::size_t> body_limit_of(const ApiRequest& r) {
+    const auto seg = split_path(r.path);
+    if (seg.size() == 6 && seg[2] == "vehicles" && seg[4] == "ckt" && seg[5] == "import")
+      return std::size_t{64} << 20;
+    return std::nullopt;
   }
 
   // --- vehicles --------------------------------------------------------------------------
@@ -873,7 +910,8 @@ struct Station::Impl {
     std::vector<std::int64_t> ids;
     for (const auto& e : v) {
       if (!e.is_number_integer() || e.get<std::int64_t>() <= 0)
-        throw ApiError(422, "Unprocessable Content", "/missions holds a bad id: " + e.dump());
+        throw ApiError(422, "Unprocessable Content",
+                       "/missions holds a bad id: " + describe_value(e));
       const auto m = db().get_mission(e.get<std::int64_t>());
       if (!m) throw ApiError(422, "Unprocessable Content", "no mission " + e.dump());
       if (m->vehicle_id != vid)
@@ -967,11 +1005,23 @@ bool Station::may_open_stream(const ApiRequest& request) {
   }
 }
 
+Admission Station::admit(const ApiRequest& head) {
+  Admission a;
+  a.body_limit_bytes = Impl::body_limit_of(head);
+  try {
+    impl_->authorize(head);
+  } catch (const ApiError& e) {
+    ApiResponse r = problem(e.status, e.title, e.what(), e.extra);
+    r.headers.push_back({"WWW-Authenticate", "Bearer"});
+    a.refusal = std::move(r);
+  }
+  return a;
+}
+
 ApiResponse Station::handle(const ApiRequest& request) {
   try {
-    ApiResponse r = impl_->handle(request);
-    if (request.method == "HEAD") r.body.clear();
-    return r;
+    // A HEAD gets the GET's body; the transport sends its length and drops it.
+    return impl_->handle(request);
   } catch (const ApiError& e) {
     ApiResponse r = problem(e.status, e.title, e.what(), e.extra);
     if (e.status == 405 && e.extra.contains("allow"))

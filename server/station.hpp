@@ -34,6 +34,8 @@ class Station final : public Api {
   ApiResponse handle(const ApiRequest& request) override;
   // The rule of a GET: open on loopback, the bearer token from anywhere else.
   bool may_open_stream(const ApiRequest& request) override;
+  // From the header: the token (401 before any body is read) and the route's body limit.
+  Admission admit(const ApiRequest& head) override;
 
   VehicleLoop* vehicle_loop();
 

@@ -6,11 +6,15 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <ostream>
 #include <random>
+#include <string_view>
 
 #include "server/cli/args.hpp"
 #include "server/cli/commands.hpp"
@@ -45,11 +49,48 @@ std::string random_token() {
   return t;
 }
 
+// A token an operator chose must be as hard to guess as the one we would generate (128 bits of
+// hex): at least 32 characters of a header-safe alphabet, and an estimated entropy (the
+// characters' own frequencies, times the length) of at least 96 bits, which rules out repeats
+// and short alphabets ("aaaa...", "abab...").
+void check_user_token(const std::string& token) {
+  if (token.size() < 32)
+    throw UsageError("--token must be at least 32 characters (it has " +
+                     std::to_string(token.size()) + "); leave it out to have one generated");
+  std::map<char, std::size_t> counts;
+  for (const char c : token) {
+    const bool safe = std::isalnum(static_cast<unsigned char>(c)) != 0 ||
+                      std::string_view("-._~+/=").find(c) != std::string_view::npos;
+    if (!safe) throw UsageError("--token may hold only letters, digits and - . _ ~ + / =");
+    ++counts[c];
+  }
+  double bits = 0.0;
+  for (const auto& [c, n] : counts) {
+    const double p = static_cast<double>(n) / static_cast<double>(token.size());
+    bits -= static_cast<double>(n) * std::log2(p);
+  }
+  if (bits < 96.0)
+    throw UsageError("--token is too predictable (about " + std::to_string(static_cast<int>(bits)) +
+                     " bits; at least 96 needed): use more varied characters, or leave it out");
+}
+
 // The token lives beside the database, readable by its owner only, so a restart keeps the
-// dashboard URL an operator already has.
-std::string station_token(const std::string& db_path, std::ostream& err) {
+// dashboard URL an operator already has. A token file others can read is refused rather than
+// used: whoever could read it has had the token. created: whether this call wrote the file.
+std::string station_token(const std::string& db_path, std::ostream& err, bool& created) {
   const std::string path = db_path + ".token";
-  if (std::ifstream in(path); in) {
+  created = false;
+  struct stat st {};
+  if (::stat(path.c_str(), &st) == 0) {
+    if ((st.st_mode & 077) != 0) {
+      char mode[8];
+      std::snprintf(mode, sizeof mode, "%04o", static_cast<unsigned>(st.st_mode & 07777));
+      throw std::runtime_error(
+          "the token file " + path + " can be read by others (mode " + mode +
+          "): remove it to have a new token written, or chmod 600 it if the token never left "
+          "this account");
+    }
+    std::ifstream in(path);
     std::string t;
     std::getline(in, t);
     if (t.size() >= 16) return t;
@@ -59,11 +100,31 @@ std::string station_token(const std::string& db_path, std::ostream& err) {
   const std::string t = random_token();
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL, 0600);
   if (fd < 0) throw std::runtime_error("cannot create the token file " + path);
+  created = true;
   const std::string line = t + "\n";
   const bool ok = ::write(fd, line.data(), line.size()) == static_cast<ssize_t>(line.size());
   ::close(fd);
   if (!ok) throw std::runtime_error("cannot write the token file " + path);
   return t;
+}
+
+// Removes a file this start created unless the start got through (a failed start leaves
+// nothing new behind).
+class RemoveUnlessKept {
+ public:
+  void set(std::string path) { path_ = std::move(path); }
+  void keep() { path_.clear(); }
+  ~RemoveUnlessKept() {
+    std::error_code ec;
+    if (!path_.empty()) fs::remove(path_, ec);
+  }
+
+ private:
+  std::string path_;
+};
+
+bool is_unspecified(const std::string& address) {
+  return address == "0.0.0.0" || address == "::" || address == "[::]";
 }
 
 std::string vehicle_id(const VehicleLoopOptions& v) {
@@ -75,25 +136,50 @@ std::string vehicle_id(const VehicleLoopOptions& v) {
 int cmd_serve(const std::vector<std::string>& args, Io& io) {
   const Args a(args,
                {"db", "vehicle", "sim-config", "realtime-factor", "seed", "ticks", "m200", "bind",
-                "port", "web", "token", "threads", "datum", "pid", "controller-hz", "vehicle-id"},
-               {"sim", "jitter"});
+                "port", "web", "token", "threads", "datum", "pid", "controller-hz", "vehicle-id",
+                "allow-host", "max-connections", "max-connections-per-address"},
+               {"sim", "jitter"}, {"allow-host"});
   if (a.flag("sim") && a.get("m200")) throw UsageError("give one vehicle: --sim or --m200");
   auto m200 = m200_options_from(a);  // option mistakes show before anything is opened
-  const std::string db_path = a.get("db").value_or(default_db_path());
-  StationOptions so;
-  so.db_path = db_path;
-  so.server_version = "avk-station 0.1.0";
-  so.token = a.get("token").value_or("");
-  if (!so.token.empty() && so.token.size() < 16)
-    throw UsageError("--token must be at least 16 characters");
-  if (so.token.empty()) so.token = station_token(db_path, io.err);
   const double port = a.number("port").value_or(8080);
   if (port < 0 || port > 65535 || port != static_cast<int>(port))
     throw UsageError("--port must be a whole number from 0 to 65535");
   const double threads = a.number("threads").value_or(2);
   if (threads < 1 || threads > 64 || threads != static_cast<int>(threads))
     throw UsageError("--threads must be a whole number from 1 to 64");
+  HttpServerOptions ho;
+  const auto count_option = [&](const char* name, std::size_t& into) {
+    const auto v = a.number(name);
+    if (!v) return;
+    if (*v < 1 || *v > 100000 || *v != static_cast<int>(*v))
+      throw UsageError(std::string("--") + name + " must be a whole number from 1 to 100000");
+    into = static_cast<std::size_t>(*v);
+  };
+  count_option("max-connections", ho.max_connections);
+  count_option("max-connections-per-address", ho.max_connections_per_address);
+  for (const auto& name : a.all("allow-host")) {
+    if (name.empty() || name.find_first_of(":/[] ") != std::string::npos)
+      throw UsageError("--allow-host takes a host name without port or scheme, not '" + name + "'");
+    ho.allowed_hosts.push_back(name);
+  }
   const double factor = realtime_factor_from(a);
+  std::string user_token = a.get("token").value_or("");
+  if (a.get("token")) check_user_token(user_token);
+
+  // The default location is made only when it is used: a user without a home can still give
+  // --db.
+  const std::string db_path = a.get("db") ? *a.get("db") : default_db_path();
+  StationOptions so;
+  so.db_path = db_path;
+  so.server_version = "avk-station 0.1.0";
+  RemoveUnlessKept new_token_file;
+  if (user_token.empty()) {
+    bool created = false;
+    so.token = station_token(db_path, io.err, created);
+    if (created) new_token_file.set(db_path + ".token");
+  } else {
+    so.token = user_token;
+  }
 
   const double clock = store::Store(db_path).station_clock_end_s();
   if (a.flag("sim")) {
@@ -111,8 +197,8 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
     v.start_clock_s = clock + 1.0;
     so.vehicle = v;
   }
-  HttpServerOptions ho;
   ho.bind_address = a.get("bind").value_or("127.0.0.1");
+  if (ho.bind_address == "[::]") ho.bind_address = "::";
   ho.port = static_cast<unsigned short>(port);
   ho.threads = static_cast<int>(threads);
   ho.server_version = so.server_version;
@@ -122,9 +208,6 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
   } else if (a.get("web")) {
     throw UsageError("--web " + web + " is not a directory");
   }
-  if (so.vehicle)
-    ho.body_limit_by_path["/api/v1/vehicles/" + vehicle_id(*so.vehicle) + "/ckt/import"] = 64u
-                                                                                           << 20;
 
   // Signals are taken by this thread alone (sigwait), so block them before any thread starts.
   sigset_t signals;
@@ -138,12 +221,25 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
   station.start();
   HttpServer http(ho, station, hub);
   http.start();
-  const std::string host = ho.bind_address == "0.0.0.0" ? "127.0.0.1" : ho.bind_address;
+  new_token_file.keep();
+  const bool everywhere = is_unspecified(ho.bind_address);
+  const bool v6 = ho.bind_address.find(':') != std::string::npos;
+  const std::string host = everywhere ? (v6 ? "[::1]" : "127.0.0.1")
+                           : v6       ? "[" + ho.bind_address + "]"
+                                      : ho.bind_address;
   io.out << "AVK Station on http://" << host << ":" << http.port() << "/ (database " << db_path
          << (so.vehicle ? ", vehicle " + vehicle_id(*so.vehicle) : std::string(", no vehicle"))
          << ")\n"
          << "dashboard with control: http://" << host << ":" << http.port()
          << "/?token=" << so.token << std::endl;
+  const bool loopback_only =
+      !everywhere && (ho.bind_address.starts_with("127.") || ho.bind_address == "::1");
+  if (!loopback_only)
+    io.err << "serve: WARNING: listening on " << ho.bind_address
+           << ", so the API and the dashboard are reachable from other machines; they need the "
+              "token for every request, reads included. From elsewhere use http://"
+           << (everywhere ? std::string("<this machine's address>") : host) << ":" << http.port()
+           << "/?token=<the token above>\n";
   int signal_number = 0;
   sigwait(&signals, &signal_number);
   io.err << "serve: " << (signal_number == SIGINT ? "SIGINT" : "SIGTERM")

@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "server/api_types.hpp"
 #include "server/stream_hub.hpp"
@@ -22,11 +23,26 @@ struct HttpServerOptions {
   std::optional<std::string> web_root;  // static files; none: only the API
   std::size_t header_limit = 8 * 1024;  // larger -> 431 and close
   std::size_t body_limit = 1 << 20;     // larger -> 413 and close
-  // Exact decoded paths that may carry a larger (or smaller) body than body_limit: a CKT of a
-  // long campaign is bigger than any control request.
-  std::map<std::string, std::size_t> body_limit_by_path = {{"/api/v1/ckt/import", 64u << 20}};
+  // Exact decoded paths that may carry a larger (or smaller) body than body_limit. The Api's
+  // admit() has the last word (Station gives the CKT import its 64 MB there).
+  std::map<std::string, std::size_t> body_limit_by_path;
   // A client that has not sent a complete header by then is disconnected (slowloris).
   std::chrono::milliseconds header_timeout{10000};
+  // Header and body together, from the request's first byte: a body trickled in at one byte
+  // per pause shorter than idle_timeout is still cut here.
+  std::chrono::milliseconds request_timeout{30000};
+  // Open connections (HTTP and WebSocket) in all, and HTTP connections from one address. When
+  // full, the oldest connection still waiting for (or reading) a request is closed to make
+  // room, so a flood of slow connections cannot keep /health out; when none can be closed the
+  // new one gets a 503 and is closed.
+  std::size_t max_connections = 512;
+  std::size_t max_connections_per_address = 64;
+  // Request bodies that are JSON (by type or by their first character) nested deeper are a 400
+  // before any handler parses them: nothing recursive ever sees an attacker's depth.
+  std::size_t json_depth_limit = 64;
+  // Host names (besides loopback names and IP literals) the server answers to; anything else is
+  // 421 (403 for the stream upgrade), which defeats DNS rebinding.
+  std::vector<std::string> allowed_hosts;
   // Keep-alive: how long a connection may wait for its next request; also the longest pause
   // inside a body or a response write, and the WebSocket's dead-peer detection (pings at half).
   std::chrono::milliseconds idle_timeout{30000};

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdint>
 #include <exception>
+#include <iostream>
 #include <limits>
 #include <map>
 #include <utility>
@@ -33,6 +34,25 @@ bool has_line_break(std::string_view s) {
   return s.find_first_of("\r\n") != std::string_view::npos;
 }
 
+bool looks_like_json(std::string_view content_type, std::string_view body) {
+  const auto semicolon = content_type.find(';');
+  std::string type(content_type.substr(0, semicolon));
+  std::transform(type.begin(), type.end(), type.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  while (!type.empty() && type.back() == ' ')
+    type.pop_back();
+  if (type == "application/json" || type.ends_with("+json")) return true;
+  const auto first = body.find_first_not_of(" \t\r\n");
+  return first != std::string_view::npos && (body[first] == '{' || body[first] == '[');
+}
+
+// A value a client sent, for an error message: short, so that no message grows with the input.
+std::string quoted_excerpt(std::string_view text) {
+  constexpr std::size_t kMax = 40;
+  if (text.size() <= kMax) return "'" + std::string(text) + "'";
+  return "'" + std::string(text.substr(0, kMax)) + "...'";
+}
+
 }  // namespace
 
 HttpSession::HttpSession(tcp::socket&& socket, std::shared_ptr<ServerState> state)
@@ -43,7 +63,6 @@ HttpSession::~HttpSession() {
 }
 
 void HttpSession::run() {
-  state_->add(shared_from_this());
   beast::error_code ec;
   const auto remote = stream_.socket().remote_endpoint(ec);
   if (!ec) {
@@ -54,6 +73,7 @@ void HttpSession::run() {
         (address.is_v6() && address.to_v6().is_v4_mapped() &&
          net::ip::make_address_v4(net::ip::v4_mapped, address.to_v6()).is_loopback());
   }
+  state_->add(shared_from_this());
   net::dispatch(stream_.get_executor(),
                 beast::bind_front_handler(&HttpSession::start_request, shared_from_this()));
 }
@@ -62,6 +82,15 @@ void HttpSession::shutdown() {
   net::post(stream_.get_executor(), [self = shared_from_this()] {
     if (self->phase_ == Phase::reading || self->phase_ == Phase::lingering) self->close_now();
   });
+}
+
+void HttpSession::evict() {
+  shutdown();
+}
+
+void HttpSession::expires_within(std::chrono::milliseconds limit) {
+  const auto now = std::chrono::steady_clock::now();
+  stream_.expires_at(std::min(now + limit, request_deadline_));
 }
 
 std::size_t HttpSession::body_limit_for(const std::string& path) const {
@@ -73,16 +102,16 @@ std::size_t HttpSession::body_limit_for(const std::string& path) const {
 void HttpSession::start_request() {
   if (state_->stopping()) return close_now();
   phase_ = Phase::reading;
+  awaiting_request_ = true;
+  head_ = false;
   const auto& options = state_->options();
   parser_.emplace();
   parser_->header_limit(static_cast<std::uint32_t>(
       std::min<std::size_t>(options.header_limit, std::numeric_limits<std::uint32_t>::max())));
-  // The path, and with it the real limit, is known only after the header; until then the
-  // largest limit, so that the parser does not refuse a Content-Length we would accept.
-  std::size_t largest = options.body_limit;
-  for (const auto& [path, limit] : options.body_limit_by_path)
-    largest = std::max(largest, limit);
-  parser_->body_limit(largest);
+  // The real limit is known only after the header (the route and the token decide it): until
+  // then none, so that the parser does not answer a large Content-Length before the header has
+  // been checked. check_header() sets the limit before any body byte is read.
+  parser_->body_limit(std::numeric_limits<std::uint64_t>::max());
 
   if (first_request_ || buffer_.size() > 0) return read_header();
   // Between keep-alive requests the idle timeout applies; the header timeout starts with the
@@ -101,26 +130,23 @@ void HttpSession::on_first_byte(beast::error_code ec, std::size_t bytes) {
 
 void HttpSession::read_header() {
   first_request_ = false;
-  stream_.expires_after(state_->options().header_timeout);
+  request_deadline_ = std::chrono::steady_clock::now() + state_->options().request_timeout;
+  expires_within(state_->options().header_timeout);
   http::async_read_header(stream_, buffer_, *parser_,
                           beast::bind_front_handler(&HttpSession::on_header, shared_from_this()));
 }
 
 void HttpSession::on_header(beast::error_code ec, std::size_t) {
   if (ec) return on_read_error(ec);
-  const auto& req = parser_->get();
-  const std::string path = percent_decode(split_target(req.target()).path, false);
-  const std::size_t limit = body_limit_for(path);
-  if (const auto length = parser_->content_length(); length && *length > limit)
-    return reject(http::status::payload_too_large,
-                  "request body larger than " + std::to_string(limit) + " bytes");
-  parser_->body_limit(limit);
+  head_ = parser_->get().method() == http::verb::head;
+  if (auto refusal = check_header()) return send(std::move(*refusal));
 
+  const auto& req = parser_->get();
   // curl and others wait for this before they send a large body.
   if (!parser_->is_done() && beast::iequals(req[http::field::expect], "100-continue")) {
     auto res =
         std::make_shared<http::response<http::empty_body>>(http::status::continue_, req.version());
-    stream_.expires_after(state_->options().idle_timeout);
+    expires_within(state_->options().idle_timeout);
     http::async_write(stream_, *res,
                       [self = shared_from_this(), res](beast::error_code write_ec, std::size_t n) {
                         self->on_continue_sent(write_ec, n);
@@ -130,6 +156,61 @@ void HttpSession::on_header(beast::error_code ec, std::size_t) {
   read_body();
 }
 
+std::optional<http::message_generator> HttpSession::check_header() {
+  const auto& req = parser_->get();
+  const unsigned version = req.version() == 10 ? 10 : 11;
+  // A refused request whose body is still coming cannot keep its connection: the body would be
+  // read as the next request.
+  const bool keep_alive = req.keep_alive() && parser_->is_done() && !state_->stopping();
+  const auto refuse = [&](http::status status, std::string_view detail,
+                          bool keep = false) -> http::message_generator {
+    return body_unless_head(head_, problem_response(status, detail, version, keep && keep_alive));
+  };
+  const auto target = split_target(req.target());
+  std::string path = percent_decode(target.path, false);
+
+  // DNS rebinding: a page of evil.example re-pointed at 127.0.0.1 sends Host: evil.example.
+  const auto host = req[http::field::host];
+  if (host.empty()) {
+    if (version == 11) return refuse(http::status::bad_request, "HTTP/1.1 needs a Host header");
+  } else if (!host_is_allowed(host, state_->options().allowed_hosts)) {
+    const bool upgrade = path == kStreamPath;
+    return refuse(upgrade ? http::status::forbidden : http::status::misdirected_request,
+                  "this server does not answer to Host " + quoted_excerpt(host) +
+                      " (start it with --allow-host NAME to add a name)");
+  }
+  if (!is_valid_utf8(path))
+    return refuse(http::status::bad_request, "the path is not valid UTF-8 once decoded", true);
+
+  std::size_t limit = body_limit_for(path);
+  if (path.starts_with(kApiPrefix) && path != kStreamPath) {
+    std::map<std::string, std::string> query;
+    std::multimap<std::string, std::string> multi;
+    parse_query(target.query, query, multi);
+    for (const auto& [key, value] : multi) {
+      if (!is_valid_utf8(key))
+        return refuse(http::status::bad_request, "a query parameter name is not valid UTF-8", true);
+      if (!is_valid_utf8(value))
+        return refuse(http::status::bad_request, "query parameter '" + key + "' is not valid UTF-8",
+                      true);
+    }
+    Admission admission;
+    try {
+      admission = state_->api().admit(api_request_of(req, path, target.query));
+    } catch (const std::exception& e) {
+      std::cerr << "avk http: admit failed: " << e.what() << "\n";
+      return refuse(http::status::internal_server_error, "internal error (see the server log)");
+    }
+    if (admission.refusal) return to_http(std::move(*admission.refusal), version, keep_alive);
+    if (admission.body_limit_bytes) limit = *admission.body_limit_bytes;
+  }
+  if (const auto length = parser_->content_length(); length && *length > limit)
+    return refuse(http::status::payload_too_large,
+                  "request body larger than " + std::to_string(limit) + " bytes");
+  parser_->body_limit(limit);
+  return std::nullopt;
+}
+
 void HttpSession::on_continue_sent(beast::error_code ec, std::size_t) {
   if (ec) return close_now();
   read_body();
@@ -137,8 +218,8 @@ void HttpSession::on_continue_sent(beast::error_code ec, std::size_t) {
 
 void HttpSession::read_body() {
   if (parser_->is_done()) return handle_request();
-  // Read piecewise so that the deadline is per pause, not for the whole body.
-  stream_.expires_after(state_->options().idle_timeout);
+  // Read piecewise so that the deadline is per pause, and within the whole request's.
+  expires_within(state_->options().idle_timeout);
   http::async_read_some(stream_, buffer_, *parser_,
                         beast::bind_front_handler(&HttpSession::on_body, shared_from_this()));
 }
@@ -164,6 +245,7 @@ void HttpSession::on_read_error(beast::error_code ec) {
 
 void HttpSession::handle_request() {
   phase_ = Phase::handling;
+  awaiting_request_ = false;
   Request req = parser_->release();
   const bool keep_alive = req.keep_alive() && !state_->stopping();
   const auto target = split_target(req.target());
@@ -175,7 +257,7 @@ void HttpSession::handle_request() {
                                   "the stream is a WebSocket: connect with Upgrade: websocket",
                                   req.version(), keep_alive);
       res.set(http::field::upgrade, "websocket");
-      return send(std::move(res));
+      return send(body_unless_head(head_, std::move(res)));
     }
     // Browsers send Origin; a page from elsewhere must not read the station's stream with the
     // user's network position. Tools without a browser send none and are let in.
@@ -207,62 +289,81 @@ void HttpSession::handle_request() {
 }
 
 bool HttpSession::may_open_stream(const Request& req, std::string_view raw_query) const {
-  ApiRequest who;
+  ApiRequest who = api_request_of(req, std::string(kStreamPath), raw_query);
   who.method = "GET";
-  who.path = std::string(kStreamPath);
-  who.authorization = std::string(req[http::field::authorization]);
   if (who.authorization.empty()) {
-    std::map<std::string, std::string> query;
-    std::multimap<std::string, std::string> multi;
-    parse_query(raw_query, query, multi);
-    if (const auto it = query.find("token"); it != query.end())
+    if (const auto it = who.query.find("token"); it != who.query.end())
       who.authorization = "Bearer " + it->second;
   }
-  who.origin = std::string(req[http::field::origin]);
-  who.host = std::string(req[http::field::host]);
-  who.remote_address = remote_address_;
-  who.remote_is_loopback = remote_is_loopback_;
   return state_->api().may_open_stream(who);
+}
+
+ApiRequest HttpSession::api_request_of(const Request& req, std::string path,
+                                       std::string_view raw_query) const {
+  ApiRequest api_request;
+  api_request.method = std::string(req.method_string());
+  api_request.path = std::move(path);
+  parse_query(raw_query, api_request.query, api_request.multi_query);
+  api_request.content_type = std::string(req[http::field::content_type]);
+  api_request.accept = std::string(req[http::field::accept]);
+  api_request.authorization = std::string(req[http::field::authorization]);
+  api_request.origin = std::string(req[http::field::origin]);
+  api_request.host = std::string(req[http::field::host]);
+  api_request.remote_address = remote_address_;
+  api_request.remote_is_loopback = remote_is_loopback_;
+  return api_request;
 }
 
 http::message_generator HttpSession::call_api(Request& req, std::string path,
                                               std::string_view raw_query, bool keep_alive) {
   const unsigned version = req.version();
-  const bool head = req.method() == http::verb::head;
+  const auto limit = state_->options().json_depth_limit;
+  if (looks_like_json(req[http::field::content_type], req.body()) &&
+      json_deeper_than(req.body(), limit))
+    return body_unless_head(head_,
+                            problem_response(http::status::bad_request,
+                                             "the JSON body nests arrays and objects deeper than " +
+                                                 std::to_string(limit) + " levels",
+                                             version, keep_alive));
   ApiResponse response;
   try {
-    ApiRequest api_request;
-    api_request.method = std::string(req.method_string());
-    api_request.path = std::move(path);
-    parse_query(raw_query, api_request.query, api_request.multi_query);
-    api_request.content_type = std::string(req[http::field::content_type]);
-    api_request.accept = std::string(req[http::field::accept]);
-    api_request.authorization = std::string(req[http::field::authorization]);
-    api_request.origin = std::string(req[http::field::origin]);
-    api_request.host = std::string(req[http::field::host]);
-    api_request.remote_address = remote_address_;
-    api_request.remote_is_loopback = remote_is_loopback_;
+    ApiRequest api_request = api_request_of(req, std::move(path), raw_query);
     api_request.body = std::move(req.body());
     response = state_->api().handle(api_request);
   } catch (const std::exception& e) {
-    return problem_response(http::status::internal_server_error, e.what(), version, keep_alive);
+    // The log has the library's words; the client only learns that it was not its fault.
+    std::cerr << "avk http: " << req.method_string() << " " << req.target() << ": " << e.what()
+              << "\n";
+    response = ApiResponse{500, "", "", {}};
   } catch (...) {
-    return problem_response(http::status::internal_server_error, "unknown error", version,
-                            keep_alive);
+    response = ApiResponse{500, "", "", {}};
   }
+  return to_http(std::move(response), version, keep_alive);
+}
 
+http::message_generator HttpSession::to_http(ApiResponse response, unsigned version,
+                                             bool keep_alive) {
+  const auto internal = [&](std::string_view log) {
+    std::cerr << "avk http: " << log << "\n";
+    return body_unless_head(
+        head_, problem_response(http::status::internal_server_error,
+                                "internal error (see the server log)", version, keep_alive));
+  };
   // What a handler returns must not be able to break the framing of the response.
   if (response.status < 200 || response.status > 599)
-    return problem_response(http::status::internal_server_error,
-                            "handler returned status " + std::to_string(response.status), version,
-                            keep_alive);
+    return internal("handler returned status " + std::to_string(response.status));
   if (has_line_break(response.content_type) ||
       std::any_of(response.headers.begin(), response.headers.end(), [](const auto& h) {
         return h.first.empty() || has_line_break(h.first) || has_line_break(h.second) ||
                h.first.find(':') != std::string::npos;
       }))
-    return problem_response(http::status::internal_server_error,
-                            "handler returned an invalid header", version, keep_alive);
+    return internal("handler returned an invalid header");
+  // Last resort: a 500 says what failed in words meant for the log (a library's exception
+  // text, a path on disk); the client gets a fixed sentence.
+  if (response.status == 500) {
+    if (!response.body.empty()) std::cerr << "avk http: 500: " << response.body << "\n";
+    return internal("(the handler's answer above)");
+  }
 
   http::response<http::string_body> res;
   res.version(version);
@@ -272,26 +373,24 @@ http::message_generator HttpSession::call_api(Request& req, std::string path,
   for (const auto& [name, value] : response.headers)
     res.insert(name, value);
   res.keep_alive(keep_alive);
-  const auto status = response.status;
-  if (status == 204 || status == 304) {
+  if (response.status == 204 || response.status == 304) {
     res.body().clear();
-  } else if (head) {
-    res.content_length(response.body.size());
+    res.prepare_payload();
     return res;
-  } else {
-    res.body() = std::move(response.body);
   }
+  res.body() = std::move(response.body);
   res.prepare_payload();
-  return res;
+  return body_unless_head(head_, std::move(res));
 }
 
 void HttpSession::reject(http::status status, std::string_view detail) {
   const unsigned version = parser_ ? parser_->get().version() : 11;
-  send(problem_response(status, detail, version == 10 ? 10 : 11, false));
+  send(body_unless_head(head_, problem_response(status, detail, version == 10 ? 10 : 11, false)));
 }
 
 void HttpSession::send(http::message_generator message) {
   phase_ = Phase::writing;
+  awaiting_request_ = false;
   const bool keep_alive = message.keep_alive();
   stream_.expires_after(state_->options().idle_timeout);
   beast::async_write(

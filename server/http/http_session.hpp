@@ -5,6 +5,8 @@
 // get their 4xx and the connection is closed.
 
 #include <array>
+#include <atomic>
+#include <chrono>
 #include <memory>
 #include <optional>
 #include <string>
@@ -25,6 +27,12 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   void run();
   // Any thread: a session waiting for a request closes; one answering finishes first.
   void shutdown();
+  // Any thread: closes the connection if it is still waiting for or reading a request (to make
+  // room for a new connection); one being answered is left alone.
+  void evict();
+  // Whether evict() would close it now: waiting for or reading a request.
+  bool evictable() const { return awaiting_request_.load(); }
+  const std::string& remote_address() const { return remote_address_; }
 
  private:
   enum class Phase { reading, handling, writing, lingering, done };
@@ -38,12 +46,18 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   void on_body(beast::error_code ec, std::size_t bytes);
   void on_read_error(beast::error_code ec);
 
+  // What the header alone decides (Host, encoding, the token, the body limit): an answer when
+  // the request is refused before its body is read.
+  std::optional<http::message_generator> check_header();
   void handle_request();
   // The Api's rule for the stream, with a `?token=` taken as the bearer token.
   bool may_open_stream(const Request& req, std::string_view raw_query) const;
   http::message_generator call_api(Request& req, std::string path, std::string_view raw_query,
                                    bool keep_alive);
+  ApiRequest api_request_of(const Request& req, std::string path, std::string_view raw_query) const;
+  http::message_generator to_http(ApiResponse response, unsigned version, bool keep_alive);
   void reject(http::status status, std::string_view detail);
+  void expires_within(std::chrono::milliseconds limit);
   void send(http::message_generator message);
   void on_write(bool keep_alive, beast::error_code ec, std::size_t bytes);
   void linger();
@@ -60,6 +74,9 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   bool remote_is_loopback_ = false;
   Phase phase_ = Phase::reading;
   bool first_request_ = true;
+  bool head_ = false;  // the request being answered is a HEAD
+  std::chrono::steady_clock::time_point request_deadline_{};
+  std::atomic<bool> awaiting_request_{true};
   std::array<char, 4096> discard_{};
 };
 

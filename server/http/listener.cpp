@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "server/http/http_session.hpp"
+#include "server/http/responses.hpp"
 #include "server/http/server_state.hpp"
 
 namespace avk::server {
@@ -77,8 +78,31 @@ void Listener::on_accept(beast::error_code ec, tcp::socket socket) {
   // the peer's delayed ACK: Nagle would hold them up to 40 ms.
   beast::error_code nodelay_ec;
   socket.set_option(tcp::no_delay(true), nodelay_ec);
-  std::make_shared<HttpSession>(std::move(socket), state_)->run();
+  beast::error_code remote_ec;
+  const auto remote = socket.remote_endpoint(remote_ec);
+  if (remote_ec || !state_->make_room(remote.address().to_string())) {
+    refuse(socket);
+  } else {
+    std::make_shared<HttpSession>(std::move(socket), state_)->run();
+  }
   do_accept();
+}
+
+void Listener::refuse(tcp::socket& socket) {
+  // Written without waiting: a fresh socket's send buffer takes it whole, and a client that does
+  // not read it loses nothing it was promised.
+  static const std::string response = [] {
+    const std::string body = problem_json(503, "too many connections; try again shortly");
+    return "HTTP/1.1 503 Service Unavailable\r\nServer: avk-station\r\n"
+           "Content-Type: application/problem+json\r\nRetry-After: 1\r\n"
+           "Connection: close\r\nContent-Length: " +
+           std::to_string(body.size()) + "\r\n\r\n" + body;
+  }();
+  beast::error_code ec;
+  socket.non_blocking(true, ec);
+  socket.write_some(net::buffer(response), ec);
+  socket.shutdown(tcp::socket::shutdown_both, ec);
+  socket.close(ec);
 }
 
 }  // namespace avk::server

@@ -14,7 +14,36 @@ ServerState::ServerState(HttpServerOptions options, Api& api, StreamHub& hub)
 
 void ServerState::add(const std::shared_ptr<HttpSession>& session) {
   std::lock_guard lock(mutex_);
-  http_sessions_[session.get()] = session;
+  http_sessions_[session.get()] = HttpEntry{session, session->remote_address(), ++accepted_};
+}
+
+bool ServerState::make_room(const std::string& address) {
+  std::shared_ptr<HttpSession> victim;
+  {
+    std::lock_guard lock(mutex_);
+    std::size_t total = stream_sessions_.size();
+    std::size_t from_address = 0;
+    for (const auto& [key, entry] : http_sessions_) {
+      if (entry.evicted) continue;
+      ++total;
+      if (entry.address == address) ++from_address;
+    }
+    const bool address_full = from_address >= options_.max_connections_per_address;
+    if (!address_full && total < options_.max_connections) return true;
+    HttpEntry* oldest = nullptr;
+    for (auto& [key, entry] : http_sessions_) {
+      if (entry.evicted || (address_full && entry.address != address)) continue;
+      if (oldest && entry.order > oldest->order) continue;
+      const auto s = entry.session.lock();
+      if (!s || !s->evictable()) continue;
+      oldest = &entry;
+    }
+    if (!oldest) return false;
+    oldest->evicted = true;
+    victim = oldest->session.lock();
+  }
+  if (victim) victim->evict();
+  return true;
 }
 
 void ServerState::remove(const HttpSession* session) {
@@ -43,7 +72,7 @@ void ServerState::begin_stop() {
     std::lock_guard lock(mutex_);
     stopping_ = true;
     for (const auto& [key, weak] : http_sessions_)
-      if (auto s = weak.lock()) http.push_back(std::move(s));
+      if (auto s = weak.session.lock()) http.push_back(std::move(s));
     for (const auto& [key, entry] : stream_sessions_)
       if (auto s = entry.session.lock()) streams.push_back(std::move(s));
   }

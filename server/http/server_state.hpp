@@ -6,9 +6,11 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstddef>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <mutex>
+#include <string>
 
 #include "server/api_types.hpp"
 #include "server/http/http_server.hpp"
@@ -30,6 +32,11 @@ class ServerState {
   StreamHub& hub() { return hub_; }
   const StaticFiles& static_files() const { return static_files_; }
   bool stopping() const { return stopping_.load(); }
+
+  // Whether a connection from this address may be served: true when there is room, or when the
+  // oldest connection still waiting for its request (from that address when the address is
+  // over its share, else from any) has been told to close to make room; false: refuse it.
+  bool make_room(const std::string& address);
 
   // Sessions add themselves when they start and remove themselves in their destructors.
   void add(const std::shared_ptr<HttpSession>& session);
@@ -61,7 +68,14 @@ class ServerState {
 
   std::mutex mutex_;
   std::condition_variable idle_;
-  std::map<const HttpSession*, std::weak_ptr<HttpSession>> http_sessions_;
+  struct HttpEntry {
+    std::weak_ptr<HttpSession> session;
+    std::string address;
+    std::uint64_t order = 0;  // accept order: the lowest is the oldest
+    bool evicted = false;     // told to close; no longer counted
+  };
+  std::map<const HttpSession*, HttpEntry> http_sessions_;
+  std::uint64_t accepted_ = 0;
   struct StreamEntry {
     std::weak_ptr<WebSocketSession> session;
     std::shared_ptr<WebSocketStreamSink> sink;

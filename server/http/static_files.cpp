@@ -11,6 +11,18 @@ namespace avk::server {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// The dashboard and nothing else that happens to lie in its folder (tests, package files,
+// node_modules' bookkeeping): the page, its icon, css/ and js/, and the one library
+// index.html loads.
+bool is_dashboard_file(std::string_view relative) {
+  return relative == "index.html" || relative == "favicon.svg" || relative.starts_with("css/") ||
+         relative.starts_with("js/") || relative == "node_modules/plotly.js-dist-min/plotly.min.js";
+}
+
+}  // namespace
+
 StaticFiles::StaticFiles(const std::optional<std::string>& root) {
   if (!root) return;
   std::error_code ec;
@@ -53,6 +65,7 @@ std::optional<fs::path> StaticFiles::resolve(const std::string& decoded_path) co
   }
   std::string relative = decoded_path.substr(1);
   if (relative.empty() || relative.back() == '/') relative += "index.html";
+  if (!is_dashboard_file(relative)) return std::nullopt;
 
   std::error_code ec;
   const fs::path file = fs::canonical(*root_ / relative, ec);
@@ -67,9 +80,13 @@ std::optional<fs::path> StaticFiles::resolve(const std::string& decoded_path) co
 
 http::message_generator StaticFiles::respond(const Request& req, const std::string& decoded_path,
                                              bool keep_alive) const {
-  if (!root_)
-    return problem_response(http::status::not_found, "no such resource", req.version(), keep_alive);
-  if (req.method() != http::verb::get && req.method() != http::verb::head) {
+  const bool head = req.method() == http::verb::head;
+  const auto not_found = [&](std::string_view detail) {
+    return body_unless_head(
+        head, problem_response(http::status::not_found, detail, req.version(), keep_alive));
+  };
+  if (!root_) return not_found("no such resource");
+  if (req.method() != http::verb::get && !head) {
     auto res =
         problem_response(http::status::method_not_allowed, "static files are read with GET or HEAD",
                          req.version(), keep_alive);
@@ -77,17 +94,15 @@ http::message_generator StaticFiles::respond(const Request& req, const std::stri
     return res;
   }
   const auto file = resolve(decoded_path);
-  if (!file)
-    return problem_response(http::status::not_found, "no such file", req.version(), keep_alive);
+  if (!file) return not_found("no such file");
 
   beast::error_code ec;
   http::file_body::value_type body;
   body.open(file->c_str(), beast::file_mode::scan, ec);
-  if (ec)
-    return problem_response(http::status::not_found, "no such file", req.version(), keep_alive);
+  if (ec) return not_found("no such file");
   const auto size = body.size();
 
-  if (req.method() == http::verb::head) {
+  if (head) {
     http::response<http::empty_body> res{http::status::ok, req.version()};
     set_common_headers(res);
     res.set(http::field::content_type, mime_type(*file));

@@ -1,7 +1,8 @@
 #pragma once
-// The dashboard's files from a web root: GET and HEAD only, no way out of the root (.. segments,
-// NUL, backslashes and symlinks that resolve elsewhere are all a plain 404), MIME types by
-// extension so that browsers with nosniff still run the scripts.
+// The dashboard's files from a web root (only those: index.html, favicon.svg, css/, js/ and the
+// Plotly bundle; never tests or package files): GET and HEAD only, no way out of the root (..
+// segments, NUL, backslashes and symlinks that resolve elsewhere are all a plain 404), MIME types
+// by extension so that browsers with nosniff still run the scripts.
 
 #include <filesystem>
 #include <optional>

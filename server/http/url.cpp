@@ -1,7 +1,10 @@
 #include "server/http/url.hpp"
 
+#include <arpa/inet.h>
+
 #include <algorithm>
 #include <cctype>
+#include <cstdint>
 #include <optional>
 
 namespace avk::server {
@@ -118,6 +121,81 @@ bool same_origin(std::string_view origin, std::string_view host) {
   const std::string& op = o->port.empty() ? default_port : o->port;
   const std::string& hp = h->port.empty() ? default_port : h->port;
   return o->host == h->host && op == hp;
+}
+
+bool is_valid_utf8(std::string_view text) {
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c < 0x80) {
+      ++i;
+      continue;
+    }
+    std::size_t n = 0;
+    std::uint32_t cp = 0;
+    if ((c & 0xE0) == 0xC0) {
+      n = 1;
+      cp = c & 0x1F;
+    } else if ((c & 0xF0) == 0xE0) {
+      n = 2;
+      cp = c & 0x0F;
+    } else if ((c & 0xF8) == 0xF0) {
+      n = 3;
+      cp = c & 0x07;
+    } else {
+      return false;
+    }
+    if (i + n >= text.size()) return false;
+    for (std::size_t k = 1; k <= n; ++k) {
+      const auto cc = static_cast<unsigned char>(text[i + k]);
+      if ((cc & 0xC0) != 0x80) return false;
+      cp = (cp << 6) | (cc & 0x3F);
+    }
+    static constexpr std::uint32_t kMin[] = {0, 0x80, 0x800, 0x10000};
+    if (cp < kMin[n] || cp > 0x10FFFF || (cp >= 0xD800 && cp <= 0xDFFF)) return false;
+    i += n + 1;
+  }
+  return true;
+}
+
+bool host_is_allowed(std::string_view host, const std::vector<std::string>& allowed_names) {
+  const auto hp = split_host_port(host);
+  if (!hp) return false;
+  std::string name = hp->host;
+  if (name.size() >= 2 && name.front() == '[') {
+    const std::string inner = name.substr(1, name.size() - 2);
+    in6_addr v6{};
+    return ::inet_pton(AF_INET6, inner.c_str(), &v6) == 1;
+  }
+  if (!name.empty() && name.back() == '.') name.pop_back();  // "localhost." is localhost
+  in_addr v4{};
+  if (::inet_pton(AF_INET, name.c_str(), &v4) == 1) return true;
+  if (name == "localhost" || name.ends_with(".localhost")) return true;
+  return std::any_of(allowed_names.begin(), allowed_names.end(),
+                     [&](const std::string& allowed) { return lower(allowed) == name; });
+}
+
+bool json_deeper_than(std::string_view text, std::size_t limit) {
+  std::size_t depth = 0;
+  bool in_string = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (in_string) {
+      if (c == '\\')
+        ++i;
+      else if (c == '"')
+        in_string = false;
+      continue;
+    }
+    if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > limit) return true;
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+  }
+  return false;
 }
 
 }  // namespace avk::server

@@ -2,9 +2,11 @@
 // The URL pieces the transport takes apart: request targets, query strings and Origin headers.
 // Kept free of Beast so they stay plain string functions.
 
+#include <cstddef>
 #include <map>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace avk::server {
 
@@ -25,5 +27,20 @@ void parse_query(std::string_view raw_query, std::map<std::string, std::string>&
 // Whether an Origin header ("scheme://host[:port]") names the host:port of the Host header.
 // A missing port is the scheme's default on both sides, so a proxy that drops it still matches.
 bool same_origin(std::string_view origin, std::string_view host);
+
+// Well-formed UTF-8 (no overlong forms, surrogates or code points above U+10FFFF): what JSON
+// may carry, so that a decoded path or query can be echoed in an answer.
+bool is_valid_utf8(std::string_view text);
+
+// Whether a Host header value names this server. DNS rebinding needs a name the attacker
+// controls, so every IP literal is accepted, as are loopback names ("localhost",
+// "*.localhost") and the given names (case-insensitive, without port); the port is not
+// checked (a published Docker port may differ from the one bound).
+bool host_is_allowed(std::string_view host, const std::vector<std::string>& allowed_names);
+
+// Whether JSON text nests arrays and objects deeper than limit. A scan of brackets outside
+// strings, linear and without recursion; text that is not JSON gives some answer and is left to
+// the parser.
+bool json_deeper_than(std::string_view text, std::size_t limit);
 
 }  // namespace avk::server

@@ -4,6 +4,9 @@
 // instead of hanging it.
 
 #include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <poll.h>
+#include <sys/socket.h>
 #include <unistd.h>
 
 #include <array>
@@ -80,7 +83,17 @@ class EchoApi final : public Api {
                    .dump();
     return res;
   }
+  // /api/v1/guarded wants "Authorization: Bearer ok"; /api/v1/small takes 10 bytes.
+  avk::server::Admission admit(const ApiRequest& head) override {
+    ++admits;
+    avk::server::Admission a;
+    if (head.path == "/api/v1/small") a.body_limit_bytes = 10;
+    if (head.path == "/api/v1/guarded" && head.authorization != "Bearer ok")
+      a.refusal = ApiResponse{401, "application/problem+json", R"({"status":401})", {}};
+    return a;
+  }
   std::atomic<int> calls{0};
+  std::atomic<int> admits{0};
 };
 
 tcp::endpoint loopback(unsigned short port) {
@@ -374,7 +387,9 @@ TEST_F(HttpServerTest, ExceptionInTheApiIs500ProblemJsonAndTheServerGoesOn) {
   EXPECT_EQ(problem["type"], "about:blank");
   EXPECT_EQ(problem["title"], "Internal Server Error");
   EXPECT_EQ(problem["status"], 500);
-  EXPECT_EQ(problem["detail"], "boom");
+  // The exception's own words stay in the server's log.
+  EXPECT_EQ(problem["detail"], "internal error (see the server log)");
+  EXPECT_EQ(res.body().find("boom"), std::string::npos);
   // Same connection, and a fresh one.
   EXPECT_EQ(client.request(http::verb::get, "/api/v1/echo").result_int(), 200);
   EXPECT_EQ(get(port, "/api/v1/echo").result_int(), 200);
@@ -410,7 +425,7 @@ TEST_F(HttpServerTest, BodyOverTheLimitIs413AndClosed) {
   EXPECT_EQ(json::parse(ok.body())["body"], body);
   // A chunked body, whose size the header does not give.
   const std::string chunked =
-      "POST /api/v1/missions HTTP/1.1\r\nHost: x\r\nTransfer-Encoding: chunked\r\n\r\n"
+      "POST /api/v1/missions HTTP/1.1\r\nHost: 127.0.0.1\r\nTransfer-Encoding: chunked\r\n\r\n"
       "800\r\n" +
       std::string(0x800, 'y') + "\r\n0\r\n\r\n";
   const auto raw = raw_exchange(port, chunked);
@@ -423,7 +438,7 @@ TEST_F(HttpServerTest, ExpectContinueGetsContinue) {
   start();
   RawClient c(port);
   c.send(
-      "POST /api/v1/missions HTTP/1.1\r\nHost: x\r\nContent-Length: 5\r\n"
+      "POST /api/v1/missions HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 5\r\n"
       "Expect: 100-continue\r\nConnection: close\r\n\r\n");
   // Nothing but the 100 comes before the body is sent; read it with a short deadline.
   auto first = c.read_until_closed(300ms);
@@ -434,7 +449,7 @@ TEST_F(HttpServerTest, HeaderOverTheLimitIs431) {
   HttpServerOptions o;
   o.header_limit = 1024;
   start(o);
-  const auto raw = raw_exchange(port, "GET /api/v1/echo HTTP/1.1\r\nHost: x\r\nX-Big: " +
+  const auto raw = raw_exchange(port, "GET /api/v1/echo HTTP/1.1\r\nHost: 127.0.0.1\r\nX-Big: " +
                                           std::string(4000, 'b') + "\r\n\r\n");
   EXPECT_EQ(status_of(raw.data), 431) << raw.data;
   EXPECT_TRUE(raw.closed());
@@ -458,7 +473,7 @@ TEST_F(HttpServerTest, ClientThatStallsInTheHeaderIsDisconnected) {
   o.header_timeout = 200ms;
   start(o);
   RawClient slow(port);
-  slow.send("GET /api/v1/echo HTTP/1.1\r\nHost: x\r\n");  // and nothing more
+  slow.send("GET /api/v1/echo HTTP/1.1\r\nHost: 127.0.0.1\r\n");  // and nothing more
   const auto r = slow.read_until_closed(2000ms);
   EXPECT_TRUE(r.closed()) << r.ec.message();
   EXPECT_GE(r.elapsed, 150ms);
@@ -484,7 +499,7 @@ TEST_F(HttpServerTest, ClientVanishingMidBodyDoesNotDisturbOthers) {
   std::vector<std::unique_ptr<RawClient>> open;
   for (int i = 0; i < 5; ++i) {
     auto c = std::make_unique<RawClient>(port);
-    c->send("POST /api/v1/missions HTTP/1.1\r\nHost: x\r\nContent-Length: 100000\r\n\r\n" +
+    c->send("POST /api/v1/missions HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 100000\r\n\r\n" +
             std::string(1000, 'z'));
     if (i % 2 == 0)
       c->close();  // gone mid-body
@@ -504,12 +519,23 @@ class StaticFilesTest : public HttpServerTest {
     base = fs::temp_directory_path() /
            ("avk_http_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
     fs::remove_all(base);
-    fs::create_directories(base / "web" / "sub");
+    // The dashboard's layout, and what else lies in web/ in a checkout.
+    fs::create_directories(base / "web" / "js" / "sub");
+    fs::create_directories(base / "web" / "css");
+    fs::create_directories(base / "web" / "tests");
+    fs::create_directories(base / "web" / "node_modules" / "plotly.js-dist-min");
     write(base / "web" / "index.html", "<html>dashboard</html>");
-    write(base / "web" / "app.js", "console.log(1);");
-    write(base / "web" / "sub" / "style.css", "body{}");
+    write(base / "web" / "js" / "app.js", "console.log(1);");
+    write(base / "web" / "css" / "style.css", "body{}");
+    write(base / "web" / "favicon.svg", "<svg/>");
+    write(base / "web" / "node_modules" / "plotly.js-dist-min" / "plotly.min.js", "plotly");
+    write(base / "web" / "node_modules" / "plotly.js-dist-min" / "package.json", "{}");
+    write(base / "web" / "node_modules" / ".package-lock.json", "{}");
+    write(base / "web" / "tests" / "e2e.test.mjs", "test");
+    write(base / "web" / "package.json", "{}");
+    write(base / "web" / "package-lock.json", "{}");
     write(base / "secret", "TOPSECRET");
-    fs::create_symlink(base / "secret", base / "web" / "link");
+    fs::create_symlink(base / "secret", base / "web" / "js" / "link.js");
   }
   void TearDown() override {
     server.reset();
@@ -530,13 +556,15 @@ TEST_F(StaticFilesTest, ServesFilesWithTheirTypes) {
   ASSERT_EQ(res.result_int(), 200);
   EXPECT_TRUE(res[http::field::content_type].starts_with("text/html"));
   EXPECT_EQ(res.body(), "<html>dashboard</html>");
-  res = get(port, "/app.js?v=3");
+  res = get(port, "/js/app.js?v=3");
   ASSERT_EQ(res.result_int(), 200);
   EXPECT_TRUE(res[http::field::content_type].starts_with("text/javascript"));
   EXPECT_EQ(res.body(), "console.log(1);");
-  res = get(port, "/sub/style.css");
+  res = get(port, "/css/style.css");
   EXPECT_TRUE(res[http::field::content_type].starts_with("text/css"));
-  res = HttpClient(port).request(http::verb::head, "/app.js");
+  EXPECT_EQ(get(port, "/favicon.svg").result_int(), 200);
+  EXPECT_EQ(get(port, "/node_modules/plotly.js-dist-min/plotly.min.js").body(), "plotly");
+  res = HttpClient(port).request(http::verb::head, "/js/app.js");
   EXPECT_EQ(res.result_int(), 200);
   EXPECT_EQ(res[http::field::content_length], "15");
   EXPECT_TRUE(res.body().empty());
@@ -547,12 +575,43 @@ TEST_F(StaticFilesTest, NothingOutsideTheRoot) {
   o.web_root = (base / "web").string();
   start(o);
   for (const std::string target :
-       {"/../secret", "/%2e%2e/secret", "/%2E%2E%2fsecret", "/a/../../secret", "/sub/../../secret",
-        "/..%5csecret", "/link", "/app.js%00.html", "/missing.html", "/sub", "/sub/"}) {
+       {"/../secret", "/%2e%2e/secret", "/%2E%2E%2fsecret", "/a/../../secret", "/js/../../secret",
+        "/..%5csecret", "/js/link.js", "/js/app.js%00.html", "/missing.html", "/js/sub",
+        "/js/sub/"}) {
     const auto res = get(port, target);
     EXPECT_EQ(res.result_int(), 404) << target;
     EXPECT_EQ(res.body().find("TOPSECRET"), std::string::npos) << target;
     EXPECT_EQ(res[http::field::content_type], "application/problem+json") << target;
+  }
+}
+
+// Issue 13, defect 12: the test suite, package files and node_modules' bookkeeping were served.
+TEST_F(StaticFilesTest, OnlyTheDashboardsFilesAreServed) {
+  HttpServerOptions o;
+  o.web_root = (base / "web").string();
+  start(o);
+  for (const std::string target :
+       {"/tests/e2e.test.mjs", "/package-lock.json", "/package.json",
+        "/node_modules/.package-lock.json", "/node_modules/plotly.js-dist-min/package.json",
+        "/node_modules/", "/tests/"}) {
+    const auto res = get(port, target);
+    EXPECT_EQ(res.result_int(), 404) << target;
+    EXPECT_EQ(res[http::field::content_type], "application/problem+json") << target;
+  }
+}
+
+// Issue 13, defect 12: no Content-Security-Policy, no framing protection.
+TEST_F(StaticFilesTest, EveryResponseCarriesTheSecurityHeaders) {
+  HttpServerOptions o;
+  o.web_root = (base / "web").string();
+  start(o);
+  for (const std::string target : {"/", "/js/app.js", "/missing", "/api/v1/echo"}) {
+    const auto res = get(port, target);
+    const std::string csp(res["Content-Security-Policy"]);
+    EXPECT_NE(csp.find("default-src 'self'"), std::string::npos) << target;
+    EXPECT_NE(csp.find("frame-ancestors 'none'"), std::string::npos) << target;
+    EXPECT_EQ(res["X-Content-Type-Options"], "nosniff") << target;
+    EXPECT_EQ(res["X-Frame-Options"], "DENY") << target;
   }
 }
 
@@ -811,7 +870,7 @@ TEST_F(HttpServerTest, DestructionWithOpenConnectionsNeitherHangsNorCrashes) {
   RawClient half_header(port);
   half_header.send("GET / HTTP/1.1\r\nHost");
   RawClient half_body(port);
-  half_body.send("POST /api/v1/x HTTP/1.1\r\nHost: x\r\nContent-Length: 10\r\n\r\nab");
+  half_body.send("POST /api/v1/x HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 10\r\n\r\nab");
   HttpClient idle(port);
   EXPECT_EQ(idle.request(http::verb::get, "/api/v1/echo").result_int(), 200);
 
@@ -856,6 +915,257 @@ TEST_F(HttpServerTest, BindFailureNamesTheAddress) {
   HttpServerOptions bad;
   bad.bind_address = "not-an-address";
   EXPECT_THROW(HttpServer(bad, api, hub).start(), std::runtime_error);
+}
+
+// --- issue 13: hostile clients --------------------------------------------------------------
+
+// The responses in raw bytes, one after the other: {status, Content-Length, body}.
+struct RawResponse {
+  int status = 0;
+  std::string content_length;
+  std::string body;
+};
+std::vector<RawResponse> split_responses(std::string data, bool first_is_head) {
+  std::vector<RawResponse> out;
+  bool head = first_is_head;
+  while (!data.empty()) {
+    RawResponse r;
+    r.status = status_of(data);
+    const auto end = data.find("\r\n\r\n");
+    if (r.status == 0 || end == std::string::npos) {
+      r.body = data;  // not a response: what a broken framing left over
+      out.push_back(r);
+      break;
+    }
+    const std::string header = data.substr(0, end);
+    const auto cl = header.find("Content-Length: ");
+    if (cl != std::string::npos)
+      r.content_length = header.substr(cl + 16, header.find("\r\n", cl) - cl - 16);
+    std::size_t length = head || r.content_length.empty() ? 0 : std::stoul(r.content_length);
+    r.body = data.substr(end + 4, length);
+    data = data.substr(std::min(data.size(), end + 4 + length));
+    out.push_back(r);
+    head = false;
+  }
+  return out;
+}
+
+// Issue 13, defect 6: a HEAD answered with a body (404 static, 426 stream) broke the framing of
+// the next response on the same connection.
+TEST_F(HttpServerTest, HeadAnswersCarryNoBodyAndKeepAliveFramingHolds) {
+  start();
+  for (const std::string target : {"/missing.html", "/api/v1/stream", "/api/v1/echo"}) {
+    RawClient c(port);
+    c.send("HEAD " + target + " HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n" +
+           "GET /api/v1/echo HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n");
+    const auto raw = c.read_until_closed(5000ms);
+    const auto responses = split_responses(raw.data, true);
+    ASSERT_EQ(responses.size(), 2u) << target << "\n" << raw.data;
+    EXPECT_NE(responses[0].content_length, "0") << target;  // the GET's length
+    EXPECT_EQ(responses[1].status, 200) << target << "\n" << raw.data;
+    EXPECT_EQ(json::parse(responses[1].body)["method"], "GET") << target;
+  }
+}
+
+// Issue 13, defect 11: with Host: evil.example (DNS rebinding) REST answered and the stream
+// upgraded on loopback.
+TEST_F(HttpServerTest, OnlyHostsOfThisServerAreAnswered) {
+  HttpServerOptions o;
+  o.allowed_hosts = {"Boat.Example"};
+  start(o);
+  const std::string p = std::to_string(port);
+  const auto with_host = [&](const std::string& host) {
+    return status_of(raw_exchange(port, "GET /api/v1/echo HTTP/1.1\r\nHost: " + host +
+                                            "\r\nConnection: close\r\n\r\n")
+                         .data);
+  };
+  EXPECT_EQ(with_host("evil.example:" + p), 421);
+  EXPECT_EQ(with_host("evil.example"), 421);
+  EXPECT_EQ(with_host("localhost.evil.example:" + p), 421);
+  EXPECT_EQ(api.calls.load(), 0);
+  for (const std::string& host : std::vector<std::string>{
+           "127.0.0.1:" + p, "localhost:" + p, "LOCALHOST", "[::1]:" + p, "192.0.2.7:8080",
+           "[2001:db8::1]", "boat.example:" + p, "app.localhost:" + p})
+    EXPECT_EQ(with_host(host), 200) << host;
+  // The stream: a matching Origin does not help a foreign Host.
+  const auto upgrade = raw_exchange(port, "GET /api/v1/stream HTTP/1.1\r\nHost: evil.example:" + p +
+                                              "\r\nOrigin: http://evil.example:" + p +
+                                              "\r\nConnection: Upgrade\r\nUpgrade: websocket\r\n"
+                                              "Sec-WebSocket-Version: 13\r\nSec-WebSocket-Key: "
+                                              "dGhlIHNhbXBsZSBub25jZQ==\r\n\r\n");
+  EXPECT_EQ(status_of(upgrade.data), 403) << upgrade.data;
+  EXPECT_EQ(server->open_stream_sessions(), 0u);
+  // HTTP/1.1 without Host is malformed; HTTP/1.0 tools may leave it out.
+  EXPECT_EQ(status_of(raw_exchange(port, "GET /api/v1/echo HTTP/1.1\r\n\r\n").data), 400);
+  EXPECT_EQ(status_of(raw_exchange(port, "GET /api/v1/echo HTTP/1.0\r\n\r\n").data), 200);
+}
+
+// Issue 13, defect 5: invalid UTF-8 in the path or the query answered 500 with nlohmann's
+// type_error.316 text.
+TEST_F(HttpServerTest, InvalidUtf8InPathOrQueryIs400NamingIt) {
+  start();
+  HttpClient client(port);
+  auto res = client.request(http::verb::get, "/api/v1/%ff");
+  EXPECT_EQ(res.result_int(), 400);
+  EXPECT_NE(json::parse(res.body())["detail"].get<std::string>().find("path"), std::string::npos);
+  res = client.request(http::verb::get, "/api/v1/turns?limit=%ff");
+  EXPECT_EQ(res.result_int(), 400);
+  EXPECT_NE(json::parse(res.body())["detail"].get<std::string>().find("'limit'"), std::string::npos)
+      << res.body();
+  for (const std::string target :
+       {"/api/v1/x?speed=%c3%28", "/api/v1/x?a=%ed%a0%80", "/api/v1/x?%fe=1",
+        "/api/v1/x?a=%f4%90%80%80", "/api/v1/x?a=%c0%af"}) {
+    res = client.request(http::verb::get, target);
+    EXPECT_EQ(res.result_int(), 400) << target;
+    EXPECT_EQ(res.body().find("json.exception"), std::string::npos) << target;
+  }
+  EXPECT_EQ(api.calls.load(), 0);
+  // Well-formed UTF-8 passes.
+  res = client.request(http::verb::get, "/api/v1/%c3%a9?v=%e2%82%ac");
+  ASSERT_EQ(res.result_int(), 200);
+  EXPECT_EQ(json::parse(res.body())["query"]["v"], "\xe2\x82\xac");
+}
+
+// Issue 13, defect 5: a 500 carried the library's exception text to the client.
+TEST_F(HttpServerTest, A500FromTheApiCarriesNoInternals) {
+  start();
+  const auto res = get(port, "/api/v1/status/500");
+  EXPECT_EQ(res.result_int(), 500);
+  EXPECT_EQ(res[http::field::content_type], "application/problem+json");
+  EXPECT_EQ(json::parse(res.body())["detail"], "internal error (see the server log)");
+  EXPECT_EQ(res.body().find("/api/v1/status/500"), std::string::npos);
+}
+
+// Issue 13, defect 1: a JSON body nested 100,000 deep overflowed the stack of a handler.
+TEST_F(HttpServerTest, JsonBodiesNestedTooDeepAre400BeforeAnyHandler) {
+  start();
+  HttpClient client(port);
+  const std::string deep = std::string(100000, '[') + std::string(100000, ']');
+  auto res = client.request(http::verb::post, "/api/v1/models", "{\"missions\":" + deep + "}",
+                            {{"Content-Type", "application/json"}});
+  EXPECT_EQ(res.result_int(), 400);
+  EXPECT_NE(json::parse(res.body())["detail"].get<std::string>().find("deeper than 64"),
+            std::string::npos);
+  // Recognised by its first character whatever the type says; brackets inside strings are text.
+  res = client.request(http::verb::post, "/api/v1/models", deep, {{"Content-Type", "text/plain"}});
+  EXPECT_EQ(res.result_int(), 400);
+  EXPECT_EQ(api.calls.load(), 0);
+  const std::string ok = "{\"a\":\"" + std::string(1000, '[') + "\",\"b\":" + std::string(63, '[') +
+                         std::string(63, ']') + "}";
+  res = client.request(http::verb::post, "/api/v1/models", ok,
+                       {{"Content-Type", "application/json"}});
+  EXPECT_EQ(res.result_int(), 200);
+}
+
+// Issue 13, defect 2: a body was read (up to 64 MB) before the token was checked. The header
+// alone decides: the 401 arrives although the 60 MB announced are never sent.
+TEST_F(HttpServerTest, RefusedBeforeTheBodyIsRead) {
+  start();
+  RawClient c(port);
+  c.send(
+      "POST /api/v1/guarded HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Type: application/json\r\n"
+      "Content-Length: 60000000\r\n\r\n{");
+  const auto raw = c.read_until_closed(10000ms);
+  EXPECT_EQ(status_of(raw.data), 401) << raw.data;
+  EXPECT_TRUE(raw.closed());
+  EXPECT_EQ(api.calls.load(), 0);
+  // The route's own limit, from the header too.
+  const auto small = raw_exchange(
+      port, "POST /api/v1/small HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 11\r\n\r\n");
+  EXPECT_EQ(status_of(small.data), 413) << small.data;
+  // With the token the body is read and handled.
+  const auto ok = HttpClient(port).request(http::verb::post, "/api/v1/guarded", "{}",
+                                           {{"Authorization", "Bearer ok"}});
+  EXPECT_EQ(ok.result_int(), 200);
+  EXPECT_EQ(api.calls.load(), 1);
+}
+
+// A plain POSIX socket: trickles bytes while watching for the server's close.
+class TrickleClient {
+ public:
+  explicit TrickleClient(unsigned short port) : fd_(::socket(AF_INET, SOCK_STREAM, 0)) {
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_port = htons(port);
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    if (::connect(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a) != 0)
+      throw std::runtime_error("connect");
+  }
+  ~TrickleClient() { ::close(fd_); }
+  bool send(std::string_view bytes) {
+    return ::send(fd_, bytes.data(), bytes.size(), MSG_NOSIGNAL) ==
+           static_cast<ssize_t>(bytes.size());
+  }
+  // Whether the server closed within wait (reset, or EOF after whatever it answered).
+  bool closed_within(std::chrono::milliseconds wait) {
+    pollfd p{fd_, POLLIN, 0};
+    if (::poll(&p, 1, static_cast<int>(wait.count())) <= 0) return false;
+    char b[512];
+    for (;;) {
+      const auto n = ::recv(fd_, b, sizeof b, MSG_DONTWAIT);
+      if (n == 0) return true;
+      if (n < 0) return errno != EAGAIN && errno != EWOULDBLOCK;
+    }
+  }
+
+ private:
+  int fd_;
+};
+
+// Issue 13, defect 2: a body sent one byte per pause shorter than the idle timeout was never
+// cut. Now the whole request has a deadline.
+TEST_F(HttpServerTest, ABodyTrickledInIsCutAtTheRequestDeadline) {
+  HttpServerOptions o;
+  o.request_timeout = 300ms;
+  o.idle_timeout = 30s;
+  start(o);
+  TrickleClient c(port);
+  ASSERT_TRUE(
+      c.send("POST /api/v1/x HTTP/1.1\r\nHost: 127.0.0.1\r\nContent-Length: 100000\r\n\r\n"));
+  bool closed = false;
+  // 100 ms between bytes, far under the idle timeout; at most 60 s in all.
+  for (int i = 0; i < 600 && !closed; ++i) {
+    if (!c.send("z")) break;
+    closed = c.closed_within(100ms);
+  }
+  EXPECT_TRUE(closed);
+  EXPECT_EQ(api.calls.load(), 0);
+  EXPECT_EQ(get(port, "/api/v1/echo").result_int(), 200);
+}
+
+// Issue 13, defect 2: connections from one address were unbounded. At the cap the oldest one
+// still waiting for its request makes room, so slow connections cannot keep a request out.
+TEST_F(HttpServerTest, AtThePerAddressCapTheOldestWaitingConnectionMakesRoom) {
+  HttpServerOptions o;
+  o.max_connections_per_address = 4;
+  start(o);
+  std::vector<std::unique_ptr<TrickleClient>> slow;
+  for (int i = 0; i < 4; ++i) {
+    slow.push_back(std::make_unique<TrickleClient>(port));
+    slow.back()->send("GET /api/v1/echo HTTP/1.1\r\n");  // and never the rest
+  }
+  // Accepted in order: the request's connection is the fifth, and the oldest makes room.
+  EXPECT_EQ(get(port, "/api/v1/echo").result_int(), 200);
+  EXPECT_TRUE(slow[0]->closed_within(5000ms));
+  for (int i = 0; i < 3; ++i)
+    EXPECT_EQ(get(port, "/api/v1/echo").result_int(), 200);
+}
+
+// When no connection can make room (open streams), a new one gets a 503, not a silent hang.
+TEST_F(HttpServerTest, OverTheTotalCapWithNothingToCloseIs503) {
+  HttpServerOptions o;
+  o.max_connections = 2;
+  start(o);
+  WsClient a(port);
+  WsClient b(port);
+  ASSERT_FALSE(a.handshake_error());
+  ASSERT_FALSE(b.handshake_error());
+  ASSERT_TRUE(wait_for([&] { return server->open_stream_sessions() == 2; }));
+  const auto refused = raw_exchange(port, "GET /api/v1/echo HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n");
+  EXPECT_EQ(status_of(refused.data), 503) << refused.data;
+  EXPECT_NE(refused.data.find("application/problem+json"), std::string::npos);
+  EXPECT_TRUE(refused.closed());
+  EXPECT_EQ(api.calls.load(), 0);
 }
 
 }  // namespace

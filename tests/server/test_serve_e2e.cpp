@@ -30,7 +30,7 @@ using avk::testing::WsClient;
 using nlohmann::json;
 using Clock = std::chrono::steady_clock;
 
-constexpr const char* kToken = "e2e-token-0123456789";
+constexpr const char* kToken = "e2e-token-0123456789-abcdefghij-KLMNOPQRST";
 
 std::string small_mission(int repeats = 1) {
   return json{{"name", "e2e"},

@@ -1,0 +1,166 @@
+// `avk serve` as a process: the token rules, the default database location, what a failed start
+// leaves behind and what it says when it listens off this machine (issue 13, defects 9 and 10).
+// A server that starts although it should not is stopped at the deadline and fails the test.
+
+#include <gtest/gtest.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <sys/socket.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "support/spawn_avk.hpp"
+#include "support/temp_db.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+struct Outcome {
+  bool exited = false;  // false: still running at the deadline (then killed)
+  int code = -1;
+  std::string log;
+};
+
+std::string read_file(const std::string& path) {
+  std::stringstream s;
+  s << std::ifstream(path).rdbuf();
+  return s.str();
+}
+
+// Runs avk until it exits, or until `until_log` appears in its output (then SIGTERM), or the
+// deadline (then SIGKILL).
+Outcome run_avk(const std::vector<std::string>& args, const std::string& log,
+                const std::string& until_log = "",
+                std::chrono::seconds limit = std::chrono::seconds(30)) {
+  Outcome o;
+  const pid_t pid = avk::testing::spawn_avk(args, log);
+  if (pid <= 0) return o;
+  const auto deadline = Clock::now() + limit;
+  int status = 0;
+  for (;;) {
+    if (::waitpid(pid, &status, WNOHANG) == pid) {
+      o.exited = true;
+      o.code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+      break;
+    }
+    if (!until_log.empty() && read_file(log).find(until_log) != std::string::npos) {
+      ::kill(pid, SIGTERM);
+      ::waitpid(pid, &status, 0);
+      o.exited = false;
+      break;
+    }
+    if (Clock::now() > deadline) {
+      ::kill(pid, SIGKILL);
+      ::waitpid(pid, &status, 0);
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  o.log = read_file(log);
+  fs::remove(log);
+  return o;
+}
+
+// A loopback port held open, so that a server asked to use it fails to start.
+class BusyPort {
+ public:
+  BusyPort() : fd_(::socket(AF_INET, SOCK_STREAM, 0)) {
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    ::bind(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a);
+    ::listen(fd_, 1);
+    socklen_t len = sizeof a;
+    ::getsockname(fd_, reinterpret_cast<sockaddr*>(&a), &len);
+    port_ = ntohs(a.sin_port);
+  }
+  ~BusyPort() { ::close(fd_); }
+  std::string port() const { return std::to_string(port_); }
+
+ private:
+  int fd_;
+  unsigned short port_ = 0;
+};
+
+// Issue 13, defect 10: a token of 16 'a's was accepted.
+TEST(ServeOptions, AUserTokenMustBeLongAndUnpredictable) {
+  avk::testing::TempDb db("avk_serve_token");
+  const std::string log = db.path() + ".log";
+  for (const std::string& token :
+       {std::string(16, 'a'), std::string(31, 'x') + "y", std::string(64, 'a'),
+        std::string("abababababababababababababababababababab"), std::string(40, 'q') + " x"}) {
+    const auto o = run_avk({"serve", "--db", db.path(), "--port", "0", "--token", token}, log);
+    EXPECT_TRUE(o.exited) << token << ": the server started";
+    EXPECT_EQ(o.code, 2) << token << "\n" << o.log;
+    EXPECT_NE(o.log.find("--token"), std::string::npos) << o.log;
+  }
+  fs::remove(db.path() + ".token");
+}
+
+// Issue 13, defect 10: an existing token file readable by others (0644) was used silently.
+TEST(ServeOptions, ATokenFileOthersCanReadIsRefused) {
+  avk::testing::TempDb db("avk_serve_mode");
+  const std::string token_file = db.path() + ".token";
+  const std::string log = db.path() + ".log";
+  std::ofstream(token_file) << "0123456789abcdef0123456789abcdef\n";
+  ASSERT_EQ(::chmod(token_file.c_str(), 0644), 0);
+  const auto o = run_avk({"serve", "--db", db.path(), "--port", "0"}, log);
+  EXPECT_TRUE(o.exited) << "the server started with a world-readable token";
+  EXPECT_NE(o.code, 0);
+  EXPECT_NE(o.log.find("0644"), std::string::npos) << o.log;
+  EXPECT_NE(o.log.find(token_file), std::string::npos) << o.log;
+  // The file is left as it was: the operator decides.
+  EXPECT_TRUE(fs::exists(token_file));
+  fs::remove(token_file);
+}
+
+// Issue 13, defect 9: `serve --db X` created $HOME/.local/share/avk-station anyway, and a start
+// that failed (here: the port is taken) left a new X.token behind.
+TEST(ServeOptions, AFailedStartWithDbLeavesNothingNewBehind) {
+  avk::testing::TempDb db("avk_serve_fail");
+  const std::string log = db.path() + ".log";
+  const fs::path home = db.path() + ".home";
+  fs::create_directories(home);
+  const std::string old_home = std::getenv("HOME") ? std::getenv("HOME") : "";
+  const char* old_xdg = std::getenv("XDG_DATA_HOME");
+  const std::string saved_xdg = old_xdg ? old_xdg : "";
+  ::setenv("HOME", home.c_str(), 1);
+  ::unsetenv("XDG_DATA_HOME");
+  BusyPort busy;
+  const auto o = run_avk({"serve", "--db", db.path(), "--port", busy.port()}, log);
+  ::setenv("HOME", old_home.c_str(), 1);
+  if (old_xdg) ::setenv("XDG_DATA_HOME", saved_xdg.c_str(), 1);
+  EXPECT_TRUE(o.exited);
+  EXPECT_NE(o.code, 0);
+  EXPECT_NE(o.log.find(busy.port()), std::string::npos) << o.log;
+  EXPECT_FALSE(fs::exists(home / ".local"))
+      << "the default location was made although --db was given";
+  EXPECT_FALSE(fs::exists(db.path() + ".token")) << "a failed start left its token file";
+  fs::remove_all(home);
+}
+
+// Issue 13, defect 10: --bind 0.0.0.0 printed no warning, only a 127.0.0.1 URL.
+TEST(ServeOptions, ListeningOffThisMachineIsSaidAloud) {
+  avk::testing::TempDb db("avk_serve_bind");
+  const std::string log = db.path() + ".log";
+  const auto o =
+      run_avk({"serve", "--db", db.path(), "--port", "0", "--bind", "0.0.0.0"}, log, "WARNING");
+  EXPECT_FALSE(o.exited) << o.log;  // it started, and was stopped once it had warned
+  EXPECT_NE(o.log.find("reachable from other machines"), std::string::npos) << o.log;
+  EXPECT_NE(o.log.find("http://127.0.0.1:"), std::string::npos) << o.log;
+  fs::remove(db.path() + ".token");
+}
+
+}  // namespace
