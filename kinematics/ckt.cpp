@@ -410,20 +410,29 @@ TurnPrediction Ckt::query(double speed_mps, double dheading_deg) const {
 }
 
 MaterializedCkt::MaterializedCkt(const Ckt& table, FineGridSpec spec) : spec_(spec) {
-  if (!(spec.speed_step_mps > 0.0) || !(spec.dheading_step_deg > 0.0)) {
-    throw std::invalid_argument("fine grid steps must be positive");
+  if (!(spec.speed_step_mps > 0.0) || !(spec.dheading_step_deg >= kMinFineDheadingStepDeg) ||
+      !std::isfinite(spec.speed_step_mps) || !std::isfinite(spec.dheading_step_deg)) {
+    throw std::invalid_argument(
+        "fine grid steps must be finite, the speed step positive and the "
+        "heading step at least 0.1 deg");
   }
   const auto range = table.speed_range_mps();
   if (!range) throw CktRangeError("the table holds no turns");
   speed_min_mps_ = range->first;
-  speed_count_ = static_cast<std::size_t>(
-                     std::floor((range->second - range->first) / spec.speed_step_mps + 1e-9)) +
-                 1;
+  // Rows are counted in floating point and capped before any conversion to an integer: a wide
+  // speed range overflowed the count (and the index arithmetic that uses it).
+  const double span_mps = range->second - range->first;
+  const double max_steps = static_cast<double>(kMaxFineSpeedRows - 1);
+  if (span_mps / spec_.speed_step_mps > max_steps) spec_.speed_step_mps = span_mps / max_steps;
+  speed_count_ = std::min(kMaxFineSpeedRows,
+                          static_cast<std::size_t>(std::min(
+                              max_steps, std::floor(span_mps / spec_.speed_step_mps + 1e-9))) +
+                              1);
   dheading_count_ = static_cast<std::size_t>(std::floor(180.0 / spec.dheading_step_deg + 1e-9)) + 1;
   entries_.reserve(speed_count_ * dheading_count_);
   for (std::size_t i = 0; i < speed_count_; ++i) {
     const double u =
-        std::min(range->second, speed_min_mps_ + static_cast<double>(i) * spec.speed_step_mps);
+        std::min(range->second, speed_min_mps_ + static_cast<double>(i) * spec_.speed_step_mps);
     for (std::size_t j = 0; j < dheading_count_; ++j) {
       const double d = std::min(180.0, static_cast<double>(j) * spec.dheading_step_deg);
       entries_.push_back(table.query(u, d));

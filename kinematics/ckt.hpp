@@ -140,6 +140,14 @@ struct FineGridSpec {
   double dheading_step_deg = 1.0;
 };
 
+// The fine table holds at most this many speed rows: a table whose speeds span more than
+// (rows - 1) steps gets a coarser speed step instead, so its size (and the time to build it on the
+// first prediction) stays bounded whatever speeds the table holds. 256 rows x 181 heading changes
+// covers 0..25.5 m/s at the default 0.1 m/s.
+inline constexpr std::size_t kMaxFineSpeedRows = 256;
+// The finest heading step the fine table accepts.
+inline constexpr double kMinFineDheadingStepDeg = 0.1;
+
 class MaterializedCkt {
  public:
   MaterializedCkt(const Ckt& table, FineGridSpec spec = {});
@@ -154,6 +162,7 @@ class MaterializedCkt {
   std::size_t speed_count() const { return speed_count_; }
   std::size_t dheading_count() const { return dheading_count_; }
   double speed_min_mps() const { return speed_min_mps_; }
+  // The spec in force: its speed step is coarser than asked when the speed range needs it.
   const FineGridSpec& spec() const { return spec_; }
 
  private:

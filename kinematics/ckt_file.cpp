@@ -4,6 +4,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "kinematics/json_parse.hpp"
 #include "kinematics/parse_error.hpp"
 
 namespace avk::kinematics {
@@ -75,8 +76,15 @@ class Reader {
     return v.get<std::string>();
   }
 
-  static std::vector<double> numbers(const json& v, const std::string& path) {
+  static void bounded_size(const json& v, const std::string& path, std::size_t max) {
+    if (v.size() > max)
+      fail(path, "at most " + std::to_string(max) + " entries, got " + std::to_string(v.size()));
+  }
+
+  static std::vector<double> numbers(const json& v, const std::string& path,
+                                     std::size_t max = kCktMaxListLength) {
     if (!v.is_array()) fail(path, "expected an array of numbers");
+    bounded_size(v, path, max);
     std::vector<double> out;
     out.reserve(v.size());
     for (std::size_t i = 0; i < v.size(); ++i)
@@ -86,6 +94,7 @@ class Reader {
 
   static Polyline points(const json& v, const std::string& path) {
     if (!v.is_array()) fail(path, "expected an array of [x_m, y_m] pairs");
+    bounded_size(v, path, kCktMaxListLength);
     Polyline out;
     out.reserve(v.size());
     for (std::size_t i = 0; i < v.size(); ++i) {
@@ -97,8 +106,8 @@ class Reader {
   }
 };
 
-std::vector<double> ascending(const json& v, const std::string& path) {
-  std::vector<double> out = Reader::numbers(v, path);
+std::vector<double> ascending(const json& v, const std::string& path, std::size_t max) {
+  std::vector<double> out = Reader::numbers(v, path, max);
   if (out.empty()) Reader::fail(path, "must not be empty");
   for (std::size_t i = 1; i < out.size(); ++i) {
     if (!(out[i] > out[i - 1]))
@@ -210,9 +219,12 @@ Ckt ckt_from_json(const json& doc) {
   }
   const json& version = Reader::member(doc, root, "schema_version");
   if (!version.is_number_integer() || version.get<long long>() != kCktSchemaVersion) {
-    Reader::fail("/schema_version", "unsupported schema_version " + version.dump() +
-                                        "; this build reads version " +
-                                        std::to_string(kCktSchemaVersion));
+    // The value is quoted only when it is a plain number: a document is the caller's input, and
+    // dumping a deeply nested value into a message recurses once per level.
+    Reader::fail("/schema_version",
+                 "unsupported schema_version" +
+                     (version.is_number() ? " " + version.dump() : std::string()) +
+                     "; this build reads version " + std::to_string(kCktSchemaVersion));
   }
   const json& vehicle = Reader::member(doc, root, "vehicle");
   Reader::only_keys(vehicle, "/vehicle", {"id", "length_m"});
@@ -242,11 +254,16 @@ Ckt ckt_from_json(const json& doc) {
 
   const json& g = Reader::member(doc, root, "grid");
   Reader::only_keys(g, "/grid", {"speeds_mps", "dheadings_deg"});
-  CktGrid grid{ascending(Reader::member(g, "/grid", "speeds_mps"), "/grid/speeds_mps"),
-               ascending(Reader::member(g, "/grid", "dheadings_deg"), "/grid/dheadings_deg")};
+  CktGrid grid{
+      ascending(Reader::member(g, "/grid", "speeds_mps"), "/grid/speeds_mps", kCktMaxGridSpeeds),
+      ascending(Reader::member(g, "/grid", "dheadings_deg"), "/grid/dheadings_deg",
+                kCktMaxGridDheadings)};
   for (std::size_t i = 0; i < grid.speeds_mps.size(); ++i) {
-    if (!(grid.speeds_mps[i] > 0.0))
-      Reader::fail("/grid/speeds_mps/" + std::to_string(i), "speed must be positive");
+    const double u = grid.speeds_mps[i];
+    if (!(u > 0.0 && u <= kCktMaxSpeedMps)) {
+      Reader::fail("/grid/speeds_mps/" + std::to_string(i),
+                   "speed must be in (0, " + json(kCktMaxSpeedMps).dump() + "] m/s");
+    }
   }
   for (std::size_t i = 0; i < grid.dheadings_deg.size(); ++i) {
     const double d = grid.dheadings_deg[i];
@@ -312,22 +329,14 @@ Ckt ckt_from_json(const json& doc) {
 Ckt parse_ckt_json(std::string_view text) {
   json doc;
   try {
-    doc = json::parse(text.begin(), text.end());
-  } catch (const json::parse_error& e) {
-    // Name the line and column: a person opens the file in an editor to find it.
-    const std::size_t offset = e.byte > 0 ? e.byte - 1 : 0;
-    std::size_t line = 1, column = 1;
-    for (std::size_t i = 0; i < offset && i < text.size(); ++i) {
-      if (text[i] == '\n') {
-        ++line;
-        column = 1;
-      } else {
-        ++column;
-      }
-    }
-    throw ParseError("json", offset,
-                     "CKT file is not valid JSON at line " + std::to_string(line) + " column " +
-                         std::to_string(column));
+    doc = parse_json_bounded(text);
+  } catch (const JsonSyntaxError& e) {
+    // A number too large for a double is reported against its field; other syntax errors by line
+    // and column: a person opens the file in an editor to find them.
+    if (e.number_out_of_range()) throw ParseError(e.pointer(), e.position(), e.reason());
+    throw ParseError("json", e.position(),
+                     "CKT file is not valid JSON at line " + std::to_string(e.line()) + " column " +
+                         std::to_string(e.column()) + ": " + e.reason());
   }
   return ckt_from_json(doc);
 }

@@ -2,6 +2,7 @@
 // The CKT file (docs/ckt-format.md): a versioned JSON document, and a CSV of trajectory vertices
 // for spreadsheets. Parsing is all-or-nothing: a table is returned only when every field checks.
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 
@@ -13,6 +14,15 @@ namespace avk::kinematics {
 
 inline constexpr const char* kCktFormatName = "avk-ckt";
 inline constexpr int kCktSchemaVersion = 1;
+
+// Bounds of an imported table (docs/ckt-format.md). A CKT file comes from outside: an unbounded
+// top speed of 200 m/s made the first prediction build a 123 MB fine table, and 1e300 overflowed
+// its row count. The bounds are far past any surface vehicle the station drives.
+inline constexpr double kCktMaxSpeedMps = 20.0;
+inline constexpr std::size_t kCktMaxGridSpeeds = 64;
+inline constexpr std::size_t kCktMaxGridDheadings = 180;
+// Trajectory vertices, spline knots and control points, polynomial coefficients: each list.
+inline constexpr std::size_t kCktMaxListLength = 10000;
 
 nlohmann::json ckt_to_json(const Ckt& table);
 std::string ckt_to_json_string(const Ckt& table);  // pretty-printed, trailing newline

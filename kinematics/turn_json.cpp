@@ -6,6 +6,7 @@
 #include <utility>
 #include <vector>
 
+#include "kinematics/json_parse.hpp"
 #include "kinematics/turn_text.hpp"
 
 namespace avk::kinematics {
@@ -116,7 +117,8 @@ class BoundedDomBuilder {
                                 const json::exception& ex) {
     // nlohmann counts bytes read including the offending one (and the end of input); the project
     // reports 0-based offsets, so step back one to point at the byte itself.
-    throw ParseError("json", position == 0 ? 0 : position - 1, ex.what());
+    throw ParseError("json", position == 0 ? 0 : position - 1,
+                     "not valid JSON: " + json_error_reason(ex));
   }
 
  private:

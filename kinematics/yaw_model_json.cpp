@@ -3,6 +3,7 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "kinematics/json_parse.hpp"
 #include "kinematics/parse_error.hpp"
 
 namespace avk::kinematics {
@@ -58,9 +59,10 @@ std::vector<double> numbers(const json& j, const char* key) {
 YawModel parse_yaw_model_json(std::string_view text) {
   json j;
   try {
-    j = json::parse(text.begin(), text.end());
-  } catch (const json::parse_error& e) {
-    throw ParseError("json", e.byte, std::string("not valid JSON: ") + e.what());
+    j = parse_json_bounded(text);
+  } catch (const JsonSyntaxError& e) {
+    if (e.number_out_of_range()) throw ParseError(e.pointer(), e.position(), e.reason());
+    throw;
   }
   if (!j.is_object()) throw ParseError("/", 0, "expected an object");
   YawModel m;

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "kinematics/json_parse.hpp"
 #include "kinematics/parse_error.hpp"
 
 namespace avk::sim {
@@ -109,9 +110,11 @@ SimSetup default_sim_setup(const std::string& kind) {
 SimSetup parse_sim_config(std::string_view json_text, const std::string& default_kind) {
   json doc;
   try {
-    doc = json::parse(json_text.begin(), json_text.end());
-  } catch (const json::parse_error& e) {
-    throw ParseError("json", e.byte > 0 ? e.byte - 1 : 0, "sim config is not valid JSON");
+    doc = kinematics::parse_json_bounded(json_text);
+  } catch (const kinematics::JsonSyntaxError& e) {
+    // A number too large for a double names its field; nlohmann's own exceptions never leave.
+    if (e.number_out_of_range()) fail(e.pointer(), e.reason());
+    throw ParseError("json", e.position(), "sim config is not valid JSON: " + e.reason());
   }
   ObjectReader root(doc, "");
   std::string kind = default_kind;

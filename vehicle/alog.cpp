@@ -171,6 +171,17 @@ bool AlogReader::parse(std::string_view line, AlogEntry& entry) {
     stats_.malformed.add(stats_.lines, "time " + quoted(time) + " is not a finite number");
     return false;
   }
+  if (*t < 0.0) {
+    stats_.malformed.add(stats_.lines, "time " + quoted(time) + " is before the log start");
+    return false;
+  }
+  if (*t > newest_t_s_ + kAlogMaxTimeJump_s) {
+    stats_.malformed.add(
+        stats_.lines,
+        "time " + quoted(time) + " s is more than 6 h after the newest posting before it");
+    return false;
+  }
+  newest_t_s_ = std::max(newest_t_s_, *t);
   entry.t_s = *t;
   entry.variable.assign(variable);
   entry.source.assign(source);

@@ -19,6 +19,11 @@ namespace avk::vehicle {
 
 inline constexpr std::size_t kAlogMaxLineBytes = std::size_t{64} << 10;
 inline constexpr std::size_t kAlogReportedProblems = 10;
+// pLogger stamps every posting in seconds from the log start, and a running MOOS community posts
+// navigation several times a second, so a posting stamped this far past the newest one so far
+// (or before the start) is corrupt, not late: taking it as the newest time would make every later
+// posting look older than it.
+inline constexpr double kAlogMaxTimeJump_s = 6.0 * 3600.0;
 
 struct AlogEntry {
   double t_s = 0.0;  // seconds from the log start
@@ -71,6 +76,7 @@ class AlogReader {
   std::istream& in_;
   std::size_t max_line_bytes_;
   std::vector<char> buffer_;
+  double newest_t_s_ = 0.0;  // the latest time of a posting read, from the log start
   std::size_t begin_ = 0;
   std::size_t end_ = 0;
   bool eof_ = false;
