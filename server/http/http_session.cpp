@@ -280,7 +280,10 @@ void HttpSession::handle_request() {
       return send(problem_response(http::status::service_unavailable, "server shutting down",
                                    req.version(), false));
     phase_ = Phase::done;
+    awaiting_request_ = false;
     std::make_shared<WebSocketSession>(stream_.release_socket(), state_)->run(std::move(req));
+    // The connection is the WebSocket's now: counted once, as a stream.
+    state_->remove(this);
     return;
   }
   if (path + "/" == kApiPrefix || path.starts_with(kApiPrefix))
@@ -406,6 +409,8 @@ void HttpSession::on_write(bool keep_alive, beast::error_code ec, std::size_t) {
 
 void HttpSession::linger() {
   phase_ = Phase::lingering;
+  // Answered already: under connection pressure it is the first to make room.
+  awaiting_request_ = true;
   beast::error_code ec;
   stream_.socket().shutdown(tcp::socket::shutdown_send, ec);
   if (ec) return close_now();

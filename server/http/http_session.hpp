@@ -30,7 +30,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   // Any thread: closes the connection if it is still waiting for or reading a request (to make
   // room for a new connection); one being answered is left alone.
   void evict();
-  // Whether evict() would close it now: waiting for or reading a request.
+  // Whether evict() would close it now: waiting for or reading a request, or lingering after
+  // its last answer.
   bool evictable() const { return awaiting_request_.load(); }
   const std::string& remote_address() const { return remote_address_; }
 
