@@ -21,7 +21,12 @@ const SHOTS = path.resolve(process.env.AVK_SCREENSHOTS || path.join(repo, 'build
 const CHROMIUM = process.env.AVK_CHROMIUM || '/usr/bin/chromium';
 const DOC_SHOTS = path.join(repo, 'docs/screenshots');
 
-const SERVER_START_MS = 20000;
+// Every wait is for a condition, with a limit: scaled by AVK_E2E_SLOW (default 4) so that a
+// 2-core machine running other builds beside the browser reaches none of them. A limit is how
+// long to wait before calling the page broken, not a speed the page must have.
+const SLOW = Number(process.env.AVK_E2E_SLOW || 4);
+const slow = (ms) => ms * SLOW;
+const SERVER_START_MS = slow(20000);
 // A 2-hour track at 10 Hz. How fast the page draws it is measured by web/bench/frame_time.mjs
 // (figures in docs/dashboard.md), not here: a test must pass on a loaded machine.
 const PERF_POINTS = 72000;
@@ -91,14 +96,14 @@ function sleep(ms) {
 }
 
 async function api(pathname) {
-  const res = await fetch(`${server.base}/api/v1${pathname}`, { signal: AbortSignal.timeout(10000) });
+  const res = await fetch(`${server.base}/api/v1${pathname}`, { signal: AbortSignal.timeout(slow(10000)) });
   assert.ok(res.ok, `GET ${pathname}: ${res.status}`);
   return res.json();
 }
 
 /** Polls fn until it returns a truthy value; fails with `what` after timeoutMs. */
 async function until(what, fn, timeoutMs = 20000, stepMs = 250) {
-  const end = Date.now() + timeoutMs;
+  const end = Date.now() + slow(timeoutMs);
   let last;
   while (Date.now() < end) {
     try {
@@ -109,12 +114,12 @@ async function until(what, fn, timeoutMs = 20000, stepMs = 250) {
     }
     await sleep(stepMs);
   }
-  throw new Error(`timed out after ${timeoutMs} ms waiting for ${what} (last: ${last instanceof Error ? last.message : JSON.stringify(last)})`);
+  throw new Error(`timed out after ${slow(timeoutMs)} ms waiting for ${what} (last: ${last instanceof Error ? last.message : JSON.stringify(last)})`);
 }
 
 async function shot(name, p = page) {
   const file = path.join(SHOTS, `${name}.png`);
-  await p.screenshot({ path: file, fullPage: true, timeout: 20000 });
+  await p.screenshot({ path: file, fullPage: true, timeout: slow(20000) });
   return file;
 }
 
@@ -122,12 +127,12 @@ async function goView(view) {
   await page.evaluate((v) => {
     window.location.hash = `#${v}`;
   }, view);
-  await page.waitForSelector(`#view-${view}:not([hidden])`, { timeout: 5000 });
+  await page.waitForSelector(`#view-${view}:not([hidden])`, { timeout: slow(5000) });
 }
 
 function runAvk(args, timeoutMs = 30000) {
   return new Promise((resolve) => {
-    execFile(AVK, args, { timeout: timeoutMs }, (err, stdout, stderr) => {
+    execFile(AVK, args, { timeout: slow(timeoutMs) }, (err, stdout, stderr) => {
       resolve({ code: err ? (typeof err.code === 'number' ? err.code : -1) : 0, stdout, stderr });
     });
   });
@@ -136,7 +141,7 @@ function runAvk(args, timeoutMs = 30000) {
 async function newPage(viewport = { width: 1280, height: 800 }) {
   const p = await context.newPage();
   await p.setViewportSize(viewport);
-  p.setDefaultTimeout(15000);
+  p.setDefaultTimeout(slow(15000));
   p.on('console', (m) => {
     if (m.type() === 'error') consoleErrors.push({ text: m.text(), phase, url: m.location()?.url });
   });
@@ -159,7 +164,7 @@ before(async () => {
   browser = await chromium.launch({
     executablePath: CHROMIUM,
     headless: true,
-    timeout: 30000,
+    timeout: slow(30000),
     args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-sync'],
   });
   context = await browser.newContext({ acceptDownloads: true });
@@ -188,11 +193,11 @@ test('the embedded example missions equal examples/', async () => {
   }
 });
 
-test('the page loads with no console errors, and every view opens', { timeout: 90000 }, async () => {
+test('the page loads with no console errors, and every view opens', { timeout: slow(90000) }, async () => {
   phase = 'load';
-  await page.goto(`${server.base}/?token=${server.token}&test=1#live`, { waitUntil: 'load', timeout: 20000 });
-  await page.waitForFunction(() => document.getElementById('link-badge')?.textContent === 'LIVE', null, { timeout: 20000 });
-  await page.waitForFunction(() => window.Plotly && document.querySelector('#live-plot .main-svg'), null, { timeout: 20000 });
+  await page.goto(`${server.base}/?token=${server.token}&test=1#live`, { waitUntil: 'load', timeout: slow(20000) });
+  await page.waitForFunction(() => document.getElementById('link-badge')?.textContent === 'LIVE', null, { timeout: slow(20000) });
+  await page.waitForFunction(() => window.Plotly && document.querySelector('#live-plot .main-svg'), null, { timeout: slow(20000) });
   assert.ok(!page.url().includes('token='), `the token stays in the address bar: ${page.url()}`);
   assert.equal(await page.evaluate(() => sessionStorage.getItem('avk-token')), server.token);
   for (const v of ['mission', 'ckt', 'compare', 'model', 'export', 'live']) {
@@ -201,14 +206,14 @@ test('the page loads with no console errors, and every view opens', { timeout: 9
   }
   // Keyboard: the tabs are links in the tab order, and Alt+2 jumps to the Mission view.
   await page.keyboard.press('Alt+2');
-  await page.waitForSelector('#view-mission:not([hidden])', { timeout: 5000 });
+  await page.waitForSelector('#view-mission:not([hidden])', { timeout: slow(5000) });
   await goView('live');
   await shot('01-load-live');
   assert.deepEqual(pageErrors, [], 'uncaught errors in the page');
   assert.deepEqual(consoleErrors, [], 'console errors at load');
 });
 
-test('a bad mission shows its validation errors next to the fields', { timeout: 60000 }, async () => {
+test('a bad mission shows its validation errors next to the fields', { timeout: slow(60000) }, async () => {
   phase = 'bad-mission';
   await goView('mission');
   await page.fill('#m-name', 'bad');
@@ -216,7 +221,7 @@ test('a bad mission shows its validation errors next to the fields', { timeout: 
   await page.fill('#m-dheadings', '');
   await page.click('#m-start');
   const speedErr = page.locator('.field[data-pointer="/turn_array/speeds_mps"] .field-error');
-  await speedErr.first().waitFor({ state: 'visible', timeout: 10000 });
+  await speedErr.first().waitFor({ state: 'visible', timeout: slow(10000) });
   assert.match(await speedErr.first().textContent(), /\/turn_array\/speeds_mps\/0: must be in/);
   const dpsiErr = page.locator('.field[data-pointer="/turn_array/dheadings_deg"] .field-error');
   assert.match(await dpsiErr.first().textContent(), /\/turn_array\/dheadings_deg/);
@@ -225,14 +230,14 @@ test('a bad mission shows its validation errors next to the fields', { timeout: 
   // A field the client cannot even read is caught before sending.
   await page.fill('#m-speeds', '1.0, fast');
   await page.click('#m-start');
-  await page.waitForSelector('.field[data-pointer="/turn_array/speeds_mps"] .field-error:has-text("not a number")', { timeout: 5000 });
+  await page.waitForSelector('.field[data-pointer="/turn_array/speeds_mps"] .field-error:has-text("not a number")', { timeout: slow(5000) });
   const missions = await api('/missions');
   assert.equal(missions.length, 0, 'a bad mission must not start');
 });
 
 let missionId = null;
 
-test('starting a small mission from the Mission view makes the vehicle move in Live', { timeout: 90000 }, async () => {
+test('starting a small mission from the Mission view makes the vehicle move in Live', { timeout: slow(90000) }, async () => {
   phase = 'mission';
   await goView('mission');
   await page.fill('#m-name', 'e2e-small');
@@ -243,7 +248,7 @@ test('starting a small mission from the Mission view makes the vehicle move in L
   await page.fill('#m-buffer', '25');
   await page.fill('#m-return', '0, -70');
   await page.click('#m-start');
-  await page.waitForFunction(() => /Mission \d+ started/.test(document.getElementById('m-result').textContent), null, { timeout: 15000 });
+  await page.waitForFunction(() => /Mission \d+ started/.test(document.getElementById('m-result').textContent), null, { timeout: slow(15000) });
   missionId = Number((await page.textContent('#m-result')).match(/Mission (\d+)/)[1]);
   assert.equal(await page.locator('.field-error').count(), 0, 'no field errors after a good mission');
   await shot('03-mission');
@@ -263,12 +268,12 @@ test('starting a small mission from the Mission view makes the vehicle move in L
   await sleep(1500);
   const second = await newPage();
   try {
-    await second.goto(`${server.base}/?test=1#live`, { waitUntil: 'load', timeout: 20000 });
+    await second.goto(`${server.base}/?test=1#live`, { waitUntil: 'load', timeout: slow(20000) });
     const history = await (
       await second.waitForFunction((id) => {
         const h = window.avkTest?.navHistory();
         return h && h.missionId === id ? h : null;
-      }, missionId, { timeout: 20000 })
+      }, missionId, { timeout: slow(20000) })
     ).jsonValue();
     const stillRunning = (await api(`/missions/${missionId}`)).status;
     assert.ok(history.rows >= 200, `only ${history.rows} stored nav rows were read (mission ${stillRunning})`);
@@ -281,15 +286,15 @@ test('starting a small mission from the Mission view makes the vehicle move in L
   // For the README: the finished mission, its last turn still drawn with its AVK prediction (from
   // the CKT of the turns before it). The prediction is best effort; the screenshot is taken anyway.
   await until('the mission to finish', async () => (await api(`/missions/${missionId}`)).status === 'done', 60000, 500);
-  await page.waitForFunction(() => /done 4\b/.test(document.getElementById('progress-counts').textContent), null, { timeout: 15000 });
+  await page.waitForFunction(() => /done 4\b/.test(document.getElementById('progress-counts').textContent), null, { timeout: slow(15000) });
   await page
-    .waitForFunction(() => /predictions: .*avk/.test(document.getElementById('turn-status').textContent), null, { timeout: 10000 })
+    .waitForFunction(() => /predictions: .*avk/.test(document.getElementById('turn-status').textContent), null, { timeout: slow(10000) })
     .catch(() => {});
   await sleep(500);
   await shot('live');
 });
 
-test('a finished turn appears in the CKT view', { timeout: 90000 }, async () => {
+test('a finished turn appears in the CKT view', { timeout: slow(90000) }, async () => {
   phase = 'ckt';
   await until('a stored ok turn', async () => (await api(`/turns?mission=${missionId}&status=ok&limit=1`)).items.length > 0, 60000, 500);
   await goView('ckt');
@@ -301,17 +306,17 @@ test('a finished turn appears in the CKT view', { timeout: 90000 }, async () => 
   }, 30000, 1000);
   assert.ok(n >= 1);
   // The chosen cell's plot: turns, mean, fit, predictions.
-  await page.waitForSelector('#ckt-cell-plot .main-svg', { timeout: 10000 });
+  await page.waitForSelector('#ckt-cell-plot .main-svg', { timeout: slow(10000) });
   await page.click('#ckt-refresh');
   await until('all four cells', async () => (await page.$$('#ckt-table button[data-n]')).length >= 4, 15000, 500).catch(() => {});
   await sleep(500);
   await shot('ckt');
 });
 
-test('the CKT JSON export downloads a file that `avk ckt import` accepts', { timeout: 60000 }, async () => {
+test('the CKT JSON export downloads a file that `avk ckt import` accepts', { timeout: slow(60000) }, async () => {
   phase = 'export';
   await goView('export');
-  const [download] = await Promise.all([page.waitForEvent('download', { timeout: 15000 }), page.click('#exp-ckt-json')]);
+  const [download] = await Promise.all([page.waitForEvent('download', { timeout: slow(15000) }), page.click('#exp-ckt-json')]);
   const file = path.join(tmp, 'downloaded-ckt.json');
   await download.saveAs(file);
   assert.ok(statSync(file).size > 100, 'the CKT file is not empty');
@@ -320,7 +325,7 @@ test('the CKT JSON export downloads a file that `avk ckt import` accepts', { tim
   assert.match(r.stdout + r.stderr, /ckt: vehicle 'sim-usim'/);
 
   // The turns CSV is assembled from every page in the browser.
-  const [csv] = await Promise.all([page.waitForEvent('download', { timeout: 15000 }), page.click('#exp-turns-csv')]);
+  const [csv] = await Promise.all([page.waitForEvent('download', { timeout: slow(15000) }), page.click('#exp-turns-csv')]);
   const csvFile = path.join(tmp, 'turns.csv');
   await csv.saveAs(csvFile);
   const lines = readFileSync(csvFile, 'utf8').trim().split('\n');
@@ -329,7 +334,7 @@ test('the CKT JSON export downloads a file that `avk ckt import` accepts', { tim
   await shot('export');
 });
 
-test('the Compare and Model views draw (screenshots)', { timeout: 60000 }, async () => {
+test('the Compare and Model views draw (screenshots)', { timeout: slow(60000) }, async () => {
   phase = 'views';
   await goView('compare');
   await until('the comparison', async () => (await page.textContent('#cmp-status')).length > 0 && !/Loading/.test(await page.textContent('#cmp-status')), 15000);
@@ -339,17 +344,17 @@ test('the Compare and Model views draw (screenshots)', { timeout: 60000 }, async
     method: 'POST',
     headers: { Authorization: `Bearer ${server.token}`, 'Content-Type': 'application/json' },
     body: JSON.stringify({ missions: [missionId], history_s: 3 }),
-    signal: AbortSignal.timeout(30000),
+    signal: AbortSignal.timeout(slow(30000)),
   });
   const fittedText = await fitted.text();
   assert.equal(fitted.status, 201, fittedText);
   const modelId = JSON.parse(fittedText).id;
   await goView('model');
-  await page.waitForSelector(`#model-h-model option[value="${modelId}"]`, { state: 'attached', timeout: 10000 });
+  await page.waitForSelector(`#model-h-model option[value="${modelId}"]`, { state: 'attached', timeout: slow(10000) });
   await page.selectOption('#model-h-model', String(modelId));
   await page.selectOption('#model-h-mission', String(missionId));
   await page.click('#model-h-show');
-  await page.waitForSelector('#model-headings .main-svg', { timeout: 15000 });
+  await page.waitForSelector('#model-headings .main-svg', { timeout: slow(15000) });
   const traces = await page.evaluate(() => document.getElementById('model-headings').data.map((t) => ({ name: t.name, n: t.y.filter((v) => v !== null).length })));
   assert.deepEqual(traces.map((t) => t.name), ['measured', 'desired', 'one-step', 'simulated']);
   for (const t of traces) assert.ok(t.n > 50, `trace ${t.name} has ${t.n} points`);
@@ -361,7 +366,7 @@ test('the Compare and Model views draw (screenshots)', { timeout: 60000 }, async
   await shot('mission');
 });
 
-test('layout: 1280×800 and a tablet, no horizontal scrolling', { timeout: 60000 }, async () => {
+test('layout: 1280×800 and a tablet, no horizontal scrolling', { timeout: slow(60000) }, async () => {
   phase = 'layout';
   for (const [name, vp] of [['desktop', { width: 1280, height: 800 }], ['tablet', { width: 820, height: 1180 }]]) {
     await page.setViewportSize(vp);
@@ -378,12 +383,12 @@ test('layout: 1280×800 and a tablet, no horizontal scrolling', { timeout: 60000
   await page.setViewportSize({ width: 1280, height: 800 });
 });
 
-test('a 72,000-point track in Live stays bounded, is drawn simplified and takes every update', { timeout: 120000 }, async () => {
+test('a 72,000-point track in Live stays bounded, is drawn simplified and takes every update', { timeout: slow(120000) }, async () => {
   phase = 'perf';
   const p = await newPage();
   try {
-    await p.goto(`${server.base}/?test=1#live`, { waitUntil: 'load', timeout: 20000 });
-    await p.waitForFunction(() => window.avkTest && document.querySelector('#live-plot .main-svg'), null, { timeout: 20000 });
+    await p.goto(`${server.base}/?test=1#live`, { waitUntil: 'load', timeout: slow(20000) });
+    await p.waitForFunction(() => window.avkTest && document.querySelector('#live-plot .main-svg'), null, { timeout: slow(20000) });
     const loaded = await p.evaluate((n) => window.avkTest.loadTrack(n), PERF_POINTS);
     assert.equal(loaded, PERF_POINTS);
     // Navigation one sample at a time, each followed by the frame that draws it: what counts is
@@ -426,21 +431,21 @@ test('a 72,000-point track in Live stays bounded, is drawn simplified and takes 
   }
 });
 
-test('without a token, a POST asks for it inline and is retried with it', { timeout: 60000 }, async () => {
+test('without a token, a POST asks for it inline and is retried with it', { timeout: slow(60000) }, async () => {
   phase = 'token';
   const p = await newPage();
   try {
-    await p.goto(`${server.base}/#mission`, { waitUntil: 'load', timeout: 20000 });
-    await p.waitForFunction(() => document.getElementById('link-badge')?.textContent === 'LIVE', null, { timeout: 20000 });
+    await p.goto(`${server.base}/#mission`, { waitUntil: 'load', timeout: slow(20000) });
+    await p.waitForFunction(() => document.getElementById('link-badge')?.textContent === 'LIVE', null, { timeout: slow(20000) });
     assert.equal(await p.evaluate(() => sessionStorage.getItem('avk-token')), null);
     await p.fill('#m-speeds', '99'); // invalid: once authorised, the server answers 422
     await p.click('#m-start');
-    await p.waitForSelector('#token-bar:not([hidden])', { timeout: 10000 });
+    await p.waitForSelector('#token-bar:not([hidden])', { timeout: slow(10000) });
     assert.equal(await p.evaluate(() => document.activeElement?.id), 'token-input', 'the token input has the focus');
     assert.equal(await p.locator('[role="dialog"], dialog[open]').count(), 0, 'no modal dialog');
     await p.fill('#token-input', server.token);
     await p.press('#token-input', 'Enter');
-    await p.waitForSelector('.field[data-pointer="/turn_array/speeds_mps"] .field-error', { timeout: 10000 });
+    await p.waitForSelector('.field[data-pointer="/turn_array/speeds_mps"] .field-error', { timeout: slow(10000) });
     assert.ok(await p.isHidden('#token-bar'));
     assert.equal(await p.evaluate(() => sessionStorage.getItem('avk-token')), server.token);
   } finally {
@@ -448,17 +453,17 @@ test('without a token, a POST asks for it inline and is retried with it', { time
   }
 });
 
-test('the link badge shows DISCONNECTED when the server stops and LIVE with a new session after a restart', { timeout: 90000 }, async () => {
+test('the link badge shows DISCONNECTED when the server stops and LIVE with a new session after a restart', { timeout: slow(90000) }, async () => {
   phase = 'restart';
   await goView('live');
   const before = await page.evaluate(() => window.avkTest.state().sessionId);
   const port = server.port;
   await stopServer(server);
-  await page.waitForFunction(() => document.getElementById('link-badge').textContent === 'DISCONNECTED', null, { timeout: 15000 });
+  await page.waitForFunction(() => document.getElementById('link-badge').textContent === 'DISCONNECTED', null, { timeout: slow(15000) });
   await shot('live-disconnected');
   // The same port, so the page's reconnection finds it (the same database, too).
   server = await until('avk serve to bind its old port again', () => startServer(port), 30000, 1000);
-  await page.waitForFunction(() => document.getElementById('link-badge').textContent === 'LIVE', null, { timeout: 30000 });
+  await page.waitForFunction(() => document.getElementById('link-badge').textContent === 'LIVE', null, { timeout: slow(30000) });
   const afterId = await until('the new session id', async () => {
     const id = await page.evaluate(() => window.avkTest.state().sessionId);
     return id !== before ? id : null;
@@ -494,16 +499,16 @@ function startEmulator() {
   });
 }
 
-test('an M200 behind the frontseat emulator shows its battery and frontseat link in Live', { timeout: 60000 }, async () => {
+test('an M200 behind the frontseat emulator shows its battery and frontseat link in Live', { timeout: slow(60000) }, async () => {
   phase = 'm200';
   const emulator = await startEmulator();
   let m200 = null;
   const p = await newPage();
   try {
     m200 = await startServer(0, ['--m200', `127.0.0.1:${emulator.port}`, '--realtime-factor', '20'], 'm200.db');
-    await p.goto(`${m200.base}/?token=${m200.token}#live`, { waitUntil: 'load', timeout: 20000 });
-    await p.waitForFunction(() => document.getElementById('link-badge')?.textContent === 'LIVE', null, { timeout: 20000 });
-    await p.waitForFunction(() => /^\d+\.\d\d$/.test(document.getElementById('live-battery')?.textContent ?? ''), null, { timeout: 20000 });
+    await p.goto(`${m200.base}/?token=${m200.token}#live`, { waitUntil: 'load', timeout: slow(20000) });
+    await p.waitForFunction(() => document.getElementById('link-badge')?.textContent === 'LIVE', null, { timeout: slow(20000) });
+    await p.waitForFunction(() => /^\d+\.\d\d$/.test(document.getElementById('live-battery')?.textContent ?? ''), null, { timeout: slow(20000) });
     assert.ok(await p.isVisible('#live-battery'), 'the battery is shown for a real vehicle');
     assert.match(await p.textContent('#live-frontseat'), /bad lines, \d+ disconnects/);
     assert.match(await p.textContent('#vehicle-name'), /m200/);
