@@ -155,3 +155,10 @@ TEST(MissionLimits, ADuplicateKeyIsRefusedRatherThanTheLastOneWinning) {
   ASSERT_EQ(errors.size(), 1u);
   EXPECT_EQ(errors[0].field, "/name");
 }
+
+TEST(MissionLimits, ATopLevelNumberTooLargeForADoubleNamesTheDocument) {
+  // Found by mission_config_fuzz: the error named an empty field.
+  const auto errors = errors_of("2E335");
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_EQ(errors[0].field, "/");
+}
