@@ -1,8 +1,11 @@
 #include "mission/mission_config.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <nlohmann/json.hpp>
 #include <set>
+
+#include "kinematics/json_parse.hpp"
 
 namespace avk::mission {
 
@@ -110,12 +113,19 @@ class Reader {
 };
 
 std::vector<double> number_list(Reader& r, const char* key, double min, double max,
-                                bool min_exclusive, const std::string& unit) {
+                                bool min_exclusive, const std::string& unit, std::size_t max_count,
+                                double min_spacing) {
   std::vector<double> out;
   const json* v = r.get(key, true);
   if (!v) return out;
   if (!v->is_array() || v->empty()) {
     r.error(r.at(key), "expected a non-empty array of " + unit);
+    return out;
+  }
+  if (v->size() > max_count) {
+    // One error, not one per element: the list is refused whole.
+    r.error(r.at(key),
+            "at most " + std::to_string(max_count) + " values, got " + std::to_string(v->size()));
     return out;
   }
   for (std::size_t i = 0; i < v->size(); ++i) {
@@ -128,8 +138,18 @@ std::vector<double> number_list(Reader& r, const char* key, double min, double m
     const double d = e.get<double>();
     if (d < min || d > max || (min_exclusive && d == min)) {
       r.error(f, std::string("must be in ") + (min_exclusive ? "(" : "[") + json(min).dump() +
-                     ", " + json(max).dump() + "] " + unit + ", got " + e.dump());
+                     ", " + json(max).dump() + "] " + unit + ", got " + json(d).dump());
       continue;
+    }
+    // A value within the table's cell tolerance of an earlier one collects the same cell twice
+    // and makes the resumed count of a cell ambiguous.
+    for (std::size_t j = 0; j < out.size(); ++j) {
+      if (std::abs(out[j] - d) < min_spacing) {
+        r.error(f, "duplicates an earlier value (" + json(out[j]).dump() + " " + unit +
+                       "; values must be at least " + json(min_spacing).dump() + " " + unit +
+                       " apart)");
+        break;
+      }
     }
     out.push_back(d);
   }
@@ -151,10 +171,17 @@ MissionConfig parse_mission_config(std::string_view json_text, double max_speed_
   std::vector<FieldError> errors;
   json doc;
   try {
-    doc = json::parse(json_text.begin(), json_text.end());
-  } catch (const json::parse_error& e) {
-    throw MissionConfigError({{"json", std::string("not valid JSON at byte ") +
-                                           std::to_string(e.byte > 0 ? e.byte - 1 : 0)}});
+    doc = kinematics::parse_json_bounded(json_text);
+  } catch (const kinematics::JsonSyntaxError& e) {
+    // A number too large for a double is reported against its field, like any bad value.
+    throw MissionConfigError(
+        {{e.number_out_of_range() ? e.pointer() : std::string("json"),
+          e.number_out_of_range() ? e.reason()
+                                  : "not valid JSON at byte " + std::to_string(e.position()) +
+                                        " (line " + std::to_string(e.line()) + " column " +
+                                        std::to_string(e.column()) + "): " + e.reason()}});
+  } catch (const kinematics::ParseError& e) {
+    throw MissionConfigError({{e.field(), e.message()}});
   }
   MissionConfig c;
   Reader root(doc, "", errors);
@@ -178,8 +205,10 @@ MissionConfig parse_mission_config(std::string_view json_text, double max_speed_
   if (const json* ta = root.get("turn_array", c.kind == MissionKind::turns)) {
     Reader r(*ta, "/turn_array", errors);
     if (r.ok()) {
-      c.turn_array.speeds_mps = number_list(r, "speeds_mps", 0.0, vmax, true, "m/s");
-      c.turn_array.dheadings_deg = number_list(r, "dheadings_deg", 0.0, 180.0, true, "deg");
+      c.turn_array.speeds_mps = number_list(r, "speeds_mps", 0.0, vmax, true, "m/s",
+                                            kMaxMissionSpeeds, kMinSpeedSpacingMps);
+      c.turn_array.dheadings_deg = number_list(r, "dheadings_deg", 0.0, 180.0, true, "deg",
+                                               kMaxMissionDheadings, kMinDheadingSpacingDeg);
       if (const json* d = r.get("direction", false)) {
         if (*d == "right") {
           c.turn_array.direction = DirectionPolicy::right;
@@ -193,9 +222,18 @@ MissionConfig parse_mission_config(std::string_view json_text, double max_speed_
           r.error("/turn_array/direction", "must be right, left, alternate or auto");
         }
       }
-      r.integer("repeats", c.turn_array.repeats, 1, 1000);
+      r.integer("repeats", c.turn_array.repeats, 1, kMaxMissionRepeats);
       r.integer("max_attempts", c.turn_array.max_attempts, 1, 1000);
       r.finish();
+      // Each axis is bounded above, so this product cannot overflow.
+      const std::size_t planned = c.turn_array.speeds_mps.size() *
+                                  c.turn_array.dheadings_deg.size() *
+                                  static_cast<std::size_t>(c.turn_array.repeats);
+      if (planned > kMaxPlannedTurns) {
+        r.error("/turn_array", "plans " + std::to_string(planned) +
+                                   " turns (speeds x heading changes x repeats); at most " +
+                                   std::to_string(kMaxPlannedTurns));
+      }
     }
   }
   if (const json* cs = root.get("condition_set", false)) {
@@ -217,6 +255,11 @@ MissionConfig parse_mission_config(std::string_view json_text, double max_speed_
     if (const json* poly = r.get("polygon_m", true)) {
       if (!poly->is_array() || poly->size() < 3) {
         r.error("/operating_region/polygon_m", "expected at least 3 [x_m, y_m] vertices");
+      } else if (poly->size() > kMaxRegionVertices) {
+        // Refused before any geometry: the simplicity check compares every pair of edges.
+        r.error("/operating_region/polygon_m", "at most " + std::to_string(kMaxRegionVertices) +
+                                                   " vertices, got " +
+                                                   std::to_string(poly->size()));
       } else {
         for (std::size_t i = 0; i < poly->size(); ++i) {
           if (auto p = r.point((*poly)[i], "/operating_region/polygon_m/" + std::to_string(i))) {
@@ -246,7 +289,18 @@ MissionConfig parse_mission_config(std::string_view json_text, double max_speed_
       for (std::size_t i = 0; i < poly.size(); ++i) {
         perimeter += kinematics::distance_m(poly[i], poly[(i + 1) % poly.size()]);
       }
-      if (!polygon_is_simple(poly)) {
+      double min_x = poly[0].x_m, max_x = poly[0].x_m, min_y = poly[0].y_m, max_y = poly[0].y_m;
+      for (const auto& p : poly) {
+        min_x = std::min(min_x, p.x_m);
+        max_x = std::max(max_x, p.x_m);
+        min_y = std::min(min_y, p.y_m);
+        max_y = std::max(max_y, p.y_m);
+      }
+      if (max_x - min_x > kMaxRegionExtentM || max_y - min_y > kMaxRegionExtentM) {
+        r.error("/operating_region/polygon_m",
+                "the region spans " + json(std::max(max_x - min_x, max_y - min_y)).dump() +
+                    " m; at most " + json(kMaxRegionExtentM).dump() + " m in x and in y");
+      } else if (!polygon_is_simple(poly)) {
         r.error("/operating_region/polygon_m", "the polygon intersects itself");
       } else if (area < 400.0) {
         r.error("/operating_region/polygon_m",

@@ -3,6 +3,7 @@
 // conditions, when a turn is complete, and where the vehicle may go. Validation collects every
 // problem, each naming its field, so an operator fixes a file in one pass.
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <stdexcept>
@@ -18,6 +19,20 @@ enum class DirectionPolicy { right, left, alternate, automatic };
 const char* to_string(DirectionPolicy p);
 
 enum class MissionKind { turns, persistent_excitation };
+
+// Size limits of a mission (docs/mission-format.md). A mission is a request from outside: without
+// them a 13 KB file asks for 10^9 planned turns, and a 62,000-vertex region makes every
+// containment check slow. Each is well past what a field day collects (the thesis' Figure 4-1
+// mission plans 18 turns).
+inline constexpr std::size_t kMaxMissionSpeeds = 20;
+inline constexpr std::size_t kMaxMissionDheadings = 36;
+inline constexpr int kMaxMissionRepeats = 100;
+inline constexpr std::size_t kMaxPlannedTurns = 2000;  // speeds x heading changes x repeats
+inline constexpr std::size_t kMaxRegionVertices = 256;
+inline constexpr double kMaxRegionExtentM = 10000.0;  // each side of the bounding box
+// Two speeds (heading changes) closer than this would fill the same table cell: a duplicate.
+inline constexpr double kMinSpeedSpacingMps = 0.05;
+inline constexpr double kMinDheadingSpacingDeg = 0.5;
 
 struct TurnArray {
   std::vector<double> speeds_mps;

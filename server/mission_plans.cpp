@@ -22,10 +22,12 @@ MissionPlan create_mission_plan(store::Store& db, const std::string& config_text
                                 const vehicle::VehicleInfo& vehicle) {
   MissionPlan p;
   p.config = mission::parse_mission_config(config_text, vehicle.max_speed_mps);
-  db.upsert_vehicle(vehicle);
-  p.mission_id = db.create_mission(vehicle.id, p.config.name, config_text);
+  // Everything that can fail is done before the mission is stored: a start that throws must not
+  // leave a row behind (the validation bounds the plan, so planning is cheap).
   p.tasks = mission::plan_turns(p.config);
   p.start = start_pose(p.config);
+  db.upsert_vehicle(vehicle);
+  p.mission_id = db.create_mission(vehicle.id, p.config.name, config_text);
   return p;
 }
 
