@@ -123,11 +123,20 @@ async function shot(name, p = page) {
   return file;
 }
 
+// Sets the address's view and checks it is shown, again until it is: under load the
+// selector wait (which polls on animation frames) saw the view visible and still timed out.
 async function goView(view) {
-  await page.evaluate((v) => {
-    window.location.hash = `#${v}`;
-  }, view);
-  await page.waitForSelector(`#view-${view}:not([hidden])`, { timeout: slow(5000) });
+  await until(
+    `the ${view} view`,
+    () =>
+      page.evaluate((v) => {
+        if (window.location.hash !== `#${v}`) window.location.hash = `#${v}`;
+        const el = document.getElementById(`view-${v}`);
+        return el !== null && !el.hidden;
+      }, view),
+    5000,
+    100,
+  );
 }
 
 function runAvk(args, timeoutMs = 30000) {
