@@ -25,7 +25,6 @@
 #include <netinet/tcp.h>
 #include <poll.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/resource.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
@@ -47,7 +46,7 @@
 #include <thread>
 #include <vector>
 
-extern char** environ;
+#include "support/spawn_avk.hpp"
 
 namespace {
 
@@ -149,19 +148,9 @@ struct Server {
 
 Server spawn_server(const fs::path& dir) {
   const std::string log = (dir / "serve.log").string();
-  std::vector<std::string> args = {AVK_BINARY, "serve", "--db",    (dir / "bench.db").string(),
-                                   "--port",   "0",     "--token", kToken};
-  std::vector<char*> argv;
-  for (auto& a : args)
-    argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_addopen(&fa, 1, log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  posix_spawn_file_actions_adddup2(&fa, 1, 2);
   Server s;
-  if (posix_spawn(&s.pid, AVK_BINARY, &fa, nullptr, argv.data(), environ) != 0) s.pid = -1;
-  posix_spawn_file_actions_destroy(&fa);
+  s.pid = avk::testing::spawn_avk(
+      {"serve", "--db", (dir / "bench.db").string(), "--port", "0", "--token", kToken}, log);
   const std::regex listening(R"(http://127\.0\.0\.1:(\d+)/)");
   const auto deadline = Clock::now() + 20s;
   while (s.pid > 0 && !s.port && Clock::now() < deadline) {
