@@ -31,7 +31,7 @@ struct BenchStation {
     so.db_path = db.path();
     so.token = token;
     so.server_version = "bench";
-    server::VehicleLoopOptions v;
+    app::VehicleLoopOptions v;
     v.setup = sim::default_sim_setup("usim");
     v.setup.vehicle.id = vehicle_id;
     v.realtime_factor = realtime_factor;

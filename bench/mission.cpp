@@ -12,7 +12,7 @@
 #include "mission/mission_config.hpp"
 #include "mission/mission_runner.hpp"
 #include "mission/turn_plan.hpp"
-#include "server/mission_recorder.hpp"
+#include "app/mission_recorder.hpp"
 #include "sim/sim_config.hpp"
 #include "sim/sim_mission.hpp"
 #include "store/store.hpp"
@@ -43,7 +43,7 @@ void run_mission(benchmark::State& state, const std::string& kind, const std::st
     so.setup = setup;
     so.start = {config.region.return_point.x_m, config.region.return_point.y_m, 0.0};
     avk::sim::SimMission sim(so);
-    avk::server::MissionRecorder recorder(db, id);
+    avk::app::MissionRecorder recorder(db, id);
     avk::mission::MissionRunner runner(config, sim.vehicle(), avk::mission::plan_turns(config),
                                        {"bench", std::to_string(id)});
     runner.add_observer(recorder);

@@ -82,12 +82,6 @@ Polyline reconstruct(const std::vector<WeightedProfile>& sources, double length_
   return out;
 }
 
-Polyline reflect_x(Polyline line) {
-  for (Point& p : line)
-    p.x_m = 0.0 - p.x_m;  // not -x: keeps the lead-in at +0, not -0
-  return line;
-}
-
 // Lead-in plus constant-radius arc fitted to one cell's advance and transfer, used to carry a
 // cell's statistics to heading changes outside the table.
 AdvanceTransfer arc_model_extrapolate(const CktCell& c, double dheading_deg) {
@@ -455,6 +449,15 @@ MaterializedCkt::Lookup MaterializedCkt::lookup(double speed_mps, double dheadin
       std::clamp<long>(std::lround(std::abs(dheading_deg) / spec_.dheading_step_deg), 0,
                        static_cast<long>(dheading_count_) - 1));
   return {&entries_[i * dheading_count_ + j], side_of(dheading_deg)};
+}
+
+TurnPrediction MaterializedCkt::query(double speed_mps, double dheading_deg) const {
+  const Lookup hit = lookup(speed_mps, dheading_deg);
+  TurnPrediction p = *hit.right_turn;
+  p.speed_mps = speed_mps;
+  p.dheading_deg = dheading_deg;
+  if (hit.side == TurnSide::left) p.trajectory = reflect_x(std::move(p.trajectory));
+  return p;
 }
 
 }  // namespace avk::kinematics

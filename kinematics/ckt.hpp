@@ -158,6 +158,9 @@ class MaterializedCkt {
   };
   // The nearest fine cell. Throws CktRangeError outside the speed range.
   Lookup lookup(double speed_mps, double dheading_deg) const;
+  // The nearest fine cell as a prediction: a copy, reflected for a left turn, with the speed and
+  // heading change as asked.
+  TurnPrediction query(double speed_mps, double dheading_deg) const;
 
   std::size_t speed_count() const { return speed_count_; }
   std::size_t dheading_count() const { return dheading_count_; }

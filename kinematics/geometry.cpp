@@ -73,6 +73,12 @@ Point rotate_by_heading(Point v, double dheading_deg) {
   return {v.x_m * c + v.y_m * s, -v.x_m * s + v.y_m * c};
 }
 
+Polyline reflect_x(Polyline line) {
+  for (Point& p : line)
+    p.x_m = 0.0 - p.x_m;  // not -x: keeps the lead-in at +0, not -0
+  return line;
+}
+
 Polyline place_normalized(const Polyline& normalized, const Pose& pose, TurnSide side) {
   Polyline out;
   out.reserve(normalized.size());

@@ -42,6 +42,9 @@ Polyline resample_by_arc_length(const Polyline& line, double step_m);
 // Rotates a vector so that its heading grows by dheading_deg (clockwise positive).
 Point rotate_by_heading(Point v, double dheading_deg);
 
+// A left turn from the normalised right turn: the mirror image across the y axis.
+Polyline reflect_x(Polyline line);
+
 // Takes a trajectory in the normalised frame (start at the origin, initial heading north, a right
 // turn) to the world: reflected for a left turn, rotated to the pose heading, translated to it.
 Polyline place_normalized(const Polyline& normalized, const Pose& pose, TurnSide side);

@@ -1,15 +1,17 @@
 #pragma once
-// The ground station behind /api/v1: vehicles, missions, turns, the CKT, predictions, models and
-// the comparison, over the store; missions run on the station's vehicle loop. Handlers parse and
-// validate, call the layers below and serialise; every error is problem+json (RFC 9457).
+// The ground station behind /api/v1: the route table of the REST API and its adapters, each of
+// which reads the request, calls one use case of app/ and writes the answer (server/serialize).
+// Missions run on the station's vehicle loop (app::Context); its live feed goes to the stream.
 
 #include <memory>
 #include <optional>
 #include <string>
 
-#include "server/api_types.hpp"
+#include "app/context.hpp"
+#include "app/vehicle_loop.hpp"
+#include "server/http/router.hpp"
+#include "server/stream_feed.hpp"
 #include "server/stream_hub.hpp"
-#include "server/vehicle_loop.hpp"
 
 namespace avk::server {
 
@@ -18,10 +20,13 @@ struct StationOptions {
   std::string token;  // bearer token for control endpoints (and for any non-loopback client)
   std::string server_version;
   // The vehicle missions run on (simulated, or an M200 over its link); none: no vehicle.
-  std::optional<VehicleLoopOptions> vehicle;
+  std::optional<app::VehicleLoopOptions> vehicle;
 };
 
-class Station final : public Api {
+// A CKT file of a long campaign is larger than any other request body.
+inline constexpr std::size_t kCktImportBodyLimitBytes = std::size_t{64} << 20;
+
+class Station final : public Router {
  public:
   Station(StationOptions options, StreamHub& hub);
   ~Station() override;
@@ -31,17 +36,16 @@ class Station final : public Api {
   // Interrupts a running mission (stored, resumable), flushes and stops the vehicle.
   void shutdown();
 
-  ApiResponse handle(const ApiRequest& request) override;
-  // The rule of a GET: open on loopback, the bearer token from anywhere else.
-  bool may_open_stream(const ApiRequest& request) override;
-  // From the header: the token (401 before any body is read) and the route's body limit.
-  Admission admit(const ApiRequest& head) override;
-
-  VehicleLoop* vehicle_loop();
+  app::Context& context() { return context_; }
+  app::VehicleLoop* vehicle_loop() { return context_.vehicle_loop(); }
 
  private:
-  struct Impl;
-  std::unique_ptr<Impl> impl_;
+  void add_routes();
+
+  StationOptions options_;
+  StreamHub& hub_;
+  StreamFeed feed_;
+  app::Context context_;
 };
 
 }  // namespace avk::server

@@ -3,24 +3,12 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "app/missions.hpp"
+#include "server/serialize.hpp"
+
 namespace avk::server {
 
 using nlohmann::json;
-
-std::string cells_json(const std::vector<mission::CellProgress>& cells) {
-  json out = json::array();
-  for (const auto& c : cells) {
-    out.push_back({{"speed_mps", c.speed_mps},
-                   {"dheading_deg", c.dheading_deg},
-                   {"planned", c.planned},
-                   {"ok", c.ok},
-                   {"rejected", c.rejected},
-                   {"aborted", c.aborted},
-                   {"given_up", c.given_up},
-                   {"running", c.running}});
-  }
-  return out.dump();
-}
 
 void StreamPublisher::on_turn_started(const mission::TurnTask& task, double t_s,
                                       double goal_heading_deg) {
@@ -72,9 +60,11 @@ void StreamPublisher::on_mode(mission::HelmMode, mission::HelmMode, double t_s) 
 
 void StreamPublisher::publish_progress(double t_s, const std::string& state) {
   hub_.publish("mission", t_s,
-               R"({"mission_id":)" + std::to_string(mission_id_) + R"(,"state":")" + state +
-                   R"(","helm_mode":")" + mission::to_string(runner_.mode()) + R"(","cells":)" +
-                   cells_json(runner_.cells()) + "}");
+               json{{"mission_id", mission_id_},
+                    {"state", state},
+                    {"helm_mode", mission::to_string(runner_.mode())},
+                    {"cells", cells_json(app::cell_reports(runner_.cells()))}}
+                   .dump());
 }
 
 }  // namespace avk::server

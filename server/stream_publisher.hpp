@@ -31,7 +31,4 @@ class StreamPublisher final : public mission::MissionObserver {
   std::string state_ = "running";
 };
 
-// Per-cell progress as JSON (shared by the stream and GET /missions/{id}).
-std::string cells_json(const std::vector<mission::CellProgress>& cells);
-
 }  // namespace avk::server

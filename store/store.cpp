@@ -21,7 +21,7 @@ namespace {
 
 // Each step moves the schema from version i to i + 1. Steps are append-only: a released step is
 // never edited, because databases in the field have already run it.
-constexpr std::array<const char*, 5> kMigrations = {
+constexpr std::array<const char*, 6> kMigrations = {
     R"sql(
 CREATE TABLE vehicles (
   id            TEXT PRIMARY KEY,
@@ -135,6 +135,14 @@ CREATE INDEX turns_by_vehicle_status ON turns (vehicle_id, status, id);
     // a page is a range scan, not a sort of the whole mission.
     R"sql(
 CREATE INDEX nav_by_mission ON nav_samples (mission_id);
+)sql",
+    // A vehicle's latest imported table is looked up by vehicle: a database holding several
+    // vehicles must not answer one vehicle's question with another's table.
+    R"sql(
+ALTER TABLE ckt_snapshots ADD COLUMN vehicle_id TEXT;
+UPDATE ckt_snapshots SET vehicle_id = json_extract(document, '$.vehicle_id')
+  WHERE json_valid(document);
+CREATE INDEX ckt_snapshots_by_vehicle ON ckt_snapshots (vehicle_id, id);
 )sql",
 };
 
@@ -689,15 +697,18 @@ std::int64_t Store::save_ckt_snapshot(const kinematics::Ckt& table,
                                       const std::vector<std::int64_t>& mission_ids) {
   const std::string ids = nlohmann::json(mission_ids).dump();
   const std::string doc = kinematics::ckt_to_json_string(table);
-  auto s = db_.prepare("INSERT INTO ckt_snapshots (mission_ids, document) VALUES (?, ?)");
-  s.bind(1, ids).bind(2, doc);
+  auto s = db_.prepare(
+      "INSERT INTO ckt_snapshots (mission_ids, document, vehicle_id) VALUES (?, ?, ?)");
+  s.bind(1, ids).bind(2, doc).bind(3, table.vehicle_id);
   s.run();
   return db_.last_insert_rowid();
 }
 
-std::optional<CktSnapshot> Store::latest_ckt_snapshot() {
+std::optional<CktSnapshot> Store::latest_ckt_snapshot(const std::string& vehicle_id) {
   auto s = db_.prepare(
-      "SELECT id, created_utc, mission_ids, document FROM ckt_snapshots ORDER BY id DESC LIMIT 1");
+      "SELECT id, created_utc, mission_ids, document FROM ckt_snapshots WHERE vehicle_id = ? "
+      "ORDER BY id DESC LIMIT 1");
+  s.bind(1, vehicle_id);
   if (!s.step()) return std::nullopt;
   CktSnapshot snap;
   snap.id = s.column_int64(0);

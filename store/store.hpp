@@ -225,8 +225,9 @@ class Store {
 
   std::int64_t save_ckt_snapshot(const kinematics::Ckt& table,
                                  const std::vector<std::int64_t>& mission_ids);
-  // Throws StoreError when the stored document no longer parses.
-  std::optional<CktSnapshot> latest_ckt_snapshot();
+  // The newest snapshot of the vehicle's table. Throws StoreError when its stored document no
+  // longer parses.
+  std::optional<CktSnapshot> latest_ckt_snapshot(const std::string& vehicle_id);
 
   // Returns the model id (m.id is ignored). Reads throw StoreError for a corrupt document.
   std::int64_t save_model(const StoredModel& m);

@@ -3,6 +3,7 @@
 #include <exception>
 #include <ostream>
 
+#include "server/cli/app_error.hpp"
 #include "server/cli/args.hpp"
 #include "server/cli/commands.hpp"
 
@@ -92,6 +93,8 @@ int run_cli(const std::vector<std::string>& args, std::istream& in, std::ostream
   } catch (const UsageError& e) {
     err << "avk " << args[0] << ": " << e.what() << "\n";
     return 2;
+  } catch (const CliFailure& e) {
+    return report_error(e.error(), io, args[0]);
   } catch (const std::exception& e) {
     err << "avk " << args[0] << ": " << e.what() << "\n";
     return 1;

@@ -5,27 +5,23 @@
 #include <ostream>
 #include <set>
 
+#include "app/ckt_tables.hpp"
+#include "app/context.hpp"
+#include "app/predict.hpp"
+#include "app/utc_time.hpp"
 #include "kinematics/ckt.hpp"
 #include "kinematics/ckt_file.hpp"
+#include "server/cli/app_error.hpp"
 #include "server/cli/args.hpp"
 #include "server/cli/commands.hpp"
 #include "server/cli/db_selection.hpp"
 #include "server/cli/files.hpp"
 #include "server/cli/turn_file.hpp"
-#include "store/store.hpp"
+#include "server/serialize.hpp"
 
 namespace avk::server {
 
 namespace kin = avk::kinematics;
-
-std::string utc_now_iso8601() {
-  const std::time_t now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
-  std::tm tm{};
-  gmtime_r(&now, &tm);
-  char buf[32];
-  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
-  return buf;
-}
 
 namespace {
 
@@ -60,36 +56,31 @@ kin::CktOptions build_options(const Args& a) {
   return options;
 }
 
-struct BuiltTable {
-  kin::Ckt table;
-  std::vector<std::int64_t> mission_ids;
-};
-
-BuiltTable build_table(const Args& a, Io& io) {
+// From a turn file, or from the database, where the table is kept as a snapshot.
+app::BuiltTable build_table(const Args& a, Io& io) {
   if (a.get("turns").has_value() == a.get("db").has_value())
     throw UsageError("give exactly one source: --turns FILE or --db FILE");
-  std::vector<kin::TurnSequence> turns;
-  BuiltTable out;
-  std::string vehicle;
+  app::BuiltTable out;
   if (const auto path = a.get("turns")) {
     if (!a.all("mission").empty()) throw UsageError("--mission goes with --db");
     const auto records = parse_turn_file(read_file(*path, io.in), *path == "-" ? "stdin" : *path);
+    std::vector<kin::TurnSequence> turns;
     turns.reserve(records.size());
     for (const auto& r : records)
       turns.push_back(r.turn);
-    vehicle = a.get("vehicle").value_or(turns.empty() ? "" : turns.front().meta().vehicle_id);
+    out.table = kin::Ckt::build(turns, build_options(a), std::nullopt, &out.report);
+    out.table.vehicle_id =
+        a.get("vehicle").value_or(turns.empty() ? "" : turns.front().meta().vehicle_id);
+    out.table.vehicle_length_m = a.number("vehicle-length");
+    out.table.created_utc = app::utc_now_iso8601();
   } else {
-    store::Store db(*a.get("db"));
-    out.mission_ids = mission_ids(a);
-    vehicle = vehicle_of(a, db, out.mission_ids);
-    turns = db.load_normalized_turns(out.mission_ids, vehicle);
-    if (turns.empty()) throw std::runtime_error("no ok turns of '" + vehicle + "' to build from");
+    app::Context ctx(*a.get("db"));
+    const auto missions = mission_ids(a);
+    const std::string vehicle = vehicle_of(a, ctx.db(), missions);
+    out = value_or_fail(
+        app::build_ckt(ctx, vehicle, missions, build_options(a), a.number("vehicle-length")));
   }
-  kin::CktBuildReport report;
-  out.table = kin::Ckt::build(turns, build_options(a), std::nullopt, &report);
-  out.table.vehicle_id = vehicle;
-  out.table.vehicle_length_m = a.number("vehicle-length");
-  out.table.created_utc = utc_now_iso8601();
+  const auto& report = out.report;
   io.err << "ckt: " << report.turns_used << " turns used, " << report.turns_skipped_status
          << " aborted/rejected skipped, " << report.turns_unassigned << " off the grid\n";
   return out;
@@ -138,33 +129,14 @@ int query(const Args& a, Io& io) {
   }
   const OutFormat format = out_format(a);
   const kin::Ckt table = load_ckt(ckt_path, io);
-  kin::TurnPrediction p = table.query(*speed, *dheading);
-  kin::Polyline line = p.trajectory;
-  if (placed) {
-    // The prediction is already reflected for a left turn; place it as a right-handed shape.
-    line = kin::place_normalized(line, {*x, *y, *heading}, kin::TurnSide::right);
-  }
-  if (format == OutFormat::csv) {
-    std::string csv = "vertex_index,x_m,y_m\n";
-    for (std::size_t i = 0; i < line.size(); ++i) {
-      csv += std::to_string(i) + "," + nlohmann::json(line[i].x_m).dump() + "," +
-             nlohmann::json(line[i].y_m).dump() + "\n";
-    }
-    emit(a, io, csv);
-    return 0;
-  }
-  nlohmann::json j = {{"speed_mps", p.speed_mps},
-                      {"dheading_deg", p.dheading_deg},
-                      {"advance_m", p.advance_m},
-                      {"transfer_m", p.transfer_m},
-                      {"exact_cell", p.exact_cell},
-                      {"extrapolated", p.extrapolated},
-                      {"frame", placed ? "world" : "normalized"}};
-  nlohmann::json pts = nlohmann::json::array();
-  for (const auto& pt : line)
-    pts.push_back({pt.x_m, pt.y_m});
-  j["trajectory"] = std::move(pts);
-  emit(a, io, j.dump() + "\n");
+  app::PredictQuery q;
+  q.vehicle_id = table.vehicle_id;
+  q.speed_mps = *speed;
+  q.dheading_deg = *dheading;
+  if (placed) q.pose = kin::Pose{*x, *y, *heading};
+  const app::Prediction p = value_or_fail(app::predict_with_table(table, q));
+  emit(a, io,
+       format == OutFormat::csv ? trajectory_csv(p.trajectory) : prediction_json(p).dump() + "\n");
   return 0;
 }
 
@@ -179,13 +151,9 @@ int cmd_ckt(const std::vector<std::string>& args, Io& io) {
   if (sub == "build") {
     const Args a(rest, build_values, {}, {"mission"});
     const OutFormat format = out_format(a);
-    const BuiltTable t = build_table(a, io);
+    const app::BuiltTable t = build_table(a, io);
     emit(a, io, serialise(t.table, format));
-    if (const auto db_path = a.get("db")) {
-      // The snapshot records which table guidance was given, and from which missions.
-      store::Store db(*db_path);
-      io.err << "ckt: saved as snapshot " << db.save_ckt_snapshot(t.table, t.mission_ids) << "\n";
-    }
+    if (t.snapshot_id) io.err << "ckt: saved as snapshot " << t.snapshot_id << "\n";
     return summarise(t.table, io);
   }
   if (sub == "export") {

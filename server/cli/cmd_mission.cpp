@@ -21,9 +21,13 @@
 #include "server/cli/files.hpp"
 #include "server/cli/m200_options.hpp"
 #include "server/cli/sim_options.hpp"
-#include "server/mission_liveness.hpp"
-#include "server/mission_plans.hpp"
-#include "server/mission_recorder.hpp"
+#include "app/context.hpp"
+#include "app/mission_liveness.hpp"
+#include "app/mission_plans.hpp"
+#include "app/mission_recorder.hpp"
+#include "app/missions.hpp"
+#include "server/cli/app_error.hpp"
+#include "server/serialize.hpp"
 #include "sim/sim_mission.hpp"
 #include "store/store.hpp"
 #include "vehicle/m200.hpp"
@@ -58,12 +62,6 @@ class StopSignals {
   void (*previous_int_)(int);
   void (*previous_term_)(int);
 };
-
-std::string fixed(double v, int decimals) {
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(decimals) << v;
-  return s.str();
-}
 
 std::string signed_deg(const mission::TurnTask& t, const kinematics::TurnSequence& raw) {
   const double d =
@@ -117,20 +115,8 @@ class ProgressPrinter final : public mission::MissionObserver {
   bool quiet_;
 };
 
-std::string mission_json(const store::Mission& m) {
-  json j = {{"id", m.id},
-            {"name", m.name},
-            {"vehicle_id", m.vehicle_id},
-            {"status", store::to_string(effective_status(m))},
-            {"status_reason", m.status_reason},
-            {"created_utc", m.created_utc}};
-  j["started_s"] = m.started_s ? json(*m.started_s) : json(nullptr);
-  j["ended_s"] = m.ended_s ? json(*m.ended_s) : json(nullptr);
-  return j.dump();
-}
-
 struct RunSpec {
-  MissionPlan plan;
+  app::MissionPlan plan;
   sim::SimSetup setup;
   std::string vehicle_id;
   // Set: the mission drives an M200 over its frontseat link instead of the simulator.
@@ -177,7 +163,7 @@ int execute(store::Store& db, RunSpec spec, const Args& a, Io& io,
     sim.emplace(so);
   }
   vehicle::Vehicle& vehicle = m200 ? static_cast<vehicle::Vehicle&>(*m200) : sim->vehicle();
-  MissionRecorder recorder(db, spec.plan.mission_id);
+  app::MissionRecorder recorder(db, spec.plan.mission_id);
   const int planned = static_cast<int>(mission::plan_turns(spec.plan.config).size());
   ProgressPrinter printer(io.out, planned, spec.plan.done_before, a.flag("quiet"));
   mission::RunnerOptions ro;
@@ -251,9 +237,10 @@ int execute(store::Store& db, RunSpec spec, const Args& a, Io& io,
   return m->status == store::MissionStatus::done ? 0 : 1;
 }
 
-void print_config_errors(const mission::MissionConfigError& e, const std::string& name, Io& io) {
-  for (const auto& f : e.errors())
+void print_config_errors(const app::Error& e, const std::string& name, Io& io) {
+  for (const auto& f : e.fields)
     io.err << name << ": " << f.field << ": " << f.message << "\n";
+  if (e.fields.empty()) io.err << name << ": " << e.message << "\n";
 }
 
 void require_vehicle(const Args& a) {
@@ -289,10 +276,8 @@ int run(const std::vector<std::string>& rest, Io& io) {
   spec.vehicle_id = info.id;
   const std::string text = read_file(path, io.in);
   // Validate before connecting: a mission file with mistakes needs no vehicle to say so.
-  try {
-    (void)mission::parse_mission_config(text, info.max_speed_mps);
-  } catch (const mission::MissionConfigError& e) {
-    print_config_errors(e, path, io);
+  if (const auto checked = app::validate_mission(text, info.max_speed_mps); !checked) {
+    print_config_errors(checked.error(), path, io);
     return 1;
   }
   store::Store db(db_path);
@@ -302,19 +287,13 @@ int run(const std::vector<std::string>& rest, Io& io) {
     clock.emplace(realtime_factor_from(a), db.station_clock_end_s() + 1.0);
     m200 = connect_m200(*spec.m200, *clock, io);
   }
-  spec.plan = create_mission_plan(db, text, info);
+  spec.plan = app::create_mission_plan(db, text, info);
   return execute(db, std::move(spec), a, io, clock ? &*clock : nullptr, m200.get());
 }
 
 std::int64_t mission_id_arg(const Args& a) {
   if (a.positional().size() != 1) throw UsageError("expected one mission id");
   return parse_id(a.positional()[0], "the mission id");
-}
-
-store::Mission find_mission(store::Store& db, std::int64_t id) {
-  auto m = db.get_mission(id);
-  if (!m) throw std::runtime_error("no mission " + std::to_string(id) + " in the database");
-  return *m;
 }
 
 int resume(const std::vector<std::string>& rest, Io& io) {
@@ -355,9 +334,10 @@ int resume(const std::vector<std::string>& rest, Io& io) {
     m200 = connect_m200(*spec.m200, *clock, io);
   }
   try {
-    spec.plan = resume_mission_plan(db, id, max_speed);
+    spec.plan = app::resume_mission_plan(db, id, max_speed);
   } catch (const mission::MissionConfigError& e) {
-    print_config_errors(e, "mission " + std::to_string(id), io);
+    for (const auto& f : e.errors())
+      io.err << "mission " << id << ": " << f.field << ": " << f.message << "\n";
     return 1;
   }
   spec.plan.clock_after_s += 1.0;
@@ -366,35 +346,31 @@ int resume(const std::vector<std::string>& rest, Io& io) {
 
 int list(const std::vector<std::string>& rest, Io& io) {
   const Args a(rest, {"db", "format"});
-  store::Store db(a.require("db"));
+  app::Context ctx(a.require("db"));
   const std::string format = a.get("format").value_or("table");
-  if (format != "table" && format != "json") throw UsageError("--format must be table or json");
-  const auto missions = db.list_missions();
+  if (format != "table" && format != "json" && format != "csv")
+    throw UsageError("--format must be table, json or csv");
+  const auto missions = app::list_missions(ctx, std::nullopt);
+  if (format == "csv") {
+    io.out << missions_csv(missions);
+    return 0;
+  }
   if (format == "json") {
-    io.out << "[";
-    for (std::size_t i = 0; i < missions.size(); ++i)
-      io.out << (i ? "," : "") << mission_json(missions[i]);
-    io.out << "]\n";
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto& m : missions)
+      out.push_back(mission_json(m));
+    io.out << out.dump() << "\n";
     return 0;
   }
   io.out << std::left << std::setw(5) << "id" << std::setw(13) << "status" << std::setw(22)
          << "vehicle" << std::setw(12) << "turns ok" << std::setw(26) << "created (UTC)"
          << "name\n";
-  for (const auto& m : missions) {
-    std::int64_t ok = 0;
-    for (const auto& c : db.mission_cell_stats(m.id))
-      ok += c.n_ok;
-    io.out << std::setw(5) << m.id << std::setw(13) << store::to_string(effective_status(m))
-           << std::setw(22) << m.vehicle_id << std::setw(12) << ok << std::setw(26) << m.created_utc
-           << m.name << "\n";
-  }
+  for (const auto& s : missions)
+    io.out << std::setw(5) << s.mission.id << std::setw(13) << store::to_string(s.status)
+           << std::setw(22) << s.mission.vehicle_id << std::setw(12) << s.turns.ok << std::setw(26)
+           << s.mission.created_utc << s.mission.name << "\n";
   io.out << std::right;
   return 0;
-}
-
-json mean_sd_json(const std::optional<kinematics::MeanSd>& v) {
-  if (!v) return nullptr;
-  return {{"mean", v->mean}, {"sd", v->sd}};
 }
 
 std::string pm(const std::optional<kinematics::MeanSd>& v, int decimals) {
@@ -403,82 +379,45 @@ std::string pm(const std::optional<kinematics::MeanSd>& v, int decimals) {
 
 int report(const std::vector<std::string>& rest, Io& io) {
   const Args a(rest, {"db", "format"});
-  store::Store db(a.require("db"));
-  const store::Mission m = find_mission(db, mission_id_arg(a));
+  app::Context ctx(a.require("db"));
   const std::string format = a.get("format").value_or("table");
   if (format != "table" && format != "json" && format != "csv")
     throw UsageError("--format must be table, json or csv");
-  const auto cells = db.mission_cell_stats(m.id);
-  std::vector<double> set_times;
-  std::map<std::string, int> outcomes;
-  for (const auto& cs : db.condition_sets(m.id)) {
-    ++outcomes[cs.outcome];
-    if (cs.outcome == "set") set_times.push_back(cs.duration_s());
-  }
-  const std::optional<kinematics::MeanSd> cs_stats =
-      set_times.empty() ? std::nullopt : std::optional(kinematics::mean_sd(set_times));
-  std::int64_t ok = 0, aborted = 0, rejected = 0;
-  for (const auto& c : cells) {
-    ok += c.n_ok;
-    aborted += c.n_aborted;
-    rejected += c.n_rejected;
-  }
+  const app::MissionReport r = value_or_fail(app::mission_report(ctx, mission_id_arg(a)));
   if (format == "csv") {
-    io.out << "speed_mps,dheading_deg,n_ok,n_aborted,n_rejected,advance_mean_m,advance_sd_m,"
-              "transfer_mean_m,transfer_sd_m,condition_set_mean_s,condition_set_sd_s\n";
-    const auto opt = [](const std::optional<kinematics::MeanSd>& v, bool sd) {
-      return v ? num(sd ? v->sd : v->mean) : std::string();
-    };
-    for (const auto& c : cells) {
-      io.out << num(c.speed_mps) << ',' << num(c.dheading_deg) << ',' << c.n_ok << ','
-             << c.n_aborted << ',' << c.n_rejected << ',' << opt(c.advance_m, false) << ','
-             << opt(c.advance_m, true) << ',' << opt(c.transfer_m, false) << ','
-             << opt(c.transfer_m, true) << ',' << opt(c.condition_set_time_s, false) << ','
-             << opt(c.condition_set_time_s, true) << '\n';
-    }
+    io.out << report_cells_csv(r);
     return 0;
   }
   if (format == "json") {
-    json j = json::parse(mission_json(m));
-    j["turns"] = {{"ok", ok}, {"aborted", aborted}, {"rejected", rejected}};
-    j["simulated_time_s"] =
-        m.started_s && m.ended_s ? json(*m.ended_s - *m.started_s) : json(nullptr);
-    j["condition_set"] = {{"episodes", outcomes}, {"time_to_set_s", mean_sd_json(cs_stats)}};
-    json jc = json::array();
-    for (const auto& c : cells) {
-      jc.push_back({{"speed_mps", c.speed_mps},
-                    {"dheading_deg", c.dheading_deg},
-                    {"n_ok", c.n_ok},
-                    {"n_aborted", c.n_aborted},
-                    {"n_rejected", c.n_rejected},
-                    {"advance_m", mean_sd_json(c.advance_m)},
-                    {"transfer_m", mean_sd_json(c.transfer_m)},
-                    {"condition_set_time_s", mean_sd_json(c.condition_set_time_s)}});
-    }
-    j["cells"] = std::move(jc);
-    io.out << j.dump(2) << "\n";
+    io.out << report_json(r, false).dump(2) << "\n";
     return 0;
   }
+  const store::Mission& m = r.summary.mission;
   io.out << "mission " << m.id << " '" << m.name << "' on " << m.vehicle_id << ": "
-         << store::to_string(effective_status(m));
+         << app::status_text(r);
   if (!m.status_reason.empty()) io.out << " (" << m.status_reason << ")";
   io.out << "\n";
-  if (m.started_s && m.ended_s)
-    io.out << "simulated time " << fixed(*m.ended_s - *m.started_s, 1) << " s\n";
-  io.out << "turns: " << ok << " ok, " << aborted << " aborted, " << rejected << " rejected\n";
-  io.out << "time to set conditions (thesis Table 5.2): " << pm(cs_stats, 2) << " s over "
-         << set_times.size() << " turn starts; " << outcomes["timeout"] << " timeouts, "
-         << outcomes["interrupted"] << " interrupted\n\n";
-  io.out << std::setw(9) << "speed" << std::setw(10) << "dheading" << std::setw(5) << "ok"
-         << std::setw(9) << "aborted" << std::setw(10) << "rejected" << std::setw(18) << "advance m"
-         << std::setw(18) << "transfer m" << std::setw(18) << "conditions s"
+  if (r.duration_s) io.out << "mission time " << fixed(*r.duration_s, 1) << " s\n";
+  const auto& t = r.summary.turns;
+  const auto episodes = [&](const char* outcome) {
+    const auto it = r.condition_set_episodes.find(outcome);
+    return it == r.condition_set_episodes.end() ? 0 : it->second;
+  };
+  io.out << "turns: " << t.ok << " ok, " << t.aborted << " aborted, " << t.rejected
+         << " rejected\n";
+  io.out << "time to set conditions (thesis Table 5.2): " << pm(r.condition_set_time_s, 2)
+         << " s over " << r.condition_set_count << " turn starts; " << episodes("timeout")
+         << " timeouts, " << episodes("interrupted") << " interrupted\n\n";
+  io.out << std::setw(9) << "speed" << std::setw(10) << "dheading" << std::setw(9) << "planned"
+         << std::setw(5) << "ok" << std::setw(9) << "aborted" << std::setw(10) << "rejected"
+         << std::setw(18) << "advance m" << std::setw(18) << "transfer m" << std::setw(18)
+         << "conditions s"
          << "\n";
-  for (const auto& c : cells) {
+  for (const auto& c : r.cells)
     io.out << std::setw(9) << fixed(c.speed_mps, 2) << std::setw(10) << fixed(c.dheading_deg, 0)
-           << std::setw(5) << c.n_ok << std::setw(9) << c.n_aborted << std::setw(10) << c.n_rejected
-           << std::setw(18) << pm(c.advance_m, 2) << std::setw(18) << pm(c.transfer_m, 2)
-           << std::setw(18) << pm(c.condition_set_time_s, 2) << "\n";
-  }
+           << std::setw(9) << c.planned << std::setw(5) << c.ok << std::setw(9) << c.aborted
+           << std::setw(10) << c.rejected << std::setw(18) << pm(c.advance_m, 2) << std::setw(18)
+           << pm(c.transfer_m, 2) << std::setw(18) << pm(c.condition_set_time_s, 2) << "\n";
   return 0;
 }
 
@@ -491,13 +430,12 @@ int validate(const std::vector<std::string>& rest, Io& io) {
   } catch (const std::invalid_argument& e) {
     throw UsageError(std::string("--vehicle: ") + e.what());
   }
-  mission::MissionConfig c;
-  try {
-    c = mission::parse_mission_config(read_file(path, io.in), max_speed);
-  } catch (const mission::MissionConfigError& e) {
-    print_config_errors(e, path, io);
+  const auto checked = app::validate_mission(read_file(path, io.in), max_speed);
+  if (!checked) {
+    print_config_errors(checked.error(), path, io);
     return 1;
   }
+  const mission::MissionConfig& c = *checked;
   io.out << path << ": mission '" << c.name << "' is valid";
   if (c.kind == mission::MissionKind::turns)
     io.out << " (" << mission::plan_turns(c).size() << " turns)";

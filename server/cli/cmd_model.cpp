@@ -7,18 +7,17 @@
 #include <set>
 #include <sstream>
 
-#include "kinematics/angles.hpp"
-#include "kinematics/ckt.hpp"
+#include "app/compare.hpp"
+#include "app/context.hpp"
+#include "app/models.hpp"
+#include "app/predict.hpp"
 #include "kinematics/prediction_comparison.hpp"
 #include "kinematics/yaw_identification.hpp"
-#include "kinematics/yaw_model_json.hpp"
-#include "mission/helm_mode.hpp"
-#include "server/analysis.hpp"
+#include "server/cli/app_error.hpp"
 #include "server/cli/args.hpp"
 #include "server/cli/commands.hpp"
 #include "server/cli/db_selection.hpp"
-#include "server/cli/sim_options.hpp"
-#include "store/store.hpp"
+#include "server/serialize.hpp"
 
 namespace avk::server {
 
@@ -26,12 +25,6 @@ namespace {
 
 namespace kin = avk::kinematics;
 using nlohmann::json;
-
-std::string fixed(double v, int decimals) {
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(decimals) << v;
-  return s.str();
-}
 
 kin::IdentificationOptions identification_options(const Args& a) {
   kin::IdentificationOptions o;
@@ -65,12 +58,12 @@ kin::ResampleOptions resample_options(const Args& a) {
 int model_fit(const std::vector<std::string>& rest, Io& io) {
   const Args a(rest, {"db", "form", "history", "ridge", "rate", "vehicle"}, {"refine"},
                {"mission"});
-  store::Store db(a.require("db"));
+  app::Context ctx(a.require("db"));
   const auto missions = mission_ids(a);
   if (missions.empty()) throw UsageError("give the training data: --mission ID (repeatable)");
-  const std::string vehicle = vehicle_of(a, db, missions);
-  const FittedModel fitted =
-      fit_and_store_model(db, vehicle, missions, identification_options(a), resample_options(a));
+  const std::string vehicle = vehicle_of(a, ctx.db(), missions);
+  const app::FittedModel fitted = value_or_fail(app::fit_model(
+      ctx, vehicle, missions, identification_options(a), resample_options(a)));
   const auto& r = fitted.result;
   const auto& m = fitted.stored;
   const auto& mo = r.model;
@@ -102,80 +95,73 @@ int model_fit(const std::vector<std::string>& rest, Io& io) {
 
 int model_sweep(const std::vector<std::string>& rest, Io& io) {
   const Args a(rest, {"db", "form", "ridge", "rate", "vehicle", "format"}, {"refine"}, {"mission"});
-  store::Store db(a.require("db"));
+  app::Context ctx(a.require("db"));
   const auto missions = mission_ids(a);
   if (missions.empty()) throw UsageError("give the data: --mission ID (repeatable)");
-  vehicle_of(a, db, missions);
-  const auto data = identification_data(db, missions, resample_options(a));
-  const auto rows =
-      kin::sweep_history(data, identification_options(a), {2, 4, 6, 8, 10, 12, 14, 16, 18, 20});
-  const bool csv = a.get("format").value_or("table") == "csv";
-  io.out << (csv ? "history_s,history_samples,train_one_step_rms_deg,validation_mse_m2,"
-                   "validation_heading_rms_deg,validation_turns\n"
-                 : "history_s  samples  one-step RMS deg  validation MSE m^2  heading RMS deg  "
-                   "turns\n");
-  for (const auto& r : rows) {
-    if (csv) {
-      io.out << num(r.history_s) << ',' << r.history << ',' << num(r.train_one_step_rms_deg) << ','
-             << num(r.validation.position_mse_m2) << ',' << num(r.validation.heading_rms_deg) << ','
-             << r.validation.windows << '\n';
-    } else {
-      io.out << std::setw(9) << fixed(r.history_s, 1) << std::setw(9) << r.history << std::setw(18)
-             << fixed(r.train_one_step_rms_deg, 3) << std::setw(20)
-             << fixed(r.validation.position_mse_m2, 3) << std::setw(17)
-             << fixed(r.validation.heading_rms_deg, 2) << std::setw(7) << r.validation.windows
-             << "\n";
-    }
+  const std::string vehicle = vehicle_of(a, ctx.db(), missions);
+  const std::string format = a.get("format").value_or("table");
+  if (format != "table" && format != "csv" && format != "json")
+    throw UsageError("--format must be table, csv or json");
+  const auto rows = value_or_fail(app::sweep_model_history(
+      ctx, vehicle, missions, identification_options(a), resample_options(a)));
+  if (format == "csv") {
+    io.out << sweep_csv(rows);
+    return 0;
   }
+  if (format == "json") {
+    io.out << sweep_json(rows).dump(2) << "\n";
+    return 0;
+  }
+  io.out << "history_s  samples  one-step RMS deg  validation MSE m^2  heading RMS deg  turns\n";
+  for (const auto& r : rows)
+    io.out << std::setw(9) << fixed(r.history_s, 1) << std::setw(9) << r.history << std::setw(18)
+           << fixed(r.train_one_step_rms_deg, 3) << std::setw(20)
+           << fixed(r.validation.position_mse_m2, 3) << std::setw(17)
+           << fixed(r.validation.heading_rms_deg, 2) << std::setw(7) << r.validation.windows
+           << "\n";
   return 0;
 }
 
 int model_list(const std::vector<std::string>& rest, Io& io) {
   const Args a(rest, {"db", "vehicle"});
-  store::Store db(a.require("db"));
+  app::Context ctx(a.require("db"));
   json out = json::array();
-  for (const auto& m : db.list_models(a.get("vehicle"))) {
-    json j = model_json(m);
-    j.erase("error_coeffs");
-    j.erase("heading_coeffs");
-    out.push_back(std::move(j));
-  }
+  for (const auto& m : app::list_models(ctx, a.get("vehicle")))
+    out.push_back(model_json(m, false));
   io.out << out.dump(2) << "\n";
   return 0;
 }
 
-store::StoredModel pick_model(store::Store& db, const Args& a, const std::string& vehicle) {
-  if (const auto id = a.number("model")) {
-    if (*id < 1 || std::floor(*id) != *id) throw UsageError("--model needs a model id");
-    const auto m = db.get_model(static_cast<std::int64_t>(*id));
-    if (!m) throw std::runtime_error("no model " + num(*id));
-    return *m;
-  }
-  const auto m = db.latest_model(vehicle);
-  if (!m) throw std::runtime_error("no model of " + vehicle + " is stored: run avk model fit");
-  return *m;
+std::optional<std::int64_t> model_option(const Args& a) {
+  const auto id = a.number("model");
+  if (!id) return std::nullopt;
+  if (*id < 1 || std::floor(*id) != *id) throw UsageError("--model needs a model id");
+  return static_cast<std::int64_t>(*id);
 }
 
 int model_show(const std::vector<std::string>& rest, Io& io) {
   const Args a(rest, {"db", "model"});
-  store::Store db(a.require("db"));
-  if (!a.get("model")) throw UsageError("give --model ID");
-  io.out << model_json(pick_model(db, a, "")).dump(2) << "\n";
+  app::Context ctx(a.require("db"));
+  const auto id = model_option(a);
+  if (!id) throw UsageError("give --model ID");
+  io.out << model_json(value_or_fail(app::get_model(ctx, *id))).dump(2) << "\n";
   return 0;
 }
 
 int compare(const std::vector<std::string>& rest, Io& io) {
   const Args a(rest, {"db", "model", "vehicle", "format", "threshold"}, {"no-model"}, {"mission"});
-  store::Store db(a.require("db"));
+  app::Context ctx(a.require("db"));
   const std::string format = a.get("format").value_or("table");
   if (format != "table" && format != "csv" && format != "json")
     throw UsageError("--format must be table, csv or json");
-  const double threshold = a.number("threshold").value_or(5.0);
-  const auto missions = mission_ids(a);
-  const std::string vehicle = vehicle_of(a, db, missions);
-  std::optional<store::StoredModel> chosen;
-  if (!a.flag("no-model")) chosen = pick_model(db, a, vehicle);
-  const Comparison comparison = compare_from_store(db, vehicle, missions, chosen, threshold);
+  app::CompareQuery q;
+  q.completion_threshold_deg = a.number("threshold").value_or(5.0);
+  q.missions = mission_ids(a);
+  q.vehicle_id = vehicle_of(a, ctx.db(), q.missions);
+  q.model_id = model_option(a);
+  q.without_model = a.flag("no-model");
+  const std::string& vehicle = q.vehicle_id;
+  const app::Comparison comparison = value_or_fail(app::compare(ctx, q));
   const auto& cells = comparison.cells;
   const auto& model = comparison.model;
   if (format == "json") {
@@ -230,62 +216,31 @@ int predict(const std::vector<std::string>& rest, Io& io) {
                {"db", "speed", "dheading", "method", "model", "x", "y", "heading", "format",
                 "vehicle", "threshold"},
                {"speed-model"});
-  store::Store db(a.require("db"));
+  app::Context ctx(a.require("db"));
+  app::PredictQuery q;
   const auto speed = a.number("speed");
   const auto dheading = a.number("dheading");
   if (!speed || !(*speed > 0.0)) throw UsageError("--speed (m/s, > 0) is required");
   if (!dheading || !(std::abs(*dheading) > 0.0 && std::abs(*dheading) <= 180.0))
     throw UsageError("--dheading (deg, in [-180, 0) or (0, 180]) is required");
+  q.speed_mps = *speed;
+  q.dheading_deg = *dheading;
   const std::string method = a.get("method").value_or("avk");
+  const auto m = app::prediction_method_from_string(method);
+  if (!m) throw UsageError("--method must be avk, model or instantaneous, got '" + method + "'");
+  q.method = *m;
   const auto x = a.number("x"), y = a.number("y"), heading = a.number("heading");
-  const bool placed = x || y || heading;
-  if (placed && !(x && y && heading))
+  if ((x || y || heading) && !(x && y && heading))
     throw UsageError("a pose needs all of --x, --y and --heading");
+  if (x) q.pose = kin::Pose{*x, *y, *heading};
   const std::string format = a.get("format").value_or("json");
   if (format != "json" && format != "csv") throw UsageError("--format must be json or csv");
-  const std::string vehicle = vehicle_of(a, db, {});
-  kin::Polyline line;  // normalised, already reflected for a left turn
-  json extra;
-  if (method == "avk") {
-    const auto snap = db.latest_ckt_snapshot();
-    const kin::Ckt table =
-        snap ? snap->table : kin::Ckt::build(db.load_normalized_turns({}, vehicle));
-    const auto p = table.query(*speed, *dheading);
-    line = p.trajectory;
-    extra = {{"advance_m", p.advance_m},
-             {"transfer_m", p.transfer_m},
-             {"exact_cell", p.exact_cell},
-             {"extrapolated", p.extrapolated}};
-  } else if (method == "model") {
-    const auto m = pick_model(db, a, vehicle);
-    if (a.flag("speed-model") && !m.model.speed)
-      throw std::runtime_error("model " + std::to_string(m.id) + " has no speed model");
-    line = model_turn(m.model, *speed, *dheading, a.number("threshold").value_or(5.0),
-                      a.flag("speed-model"));
-    extra = {{"model_id", m.id}, {"speed_model", a.flag("speed-model")}};
-  } else if (method == "instantaneous") {
-    line = instantaneous_turn_ray(*speed, *dheading);
-  } else {
-    throw UsageError("--method must be avk, model or instantaneous, got '" + method + "'");
-  }
-  if (placed) line = kin::place_normalized(line, {*x, *y, *heading}, kin::TurnSide::right);
-  if (format == "csv") {
-    io.out << "vertex_index,x_m,y_m\n";
-    for (std::size_t i = 0; i < line.size(); ++i)
-      io.out << i << ',' << num(line[i].x_m) << ',' << num(line[i].y_m) << '\n';
-    return 0;
-  }
-  json j = {{"method", method},
-            {"vehicle_id", vehicle},
-            {"speed_mps", *speed},
-            {"dheading_deg", *dheading},
-            {"frame", placed ? "world" : "normalized"}};
-  if (!extra.is_null()) j.update(extra);
-  json pts = json::array();
-  for (const auto& p : line)
-    pts.push_back({p.x_m, p.y_m});
-  j["trajectory"] = std::move(pts);
-  io.out << j.dump() << "\n";
+  q.model_id = model_option(a);
+  q.use_speed_model = a.flag("speed-model");
+  q.completion_threshold_deg = a.number("threshold").value_or(5.0);
+  q.vehicle_id = vehicle_of(a, ctx.db(), {});
+  const app::Prediction p = value_or_fail(app::predict(ctx, q));
+  io.out << (format == "csv" ? trajectory_csv(p.trajectory) : prediction_json(p).dump() + "\n");
   return 0;
 }
 

@@ -127,7 +127,7 @@ bool is_unspecified(const std::string& address) {
   return address == "0.0.0.0" || address == "::" || address == "[::]";
 }
 
-std::string vehicle_id(const VehicleLoopOptions& v) {
+std::string vehicle_id(const app::VehicleLoopOptions& v) {
   return v.m200 ? v.m200->config.id : v.setup.vehicle.id;
 }
 
@@ -183,7 +183,7 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
 
   const double clock = store::Store(db_path).station_clock_end_s();
   if (a.flag("sim")) {
-    VehicleLoopOptions v;
+    app::VehicleLoopOptions v;
     v.setup = sim_setup_from(a, io);
     v.setup.vehicle.id = "sim-" + v.setup.vehicle.kind;
     v.realtime_factor = factor;
@@ -191,7 +191,7 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
     v.start_clock_s = clock + 1.0;
     so.vehicle = v;
   } else if (m200) {
-    VehicleLoopOptions v;
+    app::VehicleLoopOptions v;
     v.m200 = std::move(m200);
     v.realtime_factor = factor;
     v.start_clock_s = clock + 1.0;

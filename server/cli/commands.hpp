@@ -1,6 +1,7 @@
 #pragma once
 // The avk subcommands. Each takes the words after its name and returns the process exit code:
-// 0 success, 1 a failure of the input (bad file, out of range), 2 a usage error.
+// 0 success, 1 a failure of the input (bad file, out of range, nothing stored to answer with),
+// 2 a usage error, 3 a fault of the station (a corrupt database).
 
 #include <iosfwd>
 #include <string>
@@ -24,8 +25,5 @@ int cmd_predict(const std::vector<std::string>& args, Io& io);
 int cmd_import(const std::vector<std::string>& args, Io& io);
 int cmd_serve(const std::vector<std::string>& args, Io& io);
 int cmd_frontseat_emulator(const std::vector<std::string>& args, Io& io);
-
-// Current UTC time as ISO 8601 (seconds).
-std::string utc_now_iso8601();
 
 }  // namespace avk::server

@@ -7,7 +7,7 @@
 
 #include "server/cli/args.hpp"
 #include "server/cli/commands.hpp"
-#include "server/number_text.hpp"
+#include "server/serialize.hpp"
 #include "sim/sim_config.hpp"
 
 namespace avk::server {

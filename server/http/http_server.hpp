@@ -22,10 +22,8 @@ struct HttpServerOptions {
   int threads = 2;
   std::optional<std::string> web_root;  // static files; none: only the API
   std::size_t header_limit = 8 * 1024;  // larger -> 431 and close
-  std::size_t body_limit = 1 << 20;     // larger -> 413 and close
-  // Exact decoded paths that may carry a larger (or smaller) body than body_limit. The Api's
-  // admit() has the last word (Station gives the CKT import its 64 MB there).
-  std::map<std::string, std::size_t> body_limit_by_path;
+  // Larger -> 413 and close. The Api may give a route another limit (Api::admit).
+  std::size_t body_limit = 1 << 20;
   // A client that has not sent a complete header by then is disconnected (slowloris).
   std::chrono::milliseconds header_timeout{10000};
   // Header and body together, from the request's first byte: a body trickled in at one byte

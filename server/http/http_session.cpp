@@ -93,12 +93,6 @@ void HttpSession::expires_within(std::chrono::milliseconds limit) {
   stream_.expires_at(std::min(now + limit, request_deadline_));
 }
 
-std::size_t HttpSession::body_limit_for(const std::string& path) const {
-  const auto& options = state_->options();
-  const auto it = options.body_limit_by_path.find(path);
-  return it == options.body_limit_by_path.end() ? options.body_limit : it->second;
-}
-
 void HttpSession::start_request() {
   if (state_->stopping()) return close_now();
   phase_ = Phase::reading;
@@ -179,10 +173,12 @@ std::optional<http::message_generator> HttpSession::check_header() {
                   "this server does not answer to Host " + quoted_excerpt(host) +
                       " (start it with --allow-host NAME to add a name)");
   }
+  // No route has such a path; quoting it in the answer could not be done in JSON either.
   if (!is_valid_utf8(path))
-    return refuse(http::status::bad_request, "the path is not valid UTF-8 once decoded", true);
+    return refuse(http::status::not_found, "no resource at this path (not valid UTF-8 once decoded)",
+                  true);
 
-  std::size_t limit = body_limit_for(path);
+  std::size_t limit = state_->options().body_limit;
   if (path.starts_with(kApiPrefix) && path != kStreamPath) {
     std::map<std::string, std::string> query;
     std::multimap<std::string, std::string> multi;

@@ -65,8 +65,6 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   void on_linger(beast::error_code ec, std::size_t bytes);
   void close_now();
 
-  std::size_t body_limit_for(const std::string& path) const;
-
   beast::tcp_stream stream_;
   beast::flat_buffer buffer_;
   std::optional<http::request_parser<http::string_body>> parser_;

@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "server/http/http_session.hpp"
+#include "server/http/problem.hpp"
 #include "server/http/responses.hpp"
 #include "server/http/server_state.hpp"
 

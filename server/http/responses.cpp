@@ -1,17 +1,8 @@
 #include "server/http/responses.hpp"
 
-#include <nlohmann/json.hpp>
+#include "server/http/problem.hpp"
 
 namespace avk::server {
-
-std::string problem_json(unsigned status, std::string_view detail) {
-  const auto reason = http::obsolete_reason(http::int_to_status(status));
-  return nlohmann::json{{"type", "about:blank"},
-                        {"title", std::string(reason.data(), reason.size())},
-                        {"status", status},
-                        {"detail", std::string(detail)}}
-      .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-}
 
 http::response<http::string_body> problem_response(http::status status, std::string_view detail,
                                                    unsigned version, bool keep_alive) {
@@ -19,7 +10,7 @@ http::response<http::string_body> problem_response(http::status status, std::str
   set_common_headers(res);
   res.set(http::field::content_type, "application/problem+json");
   res.keep_alive(keep_alive);
-  res.body() = problem_json(static_cast<unsigned>(status), detail);
+  res.body() = problem_json(static_cast<int>(status), detail);
   res.prepare_payload();
   return res;
 }

@@ -1,6 +1,6 @@
 #pragma once
-// Responses the transport makes itself (errors, static files): RFC 9457 problem+json, the same
-// shape the API handlers use, so a client parses one error format.
+// Responses the transport makes itself (errors, static files), in Beast's types: the error body
+// is server/http/problem.hpp's, as for the API's own errors, so a client parses one format.
 
 #include <string>
 #include <string_view>
@@ -8,8 +8,6 @@
 #include "server/http/beast.hpp"
 
 namespace avk::server {
-
-std::string problem_json(unsigned status, std::string_view detail);
 
 http::response<http::string_body> problem_response(http::status status, std::string_view detail,
                                                    unsigned version, bool keep_alive);

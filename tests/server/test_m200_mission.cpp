@@ -22,8 +22,8 @@
 #include "mission/mission_config.hpp"
 #include "mission/mission_runner.hpp"
 #include "server/cli/files.hpp"
-#include "server/mission_plans.hpp"
-#include "server/mission_recorder.hpp"
+#include "app/mission_plans.hpp"
+#include "app/mission_recorder.hpp"
 #include "server/station.hpp"
 #include "server/stream_hub.hpp"
 #include "sim/frontseat_emulator.hpp"
@@ -102,7 +102,7 @@ vehicle::M200Config backseat() {
 
 sim::FrontseatEmulatorOptions emulator_options(std::uint64_t seed) {
   const auto config = mission::parse_mission_config(mission_text(), 1.7);
-  const kinematics::Pose start = server::start_pose(config);
+  const kinematics::Pose start = app::start_pose(config);
   sim::FrontseatEmulatorOptions o;
   o.port = 0;
   o.realtime_factor = kFactor;
@@ -144,11 +144,11 @@ DriverRun run_through_emulator(
   vehicle::ScaledClock clock(kFactor, 0.0);
   vehicle::M200 m200(driver_options(emulator), clock);
   EXPECT_TRUE(m200.wait_for_nav(std::chrono::seconds(5)));
-  server::MissionPlan plan =
-      server::create_mission_plan(db, mission_text_over_the_link(), m200.info());
+  app::MissionPlan plan =
+      app::create_mission_plan(db, mission_text_over_the_link(), m200.info());
   DriverRun out;
   {
-    server::MissionRecorder recorder(db, plan.mission_id);
+    app::MissionRecorder recorder(db, plan.mission_id);
     mission::MissionRunner runner(plan.config, m200, plan.tasks, {});
     runner.add_observer(recorder);
     runner.add_observer(out.turns);
@@ -186,7 +186,7 @@ std::map<Cell, CellTurns> in_process_runs(int seeds) {
     so.setup.scheduler.random_phases = true;
     so.setup.scheduler.jitter_fraction = 0.05;
     const auto config = mission::parse_mission_config(mission_text(), 1.7);
-    so.start = server::start_pose(config);
+    so.start = app::start_pose(config);
     sim::SimMission sim(so);
     Collector c;
     mission::MissionRunner runner(config, sim.vehicle(), mission::plan_turns(config), {});
@@ -440,7 +440,7 @@ TEST(M200Mission, TheStationServesAnM200AndRunsAMissionOnIt) {
   so.db_path = db_file.path();
   so.token = "m200-test-token-0000";
   so.server_version = "test";
-  server::VehicleLoopOptions v;
+  app::VehicleLoopOptions v;
   v.m200 = driver_options(emulator);
   v.realtime_factor = kFactor;
   so.vehicle = v;

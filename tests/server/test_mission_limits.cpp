@@ -7,7 +7,7 @@
 #include <string>
 
 #include "mission/mission_config.hpp"
-#include "server/mission_plans.hpp"
+#include "app/mission_plans.hpp"
 #include "server/station.hpp"
 #include "sim/sim_config.hpp"
 #include "store/store.hpp"
@@ -48,12 +48,12 @@ TEST(MissionLimitsStore, AMissionTooLargeToPlanLeavesNoRowBehind) {
   avk::testing::TempDb path{"avk_mission_limits"};
   avk::store::Store db(path.path());
   const avk::vehicle::VehicleInfo info{"sim-usim", "usim", 2.0, std::nullopt};
-  EXPECT_THROW(avk::server::create_mission_plan(db, oversized_mission(), info),
+  EXPECT_THROW(avk::app::create_mission_plan(db, oversized_mission(), info),
                avk::mission::MissionConfigError);
   EXPECT_TRUE(db.list_missions().empty());
   // A mission within the limits is stored with its plan.
   const auto plan =
-      avk::server::create_mission_plan(db, mission({0.5, 1.0}, {40, 100}, 2).dump(), info);
+      avk::app::create_mission_plan(db, mission({0.5, 1.0}, {40, 100}, 2).dump(), info);
   EXPECT_EQ(plan.tasks.size(), 8u);
   EXPECT_EQ(db.list_missions().size(), 1u);
 }
@@ -65,7 +65,7 @@ class MissionLimitsApi : public ::testing::Test {
     o.db_path = db_.path();
     o.token = kToken;
     o.server_version = "test";
-    avk::server::VehicleLoopOptions v;
+    avk::app::VehicleLoopOptions v;
     v.setup = avk::sim::default_sim_setup("usim");
     v.setup.vehicle.id = "sim-usim";
     v.realtime_factor = 50.0;

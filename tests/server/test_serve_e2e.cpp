@@ -54,7 +54,7 @@ TEST(ServeE2E, MissionOverRestFollowedOverTheStreamAndEveryTurnIsServed) {
   so.db_path = db.path();
   so.token = kToken;
   so.server_version = "e2e";
-  avk::server::VehicleLoopOptions v;
+  avk::app::VehicleLoopOptions v;
   v.setup = avk::sim::default_sim_setup("usim");
   v.setup.vehicle.id = "sim-usim";
   v.realtime_factor = 100.0;

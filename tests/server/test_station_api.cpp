@@ -72,7 +72,7 @@ class StationApi : public ::testing::Test {
     o.db_path = db_.path();
     o.token = kToken;
     o.server_version = "test";
-    avk::server::VehicleLoopOptions v;
+    avk::app::VehicleLoopOptions v;
     v.setup = avk::sim::default_sim_setup("usim");
     v.setup.vehicle.id = "sim-usim";
     v.realtime_factor = realtime_factor;

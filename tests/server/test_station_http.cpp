@@ -175,24 +175,44 @@ TEST_F(StationHttpTest, TheBearerSchemeIsCaseInsensitive) {
 }
 
 // Issue 13, defect 6: HEAD on the API answered Content-Length: 0.
-TEST_F(StationHttpTest, HeadGivesTheGetsContentLengthAndNoBody) {
-  const auto get = send_and_read(port, request("GET", "/api/v1/health"));
-  ASSERT_EQ(status_of(get), 200);
-  const auto head_then_get =
-      send_and_read(port, "HEAD /api/v1/health HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n" +
-                              request("GET", "/api/v1/health"));
-  ASSERT_EQ(status_of(head_then_get), 200);
-  EXPECT_EQ(header_value(head_then_get, "Content-Length"), std::to_string(body_of(get).size()));
-  // The GET's response follows the HEAD's header at once: no body in between.
-  const auto second = body_of(head_then_get);
-  EXPECT_TRUE(second.starts_with("HTTP/1.1 200")) << head_then_get;
-  EXPECT_EQ(body_of(second), body_of(get));
+TEST_F(StationHttpTest, HeadGivesTheGetsHeadersAndNoBody) {
+  for (const std::string path :
+       {"/api/v1/health", "/api/v1/vehicles", "/api/v1/missions", "/api/v1/missions?format=csv",
+        "/api/v1/turns", "/api/v1/vehicles/sim-usim", "/api/v1/vehicles/nobody/ckt",
+        "/api/v1/models/12345"}) {
+    const auto get = send_and_read(port, request("GET", path));
+    const auto head_then_get =
+        send_and_read(port, "HEAD " + path + " HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n" +
+                                request("GET", path));
+    EXPECT_EQ(status_of(head_then_get), status_of(get)) << path;
+    EXPECT_EQ(header_value(head_then_get, "Content-Type"), header_value(get, "Content-Type"))
+        << path;
+    EXPECT_EQ(header_value(head_then_get, "Content-Length"), std::to_string(body_of(get).size()))
+        << path;
+    EXPECT_NE(header_value(head_then_get, "Content-Length"), "0") << path;
+    // The GET's response follows the HEAD's header at once: no body in between.
+    const auto second = body_of(head_then_get);
+    EXPECT_TRUE(second.starts_with("HTTP/1.1 ")) << head_then_get;
+    EXPECT_EQ(status_of(second), status_of(get)) << path;
+  }
 }
 
 // Issue 13, defect 5: invalid UTF-8 in a path or query was a 500 with nlohmann's text.
-TEST_F(StationHttpTest, InvalidUtf8IsA400NamingTheParameter) {
+TEST_F(StationHttpTest, InvalidUtf8InAPathIs404) {
+  for (const std::string target :
+       {"/api/v1/%ff", "/api/v1/vehicles/%ff%fe", "/api/v1/vehicles/%c0%af/ckt",
+        "/api/v1/missions/%ed%a0%80"}) {
+    const auto raw = send_and_read(port, request("GET", target));
+    EXPECT_EQ(status_of(raw), 404) << target << "\n" << raw;
+    EXPECT_EQ(header_value(raw, "Content-Type"), "application/problem+json") << target;
+    const auto problem = json::parse(body_of(raw), nullptr, false);
+    ASSERT_TRUE(problem.is_object()) << raw;
+    EXPECT_EQ(problem["status"], 404) << raw;
+  }
+}
+
+TEST_F(StationHttpTest, InvalidUtf8InAQueryIsA400NamingTheParameter) {
   for (const auto& [target, named] : std::vector<std::pair<std::string, std::string>>{
-           {"/api/v1/%ff", "path"},
            {"/api/v1/turns?limit=%ff", "'limit'"},
            {"/api/v1/vehicles/sim-usim/predict?speed=%ff&dheading=40", "'speed'"}}) {
     const auto raw = send_and_read(port, request("GET", target));

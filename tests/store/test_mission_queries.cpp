@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "kinematics/ckt.hpp"
+#include "kinematics/ckt_file.hpp"
 #include "kinematics/turn_json.hpp"
 #include "store/store.hpp"
 #include "support/synthetic_turns.hpp"
@@ -74,13 +76,14 @@ void expect_mean_sd(const std::optional<avk::kinematics::MeanSd>& got, double me
 TEST(MissionQueries, SchemaIsVersionFive) {
   Store s(":memory:");
   EXPECT_EQ(schema_version(), 5);
-  EXPECT_EQ(s.user_version(), 5);
+  EXPECT_EQ(s.user_version(), 6);
   EXPECT_FALSE(migration_step_sql(0).empty());
   EXPECT_NE(migration_step_sql(1).find("normalized_samples"), std::string_view::npos);
   EXPECT_NE(migration_step_sql(2).find("yaw_models"), std::string_view::npos);
   EXPECT_NE(migration_step_sql(3).find("turns_by_vehicle_status"), std::string_view::npos);
   EXPECT_NE(migration_step_sql(4).find("nav_by_mission"), std::string_view::npos);
-  EXPECT_THROW(migration_step_sql(5), std::out_of_range);
+  EXPECT_NE(migration_step_sql(5).find("ckt_snapshots_by_vehicle"), std::string_view::npos);
+  EXPECT_THROW(migration_step_sql(6), std::out_of_range);
   EXPECT_THROW(migration_step_sql(-1), std::out_of_range);
 }
 
@@ -477,9 +480,18 @@ TEST(MissionQueries, MigratesSchemaOneDatabase) {
       ins.run();
       ins.reset();
     }
+    // A table imported before snapshots knew their vehicle: the migration reads it from the file.
+    avk::kinematics::Ckt table = avk::kinematics::Ckt::build({ok_turn});
+    table.vehicle_id = "usim-1";
+    c.prepare("INSERT INTO ckt_snapshots (id, mission_ids, document) VALUES (3, '[7]', ?)")
+        .bind(1, avk::kinematics::ckt_to_json_string(table))
+        .run();
   }
   Store s(db.path());
   EXPECT_EQ(s.user_version(), schema_version());
+  ASSERT_TRUE(s.latest_ckt_snapshot("usim-1"));
+  EXPECT_EQ(s.latest_ckt_snapshot("usim-1")->id, 3);
+  EXPECT_FALSE(s.latest_ckt_snapshot("other"));
   EXPECT_TRUE(s.integrity_check());
   const auto mission = s.get_mission(7);
   ASSERT_TRUE(mission);

@@ -55,7 +55,7 @@ TEST(Store, MigrationCreatesSchemaAndVersion) {
   const auto m = make_mission(s);
   EXPECT_TRUE(s.list_turns({}).empty());
   EXPECT_TRUE(s.nav_for_mission(m).empty());
-  EXPECT_FALSE(s.latest_ckt_snapshot().has_value());
+  EXPECT_FALSE(s.latest_ckt_snapshot("").has_value());
 }
 
 TEST(Store, FileDatabaseUsesWal) {
@@ -316,7 +316,7 @@ TEST(Store, CktSnapshotRoundTrip) {
   const auto table = avk::kinematics::Ckt::build(turns);
   s.save_ckt_snapshot(avk::kinematics::Ckt{}, {});
   const auto id = s.save_ckt_snapshot(table, {m, m + 7});
-  const auto snap = s.latest_ckt_snapshot();
+  const auto snap = s.latest_ckt_snapshot("");
   ASSERT_TRUE(snap);
   EXPECT_EQ(snap->id, id);
   EXPECT_EQ(snap->mission_ids, (std::vector<std::int64_t>{m, m + 7}));
@@ -333,4 +333,22 @@ TEST(Store, IntegrityCheckPasses) {
   s.store_turn(m, arc(1.0, 90.0), TurnStatus::ok, "");
   s.append_nav(m, nav_rows(100));
   EXPECT_TRUE(s.integrity_check());
+}
+
+// Each vehicle's newest table answers for that vehicle only, whichever was imported last.
+TEST(Store, CktSnapshotIsTheVehiclesOwn) {
+  Store s(":memory:");
+  avk::kinematics::Ckt a = avk::kinematics::Ckt::build(avk::testing::thesis_grid_turns(1, 0.25, 0.02));
+  avk::kinematics::Ckt b = a;
+  a.vehicle_id = "alpha";
+  b.vehicle_id = "bravo";
+  const auto a1 = s.save_ckt_snapshot(a, {});
+  const auto b1 = s.save_ckt_snapshot(b, {});
+  EXPECT_EQ(s.latest_ckt_snapshot("alpha")->id, a1);
+  EXPECT_EQ(s.latest_ckt_snapshot("alpha")->table.vehicle_id, "alpha");
+  EXPECT_EQ(s.latest_ckt_snapshot("bravo")->id, b1);
+  EXPECT_FALSE(s.latest_ckt_snapshot("charlie").has_value());
+  const auto a2 = s.save_ckt_snapshot(a, {});
+  EXPECT_EQ(s.latest_ckt_snapshot("alpha")->id, a2);
+  EXPECT_EQ(s.latest_ckt_snapshot("bravo")->id, b1);
 }

@@ -2,7 +2,7 @@
 // The station's vehicle, always running (at rest under all stop when no mission runs): the
 // simulator paced to the wall clock x a factor, or an M200 over its frontseat link on a clock at
 // the same factor. Missions attach to it; the helm ticks the attached mission,
-// a 10 Hz telemetry tick publishes nav and helm to the stream. Operator commands from other
+// a 10 Hz telemetry tick tells the live feed where the vehicle is. Operator commands from other
 // threads are queued and applied at the next helm tick, on the loop's own thread.
 
 #include <atomic>
@@ -11,45 +11,20 @@
 #include <functional>
 #include <memory>
 #include <mutex>
-#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "mission/mission_runner.hpp"
-#include "server/mission_plans.hpp"
-#include "server/stream_hub.hpp"
+#include "app/mission_plans.hpp"
+#include "app/live_feed.hpp"
+#include "app/vehicle_snapshot.hpp"
 #include "sim/sim_config.hpp"
 #include "vehicle/m200.hpp"
 #include "vehicle/vehicle.hpp"
 
-namespace avk::server {
-
-struct VehicleSnapshot {
-  vehicle::VehicleInfo info;
-  vehicle::LinkState link = vehicle::LinkState::disconnected;
-  std::optional<vehicle::NavSample> nav;
-  std::optional<double> desired_heading_deg;
-  std::optional<double> desired_speed_mps;
-  std::string helm_mode = "IDLE";
-  std::optional<std::int64_t> mission_id;
-  double t_s = 0.0;
-  std::optional<vehicle::M200Status> m200;  // link counters and battery of a real vehicle
-};
-
-// A real vehicle's frontseat link as the API and the live stream show it (docs/api.md):
-// connected, failsafe, battery_v, sentences, bad_lines, last_error, pydir_sent, failsafe_stops,
-// disconnects, last_link_error.
-nlohmann::json frontseat_json(const vehicle::M200Status& s);
-
-struct MissionLive {
-  std::int64_t mission_id = 0;
-  std::string state;  // running, paused, ...
-  std::string helm_mode;
-  std::vector<mission::CellProgress> cells;
-  std::optional<double> condition_set_time_s;  // the last turn's
-};
+namespace avk::app {
 
 struct VehicleLoopOptions {
   sim::SimSetup setup;  // the simulated vehicle, and the helm rate for either kind
@@ -63,7 +38,7 @@ struct VehicleLoopOptions {
 
 class VehicleLoop {
  public:
-  VehicleLoop(VehicleLoopOptions options, std::string db_path, StreamHub& hub);
+  VehicleLoop(VehicleLoopOptions options, std::string db_path, LiveFeed& feed);
   ~VehicleLoop();
 
   void start();
@@ -91,4 +66,4 @@ class VehicleLoop {
   vehicle::VehicleInfo info_;
 };
 
-}  // namespace avk::server
+}  // namespace avk::app

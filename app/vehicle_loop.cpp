@@ -1,18 +1,16 @@
-#include "server/vehicle_loop.hpp"
+#include "app/vehicle_loop.hpp"
 
 #include <unistd.h>
 
 #include <condition_variable>
 #include <map>
-#include <nlohmann/json.hpp>
 
-#include "server/mission_recorder.hpp"
-#include "server/stream_publisher.hpp"
+#include "app/mission_recorder.hpp"
 #include "sim/scheduler.hpp"
 #include "sim/sim_vehicle.hpp"
 #include "store/store.hpp"
 
-namespace avk::server {
+namespace avk::app {
 
 namespace {
 
@@ -32,25 +30,7 @@ sim::SchedulerOptions scheduler_options(const VehicleLoopOptions& o) {
   return s;
 }
 
-std::string optional_number(const std::optional<double>& v) {
-  return v ? nlohmann::json(*v).dump() : "null";
-}
-
 }  // namespace
-
-nlohmann::json frontseat_json(const vehicle::M200Status& s) {
-  const auto& c = s.counters;
-  return {{"connected", s.connected},
-          {"failsafe", vehicle::to_string(s.failsafe)},
-          {"battery_v", s.battery ? nlohmann::json(s.battery->stack_v) : nlohmann::json()},
-          {"sentences", c.sentences},
-          {"bad_lines", c.errors},
-          {"last_error", c.last_error},
-          {"pydir_sent", c.pydir_sent},
-          {"failsafe_stops", c.failsafe_stops},
-          {"disconnects", c.disconnects},
-          {"last_link_error", s.last_link_error}};
-}
 
 // Paces the loop's scheduler to the M200's clock, so helm ticks and navigation share one time.
 class ClockPacer final : public sim::Pacer {
@@ -65,7 +45,7 @@ class ClockPacer final : public sim::Pacer {
 struct VehicleLoop::Impl {
   VehicleLoopOptions options;
   std::string db_path;
-  StreamHub& hub;
+  LiveFeed& feed;
   sim::Scheduler scheduler;
   std::unique_ptr<sim::SimVehicle> sim_vehicle;
   std::unique_ptr<vehicle::ScaledClock> clock;
@@ -89,7 +69,7 @@ struct VehicleLoop::Impl {
     std::int64_t id;
     std::unique_ptr<mission::MissionRunner> runner;
     std::unique_ptr<MissionRecorder> recorder;
-    std::unique_ptr<StreamPublisher> publisher;
+    std::unique_ptr<mission::MissionObserver> follower;
   };
   std::optional<Running> running;
   bool idle_stopped = false;
@@ -108,10 +88,10 @@ struct VehicleLoop::Impl {
   };
   HelmSync helm_sync{*this};
 
-  Impl(VehicleLoopOptions o, std::string path, StreamHub& h)
+  Impl(VehicleLoopOptions o, std::string path, LiveFeed& f)
       : options(std::move(o)),
         db_path(std::move(path)),
-        hub(h),
+        feed(f),
         scheduler(scheduler_options(options)) {
     if (options.m200) {
       clock =
@@ -165,14 +145,14 @@ struct VehicleLoop::Impl {
     r.runner = std::make_unique<mission::MissionRunner>(plan.config, vehicle(), plan.tasks, ro);
     r.runner->add_observer(helm_sync);  // first: see HelmSync
     r.recorder = std::make_unique<MissionRecorder>(*store, plan.mission_id);
-    r.publisher = std::make_unique<StreamPublisher>(hub, plan.mission_id, *r.runner);
+    r.follower = feed.follow(plan.mission_id, *r.runner);
     r.runner->add_observer(*r.recorder);
-    r.runner->add_observer(*r.publisher);
+    r.runner->add_observer(*r.follower);
     store->set_mission_runner(plan.mission_id, static_cast<std::int64_t>(::getpid()));
     idle_stopped = false;
     running = std::move(r);
-    hub.status(now, "mission_attached", "info",
-               "mission " + std::to_string(plan.mission_id) + " started with " +
+    feed.station_event(now, "mission_attached",
+                       "mission " + std::to_string(plan.mission_id) + " started with " +
                    std::to_string(plan.tasks.size()) + " turns to do");
   }
 
@@ -180,8 +160,8 @@ struct VehicleLoop::Impl {
     running->recorder->flush();
     store->set_mission_runner(running->id, std::nullopt);
     update_live();
-    hub.status(
-        now, "mission_detached", "info",
+    feed.station_event(
+        now, "mission_detached",
         "mission " + std::to_string(running->id) + " " +
             (running->runner->state() ? mission::to_string(*running->runner->state()) : "ended"));
     running.reset();
@@ -196,8 +176,8 @@ struct VehicleLoop::Impl {
     const mission::MissionRunner& r = *running->runner;
     MissionLive l;
     l.mission_id = running->id;
-    l.state = r.state() ? mission::to_string(*r.state()) : "created";
-    l.helm_mode = mission::to_string(r.mode());
+    l.state = r.state();
+    l.helm_mode = r.mode();
     l.cells = r.cells();
     std::lock_guard lock(mutex);
     snapshot.helm_mode = l.helm_mode;
@@ -215,29 +195,12 @@ struct VehicleLoop::Impl {
     if (m200) s.m200 = m200->status();
     s.t_s = now;
     if (running) {
-      s.helm_mode = mission::to_string(running->runner->mode());
+      s.helm_mode = running->runner->mode();
       s.desired_heading_deg = running->runner->desired_heading_deg();
       s.desired_speed_mps = running->runner->desired_speed_mps();
       s.mission_id = running->id;
     }
-    if (s.nav) {
-      hub.publish("nav", now,
-                  R"({"vehicle_id":")" + s.info.id + R"(","link":")" + vehicle::to_string(s.link) +
-                      R"(","t_s":)" + nlohmann::json(s.nav->t_s).dump() + R"(,"x_m":)" +
-                      nlohmann::json(s.nav->x_m).dump() + R"(,"y_m":)" +
-                      nlohmann::json(s.nav->y_m).dump() + R"(,"heading_deg":)" +
-                      nlohmann::json(s.nav->heading_deg).dump() + R"(,"speed_mps":)" +
-                      nlohmann::json(s.nav->speed_mps).dump() +
-                      // A real vehicle's battery and link health ride along with its
-                      // navigation, so an operator sees a sagging pack or a noisy link live.
-                      (s.m200 ? R"(,"frontseat":)" + frontseat_json(*s.m200).dump() : "") + "}");
-    }
-    hub.publish("helm", now,
-                R"({"vehicle_id":")" + s.info.id + R"(","mode":")" + s.helm_mode +
-                    R"(","desired_heading_deg":)" + optional_number(s.desired_heading_deg) +
-                    R"(,"desired_speed_mps":)" + optional_number(s.desired_speed_mps) +
-                    R"(,"mission_id":)" +
-                    (s.mission_id ? std::to_string(*s.mission_id) : std::string("null")) + "}");
+    feed.telemetry(s);
     std::lock_guard lock(mutex);
     snapshot = std::move(s);
   }
@@ -263,8 +226,8 @@ struct VehicleLoop::Impl {
   }
 };
 
-VehicleLoop::VehicleLoop(VehicleLoopOptions options, std::string db_path, StreamHub& hub)
-    : impl_(std::make_unique<Impl>(std::move(options), std::move(db_path), hub)),
+VehicleLoop::VehicleLoop(VehicleLoopOptions options, std::string db_path, LiveFeed& feed)
+    : impl_(std::make_unique<Impl>(std::move(options), std::move(db_path), feed)),
       info_(impl_->vehicle().info()) {
   Impl& i = *impl_;
   i.scheduler.add("helm", i.options.setup.helm_hz, [&i](double now) { i.helm_tick(now); });
@@ -348,4 +311,4 @@ bool VehicleLoop::wait_for_tick(std::chrono::milliseconds timeout) {
   return impl_->ticked.wait_for(lock, timeout, [&] { return impl_->ticks >= target; });
 }
 
-}  // namespace avk::server
+}  // namespace avk::app

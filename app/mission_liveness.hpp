@@ -6,11 +6,11 @@
 
 #include "store/store.hpp"
 
-namespace avk::server {
+namespace avk::app {
 
 bool process_alive(std::int64_t pid);
 store::MissionStatus effective_status(const store::Mission& m);
 // Stores interrupted for every mission stored as running whose process is gone; returns how many.
 int mark_orphaned_missions_interrupted(store::Store& db, double t_s);
 
-}  // namespace avk::server
+}  // namespace avk::app

@@ -9,7 +9,7 @@
 #include "mission/mission_observer.hpp"
 #include "store/store.hpp"
 
-namespace avk::server {
+namespace avk::app {
 
 store::MissionStatus to_store_status(mission::MissionState s);
 
@@ -33,4 +33,4 @@ class MissionRecorder final : public mission::MissionObserver {
   std::vector<store::NavRow> pending_;
 };
 
-}  // namespace avk::server
+}  // namespace avk::app

@@ -1,8 +1,8 @@
-#include "server/mission_recorder.hpp"
+#include "app/mission_recorder.hpp"
 
 #include <exception>
 
-namespace avk::server {
+namespace avk::app {
 
 store::MissionStatus to_store_status(mission::MissionState s) {
   switch (s) {
@@ -66,4 +66,4 @@ void MissionRecorder::on_state(mission::MissionState s, const std::string& reaso
   store_.set_mission_status(mission_id_, to_store_status(s), reason, t_s);
 }
 
-}  // namespace avk::server
+}  // namespace avk::app

@@ -1,12 +1,12 @@
-#include "server/mission_plans.hpp"
+#include "app/mission_plans.hpp"
 
 #include <stdexcept>
 
 #include "kinematics/angles.hpp"
 #include "mission/container.hpp"
-#include "server/mission_liveness.hpp"
+#include "app/mission_liveness.hpp"
 
-namespace avk::server {
+namespace avk::app {
 
 kinematics::Pose start_pose(const mission::MissionConfig& c) {
   const mission::Container container(c.region);
@@ -63,4 +63,4 @@ MissionPlan resume_mission_plan(store::Store& db, std::int64_t mission_id, doubl
   return p;
 }
 
-}  // namespace avk::server
+}  // namespace avk::app

@@ -12,7 +12,7 @@
 #include "store/store.hpp"
 #include "vehicle/vehicle.hpp"
 
-namespace avk::server {
+namespace avk::app {
 
 struct MissionPlan {
   std::int64_t mission_id = 0;
@@ -35,4 +35,4 @@ MissionPlan resume_mission_plan(store::Store& db, std::int64_t mission_id, doubl
 // At rest at the return point, facing the region's interior (the thesis starts dockside).
 kinematics::Pose start_pose(const mission::MissionConfig& c);
 
-}  // namespace avk::server
+}  // namespace avk::app

@@ -10,8 +10,8 @@
 
 #include "mission/mission_config.hpp"
 #include "mission/mission_runner.hpp"
-#include "server/mission_plans.hpp"
-#include "server/mission_recorder.hpp"
+#include "app/mission_plans.hpp"
+#include "app/mission_recorder.hpp"
 #include "sim/scheduler.hpp"
 #include "sim/sim_config.hpp"
 #include "sim/sim_mission.hpp"
@@ -46,9 +46,9 @@ TEST(MissionRecorder, EveryAbortedAndRejectedTurnIsStoredWithItsReason) {
   sim::SimMissionOptions so;
   so.setup = sim::default_sim_setup("usim");
   const auto config = mission::parse_mission_config(kMission, 2.0);
-  so.start = server::start_pose(config);
+  so.start = app::start_pose(config);
   sim::SimMission sim(so);
-  const server::MissionPlan plan = server::create_mission_plan(db, kMission, sim.vehicle().info());
+  const app::MissionPlan plan = app::create_mission_plan(db, kMission, sim.vehicle().info());
 
   mission::RunnerOptions ro;
   ro.vehicle_id = sim.vehicle().info().id;
@@ -58,7 +58,7 @@ TEST(MissionRecorder, EveryAbortedAndRejectedTurnIsStoredWithItsReason) {
   mission::MissionRunner runner(plan.config, sim.vehicle(), plan.tasks, ro);
   Reported reported;
   {
-    server::MissionRecorder recorder(db, plan.mission_id);
+    app::MissionRecorder recorder(db, plan.mission_id);
     runner.add_observer(recorder);
     runner.add_observer(reported);
     sim::FastPacer pacer;

@@ -1,4 +1,4 @@
-#include "server/mission_liveness.hpp"
+#include "app/mission_liveness.hpp"
 
 #include <signal.h>
 
@@ -6,7 +6,7 @@
 #include <fstream>
 #include <string>
 
-namespace avk::server {
+namespace avk::app {
 
 bool process_alive(std::int64_t pid) {
   if (pid <= 0 || (::kill(static_cast<pid_t>(pid), 0) != 0 && errno != EPERM)) return false;
@@ -40,4 +40,4 @@ int mark_orphaned_missions_interrupted(store::Store& db, double t_s) {
   return n;
 }
 
-}  // namespace avk::server
+}  // namespace avk::app

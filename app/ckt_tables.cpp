@@ -1,0 +1,124 @@
+#include "app/ckt_tables.hpp"
+
+#include <chrono>
+#include <string>
+
+#include "app/context.hpp"
+#include "app/utc_time.hpp"
+#include "kinematics/ckt_file.hpp"
+#include "kinematics/number_text.hpp"
+
+namespace avk::app {
+
+namespace kin = avk::kinematics;
+
+const char* to_string(TableSource s) {
+  return s == TableSource::turns ? "turns" : "imported";
+}
+
+TableCache::Entry& TableCache::entry(const std::string& vehicle_id) {
+  std::lock_guard lock(mutex_);
+  auto& e = entries_[vehicle_id];
+  if (!e) e = std::make_unique<Entry>();
+  return *e;
+}
+
+void TableCache::forget(const std::string& vehicle_id) {
+  Entry& e = entry(vehicle_id);
+  std::lock_guard lock(e.mutex);
+  e.value.reset();
+}
+
+Result<VehicleTable> TableCache::get(Context& ctx, const std::string& vehicle_id) {
+  Entry& e = entry(vehicle_id);
+  std::lock_guard lock(e.mutex);
+  const auto now = std::chrono::steady_clock::now();
+  if (e.value && now - e.checked < recheck_) return *e.value;
+  e.checked = now;
+  store::Store& db = ctx.db();
+  const std::int64_t newest = db.newest_ok_turn_id(vehicle_id);
+  // Only a vehicle without turns is answered by an imported table, so only then is it read.
+  std::optional<store::CktSnapshot> snap;
+  if (newest == 0) snap = db.latest_ckt_snapshot(vehicle_id);
+  const std::int64_t snap_id = snap ? snap->id : 0;
+  if (e.value && newest == e.turns_seen && snap_id == e.snapshot_seen) return *e.value;
+  VehicleTable t;
+  t.vehicle_id = vehicle_id;
+  if (newest > 0) {
+    auto built = std::make_shared<kin::Ckt>(kin::Ckt::build(db.load_normalized_turns({}, vehicle_id)));
+    built->vehicle_id = vehicle_id;
+    t.table = std::move(built);
+    t.source = TableSource::turns;
+  } else if (snap) {
+    t.table = std::make_shared<kin::Ckt>(std::move(snap->table));
+    t.source = TableSource::imported;
+    t.snapshot_id = snap->id;
+  } else {
+    return not_found("vehicle '" + vehicle_id + "' has no turns and no imported CKT");
+  }
+  if (t.table->speed_range_mps()) t.fine = std::make_shared<kin::MaterializedCkt>(*t.table);
+  e.turns_seen = newest;
+  e.snapshot_seen = snap_id;
+  e.value = t;
+  return t;
+}
+
+Result<VehicleTable> vehicle_table(Context& ctx, const std::string& vehicle_id) {
+  return ctx.tables().get(ctx, vehicle_id);
+}
+
+Result<kin::CktCell> ckt_cell(Context& ctx, const std::string& vehicle_id, double speed_mps,
+                              double dheading_deg) {
+  auto t = vehicle_table(ctx, vehicle_id);
+  if (!t) return t.error();
+  const auto si = t->table->speed_index(speed_mps);
+  const auto di = t->table->dheading_index(dheading_deg);
+  if (!si || !di)
+    return not_found("no cell at " + kin::number_text(speed_mps) + " m/s, " +
+                     kin::number_text(dheading_deg) + " deg in the table");
+  return t->table->cell(*si, *di);
+}
+
+Result<kin::Ckt> ckt_for_export(Context& ctx, const std::string& vehicle_id) {
+  auto t = vehicle_table(ctx, vehicle_id);
+  if (!t) return t.error();
+  kin::Ckt out = *t->table;
+  out.vehicle_id = vehicle_id;
+  return out;
+}
+
+Result<ImportedTable> import_ckt(Context& ctx, const std::string& vehicle_id,
+                                 const std::string& ckt_file_text) {
+  kin::Ckt t;
+  try {
+    t = kin::parse_ckt_json(ckt_file_text);
+  } catch (const std::exception& e) {
+    return invalid_argument("", std::string("not a CKT file: ") + e.what());
+  }
+  if (t.vehicle_id != vehicle_id)
+    return invalid_argument("/vehicle_id", "the file's table is for vehicle '" + t.vehicle_id +
+                                               "', not '" + vehicle_id + "'");
+  const auto id = ctx.db().save_ckt_snapshot(t, {});
+  ctx.tables().forget(vehicle_id);
+  return ImportedTable{id, vehicle_id};
+}
+
+Result<BuiltTable> build_ckt(Context& ctx, const std::string& vehicle_id,
+                             const std::vector<std::int64_t>& missions,
+                             const kin::CktOptions& options,
+                             std::optional<double> vehicle_length_m) {
+  store::Store& db = ctx.db();
+  for (const auto id : missions)
+    if (!db.get_mission(id)) return not_found("no mission " + std::to_string(id));
+  const auto turns = db.load_normalized_turns(missions, vehicle_id);
+  if (turns.empty()) return not_found("no ok turns of '" + vehicle_id + "' to build from");
+  BuiltTable out;
+  out.table = kin::Ckt::build(turns, options, std::nullopt, &out.report);
+  out.table.vehicle_id = vehicle_id;
+  out.table.vehicle_length_m = vehicle_length_m;
+  out.table.created_utc = utc_now_iso8601();
+  out.snapshot_id = db.save_ckt_snapshot(out.table, missions);
+  return out;
+}
+
+}  // namespace avk::app

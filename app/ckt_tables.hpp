@@ -1,0 +1,87 @@
+#pragma once
+// A vehicle's Cached Kinematics Table as the station answers with it: built from the vehicle's
+// own ok turns, or, when it has none, its latest imported table. One rule for every front end.
+
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/result.hpp"
+#include "kinematics/ckt.hpp"
+
+namespace avk::app {
+
+class Context;
+
+enum class TableSource { turns, imported };
+const char* to_string(TableSource s);
+
+struct VehicleTable {
+  std::string vehicle_id;
+  TableSource source = TableSource::turns;
+  std::optional<std::int64_t> snapshot_id;  // the imported table answering
+  std::shared_ptr<const kinematics::Ckt> table;
+  // The fine table predictions look up; none when the table holds no turn.
+  std::shared_ptr<const kinematics::MaterializedCkt> fine;
+};
+
+// The tables predictions use, rebuilt when a vehicle's turns or imported table change (checked
+// at most every `recheck`, so a prediction is a lookup).
+class TableCache {
+ public:
+  explicit TableCache(std::chrono::milliseconds recheck = std::chrono::seconds(1))
+      : recheck_(recheck) {}
+  Result<VehicleTable> get(Context& ctx, const std::string& vehicle_id);
+  void forget(const std::string& vehicle_id);
+
+ private:
+  struct Entry {
+    std::mutex mutex;
+    std::chrono::steady_clock::time_point checked{};
+    std::int64_t turns_seen = -1;
+    std::int64_t snapshot_seen = -1;
+    std::optional<VehicleTable> value;
+  };
+  Entry& entry(const std::string& vehicle_id);
+  std::chrono::milliseconds recheck_;
+  std::mutex mutex_;
+  std::map<std::string, std::unique_ptr<Entry>> entries_;
+};
+
+// The vehicle's table (not_found when it has no turns and no imported table).
+Result<VehicleTable> vehicle_table(Context& ctx, const std::string& vehicle_id);
+
+// One cell of the vehicle's table at a grid speed and |heading change| (not_found off the grid).
+Result<kinematics::CktCell> ckt_cell(Context& ctx, const std::string& vehicle_id, double speed_mps,
+                                     double dheading_deg);
+
+// The table to hand out as a CKT file: the vehicle's table, named after it.
+Result<kinematics::Ckt> ckt_for_export(Context& ctx, const std::string& vehicle_id);
+
+// Parses a CKT file and stores it as the vehicle's imported table. invalid_argument naming
+// "body" when the file is not a CKT file or is another vehicle's; nothing is stored then.
+struct ImportedTable {
+  std::int64_t snapshot_id = 0;
+  std::string vehicle_id;
+};
+Result<ImportedTable> import_ckt(Context& ctx, const std::string& vehicle_id,
+                                 const std::string& ckt_file_text);
+
+// Builds a table from the stored ok turns of the missions (empty: all) of one vehicle and keeps
+// it as a snapshot with the missions it came from: the record of which table guidance was given.
+struct BuiltTable {
+  kinematics::Ckt table;
+  kinematics::CktBuildReport report;
+  std::int64_t snapshot_id = 0;
+};
+Result<BuiltTable> build_ckt(Context& ctx, const std::string& vehicle_id,
+                             const std::vector<std::int64_t>& missions,
+                             const kinematics::CktOptions& options,
+                             std::optional<double> vehicle_length_m = std::nullopt);
+
+}  // namespace avk::app

@@ -1,0 +1,255 @@
+#include "app/missions.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+#include "app/context.hpp"
+#include "app/mission_liveness.hpp"
+#include "app/mission_plans.hpp"
+#include "app/mission_recorder.hpp"
+#include "mission/turn_plan.hpp"
+
+namespace avk::app {
+
+namespace {
+
+// How long a control request waits for the helm to apply it: the report then shows its effect.
+constexpr std::chrono::milliseconds kCommandWait{2000};
+
+Error config_error(const mission::MissionConfigError& e) {
+  Error out = invalid_argument("", "the mission is not valid");
+  for (const auto& f : e.errors())
+    out.fields.push_back({f.field, f.message});
+  return out;
+}
+
+TurnTotals totals_of(const std::vector<store::CellStats>& stats) {
+  TurnTotals t;
+  for (const auto& c : stats) {
+    t.ok += c.n_ok;
+    t.aborted += c.n_aborted;
+    t.rejected += c.n_rejected;
+  }
+  return t;
+}
+
+// Planned cells of the mission's turn array, in plan order, with their repeat counts. An imported
+// log has no turn array: none.
+std::vector<CellReport> planned_cells(const store::Mission& m) {
+  std::vector<CellReport> planned;
+  mission::MissionConfig config;
+  try {
+    // Stored missions were validated against their vehicle when they started; the speed bound
+    // is not re-checked here, so a report never fails on a vehicle that has changed since.
+    config = mission::parse_mission_config(m.config_json, 1e9);
+  } catch (const std::exception&) {
+    return planned;
+  }
+  if (config.kind != mission::MissionKind::turns) return planned;
+  for (const auto& t : mission::plan_turns(config)) {
+    auto it = std::find_if(planned.begin(), planned.end(), [&](const CellReport& c) {
+      return mission::same_cell(c.speed_mps, c.dheading_deg, t.speed_mps, t.dheading_deg);
+    });
+    if (it == planned.end()) {
+      CellReport c;
+      c.speed_mps = t.speed_mps;
+      c.dheading_deg = t.dheading_deg;
+      it = planned.insert(planned.end(), c);
+    }
+    ++it->planned;
+  }
+  return planned;
+}
+
+CellReport* find_cell(std::vector<CellReport>& cells, double speed_mps, double dheading_deg) {
+  for (auto& c : cells)
+    if (mission::same_cell(c.speed_mps, c.dheading_deg, speed_mps, dheading_deg)) return &c;
+  return nullptr;
+}
+
+MissionSummary summary_of(store::Store& db, store::Mission m) {
+  MissionSummary s;
+  s.status = effective_status(m);
+  s.turns = totals_of(db.mission_cell_stats(m.id));
+  s.mission = std::move(m);
+  return s;
+}
+
+}  // namespace
+
+Result<mission::MissionConfig> validate_mission(const std::string& config_text,
+                                                double max_speed_mps) {
+  try {
+    return mission::parse_mission_config(config_text, max_speed_mps);
+  } catch (const mission::MissionConfigError& e) {
+    return config_error(e);
+  }
+}
+
+std::vector<CellReport> cell_reports(const std::vector<mission::CellProgress>& cells) {
+  std::vector<CellReport> out;
+  out.reserve(cells.size());
+  for (const auto& p : cells) {
+    CellReport c;
+    c.speed_mps = p.speed_mps;
+    c.dheading_deg = p.dheading_deg;
+    c.planned = p.planned;
+    c.ok = p.ok;
+    c.aborted = p.aborted;
+    c.rejected = p.rejected;
+    c.given_up = p.given_up;
+    c.running = p.running;
+    out.push_back(c);
+  }
+  return out;
+}
+
+std::string status_text(const MissionReport& r) {
+  if (r.live) return r.live_state ? mission::to_string(*r.live_state) : "created";
+  return store::to_string(r.summary.status);
+}
+
+std::vector<MissionSummary> list_missions(Context& ctx,
+                                          const std::optional<std::string>& vehicle_id) {
+  store::Store& db = ctx.db();
+  std::vector<MissionSummary> out;
+  for (auto& m : db.list_missions())
+    if (!vehicle_id || m.vehicle_id == *vehicle_id) out.push_back(summary_of(db, std::move(m)));
+  return out;
+}
+
+Result<MissionReport> mission_report(Context& ctx, std::int64_t mission_id) {
+  store::Store& db = ctx.db();
+  auto m = db.get_mission(mission_id);
+  if (!m) return not_found("no mission " + std::to_string(mission_id));
+  MissionReport r;
+  const auto stats = db.mission_cell_stats(mission_id);
+  VehicleLoop* loop = ctx.vehicle_loop();
+  const auto live = loop ? loop->live(mission_id) : std::nullopt;
+  if (live && loop->attached_mission() == mission_id) {
+    // State, helm and cells from one live snapshot: the store may be a step ahead or behind.
+    r.live = true;
+    r.live_state = live->state;
+    r.helm_mode = live->helm_mode;
+    r.cells = cell_reports(live->cells);
+  } else {
+    r.cells = planned_cells(*m);
+  }
+  for (const auto& s : stats) {
+    CellReport* c = find_cell(r.cells, s.speed_mps, s.dheading_deg);
+    if (!c) {
+      CellReport extra;
+      extra.speed_mps = s.speed_mps;
+      extra.dheading_deg = s.dheading_deg;
+      r.cells.push_back(extra);
+      c = &r.cells.back();
+    }
+    if (!r.live) {
+      c->ok = s.n_ok;
+      c->aborted = s.n_aborted;
+      c->rejected = s.n_rejected;
+    }
+    c->advance_m = s.advance_m;
+    c->transfer_m = s.transfer_m;
+    c->condition_set_time_s = s.condition_set_time_s;
+  }
+  std::vector<double> set;
+  for (const auto& cs : db.condition_sets(mission_id)) {
+    ++r.condition_set_episodes[cs.outcome];
+    if (cs.outcome == "set") set.push_back(cs.duration_s());
+  }
+  r.condition_set_count = set.size();
+  if (!set.empty()) r.condition_set_time_s = kinematics::mean_sd(set);
+  if (m->started_s && m->ended_s) r.duration_s = *m->ended_s - *m->started_s;
+  r.summary = summary_of(db, std::move(*m));
+  return r;
+}
+
+Result<std::int64_t> start_mission(Context& ctx, const std::string& vehicle_id,
+                                   const std::string& config_text) {
+  VehicleLoop* loop = ctx.vehicle_loop();
+  if (!loop || loop->info().id != vehicle_id)
+    return conflict("vehicle '" + vehicle_id + "' is not connected to this station");
+  if (const auto busy = loop->attached_mission())
+    return conflict("mission " + std::to_string(*busy) + " is running", *busy);
+  MissionPlan plan;
+  try {
+    plan = create_mission_plan(ctx.db(), config_text, loop->info());
+  } catch (const mission::MissionConfigError& e) {
+    return config_error(e);
+  }
+  const std::int64_t id = plan.mission_id;
+  if (!loop->attach(std::move(plan))) {
+    ctx.db().set_mission_status(id, store::MissionStatus::aborted, "another mission started first",
+                                0.0);
+    return conflict("another mission is running");
+  }
+  return id;
+}
+
+const char* to_string(MissionCommand c) {
+  switch (c) {
+    case MissionCommand::pause:
+      return "pause";
+    case MissionCommand::resume:
+      return "resume";
+    case MissionCommand::abort:
+      return "abort";
+  }
+  return "pause";
+}
+
+Result<MissionReport> command_mission(Context& ctx, std::int64_t mission_id, MissionCommand c) {
+  store::Store& db = ctx.db();
+  const auto m = db.get_mission(mission_id);
+  if (!m) return not_found("no mission " + std::to_string(mission_id));
+  VehicleLoop* loop = ctx.vehicle_loop();
+  if (loop && loop->attached_mission() == mission_id) {
+    const auto command = c == MissionCommand::pause    ? VehicleLoop::Command::pause
+                         : c == MissionCommand::resume ? VehicleLoop::Command::resume
+                                                       : VehicleLoop::Command::abort;
+    loop->command(mission_id, command);
+    loop->wait_for_tick(kCommandWait);
+    return mission_report(ctx, mission_id);
+  }
+  if (c != MissionCommand::resume)
+    return conflict("mission " + std::to_string(mission_id) + " is not running (" +
+                    store::to_string(effective_status(*m)) + ")");
+  if (!loop || loop->info().id != m->vehicle_id)
+    return conflict("vehicle '" + m->vehicle_id + "' is not connected to this station");
+  if (const auto busy = loop->attached_mission())
+    return conflict("mission " + std::to_string(*busy) + " is running", *busy);
+  MissionPlan plan;
+  try {
+    plan = resume_mission_plan(db, mission_id, loop->info().max_speed_mps);
+  } catch (const std::exception& e) {
+    return conflict(e.what());
+  }
+  if (!loop->attach(std::move(plan))) return conflict("another mission is running");
+  loop->wait_for_tick(kCommandWait);
+  return mission_report(ctx, mission_id);
+}
+
+Result<Page<store::MissionEvent>> mission_events(Context& ctx, std::int64_t mission_id,
+                                                 std::int64_t after, int limit) {
+  if (limit < 1) return invalid_argument("limit", "must be at least 1");
+  if (!ctx.db().get_mission(mission_id))
+    return not_found("no mission " + std::to_string(mission_id));
+  Page<store::MissionEvent> page;
+  page.items = ctx.db().list_events(mission_id, after, limit);
+  if (static_cast<int>(page.items.size()) == limit) page.next = page.items.back().id;
+  return page;
+}
+
+Result<Page<store::NavPageRow>> mission_track(Context& ctx, std::int64_t mission_id,
+                                              std::int64_t after, int limit) {
+  if (limit < 1) return invalid_argument("limit", "must be at least 1");
+  if (!ctx.db().get_mission(mission_id))
+    return not_found("no mission " + std::to_string(mission_id));
+  Page<store::NavPageRow> page;
+  page.items = ctx.db().nav_page(mission_id, after, limit);
+  if (static_cast<int>(page.items.size()) == limit) page.next = page.items.back().rowid;
+  return page;
+}
+
+}  // namespace avk::app

@@ -1,0 +1,100 @@
+#pragma once
+// Collection missions as the station runs and reports them: validate, start on the station's
+// vehicle, pause/resume/abort, list, the report (planned cells merged with what is stored or
+// live), the event log and the recorded track.
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/result.hpp"
+#include "kinematics/ckt.hpp"
+#include "mission/helm_mode.hpp"
+#include "mission/mission_config.hpp"
+#include "mission/mission_observer.hpp"
+#include "mission/mission_runner.hpp"
+#include "store/store.hpp"
+
+namespace avk::app {
+
+class Context;
+
+// Every problem of a mission document at once (invalid_argument with Error::fields).
+Result<mission::MissionConfig> validate_mission(const std::string& config_text,
+                                                double max_speed_mps);
+
+// Stores the mission and hands it to the station's vehicle; the mission id. conflict when the
+// vehicle is not this station's or another mission runs.
+Result<std::int64_t> start_mission(Context& ctx, const std::string& vehicle_id,
+                                   const std::string& config_text);
+
+struct TurnTotals {
+  std::int64_t ok = 0, aborted = 0, rejected = 0;
+};
+
+// One turn-array cell of a mission: what was planned, how its turns went, their statistics.
+struct CellReport {
+  double speed_mps = 0.0;
+  double dheading_deg = 0.0;  // |goal|
+  int planned = 0;            // 0: not in the turn array (an imported log's turns)
+  std::int64_t ok = 0, aborted = 0, rejected = 0;
+  int given_up = 0;      // live only: cells whose turns failed too often
+  bool running = false;  // live only: the cell of the turn under way
+  std::optional<kinematics::MeanSd> advance_m;  // over ok turns
+  std::optional<kinematics::MeanSd> transfer_m;
+  std::optional<kinematics::MeanSd> condition_set_time_s;
+};
+
+// A mission's cells as its runner sees them now (the live stream's progress).
+std::vector<CellReport> cell_reports(const std::vector<mission::CellProgress>& cells);
+
+struct MissionSummary {
+  store::Mission mission;
+  store::MissionStatus status;  // a mission stored as running whose process died: interrupted
+  TurnTotals turns;
+};
+
+struct MissionReport {
+  MissionSummary summary;
+  // Attached to the station's vehicle now: state and helm from the same live moment.
+  bool live = false;
+  std::optional<mission::MissionState> live_state;  // live, none until it starts
+  std::optional<mission::HelmMode> helm_mode;       // live only
+  std::vector<CellReport> cells;
+  std::optional<double> duration_s;  // mission clock, start to end
+  // ConditionSet episodes by outcome ("set", "timeout", "interrupted"), and the time to set.
+  std::map<std::string, int> condition_set_episodes;
+  std::optional<kinematics::MeanSd> condition_set_time_s;
+  std::size_t condition_set_count = 0;
+};
+
+// The status a front end shows: the live state while the mission runs, else the stored one.
+std::string status_text(const MissionReport& r);
+
+std::vector<MissionSummary> list_missions(Context& ctx,
+                                          const std::optional<std::string>& vehicle_id);
+Result<MissionReport> mission_report(Context& ctx, std::int64_t mission_id);
+
+enum class MissionCommand { pause, resume, abort };
+const char* to_string(MissionCommand c);
+// Applies the command to the running mission, or resumes a stored one on the station's vehicle;
+// the report after the command took effect. conflict when it cannot apply now.
+Result<MissionReport> command_mission(Context& ctx, std::int64_t mission_id, MissionCommand c);
+
+// Keyset pages: items after the cursor, oldest first; next is the cursor of the next page (none
+// when this one is the last).
+template <class T>
+struct Page {
+  std::vector<T> items;
+  std::optional<std::int64_t> next;
+};
+Result<Page<store::MissionEvent>> mission_events(Context& ctx, std::int64_t mission_id,
+                                                 std::int64_t after, int limit);
+// The recorded navigation; the cursor is the row id, so rows recorded while a client pages are
+// appended after it and nothing is skipped or repeated.
+Result<Page<store::NavPageRow>> mission_track(Context& ctx, std::int64_t mission_id,
+                                              std::int64_t after, int limit);
+
+}  // namespace avk::app

@@ -1,0 +1,119 @@
+#include "app/predict.hpp"
+
+#include <cmath>
+
+#include "app/ckt_tables.hpp"
+#include "app/context.hpp"
+#include "kinematics/ckt.hpp"
+#include "kinematics/yaw_model.hpp"
+
+namespace avk::app {
+
+namespace kin = avk::kinematics;
+
+const char* to_string(PredictionMethod m) {
+  switch (m) {
+    case PredictionMethod::avk:
+      return "avk";
+    case PredictionMethod::model:
+      return "model";
+    case PredictionMethod::instantaneous:
+      return "instantaneous";
+  }
+  return "avk";
+}
+
+std::optional<PredictionMethod> prediction_method_from_string(const std::string& s) {
+  for (const auto m :
+       {PredictionMethod::avk, PredictionMethod::model, PredictionMethod::instantaneous})
+    if (s == to_string(m)) return m;
+  return std::nullopt;
+}
+
+kin::Polyline instantaneous_turn_ray(double speed_mps, double dheading_deg) {
+  // Drawn for 20 s of travel on the new heading.
+  const kin::Point d = kin::rotate_by_heading({0.0, 1.0}, dheading_deg);
+  return {{0.0, 0.0}, {d.x_m * speed_mps * 20.0, d.y_m * speed_mps * 20.0}};
+}
+
+namespace {
+
+std::optional<Error> check(const PredictQuery& q) {
+  if (!std::isfinite(q.speed_mps) || !(q.speed_mps > 0.0))
+    return invalid_argument("speed", "must be a positive speed (m/s)");
+  if (!std::isfinite(q.dheading_deg) || q.dheading_deg == 0.0 || std::abs(q.dheading_deg) > 180.0)
+    return invalid_argument("dheading", "must be in [-180, 0) or (0, 180] degrees");
+  if (q.pose && !(std::isfinite(q.pose->x_m) && std::isfinite(q.pose->y_m) &&
+                  std::isfinite(q.pose->heading_deg)))
+    return invalid_argument("x", "a pose needs finite x, y and heading");
+  return std::nullopt;
+}
+
+Result<Prediction> finish(Prediction p) {
+  if (p.query.pose)
+    p.trajectory = kin::place_normalized(p.trajectory, *p.query.pose, kin::TurnSide::right);
+  return p;
+}
+
+Result<Prediction> from_table(Prediction p, const kin::TurnPrediction& t) {
+  p.trajectory = t.trajectory;
+  p.advance_m = t.advance_m;
+  p.transfer_m = t.transfer_m;
+  return finish(std::move(p));
+}
+
+}  // namespace
+
+Result<Prediction> predict_with_table(const kin::Ckt& table, const PredictQuery& q) {
+  if (auto e = check(q)) return *e;
+  Prediction p;
+  p.query = q;
+  try {
+    return from_table(std::move(p), table.query(q.speed_mps, q.dheading_deg));
+  } catch (const kin::CktRangeError& e) {
+    return invalid_argument("speed", e.what());
+  }
+}
+
+Result<Prediction> predict(Context& ctx, const PredictQuery& q) {
+  if (auto e = check(q)) return *e;
+  Prediction p;
+  p.query = q;
+  switch (q.method) {
+    case PredictionMethod::avk: {
+      auto t = vehicle_table(ctx, q.vehicle_id);
+      if (!t) return t.error();
+      p.table_source = to_string(t->source);
+      p.snapshot_id = t->snapshot_id;
+      if (!t->fine) return invalid_argument("speed", "the table holds no turn to predict from");
+      try {
+        // The fine table: the answer guidance gets in its hot path, so every front end gets it.
+        return from_table(std::move(p), t->fine->query(q.speed_mps, q.dheading_deg));
+      } catch (const kin::CktRangeError& e) {
+        return invalid_argument("speed", e.what());
+      }
+    }
+    case PredictionMethod::model: {
+      store::Store& db = ctx.db();
+      const auto m = q.model_id ? db.get_model(*q.model_id) : db.latest_model(q.vehicle_id);
+      if (!m)
+        return not_found(q.model_id ? "no model " + std::to_string(*q.model_id)
+                                    : "no model of '" + q.vehicle_id + "' is stored");
+      if (q.use_speed_model && !m->model.speed)
+        return invalid_argument("speed_model",
+                                "model " + std::to_string(m->id) + " has no speed model");
+      p.model_id = m->id;
+      p.trajectory = kin::predict_normalized_turn(m->model, q.speed_mps, std::abs(q.dheading_deg),
+                                                  q.completion_threshold_deg, 0.0, 400,
+                                                  q.use_speed_model);
+      if (q.dheading_deg < 0.0) p.trajectory = kin::reflect_x(std::move(p.trajectory));
+      return finish(std::move(p));
+    }
+    case PredictionMethod::instantaneous:
+      p.trajectory = instantaneous_turn_ray(q.speed_mps, q.dheading_deg);
+      return finish(std::move(p));
+  }
+  return internal_error("unknown prediction method");
+}
+
+}  // namespace avk::app

@@ -1,0 +1,55 @@
+#pragma once
+// One predicted turn, as guidance asks for it: by the vehicle's CKT (AVK), its black-box yaw
+// model, or the instantaneous-turn assumption, in the normalised frame or placed at a pose.
+// Every front end answers through here, so the same database and question give one trajectory.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "app/result.hpp"
+#include "kinematics/ckt.hpp"
+#include "kinematics/geometry.hpp"
+
+namespace avk::app {
+
+class Context;
+
+enum class PredictionMethod { avk, model, instantaneous };
+const char* to_string(PredictionMethod m);
+std::optional<PredictionMethod> prediction_method_from_string(const std::string& s);
+
+struct PredictQuery {
+  std::string vehicle_id;
+  double speed_mps = 0.0;
+  double dheading_deg = 0.0;  // + right, - left
+  PredictionMethod method = PredictionMethod::avk;
+  std::optional<std::int64_t> model_id;  // model: this one; none: the vehicle's latest
+  bool use_speed_model = false;          // model: let the model's speed response slow the turn
+  double completion_threshold_deg = 5.0;  // model: the turn ends this close to the goal
+  std::optional<kinematics::Pose> pose;   // where the turn starts; none: the normalised frame
+};
+
+struct Prediction {
+  PredictQuery query;
+  kinematics::Polyline trajectory;  // reflected for a left turn; placed when a pose was given
+  // avk: the table's expected advance and transfer at the end of the turn.
+  std::optional<double> advance_m;
+  std::optional<double> transfer_m;
+  std::optional<std::int64_t> model_id;      // model: the model that answered
+  std::optional<std::int64_t> snapshot_id;   // avk: the imported table that answered, if one did
+  std::optional<std::string> table_source;   // avk: "turns" or "imported"
+};
+
+// invalid_argument names the parameter (speed, dheading, model, speed_model); not_found when the
+// vehicle has no table (avk) or the model does not exist (model).
+Result<Prediction> predict(Context& ctx, const PredictQuery& q);
+
+// The prediction of a given table (a CKT file), interpolated exactly: `avk ckt query`.
+Result<Prediction> predict_with_table(const kinematics::Ckt& table, const PredictQuery& q);
+
+// The instantaneous-turn assumption in the CKT's frame (from the origin heading north): on the
+// new heading at once, drawn for 20 s of travel.
+kinematics::Polyline instantaneous_turn_ray(double speed_mps, double dheading_deg);
+
+}  // namespace avk::app

@@ -1,0 +1,36 @@
+#pragma once
+// The station's vehicle as a moment's picture, and a running mission's live progress.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "mission/helm_mode.hpp"
+#include "mission/mission_runner.hpp"
+#include "vehicle/m200.hpp"
+#include "vehicle/vehicle.hpp"
+
+namespace avk::app {
+
+struct VehicleSnapshot {
+  vehicle::VehicleInfo info;
+  vehicle::LinkState link = vehicle::LinkState::disconnected;
+  std::optional<vehicle::NavSample> nav;
+  std::optional<double> desired_heading_deg;
+  std::optional<double> desired_speed_mps;
+  // None: no mission drives the helm (the vehicle is held at all stop).
+  std::optional<mission::HelmMode> helm_mode;
+  std::optional<std::int64_t> mission_id;
+  double t_s = 0.0;
+  std::optional<vehicle::M200Status> m200;  // link counters and battery of a real vehicle
+};
+
+struct MissionLive {
+  std::int64_t mission_id = 0;
+  std::optional<mission::MissionState> state;  // none: attached, not started yet
+  mission::HelmMode helm_mode{};
+  std::vector<mission::CellProgress> cells;
+};
+
+}  // namespace avk::app

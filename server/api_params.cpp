@@ -1,0 +1,108 @@
+#include "server/api_params.hpp"
+
+#include <cctype>
+#include <cmath>
+#include <sstream>
+
+#include "server/serialize.hpp"
+
+namespace avk::server {
+
+RequestError bad_parameter(const std::string& name, const std::string& why) {
+  return RequestError(400, "parameter '" + name + "': " + why, {{"parameter", name}});
+}
+
+std::optional<double> number_param(const ApiRequest& r, const std::string& name, double min,
+                                   double max) {
+  const auto it = r.query.find(name);
+  if (it == r.query.end()) return std::nullopt;
+  const std::string& v = it->second;
+  if (v.empty()) throw bad_parameter(name, "empty");
+  std::size_t used = 0;
+  double d = 0.0;
+  try {
+    d = std::stod(v, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != v.size()) throw bad_parameter(name, "not a number: '" + v + "'");
+  if (!std::isfinite(d)) throw bad_parameter(name, "must be finite");
+  if (d < min || d > max)
+    throw bad_parameter(name, "must be in [" + num(min) + ", " + num(max) + "], got " + v);
+  return d;
+}
+
+double required_number(const ApiRequest& r, const std::string& name, double min, double max) {
+  const auto v = number_param(r, name, min, max);
+  if (!v) throw bad_parameter(name, "missing");
+  return *v;
+}
+
+std::optional<std::int64_t> whole_param(const ApiRequest& r, const std::string& name,
+                                        std::int64_t min, std::int64_t max) {
+  const auto v =
+      number_param(r, name, static_cast<double>(min), static_cast<double>(max));
+  if (!v) return std::nullopt;
+  if (std::floor(*v) != *v) throw bad_parameter(name, "must be a whole number");
+  return static_cast<std::int64_t>(*v);
+}
+
+std::optional<std::int64_t> id_param(const ApiRequest& r, const std::string& name) {
+  return whole_param(r, name, 0, 9'000'000'000'000'000);
+}
+
+std::int64_t path_id(const PathParams& p, const std::string& key, const std::string& what) {
+  const std::string& segment = p.at(key);
+  std::size_t used = 0;
+  long long id = 0;
+  try {
+    id = std::stoll(segment, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != segment.size() || id <= 0)
+    throw RequestError(404, "no " + what + " '" + segment + "'");
+  return id;
+}
+
+namespace {
+
+std::string media_type(const std::string& header) {
+  std::string t;
+  for (char c : header.substr(0, header.find(';')))
+    if (c != ' ') t += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return t;
+}
+
+}  // namespace
+
+Format negotiate(const ApiRequest& r, bool csv_available) {
+  if (const auto it = r.query.find("format"); it != r.query.end()) {
+    if (it->second == "json") return Format::json;
+    if (it->second == "csv" && csv_available) return Format::csv;
+    throw bad_parameter("format", csv_available ? "must be json or csv" : "must be json");
+  }
+  if (r.accept.empty()) return Format::json;
+  bool json_ok = false, csv_ok = false;
+  std::stringstream s(r.accept);
+  std::string item;
+  while (std::getline(s, item, ',')) {
+    const std::string t = media_type(item);
+    if (t == "*/*" || t == "application/*" || t == "application/json" ||
+        t == "application/problem+json")
+      json_ok = true;
+    if (t == "text/csv" || t == "text/*") csv_ok = true;
+  }
+  if (csv_ok && csv_available && !json_ok) return Format::csv;
+  if (json_ok) return Format::json;
+  if (csv_ok && csv_available) return Format::csv;
+  throw RequestError(406, std::string("this resource is available as application/json") +
+                              (csv_available ? " and text/csv" : ""));
+}
+
+void require_media_type(const ApiRequest& r, const std::string& type, const std::string& what) {
+  if (media_type(r.content_type) != type)
+    throw RequestError(415, what + " (" + type + ")");
+}
+
+}  // namespace avk::server

@@ -1,0 +1,35 @@
+#pragma once
+// Reading an API request's parameters: numbers and ids from the query and the path, the format a
+// client accepts, the body's media type. Each throws RequestError (400, 404, 406, 415) naming
+// what is wrong.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "server/api_types.hpp"
+#include "server/http/router.hpp"
+
+namespace avk::server {
+
+std::optional<double> number_param(const ApiRequest& r, const std::string& name, double min,
+                                   double max);
+double required_number(const ApiRequest& r, const std::string& name, double min, double max);
+// A whole number in [min, max].
+std::optional<std::int64_t> whole_param(const ApiRequest& r, const std::string& name,
+                                        std::int64_t min, std::int64_t max);
+std::optional<std::int64_t> id_param(const ApiRequest& r, const std::string& name);
+// A record id in the path: 404 naming `what` unless a positive whole number.
+std::int64_t path_id(const PathParams& p, const std::string& key, const std::string& what);
+
+enum class Format { json, csv };
+// ?format= wins; otherwise Accept. Anything the resource cannot produce is 406 (400 for a bad
+// ?format=).
+Format negotiate(const ApiRequest& r, bool csv_available);
+
+// 415 unless the body is sent as the media type (parameters such as charset are ignored).
+void require_media_type(const ApiRequest& r, const std::string& type, const std::string& what);
+
+RequestError bad_parameter(const std::string& name, const std::string& why);
+
+}  // namespace avk::server

@@ -1,0 +1,74 @@
+#pragma once
+// The API's route table: method + path pattern -> handler, each route declaring who may call it
+// and how large its body may be. Answers what no handler should: 404 for no route, 405 with
+// Allow, 401 without the token, HEAD as the route's GET (the transport drops the body and keeps
+// its Content-Length), a request error thrown by a handler as problem+json.
+
+#include <cstddef>
+#include <functional>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "server/api_types.hpp"
+
+namespace avk::server {
+
+// read: open on this machine (loopback), the token from anywhere else. control: the token
+// always, for anything that changes the station or commands the boat.
+enum class Access { read, control };
+
+using PathParams = std::map<std::string, std::string>;
+using RouteHandler = std::function<ApiResponse(const ApiRequest&, const PathParams&)>;
+
+struct Route {
+  std::string method;   // "GET" (answers HEAD too) or "POST"
+  std::string pattern;  // "/api/v1/vehicles/{vid}/ckt/import": {name} matches one segment
+  Access access = Access::read;
+  std::optional<std::size_t> body_limit_bytes;  // none: the transport's default
+  RouteHandler handler;
+};
+
+// What a handler throws for a request it cannot take (a bad parameter, an unacceptable format);
+// the router answers it as problem+json with this status.
+class RequestError : public std::runtime_error {
+ public:
+  RequestError(int status, const std::string& detail,
+               nlohmann::json extra = nlohmann::json::object())
+      : std::runtime_error(detail), status_(status), extra_(std::move(extra)) {}
+  int status() const { return status_; }
+  const nlohmann::json& extra() const { return extra_; }
+
+ private:
+  int status_;
+  nlohmann::json extra_;
+};
+
+class Router : public Api {
+ public:
+  explicit Router(std::string token) : token_(std::move(token)) {}
+  void add(Route route);
+  const std::vector<Route>& routes() const { return routes_; }
+
+  ApiResponse handle(const ApiRequest& request) override;
+  bool may_open_stream(const ApiRequest& request) override;
+  Admission admit(const ApiRequest& head) override;
+
+ private:
+  struct Match {
+    const Route* route = nullptr;
+    PathParams params;
+    std::string allow;  // methods of the routes whose pattern matched, for a 405
+  };
+  Match match(const ApiRequest& request) const;
+  bool authorised(const ApiRequest& request, Access access) const;
+  std::optional<ApiResponse> refusal(const ApiRequest& request, Access access) const;
+
+  std::string token_;
+  std::vector<Route> routes_;
+};
+
+}  // namespace avk::server

@@ -1,0 +1,82 @@
+#pragma once
+// The station's domain types as documents: JSON for the API, the live stream and the command
+// line's --format json, CSV for exports. One place, so that a mission report or a prediction has
+// the same field names wherever it is read. docs/api.md describes the documents.
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/ckt_tables.hpp"
+#include "app/compare.hpp"
+#include "app/missions.hpp"
+#include "app/models.hpp"
+#include "app/predict.hpp"
+#include "app/vehicles.hpp"
+#include "kinematics/yaw_identification.hpp"
+#include "store/store.hpp"
+#include "vehicle/m200.hpp"
+
+namespace avk::server {
+
+// --- values --------------------------------------------------------------------------------
+
+// Numbers in CSV and messages: the shortest text that reads back as the same double.
+std::string num(double v);
+// Fixed decimals, for tables an operator reads.
+std::string fixed(double v, int decimals);
+nlohmann::json optional_json(const std::optional<double>& v);
+nlohmann::json optional_json(const std::optional<std::int64_t>& v);
+nlohmann::json mean_sd_json(const std::optional<kinematics::MeanSd>& v);
+nlohmann::json points_json(const kinematics::Polyline& line);  // [[x_m, y_m], ...]
+
+// --- vehicles ------------------------------------------------------------------------------
+
+// A real vehicle's frontseat link: connected, failsafe, battery_v, sentences, bad_lines,
+// last_error, pydir_sent, failsafe_stops, disconnects, last_link_error.
+nlohmann::json frontseat_json(const vehicle::M200Status& s);
+nlohmann::json vehicle_json(const app::VehicleStatus& v);
+// The live stream's nav and helm payloads of one telemetry tick.
+nlohmann::json nav_topic_json(const app::VehicleSnapshot& s);
+nlohmann::json helm_topic_json(const app::VehicleSnapshot& s);
+
+// --- missions ------------------------------------------------------------------------------
+
+nlohmann::json mission_json(const app::MissionSummary& m);
+nlohmann::json cells_json(const std::vector<app::CellReport>& cells);
+// The mission report: the mission, its status (live or stored), cells, turn totals, ConditionSet
+// statistics; with the mission document when with_config.
+nlohmann::json report_json(const app::MissionReport& r, bool with_config);
+nlohmann::json event_json(const store::MissionEvent& e);
+nlohmann::json nav_row_json(const store::NavRow& n);
+std::string missions_csv(const std::vector<app::MissionSummary>& missions);
+std::string report_cells_csv(const app::MissionReport& r);
+
+// --- turns ---------------------------------------------------------------------------------
+
+nlohmann::json turn_row_json(const store::TurnRow& t);
+nlohmann::json turn_json(const store::StoredTurn& t);  // with raw and normalised trajectories
+std::string turns_csv(const std::vector<store::TurnRow>& rows);
+
+// --- the CKT, predictions ------------------------------------------------------------------
+
+nlohmann::json ckt_summary_json(const app::VehicleTable& t);
+nlohmann::json ckt_cell_json(const kinematics::CktCell& c);
+nlohmann::json prediction_json(const app::Prediction& p);
+std::string trajectory_csv(const kinematics::Polyline& line);
+
+// --- models, the comparison ----------------------------------------------------------------
+
+// with_coefficients: the full model document; without, the listing's summary.
+nlohmann::json model_json(const store::StoredModel& m, bool with_coefficients = true);
+nlohmann::json model_headings_json(const app::ModelHeadings& h);
+nlohmann::json sweep_json(const std::vector<kinematics::HistorySweepRow>& rows);
+std::string sweep_csv(const std::vector<kinematics::HistorySweepRow>& rows);
+nlohmann::json comparison_json(const app::Comparison& c);
+std::string comparison_csv(const app::Comparison& c);
+
+// A value a client sent, for an error message: a scalar shortened, a container by its kind only.
+std::string describe_value(const nlohmann::json& v);
+
+}  // namespace avk::server

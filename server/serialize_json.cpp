@@ -1,0 +1,373 @@
+#include <algorithm>
+
+#include "kinematics/number_text.hpp"
+#include "kinematics/turn_json.hpp"
+#include "kinematics/yaw_model_json.hpp"
+#include "server/serialize.hpp"
+
+namespace avk::server {
+
+using nlohmann::json;
+namespace kin = avk::kinematics;
+
+std::string num(double v) {
+  return kin::number_text(v);
+}
+
+std::string fixed(double v, int decimals) {
+  return kin::fixed_text(v, decimals);
+}
+
+json optional_json(const std::optional<double>& v) {
+  return v ? json(*v) : json();
+}
+
+json optional_json(const std::optional<std::int64_t>& v) {
+  return v ? json(*v) : json();
+}
+
+json mean_sd_json(const std::optional<kin::MeanSd>& v) {
+  return v ? json{{"mean", v->mean}, {"sd", v->sd}} : json();
+}
+
+json points_json(const kin::Polyline& line) {
+  json a = json::array();
+  for (const auto& p : line)
+    a.push_back({p.x_m, p.y_m});
+  return a;
+}
+
+std::string describe_value(const json& v) {
+  // Dumping a container whole would grow the message with the input, and recurse as deep as it
+  // nests.
+  if (v.is_structured()) return std::string("an ") + v.type_name();
+  std::string text = v.dump(-1, ' ', false, json::error_handler_t::replace);
+  constexpr std::size_t kMax = 40;
+  if (text.size() > kMax) text = text.substr(0, kMax) + "...";
+  return text;
+}
+
+// --- vehicles ------------------------------------------------------------------------------
+
+json frontseat_json(const vehicle::M200Status& s) {
+  const auto& c = s.counters;
+  return {{"connected", s.connected},
+          {"failsafe", vehicle::to_string(s.failsafe)},
+          {"battery_v", s.battery ? json(s.battery->stack_v) : json()},
+          {"sentences", c.sentences},
+          {"bad_lines", c.errors},
+          {"last_error", c.last_error},
+          {"pydir_sent", c.pydir_sent},
+          {"failsafe_stops", c.failsafe_stops},
+          {"disconnects", c.disconnects},
+          {"last_link_error", s.last_link_error}};
+}
+
+namespace {
+
+json helm_mode_json(const std::optional<mission::HelmMode>& m) {
+  return m ? json(mission::to_string(*m)) : json();
+}
+
+}  // namespace
+
+json vehicle_json(const app::VehicleStatus& v) {
+  json j = {{"id", v.info.id},
+            {"kind", v.info.kind.empty() ? json() : json(v.info.kind)},
+            {"max_speed_mps", v.info.max_speed_mps > 0.0 ? json(v.info.max_speed_mps) : json()}};
+  if (!v.live) {
+    j["link"] = vehicle::to_string(vehicle::LinkState::disconnected);
+    j["nav"] = nullptr;
+    return j;
+  }
+  const app::VehicleSnapshot& s = *v.live;
+  j["link"] = vehicle::to_string(s.link);
+  j["helm_mode"] = helm_mode_json(s.helm_mode);
+  j["desired_heading_deg"] = optional_json(s.desired_heading_deg);
+  j["desired_speed_mps"] = optional_json(s.desired_speed_mps);
+  j["mission_id"] = optional_json(s.mission_id);
+  j["t_s"] = s.t_s;
+  j["nav"] = s.nav ? json{{"t_s", s.nav->t_s},
+                          {"x_m", s.nav->x_m},
+                          {"y_m", s.nav->y_m},
+                          {"heading_deg", s.nav->heading_deg},
+                          {"speed_mps", s.nav->speed_mps}}
+                   : json();
+  // A real vehicle's link health: what an operator checks before trusting the turns.
+  if (s.m200) j["frontseat"] = frontseat_json(*s.m200);
+  return j;
+}
+
+json nav_topic_json(const app::VehicleSnapshot& s) {
+  json j = {{"vehicle_id", s.info.id}, {"link", vehicle::to_string(s.link)}};
+  if (s.nav) {
+    j["t_s"] = s.nav->t_s;
+    j["x_m"] = s.nav->x_m;
+    j["y_m"] = s.nav->y_m;
+    j["heading_deg"] = s.nav->heading_deg;
+    j["speed_mps"] = s.nav->speed_mps;
+  }
+  // A real vehicle's battery and link health ride along with its navigation, so an operator
+  // sees a sagging pack or a noisy link live.
+  if (s.m200) j["frontseat"] = frontseat_json(*s.m200);
+  return j;
+}
+
+json helm_topic_json(const app::VehicleSnapshot& s) {
+  return {{"vehicle_id", s.info.id},
+          {"mode", helm_mode_json(s.helm_mode)},
+          {"desired_heading_deg", optional_json(s.desired_heading_deg)},
+          {"desired_speed_mps", optional_json(s.desired_speed_mps)},
+          {"mission_id", optional_json(s.mission_id)}};
+}
+
+// --- missions ------------------------------------------------------------------------------
+
+json mission_json(const app::MissionSummary& s) {
+  const store::Mission& m = s.mission;
+  return {{"id", m.id},
+          {"vehicle_id", m.vehicle_id},
+          {"name", m.name},
+          {"status", store::to_string(s.status)},
+          {"status_reason", m.status_reason},
+          {"created_utc", m.created_utc},
+          {"started_s", optional_json(m.started_s)},
+          {"ended_s", optional_json(m.ended_s)},
+          {"turns", {{"ok", s.turns.ok}, {"aborted", s.turns.aborted}, {"rejected", s.turns.rejected}}}};
+}
+
+json cells_json(const std::vector<app::CellReport>& cells) {
+  json out = json::array();
+  for (const auto& c : cells)
+    out.push_back({{"speed_mps", c.speed_mps},
+                   {"dheading_deg", c.dheading_deg},
+                   {"planned", c.planned},
+                   {"ok", c.ok},
+                   {"aborted", c.aborted},
+                   {"rejected", c.rejected},
+                   {"given_up", c.given_up},
+                   {"running", c.running},
+                   {"advance_m", mean_sd_json(c.advance_m)},
+                   {"transfer_m", mean_sd_json(c.transfer_m)},
+                   {"condition_set_time_s", mean_sd_json(c.condition_set_time_s)}});
+  return out;
+}
+
+json report_json(const app::MissionReport& r, bool with_config) {
+  json j = mission_json(r.summary);
+  j["status"] = app::status_text(r);
+  j["live"] = r.live;
+  j["helm_mode"] = helm_mode_json(r.helm_mode);
+  if (with_config) j["config"] = json::parse(r.summary.mission.config_json, nullptr, false);
+  j["cells"] = cells_json(r.cells);
+  j["duration_s"] = optional_json(r.duration_s);
+  j["condition_set_time_s"] = mean_sd_json(r.condition_set_time_s);
+  j["condition_set"] = {{"episodes", r.condition_set_episodes},
+                        {"time_to_set_s", mean_sd_json(r.condition_set_time_s)},
+                        {"turn_starts", r.condition_set_count}};
+  return j;
+}
+
+json event_json(const store::MissionEvent& e) {
+  return {{"id", e.id}, {"t_s", e.t_s}, {"kind", e.kind}, {"message", e.message}};
+}
+
+json nav_row_json(const store::NavRow& n) {
+  return {{"t_s", n.t_s},
+          {"x_m", n.x_m},
+          {"y_m", n.y_m},
+          {"heading_deg", n.heading_deg},
+          {"speed_mps", n.speed_mps},
+          {"desired_heading_deg", optional_json(n.desired_heading_deg)},
+          {"desired_speed_mps", optional_json(n.desired_speed_mps)},
+          {"helm_mode", n.helm_mode}};
+}
+
+// --- turns ---------------------------------------------------------------------------------
+
+json turn_row_json(const store::TurnRow& t) {
+  return {{"id", t.id},
+          {"mission_id", t.mission_id},
+          {"vehicle_id", t.vehicle_id},
+          {"status", kin::to_string(t.status)},
+          {"reason", t.reason},
+          {"speed_mps", t.commanded_speed_mps},
+          {"goal_dheading_deg", t.goal_dheading_deg},
+          {"observed_dheading_deg", t.observed_dheading_deg},
+          {"start_time_s", t.start_time_s},
+          {"end_time_s", t.end_time_s},
+          {"advance_m", optional_json(t.advance_m)},
+          {"transfer_m", optional_json(t.transfer_m)},
+          {"condition_set_time_s", optional_json(t.condition_set_time_s)}};
+}
+
+json turn_json(const store::StoredTurn& t) {
+  json j = turn_row_json(t.row);
+  j["raw"] = json::parse(kin::to_json_string(t.raw));
+  j["normalized"] = t.normalized ? json::parse(kin::to_json_string(*t.normalized)) : json();
+  return j;
+}
+
+// --- the CKT, predictions ------------------------------------------------------------------
+
+namespace {
+
+json cell_summary_json(const kin::CktCell& c) {
+  return {{"speed_mps", c.speed_mps},
+          {"dheading_deg", c.dheading_deg},
+          {"n_turns", c.n_turns},
+          {"advance_m", mean_sd_json(c.advance_m)},
+          {"transfer_m", mean_sd_json(c.transfer_m)},
+          {"avk_error_m2", optional_json(c.avk_error_m2)}};
+}
+
+}  // namespace
+
+json ckt_summary_json(const app::VehicleTable& t) {
+  json cells = json::array();
+  for (const auto& c : t.table->cells())
+    cells.push_back(cell_summary_json(c));
+  const auto range = t.table->speed_range_mps();
+  return {{"vehicle_id", t.vehicle_id},
+          {"source", app::to_string(t.source)},
+          {"snapshot_id", optional_json(t.snapshot_id)},
+          {"speeds_mps", t.table->grid().speeds_mps},
+          {"dheadings_deg", t.table->grid().dheadings_deg},
+          {"speed_range_mps", range ? json{range->first, range->second} : json()},
+          {"cells", cells}};
+}
+
+json ckt_cell_json(const kin::CktCell& c) {
+  json j = cell_summary_json(c);
+  json turns = json::array();
+  for (const auto& tr : c.turns)
+    turns.push_back({{"mission_id", tr.meta().mission_id},
+                     {"initial_heading_deg", tr.meta().initial_heading_deg},
+                     {"points", points_json(tr.points())}});
+  j["turns"] = std::move(turns);
+  j["mean"] = points_json(c.mean_turn);
+  j["trajectory"] = points_json(c.trajectory);
+  j["fit"] = c.fit.domain_max > c.fit.domain_min ? points_json(c.fit.sample(0.1)) : json();
+  return j;
+}
+
+json prediction_json(const app::Prediction& p) {
+  const app::PredictQuery& q = p.query;
+  json j = {{"method", app::to_string(q.method)},
+            {"vehicle_id", q.vehicle_id},
+            {"speed_mps", q.speed_mps},
+            {"dheading_deg", q.dheading_deg},
+            {"frame", q.pose ? "world" : "normalized"}};
+  if (q.method == app::PredictionMethod::avk) {
+    j["advance_m"] = optional_json(p.advance_m);
+    j["transfer_m"] = optional_json(p.transfer_m);
+    j["table_source"] = p.table_source ? json(*p.table_source) : json();
+    j["snapshot_id"] = optional_json(p.snapshot_id);
+  }
+  if (q.method == app::PredictionMethod::model) {
+    j["model_id"] = optional_json(p.model_id);
+    j["speed_model"] = q.use_speed_model;
+  }
+  j["trajectory"] = points_json(p.trajectory);
+  return j;
+}
+
+// --- models, the comparison ----------------------------------------------------------------
+
+json model_json(const store::StoredModel& m, bool with_coefficients) {
+  json j = json::parse(kin::yaw_model_to_json(m.model));
+  j["id"] = m.id;
+  j["created_utc"] = m.created_utc;
+  j["vehicle_id"] = m.vehicle_id;
+  j["training_missions"] = m.training_missions;
+  j["train_one_step_rms_deg"] = optional_json(m.train_one_step_rms_deg);
+  j["validation_mse_m2"] = optional_json(m.validation_mse_m2);
+  j["validation_heading_rms_deg"] = optional_json(m.validation_heading_rms_deg);
+  if (!with_coefficients) {
+    j.erase("error_coeffs");
+    j.erase("heading_coeffs");
+  }
+  return j;
+}
+
+json model_headings_json(const app::ModelHeadings& h) {
+  const auto optional_array = [](const std::vector<std::optional<double>>& v) {
+    json a = json::array();
+    for (const auto& x : v)
+      a.push_back(optional_json(x));
+    return a;
+  };
+  json segments = json::array();
+  for (const auto& s : h.segments)
+    segments.push_back({{"t0_s", s.t0_s},
+                        {"heading_deg", s.heading_deg},
+                        {"desired_heading_deg", s.desired_heading_deg},
+                        {"one_step_deg", optional_array(s.one_step_deg)},
+                        {"simulated_deg", optional_array(s.simulated_deg)}});
+  return {{"model_id", h.model_id},
+          {"mission_id", h.mission_id},
+          {"dt_s", h.dt_s},
+          {"warmup_samples", h.warmup},
+          {"restart_step_deg", h.restart_step_deg},
+          {"segments", segments}};
+}
+
+json sweep_json(const std::vector<kin::HistorySweepRow>& rows) {
+  json out = json::array();
+  for (const auto& row : rows)
+    out.push_back({{"history_s", row.history_s},
+                   {"history_samples", row.history},
+                   {"train_one_step_rms_deg", row.train_one_step_rms_deg},
+                   {"validation_mse_m2", row.validation.position_mse_m2},
+                   {"validation_heading_rms_deg", row.validation.heading_rms_deg},
+                   {"validation_turns", row.validation.windows}});
+  return out;
+}
+
+namespace {
+
+json error_json(const kin::MethodError& e) {
+  return {{"mse_m2", e.mse_m2},
+          {"improvement_pct", optional_json(e.improvement_pct)},
+          {"advance_error_m", e.advance_error_m},
+          {"transfer_error_m", e.transfer_error_m}};
+}
+
+json optional_error_json(const std::optional<kin::MethodError>& e) {
+  return e ? error_json(*e) : json();
+}
+
+}  // namespace
+
+json comparison_json(const app::Comparison& c) {
+  json out = {{"vehicle_id", c.vehicle_id}, {"model_id", c.model ? json(c.model->id) : json()}};
+  json jc = json::array();
+  for (const auto& cell : c.cells) {
+    json j = {{"speed_mps", cell.speed_mps},
+              {"dheading_deg", cell.dheading_deg},
+              {"n_turns", cell.n_turns},
+              {"avk", error_json(cell.avk)},
+              {"instantaneous", error_json(cell.instantaneous)},
+              {"model", optional_error_json(cell.model)},
+              {"outliers", std::count(cell.outlier.begin(), cell.outlier.end(), true)}};
+    if (cell.without_outliers) {
+      const auto& w = *cell.without_outliers;
+      j["without_outliers"] = {{"n_turns", w.n_turns},
+                               {"avk", error_json(w.avk)},
+                               {"instantaneous", error_json(w.instantaneous)},
+                               {"model", optional_error_json(w.model)}};
+    }
+    jc.push_back(std::move(j));
+  }
+  out["cells"] = std::move(jc);
+  for (const auto& [name, method] : {std::pair{"avk", kin::PredictionMethod::avk},
+                                     {"model", kin::PredictionMethod::model},
+                                     {"instantaneous", kin::PredictionMethod::instantaneous}}) {
+    out["median_mse_m2"][name] = optional_json(kin::median_mse_m2(c.cells, method));
+    out["median_mse_without_outliers_m2"][name] =
+        optional_json(kin::median_mse_m2(c.cells, method, true));
+  }
+  return out;
+}
+
+}  // namespace avk::server

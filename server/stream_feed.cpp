@@ -1,0 +1,22 @@
+#include "server/stream_feed.hpp"
+
+#include "server/serialize.hpp"
+#include "server/stream_publisher.hpp"
+
+namespace avk::server {
+
+void StreamFeed::telemetry(const app::VehicleSnapshot& s) {
+  if (s.nav) hub_.publish("nav", s.t_s, nav_topic_json(s).dump());
+  hub_.publish("helm", s.t_s, helm_topic_json(s).dump());
+}
+
+void StreamFeed::station_event(double t_s, std::string_view kind, const std::string& message) {
+  hub_.status(t_s, std::string(kind), "info", message);
+}
+
+std::unique_ptr<mission::MissionObserver> StreamFeed::follow(std::int64_t mission_id,
+                                                             const mission::MissionRunner& runner) {
+  return std::make_unique<StreamPublisher>(hub_, mission_id, runner);
+}
+
+}  // namespace avk::server

@@ -1,0 +1,22 @@
+#pragma once
+// The station's live feed as the stream's topics: telemetry becomes nav and helm, station events
+// become status, and each mission the vehicle loop starts is followed by a StreamPublisher.
+
+#include "app/live_feed.hpp"
+#include "server/stream_hub.hpp"
+
+namespace avk::server {
+
+class StreamFeed final : public app::LiveFeed {
+ public:
+  explicit StreamFeed(StreamHub& hub) : hub_(hub) {}
+  void telemetry(const app::VehicleSnapshot& s) override;
+  void station_event(double t_s, std::string_view kind, const std::string& message) override;
+  std::unique_ptr<mission::MissionObserver> follow(std::int64_t mission_id,
+                                                   const mission::MissionRunner& runner) override;
+
+ private:
+  StreamHub& hub_;
+};
+
+}  // namespace avk::server

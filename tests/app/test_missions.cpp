@@ -1,0 +1,187 @@
+// Missions through the use cases: validation with every problem, a mission run on the simulator
+// (its own scheduler, no wall clock) reported, listed and paged, and the commands that cannot
+// apply without the station's vehicle. Without HTTP or argv.
+#include <gtest/gtest.h>
+
+#include <set>
+
+#include "app/context.hpp"
+#include "app/missions.hpp"
+#include "app/turns.hpp"
+#include "app/vehicles.hpp"
+#include "support/recorded_mission.hpp"
+#include "support/temp_db.hpp"
+
+namespace {
+
+using namespace avk;
+
+constexpr const char* kMission = testing::kSmallMission;
+
+class Missions : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    db_ = new testing::TempDb("avk_app_missions");
+    store::Store db(db_->path());
+    mission_ = testing::run_recorded_mission(db, "sim-a");
+    other_ = testing::run_recorded_mission(db, "sim-b");
+  }
+  static void TearDownTestSuite() { delete db_; }
+  static testing::TempDb* db_;
+  static std::int64_t mission_, other_;
+  app::Context ctx_{db_->path()};
+};
+testing::TempDb* Missions::db_ = nullptr;
+std::int64_t Missions::mission_ = 0;
+std::int64_t Missions::other_ = 0;
+
+TEST(MissionValidation, EveryProblemIsListedWithItsField) {
+  const auto r = app::validate_mission(
+      R"({"name": "", "turn_array": {"speeds_mps": [9.0], "dheadings_deg": [400]}})", 2.0);
+  ASSERT_FALSE(r);
+  EXPECT_EQ(r.error().code, app::ErrorCode::invalid_argument);
+  std::set<std::string> fields;
+  for (const auto& f : r.error().fields)
+    fields.insert(f.field);
+  EXPECT_GE(fields.size(), 3u);
+  EXPECT_TRUE(fields.count("/operating_region")) << r.error().fields.front().field;
+  const auto ok = app::validate_mission(kMission, 2.0);
+  ASSERT_TRUE(ok);
+  EXPECT_EQ(ok->name, "small");
+}
+
+TEST_F(Missions, TheReportMergesThePlanWithWhatIsStored) {
+  const auto r = app::mission_report(ctx_, mission_);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_FALSE(r->live);
+  EXPECT_EQ(r->summary.status, store::MissionStatus::done);
+  EXPECT_EQ(app::status_text(*r), "done");
+  ASSERT_EQ(r->cells.size(), 4u);  // 2 speeds x 2 heading changes
+  std::int64_t ok = 0, aborted = 0, rejected = 0;
+  for (const auto& c : r->cells) {
+    EXPECT_EQ(c.planned, 2);
+    ok += c.ok;
+    aborted += c.aborted;
+    rejected += c.rejected;
+    if (c.ok) {
+      ASSERT_TRUE(c.advance_m && c.transfer_m);
+      EXPECT_GT(c.advance_m->mean, 0.0);
+    }
+  }
+  EXPECT_EQ(ok, r->summary.turns.ok);
+  EXPECT_EQ(aborted, r->summary.turns.aborted);
+  EXPECT_EQ(rejected, r->summary.turns.rejected);
+  EXPECT_EQ(r->summary.turns.ok, 8);
+  ASSERT_TRUE(r->condition_set_time_s);
+  EXPECT_GT(r->condition_set_time_s->mean, 0.0);
+  EXPECT_EQ(r->condition_set_episodes.at("set"), static_cast<int>(r->condition_set_count));
+  ASSERT_TRUE(r->duration_s);
+  EXPECT_GT(*r->duration_s, 0.0);
+  EXPECT_EQ(app::mission_report(ctx_, 9999).error().code, app::ErrorCode::not_found);
+}
+
+TEST_F(Missions, ListingFiltersByVehicle) {
+  EXPECT_EQ(app::list_missions(ctx_, std::nullopt).size(), 2u);
+  const auto a = app::list_missions(ctx_, std::string("sim-a"));
+  ASSERT_EQ(a.size(), 1u);
+  EXPECT_EQ(a[0].mission.id, mission_);
+  EXPECT_EQ(a[0].turns.ok, 8);
+  EXPECT_TRUE(app::list_missions(ctx_, std::string("nobody")).empty());
+  const auto vehicles = app::list_vehicles(ctx_);
+  ASSERT_EQ(vehicles.size(), 2u);
+  EXPECT_FALSE(vehicles[0].live);  // no vehicle loop: both known from the store only
+  EXPECT_EQ(app::get_vehicle(ctx_, "sim-b")->info.kind, "usim");
+  EXPECT_EQ(app::get_vehicle(ctx_, "nobody").error().code, app::ErrorCode::not_found);
+}
+
+TEST_F(Missions, TrackAndEventPagesNeitherSkipNorRepeat) {
+  const auto all = ctx_.db().nav_for_mission(mission_);
+  ASSERT_GT(all.size(), 100u);
+  std::size_t seen = 0;
+  std::int64_t after = 0;
+  double last_t = -1e300;
+  for (int pages = 0;; ++pages) {
+    ASSERT_LT(pages, 1000);
+    const auto page = app::mission_track(ctx_, mission_, after, 97);
+    ASSERT_TRUE(page);
+    for (const auto& row : page->items) {
+      EXPECT_GE(row.row.t_s, last_t);
+      last_t = row.row.t_s;
+    }
+    seen += page->items.size();
+    if (!page->next) break;
+    after = *page->next;
+  }
+  EXPECT_EQ(seen, all.size());
+  const auto events = ctx_.db().list_events(mission_);
+  const auto first = app::mission_events(ctx_, mission_, 0, 1);
+  ASSERT_TRUE(first);
+  ASSERT_EQ(first->items.size(), 1u);
+  ASSERT_TRUE(first->next);
+  const auto rest = app::mission_events(ctx_, mission_, *first->next, 1000);
+  EXPECT_EQ(1 + rest->items.size(), events.size());
+  EXPECT_EQ(app::mission_track(ctx_, mission_, 0, 0).error().field, "limit");
+  EXPECT_EQ(app::mission_events(ctx_, 9999, 0, 10).error().code, app::ErrorCode::not_found);
+}
+
+TEST_F(Missions, TurnPagesCoverEveryStoredTurnOnce) {
+  store::TurnFilter f;
+  f.mission_id = mission_;
+  f.limit = 3;
+  std::set<std::int64_t> ids;
+  for (int pages = 0;; ++pages) {
+    ASSERT_LT(pages, 100);
+    const auto page = app::query_turns(ctx_, f);
+    ASSERT_TRUE(page);
+    for (const auto& t : page->items) {
+      EXPECT_EQ(t.mission_id, mission_);
+      EXPECT_TRUE(ids.insert(t.id).second) << t.id;
+    }
+    if (!page->next) break;
+    f.after_id = *page->next;
+  }
+  store::TurnFilter all;
+  all.mission_id = mission_;
+  all.limit = 1000;
+  EXPECT_EQ(ids.size(), ctx_.db().list_turns(all).size());
+  const auto one = app::get_turn(ctx_, *ids.begin());
+  ASSERT_TRUE(one);
+  EXPECT_TRUE(one->normalized || one->row.status != kinematics::TurnStatus::ok);
+  EXPECT_EQ(app::get_turn(ctx_, 999999).error().code, app::ErrorCode::not_found);
+}
+
+TEST_F(Missions, WithoutTheStationsVehicleNothingStartsOrResumes) {
+  const auto start = app::start_mission(ctx_, "sim-a", kMission);
+  ASSERT_FALSE(start);
+  EXPECT_EQ(start.error().code, app::ErrorCode::conflict);
+  const auto before = app::list_missions(ctx_, std::nullopt).size();
+  // A finished mission is not running: pause and abort are conflicts, as is a resume here.
+  for (const auto c :
+       {app::MissionCommand::pause, app::MissionCommand::abort, app::MissionCommand::resume})
+    EXPECT_EQ(app::command_mission(ctx_, mission_, c).error().code, app::ErrorCode::conflict)
+        << app::to_string(c);
+  EXPECT_EQ(app::command_mission(ctx_, 9999, app::MissionCommand::pause).error().code,
+            app::ErrorCode::not_found);
+  EXPECT_EQ(app::list_missions(ctx_, std::nullopt).size(), before);  // nothing was stored
+}
+
+TEST(CellReports, CarryTheRunnersCounts) {
+  mission::CellProgress p;
+  p.speed_mps = 1.0;
+  p.dheading_deg = 40.0;
+  p.planned = 3;
+  p.ok = 2;
+  p.rejected = 1;
+  p.given_up = 1;
+  p.running = true;
+  const auto cells = app::cell_reports({p});
+  ASSERT_EQ(cells.size(), 1u);
+  EXPECT_EQ(cells[0].planned, 3);
+  EXPECT_EQ(cells[0].ok, 2);
+  EXPECT_EQ(cells[0].rejected, 1);
+  EXPECT_EQ(cells[0].given_up, 1);
+  EXPECT_TRUE(cells[0].running);
+  EXPECT_FALSE(cells[0].advance_m);
+}
+
+}  // namespace

@@ -1,0 +1,163 @@
+// The predict use case: one rule for which table answers (the vehicle's own turns, else its own
+// latest imported table), the reflection of left turns, placement at a pose, and each error with
+// the parameter it names. Without HTTP or argv.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "app/ckt_tables.hpp"
+#include "app/context.hpp"
+#include "app/predict.hpp"
+#include "kinematics/ckt.hpp"
+#include "kinematics/ckt_file.hpp"
+#include "support/stored_turns.hpp"
+#include "support/temp_db.hpp"
+
+namespace {
+
+using namespace avk;
+
+app::PredictQuery query(const std::string& vid, double speed, double dheading) {
+  app::PredictQuery q;
+  q.vehicle_id = vid;
+  q.speed_mps = speed;
+  q.dheading_deg = dheading;
+  return q;
+}
+
+void expect_same_line(const kinematics::Polyline& a, const kinematics::Polyline& b) {
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_DOUBLE_EQ(a[i].x_m, b[i].x_m) << i;
+    EXPECT_DOUBLE_EQ(a[i].y_m, b[i].y_m) << i;
+  }
+}
+
+class Predict : public ::testing::Test {
+ protected:
+  testing::TempDb db_{"avk_app_predict"};
+  app::Context ctx_{db_.path()};
+};
+
+TEST_F(Predict, AvkAnswersFromTheVehiclesOwnTurnsThroughTheFineTable) {
+  testing::store_arc_turns(ctx_.db(), "alpha");
+  const auto p = app::predict(ctx_, query("alpha", 1.0, 100.0));
+  ASSERT_TRUE(p) << p.error().message;
+  EXPECT_EQ(p->table_source, "turns");
+  EXPECT_FALSE(p->snapshot_id);
+  // The same table built here, independently of the cache.
+  const auto table = kinematics::Ckt::build(ctx_.db().load_normalized_turns({}, "alpha"));
+  const kinematics::MaterializedCkt fine(table);
+  const auto expected = fine.query(1.0, 100.0);
+  expect_same_line(p->trajectory, expected.trajectory);
+  EXPECT_DOUBLE_EQ(*p->advance_m, expected.advance_m);
+  EXPECT_DOUBLE_EQ(*p->transfer_m, expected.transfer_m);
+  // A right turn of 100 deg ends right of the start, heading past east.
+  EXPECT_GT(p->trajectory.back().x_m, 1.0);
+}
+
+TEST_F(Predict, ALeftTurnIsTheMirrorImageOfTheRightOne) {
+  testing::store_arc_turns(ctx_.db(), "alpha");
+  for (const auto method : {app::PredictionMethod::avk, app::PredictionMethod::instantaneous}) {
+    auto right_q = query("alpha", 1.2, 70.0);
+    auto left_q = query("alpha", 1.2, -70.0);
+    right_q.method = left_q.method = method;
+    const auto right = app::predict(ctx_, right_q);
+    const auto left = app::predict(ctx_, left_q);
+    ASSERT_TRUE(right && left);
+    ASSERT_EQ(right->trajectory.size(), left->trajectory.size());
+    for (std::size_t i = 0; i < right->trajectory.size(); ++i) {
+      EXPECT_DOUBLE_EQ(left->trajectory[i].x_m, -right->trajectory[i].x_m);
+      EXPECT_DOUBLE_EQ(left->trajectory[i].y_m, right->trajectory[i].y_m);
+    }
+  }
+}
+
+TEST_F(Predict, APoseRotatesAndTranslatesTheNormalisedTurn) {
+  testing::store_arc_turns(ctx_.db(), "alpha");
+  auto q = query("alpha", 1.0, 40.0);
+  const auto normal = app::predict(ctx_, q);
+  q.pose = kinematics::Pose{100.0, -20.0, 90.0};  // heading east
+  const auto placed = app::predict(ctx_, q);
+  ASSERT_TRUE(normal && placed);
+  ASSERT_EQ(normal->trajectory.size(), placed->trajectory.size());
+  for (std::size_t i = 0; i < normal->trajectory.size(); ++i) {
+    // North becomes east, east becomes south.
+    EXPECT_NEAR(placed->trajectory[i].x_m, 100.0 + normal->trajectory[i].y_m, 1e-9);
+    EXPECT_NEAR(placed->trajectory[i].y_m, -20.0 - normal->trajectory[i].x_m, 1e-9);
+  }
+}
+
+TEST_F(Predict, InstantaneousIsARayOnTheNewHeading) {
+  auto q = query("anyone", 1.5, 90.0);
+  q.method = app::PredictionMethod::instantaneous;
+  const auto p = app::predict(ctx_, q);
+  ASSERT_TRUE(p);
+  ASSERT_EQ(p->trajectory.size(), 2u);
+  EXPECT_NEAR(p->trajectory[1].x_m, 30.0, 1e-9);  // 20 s at 1.5 m/s, due east
+  EXPECT_NEAR(p->trajectory[1].y_m, 0.0, 1e-9);
+}
+
+TEST_F(Predict, AVehicleWithOnlyAnImportedTableIsAnsweredByIt) {
+  testing::store_arc_turns(ctx_.db(), "donor", 1.5);
+  kinematics::Ckt table = kinematics::Ckt::build(ctx_.db().load_normalized_turns({}, "donor"));
+  table.vehicle_id = "bravo";
+  const auto imported = app::import_ckt(ctx_, "bravo", kinematics::ckt_to_json_string(table));
+  ASSERT_TRUE(imported) << imported.error().message;
+  const auto p = app::predict(ctx_, query("bravo", 1.0, 100.0));
+  ASSERT_TRUE(p) << p.error().message;
+  EXPECT_EQ(p->table_source, "imported");
+  EXPECT_EQ(p->snapshot_id, imported->snapshot_id);
+  const kinematics::MaterializedCkt fine(kinematics::parse_ckt_json(
+      kinematics::ckt_to_json_string(table)));
+  expect_same_line(p->trajectory, fine.query(1.0, 100.0).trajectory);
+}
+
+TEST_F(Predict, EachVehicleOfADatabaseIsAnsweredByItsOwnTable) {
+  testing::store_arc_turns(ctx_.db(), "small", 1.0);
+  testing::store_arc_turns(ctx_.db(), "large", 2.0);
+  // A table imported last, for a third vehicle, must not answer for the others.
+  kinematics::Ckt other = kinematics::Ckt::build(ctx_.db().load_normalized_turns({}, "small"));
+  other.vehicle_id = "third";
+  ASSERT_TRUE(app::import_ckt(ctx_, "third", kinematics::ckt_to_json_string(other)));
+  const auto small = app::predict(ctx_, query("small", 1.0, 100.0));
+  const auto large = app::predict(ctx_, query("large", 1.0, 100.0));
+  ASSERT_TRUE(small && large);
+  // Twice the lead-in and radius: about twice the advance and transfer.
+  EXPECT_NEAR(*large->advance_m / *small->advance_m, 2.0, 0.1);
+  EXPECT_NEAR(*large->transfer_m / *small->transfer_m, 2.0, 0.1);
+  const auto none = app::predict(ctx_, query("nobody", 1.0, 100.0));
+  ASSERT_FALSE(none);
+  EXPECT_EQ(none.error().code, app::ErrorCode::not_found);
+}
+
+TEST_F(Predict, BadQuestionsNameTheirParameter) {
+  testing::store_arc_turns(ctx_.db(), "alpha");
+  const auto field_of = [&](app::PredictQuery q) {
+    const auto r = app::predict(ctx_, q);
+    EXPECT_FALSE(r);
+    EXPECT_EQ(r.error().code, app::ErrorCode::invalid_argument);
+    return r.error().field;
+  };
+  EXPECT_EQ(field_of(query("alpha", 0.0, 40.0)), "speed");
+  EXPECT_EQ(field_of(query("alpha", NAN, 40.0)), "speed");
+  EXPECT_EQ(field_of(query("alpha", 1.0, 0.0)), "dheading");
+  EXPECT_EQ(field_of(query("alpha", 1.0, 181.0)), "dheading");
+  EXPECT_EQ(field_of(query("alpha", 3.5, 40.0)), "speed");  // beyond the table's speeds
+  auto m = query("alpha", 1.0, 40.0);
+  m.method = app::PredictionMethod::model;
+  const auto no_model = app::predict(ctx_, m);
+  ASSERT_FALSE(no_model);
+  EXPECT_EQ(no_model.error().code, app::ErrorCode::not_found);
+  m.model_id = 77;
+  EXPECT_NE(app::predict(ctx_, m).error().message.find("no model 77"), std::string::npos);
+}
+
+TEST(PredictMethod, NamesRoundTrip) {
+  for (const auto m :
+       {app::PredictionMethod::avk, app::PredictionMethod::model, app::PredictionMethod::instantaneous})
+    EXPECT_EQ(app::prediction_method_from_string(app::to_string(m)), m);
+  EXPECT_FALSE(app::prediction_method_from_string("guess"));
+}
+
+}  // namespace
