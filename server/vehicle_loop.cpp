@@ -171,7 +171,7 @@ struct VehicleLoop::Impl {
     store->set_mission_runner(plan.mission_id, static_cast<std::int64_t>(::getpid()));
     idle_stopped = false;
     running = std::move(r);
-    hub.status(now, "mission_attached", "info",
+    hub.status(now, mission::EventKind::mission_attached,
                "mission " + std::to_string(plan.mission_id) + " started with " +
                    std::to_string(plan.tasks.size()) + " turns to do");
   }
@@ -181,7 +181,7 @@ struct VehicleLoop::Impl {
     store->set_mission_runner(running->id, std::nullopt);
     update_live();
     hub.status(
-        now, "mission_detached", "info",
+        now, mission::EventKind::mission_detached,
         "mission " + std::to_string(running->id) + " " +
             (running->runner->state() ? mission::to_string(*running->runner->state()) : "ended"));
     running.reset();

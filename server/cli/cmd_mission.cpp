@@ -103,14 +103,27 @@ class ProgressPrinter final : public mission::MissionObserver {
   }
 
   void on_event(const mission::MissionEventRecord& e) override {
-    static const std::set<std::string> shown = {"halted",        "aborted", "interrupted",
-                                                "turn_given_up", "link",    "condition_set_timeout",
-                                                "returning"};
-    if (quiet_ || !shown.count(e.kind)) return;
-    out_ << "  " << e.kind << " at t=" << fixed(e.t_s, 1) << " s: " << e.message << std::endl;
+    if (quiet_ || !shown(e.kind)) return;
+    out_ << "  " << mission::to_string(e.kind) << " at t=" << fixed(e.t_s, 1) << " s: " << e.message
+         << std::endl;
   }
 
  private:
+  // The warnings, less those a turn line already reports and the containment a turn mission
+  // passes through after most turns; and the return leg, the sign that the mission is ending.
+  static bool shown(mission::EventKind k) {
+    switch (k) {
+      case mission::EventKind::turn_aborted:
+      case mission::EventKind::turn_rejected:
+      case mission::EventKind::containment:
+        return false;
+      case mission::EventKind::returning:
+        return true;
+      default:
+        return mission::severity(k) == mission::Severity::warning;
+    }
+  }
+
   std::ostream& out_;
   int planned_;
   int ok_;

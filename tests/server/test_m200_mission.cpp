@@ -1,4 +1,4 @@
-// Issue 8's acceptance, over a real socket: the Figure 4-1 mission through the M200 driver and
+// The M200 driver end to end, over a real socket: the Figure 4-1 mission through the driver and
 // the frontseat emulator on loopback TCP at 10x real time, compared with the same plant run
 // in-process; the same with 5 % of the frontseat's sentences dropped or corrupted; a 3 s link cut
 // in the middle of a turn; and the frontseat's watchdog after the backseat goes silent.

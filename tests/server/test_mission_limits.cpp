@@ -1,5 +1,5 @@
-// Issue 13, defects 3 and 5 at the station: a mission too large to plan, or with a number JSON
-// cannot hold, is a 422 naming the field, and a start that fails leaves no mission row behind.
+// Mission input limits at the station: a mission too large to plan, or with a number JSON cannot
+// hold, is a 422 naming the field, and a start that fails leaves no mission row behind.
 #include <gtest/gtest.h>
 
 #include <memory>

@@ -1,5 +1,5 @@
 // The station's REST handlers over a real store and a real simulated vehicle (paced fast), called
-// without sockets: every endpoint and every error path of issue 6.
+// without sockets: every endpoint and every error path of the REST API.
 #include <gtest/gtest.h>
 
 #include <chrono>

@@ -1,4 +1,4 @@
-// The Station behind the real transport, attacked as issue 13's hostile tester did: what the
+// The Station behind the real transport, attacked as a hostile client would: what the
 // header decides (the token, the route's body limit) before any body is read, nesting depth,
 // encodings, HEAD and the bearer scheme. Every exchange is a raw socket with a deadline.
 
@@ -112,7 +112,7 @@ class StationHttpTest : public ::testing::Test {
   unsigned short port = 0;
 };
 
-// Issue 13, defect 1: {"missions": [[[...]]]} 100,000 deep crashed the server (58,165 frames in
+// Regression: {"missions": [[[...]]]} 100,000 deep crashed the server (58,165 frames in
 // the serialiser under the model-fit handler).
 TEST_F(StationHttpTest, DeeplyNestedFitRequestIs400AndTheServerGoesOn) {
   const std::string deep = std::string(100000, '[') + std::string(100000, ']');
@@ -131,7 +131,7 @@ TEST_F(StationHttpTest, DeeplyNestedFitRequestIs400AndTheServerGoesOn) {
   EXPECT_EQ(status_of(send_and_read(port, request("GET", "/api/v1/health"))), 200);
 }
 
-// Issue 13, defect 2: without a token, the server first read the 62 MB body, then said 401.
+// Regression: without a token, the server first read the 62 MB body, then said 401.
 // The header is all it reads now: the answer comes although the body is never sent.
 TEST_F(StationHttpTest, ImportWithoutTheTokenIs401BeforeTheBody) {
   const auto raw = send_and_read(port,
@@ -155,8 +155,7 @@ TEST_F(StationHttpTest, ImportWithoutTheTokenIs401BeforeTheBody) {
   EXPECT_EQ(status_of(big), 413) << big;
 }
 
-// Issue 13, defect 10: "bearer" in lower case (RFC 7235: the scheme is case-insensitive) was
-// refused.
+// Regression: "bearer" in lower case (RFC 7235: the scheme is case-insensitive) was refused.
 TEST_F(StationHttpTest, TheBearerSchemeIsCaseInsensitive) {
   for (const std::string scheme : {"Bearer", "bearer", "BEARER", "bEaReR"}) {
     const auto raw =
@@ -174,7 +173,7 @@ TEST_F(StationHttpTest, TheBearerSchemeIsCaseInsensitive) {
   }
 }
 
-// Issue 13, defect 6: HEAD on the API answered Content-Length: 0.
+// Regression: HEAD on the API answered Content-Length: 0.
 TEST_F(StationHttpTest, HeadGivesTheGetsContentLengthAndNoBody) {
   const auto get = send_and_read(port, request("GET", "/api/v1/health"));
   ASSERT_EQ(status_of(get), 200);
@@ -189,7 +188,7 @@ TEST_F(StationHttpTest, HeadGivesTheGetsContentLengthAndNoBody) {
   EXPECT_EQ(body_of(second), body_of(get));
 }
 
-// Issue 13, defect 5: invalid UTF-8 in a path or query was a 500 with nlohmann's text.
+// Regression: invalid UTF-8 in a path or query was a 500 with nlohmann's text.
 TEST_F(StationHttpTest, InvalidUtf8IsA400NamingTheParameter) {
   for (const auto& [target, named] : std::vector<std::pair<std::string, std::string>>{
            {"/api/v1/%ff", "path"},
