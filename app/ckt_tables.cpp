@@ -45,7 +45,8 @@ Result<VehicleTable> TableCache::get(Context& ctx, const std::string& vehicle_id
   VehicleTable t;
   t.vehicle_id = vehicle_id;
   if (newest > 0) {
-    auto built = std::make_shared<kin::Ckt>(kin::Ckt::build(db.load_normalized_turns({}, vehicle_id)));
+    auto built =
+        std::make_shared<kin::Ckt>(kin::Ckt::build(db.load_normalized_turns({}, vehicle_id)));
     built->vehicle_id = vehicle_id;
     t.table = std::move(built);
     t.source = TableSource::turns;
@@ -96,8 +97,8 @@ Result<ImportedTable> import_ckt(Context& ctx, const std::string& vehicle_id,
     return invalid_argument("", std::string("not a CKT file: ") + e.what());
   }
   if (t.vehicle_id != vehicle_id)
-    return invalid_argument("/vehicle_id", "the file's table is for vehicle '" + t.vehicle_id +
-                                               "', not '" + vehicle_id + "'");
+    return invalid_argument("vehicle_id", "the file's table is for vehicle '" + t.vehicle_id +
+                                              "', not '" + vehicle_id + "'");
   const auto id = ctx.db().save_ckt_snapshot(t, {});
   ctx.tables().forget(vehicle_id);
   return ImportedTable{id, vehicle_id};

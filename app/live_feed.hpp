@@ -6,9 +6,9 @@
 #include <cstdint>
 #include <memory>
 #include <string>
-#include <string_view>
 
 #include "app/vehicle_snapshot.hpp"
+#include "mission/event_kind.hpp"
 #include "mission/mission_observer.hpp"
 #include "mission/mission_runner.hpp"
 
@@ -20,17 +20,17 @@ class LiveFeed {
   // The vehicle at the telemetry rate: navigation (when it has any) and the helm.
   virtual void telemetry(const VehicleSnapshot& s) = 0;
   // A station event an operator reads (a mission attached, detached).
-  virtual void station_event(double t_s, std::string_view kind, const std::string& message) = 0;
+  virtual void station_event(double t_s, mission::EventKind kind, const std::string& message) = 0;
   // Follows a mission the loop starts: turns, progress, events. Kept by the loop while it runs.
-  virtual std::unique_ptr<mission::MissionObserver> follow(std::int64_t mission_id,
-                                                           const mission::MissionRunner& runner) = 0;
+  virtual std::unique_ptr<mission::MissionObserver> follow(
+      std::int64_t mission_id, const mission::MissionRunner& runner) = 0;
 };
 
 // Tells nobody: for the command line and for tests that do not watch the stream.
 class SilentFeed final : public LiveFeed {
  public:
   void telemetry(const VehicleSnapshot&) override {}
-  void station_event(double, std::string_view, const std::string&) override {}
+  void station_event(double, mission::EventKind, const std::string&) override {}
   std::unique_ptr<mission::MissionObserver> follow(std::int64_t,
                                                    const mission::MissionRunner&) override {
     return std::make_unique<mission::MissionObserver>();

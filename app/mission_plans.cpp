@@ -2,9 +2,10 @@
 
 #include <stdexcept>
 
+#include "app/mission_liveness.hpp"
 #include "kinematics/angles.hpp"
 #include "mission/container.hpp"
-#include "app/mission_liveness.hpp"
+#include "mission/event_kind.hpp"
 
 namespace avk::app {
 
@@ -57,7 +58,8 @@ MissionPlan resume_mission_plan(store::Store& db, std::int64_t mission_id, doubl
   const auto nav = db.nav_for_mission(m->id);
   p.start = nav.empty() ? start_pose(p.config)
                         : kinematics::Pose{nav.back().x_m, nav.back().y_m, nav.back().heading_deg};
-  db.append_event(m->id, p.clock_after_s + 1.0, "resume",
+  db.append_event(m->id, p.clock_after_s + 1.0,
+                  std::string(mission::to_string(mission::EventKind::resume)),
                   "resumed from " + std::string(store::to_string(status)) + " with " +
                       std::to_string(p.tasks.size()) + " turns to do");
   return p;

@@ -1,6 +1,7 @@
 #include "app/mission_recorder.hpp"
 
 #include <exception>
+#include <string>
 
 namespace avk::app {
 
@@ -58,7 +59,7 @@ void MissionRecorder::on_condition_set(const mission::ConditionSetEpisode& e) {
 }
 
 void MissionRecorder::on_event(const mission::MissionEventRecord& e) {
-  store_.append_event(mission_id_, e.t_s, e.kind, e.message);
+  store_.append_event(mission_id_, e.t_s, std::string(mission::to_string(e.kind)), e.message);
 }
 
 void MissionRecorder::on_state(mission::MissionState s, const std::string& reason, double t_s) {

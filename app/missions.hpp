@@ -40,8 +40,8 @@ struct CellReport {
   double dheading_deg = 0.0;  // |goal|
   int planned = 0;            // 0: not in the turn array (an imported log's turns)
   std::int64_t ok = 0, aborted = 0, rejected = 0;
-  int given_up = 0;      // live only: cells whose turns failed too often
-  bool running = false;  // live only: the cell of the turn under way
+  int given_up = 0;                             // live only: cells whose turns failed too often
+  bool running = false;                         // live only: the cell of the turn under way
   std::optional<kinematics::MeanSd> advance_m;  // over ok turns
   std::optional<kinematics::MeanSd> transfer_m;
   std::optional<kinematics::MeanSd> condition_set_time_s;

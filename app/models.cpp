@@ -4,9 +4,9 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "app/context.hpp"
 #include "kinematics/angles.hpp"
 #include "mission/helm_mode.hpp"
-#include "app/context.hpp"
 
 namespace avk::app {
 

@@ -103,9 +103,9 @@ Result<Prediction> predict(Context& ctx, const PredictQuery& q) {
         return invalid_argument("speed_model",
                                 "model " + std::to_string(m->id) + " has no speed model");
       p.model_id = m->id;
-      p.trajectory = kin::predict_normalized_turn(m->model, q.speed_mps, std::abs(q.dheading_deg),
-                                                  q.completion_threshold_deg, 0.0, 400,
-                                                  q.use_speed_model);
+      p.trajectory =
+          kin::predict_normalized_turn(m->model, q.speed_mps, std::abs(q.dheading_deg),
+                                       q.completion_threshold_deg, 0.0, 400, q.use_speed_model);
       if (q.dheading_deg < 0.0) p.trajectory = kin::reflect_x(std::move(p.trajectory));
       return finish(std::move(p));
     }

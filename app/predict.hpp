@@ -24,8 +24,8 @@ struct PredictQuery {
   double speed_mps = 0.0;
   double dheading_deg = 0.0;  // + right, - left
   PredictionMethod method = PredictionMethod::avk;
-  std::optional<std::int64_t> model_id;  // model: this one; none: the vehicle's latest
-  bool use_speed_model = false;          // model: let the model's speed response slow the turn
+  std::optional<std::int64_t> model_id;   // model: this one; none: the vehicle's latest
+  bool use_speed_model = false;           // model: let the model's speed response slow the turn
   double completion_threshold_deg = 5.0;  // model: the turn ends this close to the goal
   std::optional<kinematics::Pose> pose;   // where the turn starts; none: the normalised frame
 };
@@ -36,9 +36,9 @@ struct Prediction {
   // avk: the table's expected advance and transfer at the end of the turn.
   std::optional<double> advance_m;
   std::optional<double> transfer_m;
-  std::optional<std::int64_t> model_id;      // model: the model that answered
-  std::optional<std::int64_t> snapshot_id;   // avk: the imported table that answered, if one did
-  std::optional<std::string> table_source;   // avk: "turns" or "imported"
+  std::optional<std::int64_t> model_id;     // model: the model that answered
+  std::optional<std::int64_t> snapshot_id;  // avk: the imported table that answered, if one did
+  std::optional<std::string> table_source;  // avk: "turns" or "imported"
 };
 
 // invalid_argument names the parameter (speed, dheading, model, speed_model); not_found when the

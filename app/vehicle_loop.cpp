@@ -151,9 +151,9 @@ struct VehicleLoop::Impl {
     store->set_mission_runner(plan.mission_id, static_cast<std::int64_t>(::getpid()));
     idle_stopped = false;
     running = std::move(r);
-    feed.station_event(now, "mission_attached",
+    feed.station_event(now, mission::EventKind::mission_attached,
                        "mission " + std::to_string(plan.mission_id) + " started with " +
-                   std::to_string(plan.tasks.size()) + " turns to do");
+                           std::to_string(plan.tasks.size()) + " turns to do");
   }
 
   void finish_running(double now) {
@@ -161,7 +161,7 @@ struct VehicleLoop::Impl {
     store->set_mission_runner(running->id, std::nullopt);
     update_live();
     feed.station_event(
-        now, "mission_detached",
+        now, mission::EventKind::mission_detached,
         "mission " + std::to_string(running->id) + " " +
             (running->runner->state() ? mission::to_string(*running->runner->state()) : "ended"));
     running.reset();

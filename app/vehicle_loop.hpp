@@ -16,10 +16,10 @@
 #include <thread>
 #include <vector>
 
-#include "mission/mission_runner.hpp"
-#include "app/mission_plans.hpp"
 #include "app/live_feed.hpp"
+#include "app/mission_plans.hpp"
 #include "app/vehicle_snapshot.hpp"
+#include "mission/mission_runner.hpp"
 #include "sim/sim_config.hpp"
 #include "vehicle/m200.hpp"
 #include "vehicle/vehicle.hpp"

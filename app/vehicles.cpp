@@ -24,9 +24,8 @@ std::vector<VehicleStatus> list_vehicles(Context& ctx) {
     out.push_back({snap.info, std::move(snap)});
   }
   for (const auto& m : ctx.db().list_missions()) {
-    const bool listed = std::any_of(out.begin(), out.end(), [&](const VehicleStatus& v) {
-      return v.info.id == m.vehicle_id;
-    });
+    const bool listed = std::any_of(
+        out.begin(), out.end(), [&](const VehicleStatus& v) { return v.info.id == m.vehicle_id; });
     if (!listed) out.push_back(stored_vehicle(ctx, m.vehicle_id));
   }
   return out;

@@ -1,4 +1,4 @@
-// CKT speed targets (issue 2): materialised lookup < 1 us, interpolated query < 20 us,
+// CKT speed targets: materialised lookup < 1 us, interpolated query < 20 us,
 // materialising the 1 deg x 0.1 m/s table from 18 source cells < 50 ms.
 #include <benchmark/benchmark.h>
 

@@ -1,4 +1,4 @@
-// The prediction comparison (issue 5, thesis Figures 5-7/5-8): scoring every cell of the thesis'
+// The prediction comparison (thesis Figures 5-7/5-8): scoring every cell of the thesis'
 // Figure 4-1 grid against its mean turn, target < 100 ms for the 18 cells.
 #include <benchmark/benchmark.h>
 

@@ -1,4 +1,4 @@
-// Load on GET /api/v1/vehicles/{vid}/predict (issue 6, "Load"): the real station and HTTP server
+// Load on GET /api/v1/vehicles/{vid}/predict: the real station and HTTP server
 // in-process on loopback, K client threads with one keep-alive connection each, requests back to
 // back. The target is >= 20,000 requests/s on 2 cores with p99 < 5 ms. A plain program rather
 // than a Google Benchmark: a load generator measures throughput and a latency distribution over
@@ -288,7 +288,7 @@ int main(int argc, char** argv) {
   }
   std::printf(
       "\ncpu s: the whole process (server + clients) during the measured window; "
-      "client s: the client threads alone.\ntarget (issue 6): >= 20000 req/s with p99 < 5 ms\n");
+      "client s: the client threads alone.\ntarget: >= 20000 req/s with p99 < 5 ms\n");
   bool failed = false;
   for (const auto& p : passes)
     for (const auto& f : p.failures) {

@@ -9,10 +9,10 @@
 #include <sstream>
 #include <string>
 
+#include "app/mission_recorder.hpp"
 #include "mission/mission_config.hpp"
 #include "mission/mission_runner.hpp"
 #include "mission/turn_plan.hpp"
-#include "app/mission_recorder.hpp"
 #include "sim/sim_config.hpp"
 #include "sim/sim_mission.hpp"
 #include "store/store.hpp"

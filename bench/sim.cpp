@@ -1,5 +1,5 @@
 // Simulated seconds per wall second for the full stack (plant + sensor + pMarinePID + a
-// constant-heading helm) at default rates: target >= 10,000x real time on one core (issue 3).
+// constant-heading helm) at default rates: target >= 10,000x real time on one core.
 #include <benchmark/benchmark.h>
 
 #include "sim/scheduler.hpp"

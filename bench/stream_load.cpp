@@ -1,4 +1,4 @@
-// Load on the live stream /api/v1/stream (issue 6, "Load"): 100 WebSocket clients subscribed to
+// Load on the live stream /api/v1/stream: 100 WebSocket clients subscribed to
 // nav while a mission runs, plus one client that subscribes to nav and turn and then never reads.
 // The target is p99 delivery latency < 50 ms, and the stalled client must not slow the others.
 //
@@ -619,7 +619,7 @@ int main(int argc, char** argv) {
                   std::string(drained.close->reason.data(), drained.close->reason.size()).c_str());
     std::printf("\n");
   }
-  std::printf("target (issue 6): p99 < 50 ms, and the stalled client does not slow the others\n");
+  std::printf("target: p99 < 50 ms, and the stalled client does not slow the others\n");
 
   server.stop();
   station.shutdown();

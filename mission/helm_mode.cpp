@@ -19,6 +19,16 @@ std::optional<HelmMode> helm_mode_from_string(std::string_view s) {
   return std::nullopt;
 }
 
+const std::vector<HelmMode>& all_helm_modes() {
+  static const std::vector<HelmMode> all = [] {
+    std::vector<HelmMode> out;
+    for (std::size_t i = 0; i < kNames.size(); ++i)
+      out.push_back(static_cast<HelmMode>(i));
+    return out;
+  }();
+  return all;
+}
+
 bool commands_motion(HelmMode m) {
   return m == HelmMode::containing || m == HelmMode::conditioning || m == HelmMode::turning ||
          m == HelmMode::exciting || m == HelmMode::returning;

@@ -3,6 +3,7 @@
 
 #include <optional>
 #include <string_view>
+#include <vector>
 
 namespace avk::mission {
 
@@ -18,6 +19,8 @@ enum class HelmMode {
 };
 const char* to_string(HelmMode m);
 std::optional<HelmMode> helm_mode_from_string(std::string_view s);
+// Every mode, in declaration order.
+const std::vector<HelmMode>& all_helm_modes();
 
 // Modes in which the helm commands a heading and speed.
 bool commands_motion(HelmMode m);

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "kinematics/turn_sequence.hpp"
+#include "mission/event_kind.hpp"
 #include "mission/helm_mode.hpp"
 #include "mission/turn_plan.hpp"
 #include "vehicle/vehicle.hpp"
@@ -17,6 +18,8 @@ namespace avk::mission {
 // Mission lifecycle, as stored (store::MissionStatus has the same names).
 enum class MissionState { running, paused, interrupted, aborted, halted, done };
 const char* to_string(MissionState s);
+// The station status that announces a change to this state (mission_running, ...).
+EventKind state_change_kind(MissionState s);
 
 struct NavRecord {
   vehicle::NavSample nav;
@@ -48,7 +51,7 @@ const char* to_string(ConditionSetEpisode::Outcome o);
 
 struct MissionEventRecord {
   double t_s = 0.0;
-  std::string kind;  // containment, turn_aborted, turn_rejected, halt, pause, link, ...
+  EventKind kind = EventKind::link;
   std::string message;
 };
 

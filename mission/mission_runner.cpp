@@ -40,6 +40,24 @@ std::string at(const vehicle::NavSample& s) {
   return out;
 }
 
+// The event that logs a mission stopping short in this state. Reaching done is the ordinary end,
+// and a pause has logged its own event already.
+std::optional<EventKind> stop_event_kind(MissionState s) {
+  switch (s) {
+    case MissionState::halted:
+      return EventKind::halted;
+    case MissionState::aborted:
+      return EventKind::aborted;
+    case MissionState::interrupted:
+      return EventKind::interrupted;
+    case MissionState::running:
+    case MissionState::paused:
+    case MissionState::done:
+      return std::nullopt;
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 const char* to_string(MissionState s) {
@@ -58,6 +76,24 @@ const char* to_string(MissionState s) {
       return "done";
   }
   return "?";
+}
+
+EventKind state_change_kind(MissionState s) {
+  switch (s) {
+    case MissionState::running:
+      return EventKind::mission_running;
+    case MissionState::paused:
+      return EventKind::mission_paused;
+    case MissionState::interrupted:
+      return EventKind::mission_interrupted;
+    case MissionState::aborted:
+      return EventKind::mission_aborted;
+    case MissionState::halted:
+      return EventKind::mission_halted;
+    case MissionState::done:
+      return EventKind::mission_done;
+  }
+  return EventKind::mission_running;
 }
 
 const char* to_string(ConditionSetEpisode::Outcome o) {
@@ -117,7 +153,7 @@ void MissionRunner::set_state(MissionState s, const std::string& reason, double 
     o->on_state(s, reason, t_s);
 }
 
-void MissionRunner::event(double t_s, const std::string& kind, const std::string& message) {
+void MissionRunner::event(double t_s, EventKind kind, const std::string& message) {
   const MissionEventRecord e{t_s, kind, message};
   for (auto* o : observers_)
     o->on_event(e);
@@ -136,14 +172,14 @@ void MissionRunner::tick(double now_s) {
     if (turn_) abort_turn(now_s, "navigation lost during the turn", true);
     if (condition_set_) end_condition_set(now_s, ConditionSetEpisode::Outcome::interrupted);
     vehicle_.all_stop(now_s);
-    event(now_s, "link",
+    event(now_s, EventKind::link,
           std::string("navigation ") + vehicle::to_string(vehicle_.link_state(now_s)) +
               ": all stop until it is back");
     if (mode_ != HelmMode::returning && mode_ != HelmMode::exciting)
       set_mode(HelmMode::containing, now_s);
   } else if (live && holding_) {
     holding_ = false;
-    event(now_s, "link", "navigation is back");
+    event(now_s, EventKind::link, "navigation is back");
   }
   if (holding_ || !last_nav_) return;
 
@@ -154,7 +190,7 @@ void MissionRunner::tick(double now_s) {
     end_condition_set(last_nav_->t_s, ConditionSetEpisode::Outcome::timeout);
     TurnTask& task = queue_.front();
     ++task.attempts;
-    event(now_s, "condition_set_timeout",
+    event(now_s, EventKind::condition_set_timeout,
           "conditions for " + cell_name(task) + " not set within " +
               num(config_.condition_set.timeout_s, 0) + " s (attempt " +
               std::to_string(task.attempts) + ")");
@@ -259,7 +295,7 @@ void MissionRunner::process(const vehicle::NavSample& s) {
 
 void MissionRunner::contain(const vehicle::NavSample& s, const std::string& why) {
   if (condition_set_) end_condition_set(s.t_s, ConditionSetEpisode::Outcome::interrupted);
-  event(s.t_s, "containment", why + " at " + at(s) + ": heading for the interior");
+  event(s.t_s, EventKind::containment, why + " at " + at(s) + ": heading for the interior");
   set_mode(HelmMode::containing, s.t_s);
 }
 
@@ -352,7 +388,7 @@ void MissionRunner::finish_turn(const vehicle::NavSample& s, Completion how) {
     out.task = task;
     if (cell) ++cell->rejected;
     give_up_or_requeue(s.t_s, out);
-    event(s.t_s, "turn_rejected", cell_name(out.task) + ": " + *anomaly);
+    event(s.t_s, EventKind::turn_rejected, cell_name(out.task) + ": " + *anomaly);
   } else {
     const auto at = kinematics::advance_transfer(out.raw.normalized().points());
     out.advance_m = at.advance_m;
@@ -378,7 +414,7 @@ void MissionRunner::give_up_or_requeue(double t_s, TurnOutcome& out) {
   out.given_up = true;
   ++given_up_;
   if (auto* c = cell_of(task)) ++c->given_up;
-  event(t_s, "turn_given_up",
+  event(t_s, EventKind::turn_given_up,
         cell_name(task) + " given up after " + std::to_string(task.attempts) + " attempts");
   queue_.pop_front();
 }
@@ -401,7 +437,7 @@ void MissionRunner::abort_turn(double t_s, const std::string& reason, bool count
     ++cell->aborted;
   }
   give_up_or_requeue(t_s, out);
-  event(t_s, "turn_aborted",
+  event(t_s, EventKind::turn_aborted,
         cell_name(out.task) + ": " + reason +
             (out.requeued ? "; re-queued"
                           : "; given up after " + std::to_string(out.task.attempts) + " attempts"));
@@ -412,7 +448,7 @@ void MissionRunner::abort_turn(double t_s, const std::string& reason, bool count
 void MissionRunner::start_exciting(const vehicle::NavSample& s, double now_s) {
   if (!excite_start_s_) {
     excite_start_s_ = now_s;
-    event(now_s, "excitation",
+    event(now_s, EventKind::excitation,
           "persistent excitation for " + num(config_.excitation->duration_s, 0) + " s at " +
               num(config_.excitation->speed_mps) + " m/s");
   }
@@ -425,7 +461,7 @@ void MissionRunner::start_exciting(const vehicle::NavSample& s, double now_s) {
 void MissionRunner::start_returning(double t_s) {
   if (condition_set_) end_condition_set(t_s, ConditionSetEpisode::Outcome::interrupted);
   return_best_m_ = std::numeric_limits<double>::infinity();
-  event(t_s, "returning", "heading for the return point");
+  event(t_s, EventKind::returning, "heading for the return point");
   set_mode(HelmMode::returning, t_s);
 }
 
@@ -450,8 +486,7 @@ void MissionRunner::stop_all(double t_s, HelmMode mode, MissionState state,
   desired_heading_deg_.reset();
   desired_speed_mps_.reset();
   set_mode(mode, t_s);
-  if (state != MissionState::done && state != MissionState::paused)
-    event(t_s, to_string(state), reason);
+  if (const auto kind = stop_event_kind(state)) event(t_s, *kind, reason);
   set_state(state, reason, t_s);
 }
 
@@ -459,14 +494,14 @@ bool MissionRunner::pause(double now_s, const std::string& reason) {
   if (finished() || mode_ == HelmMode::paused) return false;
   if (turn_) abort_turn(now_s, reason, false);
   paused_from_ = mode_;
-  event(now_s, "pause", reason);
+  event(now_s, EventKind::pause, reason);
   stop_all(now_s, HelmMode::paused, MissionState::paused, reason);
   return true;
 }
 
 bool MissionRunner::resume(double now_s) {
   if (mode_ != HelmMode::paused || finished()) return false;
-  event(now_s, "resume", "resumed");
+  event(now_s, EventKind::resume, "resumed");
   set_state(MissionState::running, "", now_s);
   if (paused_from_ == HelmMode::returning) {
     start_returning(now_s);

@@ -80,7 +80,7 @@ class MissionRunner {
   void process(const vehicle::NavSample& s);
   void set_mode(HelmMode m, double t_s);
   void set_state(MissionState s, const std::string& reason, double t_s);
-  void event(double t_s, const std::string& kind, const std::string& message);
+  void event(double t_s, EventKind kind, const std::string& message);
   void contain(const vehicle::NavSample& s, const std::string& why);
   void leave_containment(const vehicle::NavSample& s);
   void start_conditioning(const vehicle::NavSample& s);

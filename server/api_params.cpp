@@ -40,8 +40,7 @@ double required_number(const ApiRequest& r, const std::string& name, double min,
 
 std::optional<std::int64_t> whole_param(const ApiRequest& r, const std::string& name,
                                         std::int64_t min, std::int64_t max) {
-  const auto v =
-      number_param(r, name, static_cast<double>(min), static_cast<double>(max));
+  const auto v = number_param(r, name, static_cast<double>(min), static_cast<double>(max));
   if (!v) return std::nullopt;
   if (std::floor(*v) != *v) throw bad_parameter(name, "must be a whole number");
   return static_cast<std::int64_t>(*v);
@@ -101,8 +100,7 @@ Format negotiate(const ApiRequest& r, bool csv_available) {
 }
 
 void require_media_type(const ApiRequest& r, const std::string& type, const std::string& what) {
-  if (media_type(r.content_type) != type)
-    throw RequestError(415, what + " (" + type + ")");
+  if (media_type(r.content_type) != type) throw RequestError(415, what + " (" + type + ")");
 }
 
 }  // namespace avk::server

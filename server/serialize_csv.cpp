@@ -114,9 +114,8 @@ std::string comparison_csv(const app::Comparison& c) {
     const kin::MethodError* m = cell.model ? &*cell.model : nullptr;
     const kin::MethodError* a = &cell.avk;
     const kin::MethodError* i = &cell.instantaneous;
-    out += num(cell.speed_mps) + ',' + num(cell.dheading_deg) + ',' +
-           std::to_string(cell.n_turns) + ',' +
-           std::to_string(std::count(cell.outlier.begin(), cell.outlier.end(), true)) + ',' +
+    out += num(cell.speed_mps) + ',' + num(cell.dheading_deg) + ',' + std::to_string(cell.n_turns) +
+           ',' + std::to_string(std::count(cell.outlier.begin(), cell.outlier.end(), true)) + ',' +
            mse(a) + ',' + mse(m) + ',' + mse(i) + ',' + pct(a) + ',' + pct(m) + ',' + advance(a) +
            ',' + advance(m) + ',' + advance(i) + ',' + transfer(a) + ',' + transfer(m) + ',' +
            transfer(i) + '\n';

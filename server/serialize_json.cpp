@@ -133,7 +133,8 @@ json mission_json(const app::MissionSummary& s) {
           {"created_utc", m.created_utc},
           {"started_s", optional_json(m.started_s)},
           {"ended_s", optional_json(m.ended_s)},
-          {"turns", {{"ok", s.turns.ok}, {"aborted", s.turns.aborted}, {"rejected", s.turns.rejected}}}};
+          {"turns",
+           {{"ok", s.turns.ok}, {"aborted", s.turns.aborted}, {"rejected", s.turns.rejected}}}};
 }
 
 json cells_json(const std::vector<app::CellReport>& cells) {

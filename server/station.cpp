@@ -13,6 +13,7 @@
 #include "server/api_errors.hpp"
 #include "server/api_params.hpp"
 #include "server/serialize.hpp"
+#include "server/vocabulary_json.hpp"
 
 namespace avk::server {
 
@@ -162,6 +163,10 @@ void Station::add_routes() {
                           {"session_id", hub_.session_id()},
                           {"vehicle_id", loop ? json(loop->info().id) : json()}});
   });
+  // The names the station uses (event kinds with their severity, helm modes, link states, turn
+  // statuses), so a client keeps no copy of its own.
+  get("/api/v1/meta",
+      [](const ApiRequest&, const PathParams&) { return json_response(vocabulary_json()); });
   get("/api/v1/vehicles", [&ctx](const ApiRequest&, const PathParams&) {
     json out = json::array();
     for (const auto& v : app::list_vehicles(ctx))
@@ -186,10 +191,9 @@ void Station::add_routes() {
   get("/api/v1/missions", [list_missions](const ApiRequest& r, const PathParams&) {
     return list_missions(r, std::nullopt);
   });
-  get("/api/v1/vehicles/{vid}/missions",
-      [list_missions](const ApiRequest& r, const PathParams& p) {
-        return list_missions(r, p.at("vid"));
-      });
+  get("/api/v1/vehicles/{vid}/missions", [list_missions](const ApiRequest& r, const PathParams& p) {
+    return list_missions(r, p.at("vid"));
+  });
   post("/api/v1/vehicles/{vid}/missions", [&ctx](const ApiRequest& r, const PathParams& p) {
     require_media_type(r, "application/json", "a mission is a JSON document");
     return answer(app::start_mission(ctx, p.at("vid"), r.body), true, [](std::int64_t id) {
@@ -316,7 +320,8 @@ void Station::add_routes() {
     q.vehicle_id = p.at("vid");
     q.model_id = id_param(r, "model");
     return answer(app::compare(ctx, q), false, [f, &q](const app::Comparison& c) {
-      if (f == Format::csv) return csv_response(comparison_csv(c), "compare-" + q.vehicle_id + ".csv");
+      if (f == Format::csv)
+        return csv_response(comparison_csv(c), "compare-" + q.vehicle_id + ".csv");
       return json_response(comparison_json(c));
     });
   });

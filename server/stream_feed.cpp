@@ -10,8 +10,8 @@ void StreamFeed::telemetry(const app::VehicleSnapshot& s) {
   hub_.publish("helm", s.t_s, helm_topic_json(s).dump());
 }
 
-void StreamFeed::station_event(double t_s, std::string_view kind, const std::string& message) {
-  hub_.status(t_s, std::string(kind), "info", message);
+void StreamFeed::station_event(double t_s, mission::EventKind kind, const std::string& message) {
+  hub_.status(t_s, kind, message);
 }
 
 std::unique_ptr<mission::MissionObserver> StreamFeed::follow(std::int64_t mission_id,

@@ -11,7 +11,7 @@ class StreamFeed final : public app::LiveFeed {
  public:
   explicit StreamFeed(StreamHub& hub) : hub_(hub) {}
   void telemetry(const app::VehicleSnapshot& s) override;
-  void station_event(double t_s, std::string_view kind, const std::string& message) override;
+  void station_event(double t_s, mission::EventKind kind, const std::string& message) override;
   std::unique_ptr<mission::MissionObserver> follow(std::int64_t mission_id,
                                                    const mission::MissionRunner& runner) override;
 

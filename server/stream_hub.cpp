@@ -4,6 +4,8 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
+#include "server/vocabulary_json.hpp"
+
 namespace avk::server {
 
 namespace {
@@ -33,11 +35,12 @@ bool StreamHub::is_topic(const std::string& topic) {
 }
 
 std::string StreamHub::hello(const std::string& server_version) const {
-  return nlohmann::json{{"type", "hello"},
-                        {"server_version", server_version},
-                        {"session_id", session_id_},
-                        {"topics", kTopics}}
-      .dump();
+  nlohmann::json j = vocabulary_json();
+  j["type"] = "hello";
+  j["server_version"] = server_version;
+  j["session_id"] = session_id_;
+  j["topics"] = kTopics;
+  return j.dump();
 }
 
 void StreamHub::subscribe(const std::shared_ptr<StreamSink>& sink, const std::string& topic) {
@@ -104,6 +107,11 @@ void StreamHub::status(double t_s, const std::string& kind, const std::string& l
       nlohmann::json{
           {"kind", kind}, {"level", level}, {"message", message}, {"suppressed_before", suppressed}}
           .dump());
+}
+
+void StreamHub::status(double t_s, mission::EventKind kind, const std::string& message) {
+  status(t_s, std::string(mission::to_string(kind)),
+         std::string(mission::to_string(mission::severity(kind))), message);
 }
 
 std::size_t StreamHub::subscriber_count(const std::string& topic) const {

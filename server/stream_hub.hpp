@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "mission/event_kind.hpp"
 #include "server/api_types.hpp"
 
 namespace avk::server {
@@ -26,7 +27,7 @@ class StreamHub {
 
   // A random id per server start: a client that sees a new one knows the server restarted.
   const std::string& session_id() const { return session_id_; }
-  // The hello a new connection receives.
+  // The hello a new connection receives; it carries vocabulary_json() for the dashboard.
   std::string hello(const std::string& server_version) const;
 
   // The hub keeps weak references: a closed session simply stops receiving.
@@ -40,6 +41,8 @@ class StreamHub {
   // next message that goes out.
   void status(double t_s, const std::string& kind, const std::string& level,
               const std::string& message);
+  // The level is the kind's severity.
+  void status(double t_s, mission::EventKind kind, const std::string& message);
 
   std::size_t subscriber_count(const std::string& topic) const;
   std::uint64_t published(const std::string& topic) const;

@@ -1,7 +1,6 @@
 #include "server/stream_publisher.hpp"
 
 #include <nlohmann/json.hpp>
-#include <set>
 
 #include "app/missions.hpp"
 #include "server/serialize.hpp"
@@ -42,16 +41,13 @@ void StreamPublisher::on_turn(mission::TurnOutcome& t) {
 }
 
 void StreamPublisher::on_event(const mission::MissionEventRecord& e) {
-  static const std::set<std::string> warnings = {
-      "halted",        "aborted", "interrupted", "turn_aborted",         "turn_rejected",
-      "turn_given_up", "link",    "containment", "condition_set_timeout"};
-  hub_.status(e.t_s, e.kind, warnings.count(e.kind) ? "warning" : "info", e.message);
+  hub_.status(e.t_s, e.kind, e.message);
 }
 
 void StreamPublisher::on_state(mission::MissionState s, const std::string& reason, double t_s) {
   state_ = mission::to_string(s);
   publish_progress(t_s, state_);
-  if (!reason.empty()) hub_.status(t_s, "mission_" + state_, "info", reason);
+  if (!reason.empty()) hub_.status(t_s, mission::state_change_kind(s), reason);
 }
 
 void StreamPublisher::on_mode(mission::HelmMode, mission::HelmMode, double t_s) {

@@ -140,7 +140,7 @@ CREATE INDEX nav_by_mission ON nav_samples (mission_id);
     // vehicles must not answer one vehicle's question with another's table.
     R"sql(
 ALTER TABLE ckt_snapshots ADD COLUMN vehicle_id TEXT;
-UPDATE ckt_snapshots SET vehicle_id = json_extract(document, '$.vehicle_id')
+UPDATE ckt_snapshots SET vehicle_id = json_extract(document, '$.vehicle.id')
   WHERE json_valid(document);
 CREATE INDEX ckt_snapshots_by_vehicle ON ckt_snapshots (vehicle_id, id);
 )sql",
@@ -697,8 +697,8 @@ std::int64_t Store::save_ckt_snapshot(const kinematics::Ckt& table,
                                       const std::vector<std::int64_t>& mission_ids) {
   const std::string ids = nlohmann::json(mission_ids).dump();
   const std::string doc = kinematics::ckt_to_json_string(table);
-  auto s = db_.prepare(
-      "INSERT INTO ckt_snapshots (mission_ids, document, vehicle_id) VALUES (?, ?, ?)");
+  auto s =
+      db_.prepare("INSERT INTO ckt_snapshots (mission_ids, document, vehicle_id) VALUES (?, ?, ?)");
   s.bind(1, ids).bind(2, doc).bind(3, table.vehicle_id);
   s.run();
   return db_.last_insert_rowid();

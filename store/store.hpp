@@ -117,7 +117,9 @@ struct MissionEvent {
   std::int64_t id = 0;
   std::int64_t mission_id = 0;
   double t_s = 0.0;
-  std::string kind;  // e.g. "containment", "turn_aborted", "halt", "pause"
+  // A mission::EventKind name ("containment", "turn_aborted", ...). Kept as text: rows written by
+  // older versions may hold kinds that no longer exist, and must still be listed.
+  std::string kind;
   std::string message;
   friend bool operator==(const MissionEvent&, const MissionEvent&) = default;
 };

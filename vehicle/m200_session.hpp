@@ -31,7 +31,7 @@ struct M200Config {
   MixConfig mix{};
   double controller_hz = 10.0;  // $PYDIR rate (iM200 on the thesis' vehicles)
   // The backseat sends all stop when the helm's newest command, or the newest navigation, is
-  // older than this (issue 8; the frontseat's own watchdog is 1.0 s on $PYDIR).
+  // older than this (the frontseat's own watchdog is 1.0 s on $PYDIR).
   double command_stale_s = 1.5;
   double nav_stale_s = 1.5;
   // The Vehicle interface's link rule: navigation older than this is a stale link.

@@ -2,7 +2,7 @@
 // The Clearpath frontseat protocol (Kingfisher M200, Heron): NMEA-0183 style sentences over TCP.
 // parse_sentence is a pure function over the bytes of one line; whatever arrives, it returns a
 // typed sentence or a typed error naming the field, and never throws or reads out of bounds.
-// The formatters write what the emulator and the backseat send. Protocol facts: issue 8.
+// The formatters write what the emulator and the backseat send. Protocol facts: docs/m200.md.
 //
 // Conventions in every sentence type: times are seconds since midnight UTC (hhmmss.sss on the
 // wire); latitude and longitude are signed decimal degrees (+ north, + east; ddmm.mmmm and a

@@ -19,6 +19,23 @@ const char* to_string(LinkState s) {
   return "?";
 }
 
+std::optional<LinkState> link_state_from_string(std::string_view s) {
+  for (const LinkState l : all_link_states())
+    if (s == to_string(l)) return l;
+  return std::nullopt;
+}
+
+const std::vector<LinkState>& all_link_states() {
+  // to_string's switch is checked to name every enumerator (0..n-1), and answers "?" past them.
+  static const std::vector<LinkState> all = [] {
+    std::vector<LinkState> out;
+    for (int i = 0; std::string_view(to_string(static_cast<LinkState>(i))) != "?"; ++i)
+      out.push_back(static_cast<LinkState>(i));
+    return out;
+  }();
+  return all;
+}
+
 DesiredCommand checked_command(const DesiredCommand& desired) {
   if (!std::isfinite(desired.t_s) || !std::isfinite(desired.heading_deg) ||
       !std::isfinite(desired.speed_mps) || desired.speed_mps < 0.0) {

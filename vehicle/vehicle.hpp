@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace avk::vehicle {
@@ -43,6 +44,9 @@ enum class LinkState {
   disconnected,  // no link, or never any navigation
 };
 const char* to_string(LinkState s);
+std::optional<LinkState> link_state_from_string(std::string_view s);
+// Every state, in declaration order.
+const std::vector<LinkState>& all_link_states();
 
 struct VehicleInfo {
   std::string id;

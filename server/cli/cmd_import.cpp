@@ -13,6 +13,7 @@
 #include "mission/turn_extractor.hpp"
 #include "server/cli/args.hpp"
 #include "server/cli/commands.hpp"
+#include "server/serialize.hpp"
 #include "store/store.hpp"
 #include "vehicle/alog.hpp"
 
@@ -26,12 +27,6 @@ using kinematics::TurnStatus;
 // failure midway leaves whole batches behind, never half of one.
 constexpr std::size_t kNavBatchRows = 5000;
 constexpr std::size_t kProblemsShown = 5;
-
-std::string fixed(double v, int decimals) {
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(decimals) << v;
-  return s.str();
-}
 
 struct TurnCounts {
   std::size_t ok = 0, aborted = 0, rejected = 0;

@@ -10,23 +10,23 @@
 #include <ostream>
 #include <sstream>
 
+#include "app/context.hpp"
+#include "app/mission_liveness.hpp"
+#include "app/mission_plans.hpp"
+#include "app/mission_recorder.hpp"
+#include "app/missions.hpp"
 #include "kinematics/angles.hpp"
 #include "mission/helm_loop.hpp"
 #include "mission/mission_config.hpp"
 #include "mission/mission_runner.hpp"
 #include "mission/turn_plan.hpp"
+#include "server/cli/app_error.hpp"
 #include "server/cli/args.hpp"
 #include "server/cli/commands.hpp"
 #include "server/cli/db_selection.hpp"
 #include "server/cli/files.hpp"
 #include "server/cli/m200_options.hpp"
 #include "server/cli/sim_options.hpp"
-#include "app/context.hpp"
-#include "app/mission_liveness.hpp"
-#include "app/mission_plans.hpp"
-#include "app/mission_recorder.hpp"
-#include "app/missions.hpp"
-#include "server/cli/app_error.hpp"
 #include "server/serialize.hpp"
 #include "sim/sim_mission.hpp"
 #include "store/store.hpp"
@@ -101,14 +101,27 @@ class ProgressPrinter final : public mission::MissionObserver {
   }
 
   void on_event(const mission::MissionEventRecord& e) override {
-    static const std::set<std::string> shown = {"halted",        "aborted", "interrupted",
-                                                "turn_given_up", "link",    "condition_set_timeout",
-                                                "returning"};
-    if (quiet_ || !shown.count(e.kind)) return;
-    out_ << "  " << e.kind << " at t=" << fixed(e.t_s, 1) << " s: " << e.message << std::endl;
+    if (quiet_ || !shown(e.kind)) return;
+    out_ << "  " << mission::to_string(e.kind) << " at t=" << fixed(e.t_s, 1) << " s: " << e.message
+         << std::endl;
   }
 
  private:
+  // The warnings, less those a turn line already reports and the containment a turn mission
+  // passes through after most turns; and the return leg, the sign that the mission is ending.
+  static bool shown(mission::EventKind k) {
+    switch (k) {
+      case mission::EventKind::turn_aborted:
+      case mission::EventKind::turn_rejected:
+      case mission::EventKind::containment:
+        return false;
+      case mission::EventKind::returning:
+        return true;
+      default:
+        return mission::severity(k) == mission::Severity::warning;
+    }
+  }
+
   std::ostream& out_;
   int planned_;
   int ok_;

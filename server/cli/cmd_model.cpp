@@ -62,8 +62,8 @@ int model_fit(const std::vector<std::string>& rest, Io& io) {
   const auto missions = mission_ids(a);
   if (missions.empty()) throw UsageError("give the training data: --mission ID (repeatable)");
   const std::string vehicle = vehicle_of(a, ctx.db(), missions);
-  const app::FittedModel fitted = value_or_fail(app::fit_model(
-      ctx, vehicle, missions, identification_options(a), resample_options(a)));
+  const app::FittedModel fitted = value_or_fail(
+      app::fit_model(ctx, vehicle, missions, identification_options(a), resample_options(a)));
   const auto& r = fitted.result;
   const auto& m = fitted.stored;
   const auto& mo = r.model;

@@ -175,8 +175,8 @@ std::optional<http::message_generator> HttpSession::check_header() {
   }
   // No route has such a path; quoting it in the answer could not be done in JSON either.
   if (!is_valid_utf8(path))
-    return refuse(http::status::not_found, "no resource at this path (not valid UTF-8 once decoded)",
-                  true);
+    return refuse(http::status::not_found,
+                  "no resource at this path (not valid UTF-8 once decoded)", true);
 
   std::size_t limit = state_->options().body_limit;
   if (path.starts_with(kApiPrefix) && path != kStreamPath) {

@@ -1,6 +1,5 @@
 #include "server/http/router.hpp"
 
-
 #include "server/http/bearer_token.hpp"
 #include "server/http/problem.hpp"
 
@@ -99,8 +98,8 @@ ApiResponse Router::handle(const ApiRequest& request) {
   if (auto no = refusal(request, m.route ? m.route->access : Access::read)) return *no;
   if (!m.route) {
     if (m.allow.empty()) return problem_response(404, "no resource at " + request.path);
-    ApiResponse res = problem_response(
-        405, request.method + " is not allowed on " + request.path, {{"allow", m.allow}});
+    ApiResponse res = problem_response(405, request.method + " is not allowed on " + request.path,
+                                       {{"allow", m.allow}});
     res.headers.push_back({"Allow", m.allow});
     return res;
   }

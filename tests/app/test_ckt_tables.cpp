@@ -16,12 +16,12 @@ using namespace avk;
 
 class CktTables : public ::testing::Test {
  protected:
-  testing::TempDb db_{"avk_app_ckt"};
+  avk::testing::TempDb db_{"avk_app_ckt"};
   app::Context ctx_{db_.path()};
 };
 
 TEST_F(CktTables, TheTableHoldsTheVehiclesCellsAndIsRebuiltForNewTurns) {
-  const auto mission = testing::store_arc_turns(ctx_.db(), "alpha", 1.0, 2);
+  const auto mission = avk::testing::store_arc_turns(ctx_.db(), "alpha", 1.0, 2);
   app::TableCache cache(std::chrono::milliseconds(0));  // re-checks on every call
   const auto first = cache.get(ctx_, "alpha");
   ASSERT_TRUE(first) << first.error().message;
@@ -34,13 +34,13 @@ TEST_F(CktTables, TheTableHoldsTheVehiclesCellsAndIsRebuiltForNewTurns) {
   EXPECT_EQ(turns, 18u);  // 3 speeds x 3 heading changes x 2
   // Unchanged store: the same table object.
   EXPECT_EQ(cache.get(ctx_, "alpha")->table, first->table);
-  testing::ArcTurnSpec s;
+  avk::testing::ArcTurnSpec s;
   s.speed_mps = 1.0;
   s.dheading_deg = 40.0;
   s.lead_in_m = 1.5;
   s.radius_m = 3.0;
   s.vehicle_id = "alpha";
-  ctx_.db().store_turn(mission, testing::make_arc_turn(s), kinematics::TurnStatus::ok, "");
+  ctx_.db().store_turn(mission, avk::testing::make_arc_turn(s), kinematics::TurnStatus::ok, "");
   const auto second = cache.get(ctx_, "alpha");
   ASSERT_TRUE(second);
   EXPECT_NE(second->table, first->table);
@@ -51,7 +51,7 @@ TEST_F(CktTables, TheTableHoldsTheVehiclesCellsAndIsRebuiltForNewTurns) {
 }
 
 TEST_F(CktTables, ACellIsFoundOnTheGridOnly) {
-  testing::store_arc_turns(ctx_.db(), "alpha");
+  avk::testing::store_arc_turns(ctx_.db(), "alpha");
   const auto cell = app::ckt_cell(ctx_, "alpha", 1.0, 100.0);
   ASSERT_TRUE(cell) << cell.error().message;
   EXPECT_EQ(cell->n_turns, 2u);
@@ -65,7 +65,7 @@ TEST_F(CktTables, ACellIsFoundOnTheGridOnly) {
 }
 
 TEST_F(CktTables, ExportNamesTheVehicleAndReadsBack) {
-  testing::store_arc_turns(ctx_.db(), "alpha");
+  avk::testing::store_arc_turns(ctx_.db(), "alpha");
   const auto t = app::ckt_for_export(ctx_, "alpha");
   ASSERT_TRUE(t);
   EXPECT_EQ(t->vehicle_id, "alpha");
@@ -74,7 +74,7 @@ TEST_F(CktTables, ExportNamesTheVehicleAndReadsBack) {
 }
 
 TEST_F(CktTables, AWrongFileIsRefusedAndNothingIsStored) {
-  testing::store_arc_turns(ctx_.db(), "alpha");
+  avk::testing::store_arc_turns(ctx_.db(), "alpha");
   kinematics::Ckt table = *app::ckt_for_export(ctx_, "alpha");
   const std::string file = kinematics::ckt_to_json_string(table);
   const auto wrong_vehicle = app::import_ckt(ctx_, "bravo", file);
@@ -92,8 +92,8 @@ TEST_F(CktTables, AWrongFileIsRefusedAndNothingIsStored) {
 }
 
 TEST_F(CktTables, BuildKeepsASnapshotOfTheMissionsItCameFrom) {
-  const auto m = testing::store_arc_turns(ctx_.db(), "alpha");
-  testing::store_arc_turns(ctx_.db(), "alpha", 3.0);  // a second mission, not asked for
+  const auto m = avk::testing::store_arc_turns(ctx_.db(), "alpha");
+  avk::testing::store_arc_turns(ctx_.db(), "alpha", 3.0);  // a second mission, not asked for
   const auto built = app::build_ckt(ctx_, "alpha", {m}, {}, 0.9);
   ASSERT_TRUE(built) << built.error().message;
   EXPECT_EQ(built->report.turns_used, 18u);

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "mission/mission_config.hpp"
-#include "mission/mission_runner.hpp"
 #include "app/mission_plans.hpp"
 #include "app/mission_recorder.hpp"
+#include "mission/mission_config.hpp"
+#include "mission/mission_runner.hpp"
 #include "sim/scheduler.hpp"
 #include "sim/sim_config.hpp"
 #include "sim/sim_mission.hpp"

@@ -16,22 +16,22 @@ namespace {
 
 using namespace avk;
 
-constexpr const char* kMission = testing::kSmallMission;
+constexpr const char* kMission = avk::testing::kSmallMission;
 
 class Missions : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    db_ = new testing::TempDb("avk_app_missions");
+    db_ = new avk::testing::TempDb("avk_app_missions");
     store::Store db(db_->path());
-    mission_ = testing::run_recorded_mission(db, "sim-a");
-    other_ = testing::run_recorded_mission(db, "sim-b");
+    mission_ = avk::testing::run_recorded_mission(db, "sim-a");
+    other_ = avk::testing::run_recorded_mission(db, "sim-b");
   }
   static void TearDownTestSuite() { delete db_; }
-  static testing::TempDb* db_;
+  static avk::testing::TempDb* db_;
   static std::int64_t mission_, other_;
   app::Context ctx_{db_->path()};
 };
-testing::TempDb* Missions::db_ = nullptr;
+avk::testing::TempDb* Missions::db_ = nullptr;
 std::int64_t Missions::mission_ = 0;
 std::int64_t Missions::other_ = 0;
 

@@ -19,11 +19,11 @@ using namespace avk;
 class Models : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    db_ = new testing::TempDb("avk_app_models");
+    db_ = new avk::testing::TempDb("avk_app_models");
     store::Store db(db_->path());
-    mission_ = testing::run_recorded_mission(db, "sim-a");
-    second_ = testing::run_recorded_mission(db, "sim-a");
-    foreign_ = testing::run_recorded_mission(db, "sim-b");
+    mission_ = avk::testing::run_recorded_mission(db, "sim-a");
+    second_ = avk::testing::run_recorded_mission(db, "sim-a");
+    foreign_ = avk::testing::run_recorded_mission(db, "sim-b");
   }
   static void TearDownTestSuite() { delete db_; }
   static kinematics::IdentificationOptions options() {
@@ -31,11 +31,11 @@ class Models : public ::testing::Test {
     o.history_s = 3.0;
     return o;
   }
-  static testing::TempDb* db_;
+  static avk::testing::TempDb* db_;
   static std::int64_t mission_, second_, foreign_;
   app::Context ctx_{db_->path()};
 };
-testing::TempDb* Models::db_ = nullptr;
+avk::testing::TempDb* Models::db_ = nullptr;
 std::int64_t Models::mission_ = 0;
 std::int64_t Models::second_ = 0;
 std::int64_t Models::foreign_ = 0;

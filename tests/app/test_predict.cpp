@@ -35,12 +35,12 @@ void expect_same_line(const kinematics::Polyline& a, const kinematics::Polyline&
 
 class Predict : public ::testing::Test {
  protected:
-  testing::TempDb db_{"avk_app_predict"};
+  avk::testing::TempDb db_{"avk_app_predict"};
   app::Context ctx_{db_.path()};
 };
 
 TEST_F(Predict, AvkAnswersFromTheVehiclesOwnTurnsThroughTheFineTable) {
-  testing::store_arc_turns(ctx_.db(), "alpha");
+  avk::testing::store_arc_turns(ctx_.db(), "alpha");
   const auto p = app::predict(ctx_, query("alpha", 1.0, 100.0));
   ASSERT_TRUE(p) << p.error().message;
   EXPECT_EQ(p->table_source, "turns");
@@ -57,7 +57,7 @@ TEST_F(Predict, AvkAnswersFromTheVehiclesOwnTurnsThroughTheFineTable) {
 }
 
 TEST_F(Predict, ALeftTurnIsTheMirrorImageOfTheRightOne) {
-  testing::store_arc_turns(ctx_.db(), "alpha");
+  avk::testing::store_arc_turns(ctx_.db(), "alpha");
   for (const auto method : {app::PredictionMethod::avk, app::PredictionMethod::instantaneous}) {
     auto right_q = query("alpha", 1.2, 70.0);
     auto left_q = query("alpha", 1.2, -70.0);
@@ -74,7 +74,7 @@ TEST_F(Predict, ALeftTurnIsTheMirrorImageOfTheRightOne) {
 }
 
 TEST_F(Predict, APoseRotatesAndTranslatesTheNormalisedTurn) {
-  testing::store_arc_turns(ctx_.db(), "alpha");
+  avk::testing::store_arc_turns(ctx_.db(), "alpha");
   auto q = query("alpha", 1.0, 40.0);
   const auto normal = app::predict(ctx_, q);
   q.pose = kinematics::Pose{100.0, -20.0, 90.0};  // heading east
@@ -99,7 +99,7 @@ TEST_F(Predict, InstantaneousIsARayOnTheNewHeading) {
 }
 
 TEST_F(Predict, AVehicleWithOnlyAnImportedTableIsAnsweredByIt) {
-  testing::store_arc_turns(ctx_.db(), "donor", 1.5);
+  avk::testing::store_arc_turns(ctx_.db(), "donor", 1.5);
   kinematics::Ckt table = kinematics::Ckt::build(ctx_.db().load_normalized_turns({}, "donor"));
   table.vehicle_id = "bravo";
   const auto imported = app::import_ckt(ctx_, "bravo", kinematics::ckt_to_json_string(table));
@@ -108,14 +108,14 @@ TEST_F(Predict, AVehicleWithOnlyAnImportedTableIsAnsweredByIt) {
   ASSERT_TRUE(p) << p.error().message;
   EXPECT_EQ(p->table_source, "imported");
   EXPECT_EQ(p->snapshot_id, imported->snapshot_id);
-  const kinematics::MaterializedCkt fine(kinematics::parse_ckt_json(
-      kinematics::ckt_to_json_string(table)));
+  const kinematics::MaterializedCkt fine(
+      kinematics::parse_ckt_json(kinematics::ckt_to_json_string(table)));
   expect_same_line(p->trajectory, fine.query(1.0, 100.0).trajectory);
 }
 
 TEST_F(Predict, EachVehicleOfADatabaseIsAnsweredByItsOwnTable) {
-  testing::store_arc_turns(ctx_.db(), "small", 1.0);
-  testing::store_arc_turns(ctx_.db(), "large", 2.0);
+  avk::testing::store_arc_turns(ctx_.db(), "small", 1.0);
+  avk::testing::store_arc_turns(ctx_.db(), "large", 2.0);
   // A table imported last, for a third vehicle, must not answer for the others.
   kinematics::Ckt other = kinematics::Ckt::build(ctx_.db().load_normalized_turns({}, "small"));
   other.vehicle_id = "third";
@@ -132,7 +132,7 @@ TEST_F(Predict, EachVehicleOfADatabaseIsAnsweredByItsOwnTable) {
 }
 
 TEST_F(Predict, BadQuestionsNameTheirParameter) {
-  testing::store_arc_turns(ctx_.db(), "alpha");
+  avk::testing::store_arc_turns(ctx_.db(), "alpha");
   const auto field_of = [&](app::PredictQuery q) {
     const auto r = app::predict(ctx_, q);
     EXPECT_FALSE(r);
@@ -154,8 +154,8 @@ TEST_F(Predict, BadQuestionsNameTheirParameter) {
 }
 
 TEST(PredictMethod, NamesRoundTrip) {
-  for (const auto m :
-       {app::PredictionMethod::avk, app::PredictionMethod::model, app::PredictionMethod::instantaneous})
+  for (const auto m : {app::PredictionMethod::avk, app::PredictionMethod::model,
+                       app::PredictionMethod::instantaneous})
     EXPECT_EQ(app::prediction_method_from_string(app::to_string(m)), m);
   EXPECT_FALSE(app::prediction_method_from_string("guess"));
 }

@@ -1,6 +1,6 @@
-// Issue 13, defects 5 and 7 (parser part): the CKT, turn and yaw model readers throw only their
-// own ParseError naming the field, never nlohmann's exceptions or their text (which quotes the
-// input), and an imported table's grid is bounded so the fine table built from it stays small.
+// Parser input limits: the CKT, turn and yaw model readers throw only their own ParseError naming
+// the field, never nlohmann's exceptions or their text (which quotes the input), and an imported
+// table's grid is bounded so the fine table built from it stays small.
 #include <gtest/gtest.h>
 
 #include <memory>

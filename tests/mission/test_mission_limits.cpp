@@ -1,5 +1,5 @@
-// Issue 13, defects 3, 4 and 5 (mission part): a mission is input from outside, so its size is
-// bounded, its duplicates refused, and a number JSON cannot hold named like any other bad value.
+// Mission input limits: a mission is input from outside, so its size is bounded, its duplicates
+// refused, and a number JSON cannot hold named like any other bad value.
 #include <gtest/gtest.h>
 
 #include <cmath>

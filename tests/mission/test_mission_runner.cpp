@@ -193,7 +193,7 @@ struct Recorder : MissionObserver {
     return static_cast<int>(
         std::count_if(turns.begin(), turns.end(), [&](const auto& t) { return t.status == s; }));
   }
-  const MissionEventRecord* event(const std::string& kind, const std::string& part = "") const {
+  const MissionEventRecord* event(EventKind kind, const std::string& part = "") const {
     for (const auto& e : events)
       if (e.kind == kind && contains(e.message, part)) return &e;
     return nullptr;
@@ -338,7 +338,7 @@ TEST(MissionRunner, StartingOutsideTheRegionContainsInsteadOfHalting) {
   ASSERT_TRUE(r.until_mode(HelmMode::conditioning, 200));
   EXPECT_GT(r.vehicle.y(), -180.0);  // conditions only in the interior
   EXPECT_EQ(r.vehicle.all_stops, 0);
-  EXPECT_EQ(r.rec.event("halted"), nullptr);
+  EXPECT_EQ(r.rec.event(EventKind::halted), nullptr);
   // Having been inside, leaving the region halts.
   r.run_for(0.2, [&](double) { r.vehicle.teleport(0, -230); });
   EXPECT_EQ(r.runner.state(), MissionState::halted);
@@ -388,8 +388,8 @@ TEST(MissionRunner, TurnIntoTheBufferIsAbortedRequeuedAndRetried) {
   EXPECT_FALSE(first.given_up);
   EXPECT_EQ(first.task.attempts, 1);
   EXPECT_EQ(first.raw.meta().status, TurnStatus::aborted);
-  EXPECT_NE(r.rec.event("containment", "during a turn"), nullptr);
-  EXPECT_NE(r.rec.event("turn_aborted", "re-queued"), nullptr);
+  EXPECT_NE(r.rec.event(EventKind::containment, "during a turn"), nullptr);
+  EXPECT_NE(r.rec.event(EventKind::turn_aborted, "re-queued"), nullptr);
   const auto it = std::find_if(r.rec.modes.begin(), r.rec.modes.end(), [](const auto& m) {
     return m.from == HelmMode::turning && m.to == HelmMode::containing;
   });
@@ -445,7 +445,7 @@ TEST(MissionRunner, CellThatAlwaysHitsTheBufferIsGivenUpAndTheMissionFinishes) {
   EXPECT_EQ(r.runner.cells()[1].given_up, 1);
   EXPECT_EQ(r.runner.cells()[1].aborted, 2);
   EXPECT_TRUE(r.runner.queue().empty());
-  EXPECT_NE(r.rec.event("turn_aborted", "given up after 2 attempts"), nullptr);
+  EXPECT_NE(r.rec.event(EventKind::turn_aborted, "given up after 2 attempts"), nullptr);
 }
 
 // ---- 6. Region exit -------------------------------------------------------------------------
@@ -460,7 +460,7 @@ TEST(MissionRunner, LeavingTheRegionHaltsAndAbortsTheTurn) {
   EXPECT_EQ(r.runner.state(), MissionState::halted);
   EXPECT_TRUE(r.runner.finished());
   EXPECT_EQ(r.vehicle.all_stops, 1);
-  EXPECT_NE(r.rec.event("halted", "left the operating region"), nullptr);
+  EXPECT_NE(r.rec.event(EventKind::halted, "left the operating region"), nullptr);
   ASSERT_EQ(r.rec.turns.size(), 1u);
   EXPECT_EQ(r.rec.turns[0].status, TurnStatus::aborted);
   EXPECT_TRUE(contains(r.rec.turns[0].reason, "left the operating region"));
@@ -516,7 +516,7 @@ TEST(MissionRunner, AbortStopsForGood) {
   EXPECT_EQ(r.runner.mode(), HelmMode::halted);
   EXPECT_TRUE(r.runner.finished());
   EXPECT_EQ(r.vehicle.all_stops, 1);
-  EXPECT_NE(r.rec.event("aborted", "aborted by operator"), nullptr);
+  EXPECT_NE(r.rec.event(EventKind::aborted, "aborted by operator"), nullptr);
   ASSERT_EQ(r.rec.turns.size(), 1u);
   EXPECT_EQ(r.rec.turns[0].status, TurnStatus::aborted);
   EXPECT_FALSE(r.runner.pause(r.now()));
@@ -546,7 +546,7 @@ TEST(MissionRunner, LinkLossDuringATurnStopsAndTheMissionContinuesAfterwards) {
   EXPECT_TRUE(t.requeued);
   EXPECT_EQ(r.vehicle.all_stops, 1);
   EXPECT_EQ(r.runner.mode(), HelmMode::containing);
-  const MissionEventRecord* lost = r.rec.event("link", "STALE");
+  const MissionEventRecord* lost = r.rec.event(EventKind::link, "STALE");
   ASSERT_NE(lost, nullptr);
   EXPECT_GE(lost->t_s, last_nav_s + 2.0 - 1e-9);  // stale only after 2 s without navigation
   EXPECT_LE(lost->t_s, last_nav_s + 2.3);
@@ -555,7 +555,7 @@ TEST(MissionRunner, LinkLossDuringATurnStopsAndTheMissionContinuesAfterwards) {
   EXPECT_EQ(r.vehicle.commands.size(), commands);  // holding: nothing commanded
   r.vehicle.deliver_nav = true;
   ASSERT_TRUE(r.finish());
-  EXPECT_NE(r.rec.event("link", "back"), nullptr);
+  EXPECT_NE(r.rec.event(EventKind::link, "back"), nullptr);
   EXPECT_EQ(r.runner.state(), MissionState::done);
   EXPECT_EQ(r.rec.count(TurnStatus::ok), 2);
 }
@@ -573,7 +573,7 @@ TEST(MissionRunner, TurnTheWrongWayIsRejectedAndRequeued) {
   EXPECT_EQ(t.raw.meta().status, TurnStatus::rejected);
   EXPECT_TRUE(t.requeued);
   EXPECT_EQ(t.task.attempts, 1);
-  EXPECT_NE(r.rec.event("turn_rejected", "wrong way"), nullptr);
+  EXPECT_NE(r.rec.event(EventKind::turn_rejected, "wrong way"), nullptr);
   r.vehicle.wrong_way = false;
   ASSERT_TRUE(r.finish());
   EXPECT_EQ(r.rec.count(TurnStatus::ok), 1);
@@ -769,9 +769,9 @@ TEST(MissionRunner, ConditionsNeverSetTimeOutAndTheTaskIsGivenUp) {
     EXPECT_GT(e.end_s - e.start_s, c.condition_set.timeout_s);
     EXPECT_LT(e.end_s - e.start_s, c.condition_set.timeout_s + 0.3);
   }
-  EXPECT_NE(r.rec.event("condition_set_timeout", "attempt 1"), nullptr);
-  EXPECT_NE(r.rec.event("condition_set_timeout", "attempt 2"), nullptr);
-  EXPECT_NE(r.rec.event("turn_given_up"), nullptr);
+  EXPECT_NE(r.rec.event(EventKind::condition_set_timeout, "attempt 1"), nullptr);
+  EXPECT_NE(r.rec.event(EventKind::condition_set_timeout, "attempt 2"), nullptr);
+  EXPECT_NE(r.rec.event(EventKind::turn_given_up), nullptr);
   EXPECT_EQ(r.runner.turns_given_up(), 1u);
   EXPECT_EQ(r.runner.cells()[0].given_up, 1);
   const auto path = r.rec.mode_path();

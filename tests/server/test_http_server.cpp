@@ -586,7 +586,7 @@ TEST_F(StaticFilesTest, NothingOutsideTheRoot) {
   }
 }
 
-// Issue 13, defect 12: the test suite, package files and node_modules' bookkeeping were served.
+// Regression: the test suite, package files and node_modules' bookkeeping were served.
 TEST_F(StaticFilesTest, OnlyTheDashboardsFilesAreServed) {
   HttpServerOptions o;
   o.web_root = (base / "web").string();
@@ -601,7 +601,7 @@ TEST_F(StaticFilesTest, OnlyTheDashboardsFilesAreServed) {
   }
 }
 
-// Issue 13, defect 12: no Content-Security-Policy, no framing protection.
+// Regression: responses had no Content-Security-Policy and no framing protection.
 TEST_F(StaticFilesTest, EveryResponseCarriesTheSecurityHeaders) {
   HttpServerOptions o;
   o.web_root = (base / "web").string();
@@ -918,7 +918,7 @@ TEST_F(HttpServerTest, BindFailureNamesTheAddress) {
   EXPECT_THROW(HttpServer(bad, api, hub).start(), std::runtime_error);
 }
 
-// --- issue 13: hostile clients --------------------------------------------------------------
+// --- hostile clients ------------------------------------------------------------------------
 
 // The responses in raw bytes, one after the other: {status, Content-Length, body}.
 struct RawResponse {
@@ -951,7 +951,7 @@ std::vector<RawResponse> split_responses(std::string data, bool first_is_head) {
   return out;
 }
 
-// Issue 13, defect 6: a HEAD answered with a body (404 static, 426 stream) broke the framing of
+// Regression: a HEAD answered with a body (404 static, 426 stream) broke the framing of
 // the next response on the same connection.
 TEST_F(HttpServerTest, HeadAnswersCarryNoBodyAndKeepAliveFramingHolds) {
   start();
@@ -968,7 +968,7 @@ TEST_F(HttpServerTest, HeadAnswersCarryNoBodyAndKeepAliveFramingHolds) {
   }
 }
 
-// Issue 13, defect 11: with Host: evil.example (DNS rebinding) REST answered and the stream
+// Regression: with Host: evil.example (DNS rebinding) REST answered and the stream
 // upgraded on loopback.
 TEST_F(HttpServerTest, OnlyHostsOfThisServerAreAnswered) {
   HttpServerOptions o;
@@ -1001,7 +1001,7 @@ TEST_F(HttpServerTest, OnlyHostsOfThisServerAreAnswered) {
   EXPECT_EQ(status_of(raw_exchange(port, "GET /api/v1/echo HTTP/1.0\r\n\r\n").data), 200);
 }
 
-// Issue 13, defect 5: invalid UTF-8 in the path or the query answered 500 with nlohmann's
+// Regression: invalid UTF-8 in the path or the query answered 500 with nlohmann's
 // type_error.316 text.
 TEST_F(HttpServerTest, InvalidUtf8InPathIs404AndInQueryIs400NamingIt) {
   start();
@@ -1028,7 +1028,7 @@ TEST_F(HttpServerTest, InvalidUtf8InPathIs404AndInQueryIs400NamingIt) {
   EXPECT_EQ(json::parse(res.body())["query"]["v"], "\xe2\x82\xac");
 }
 
-// Issue 13, defect 5: a 500 carried the library's exception text to the client.
+// Regression: a 500 carried the library's exception text to the client.
 TEST_F(HttpServerTest, A500FromTheApiCarriesNoInternals) {
   start();
   const auto res = get(port, "/api/v1/status/500");
@@ -1038,7 +1038,7 @@ TEST_F(HttpServerTest, A500FromTheApiCarriesNoInternals) {
   EXPECT_EQ(res.body().find("/api/v1/status/500"), std::string::npos);
 }
 
-// Issue 13, defect 1: a JSON body nested 100,000 deep overflowed the stack of a handler.
+// Regression: a JSON body nested 100,000 deep overflowed the stack of a handler.
 TEST_F(HttpServerTest, JsonBodiesNestedTooDeepAre400BeforeAnyHandler) {
   start();
   HttpClient client(port);
@@ -1059,7 +1059,7 @@ TEST_F(HttpServerTest, JsonBodiesNestedTooDeepAre400BeforeAnyHandler) {
   EXPECT_EQ(res.result_int(), 200);
 }
 
-// Issue 13, defect 2: a body was read (up to 64 MB) before the token was checked. The header
+// Regression: a body was read (up to 64 MB) before the token was checked. The header
 // alone decides: the 401 arrives although the 60 MB announced are never sent.
 TEST_F(HttpServerTest, RefusedBeforeTheBodyIsRead) {
   start();
@@ -1114,7 +1114,7 @@ class TrickleClient {
   int fd_;
 };
 
-// Issue 13, defect 2: a body sent one byte per pause shorter than the idle timeout was never
+// Regression: a body sent one byte per pause shorter than the idle timeout was never
 // cut. Now the whole request has a deadline.
 TEST_F(HttpServerTest, ABodyTrickledInIsCutAtTheRequestDeadline) {
   HttpServerOptions o;
@@ -1135,7 +1135,7 @@ TEST_F(HttpServerTest, ABodyTrickledInIsCutAtTheRequestDeadline) {
   EXPECT_EQ(get(port, "/api/v1/echo").result_int(), 200);
 }
 
-// Issue 13, defect 2: connections from one address were unbounded. At the cap the oldest one
+// Regression: connections from one address were unbounded. At the cap the oldest one
 // still waiting for its request makes room, so slow connections cannot keep a request out.
 TEST_F(HttpServerTest, AtThePerAddressCapTheOldestWaitingConnectionMakesRoom) {
   HttpServerOptions o;

@@ -1,4 +1,4 @@
-// Issue 8's acceptance, over a real socket: the Figure 4-1 mission through the M200 driver and
+// The M200 driver end to end, over a real socket: the Figure 4-1 mission through the driver and
 // the frontseat emulator on loopback TCP at 10x real time, compared with the same plant run
 // in-process; the same with 5 % of the frontseat's sentences dropped or corrupted; a 3 s link cut
 // in the middle of a turn; and the frontseat's watchdog after the backseat goes silent.
@@ -18,12 +18,12 @@
 #include <numeric>
 #include <thread>
 
+#include "app/mission_plans.hpp"
+#include "app/mission_recorder.hpp"
 #include "mission/helm_loop.hpp"
 #include "mission/mission_config.hpp"
 #include "mission/mission_runner.hpp"
 #include "server/cli/files.hpp"
-#include "app/mission_plans.hpp"
-#include "app/mission_recorder.hpp"
 #include "server/station.hpp"
 #include "server/stream_hub.hpp"
 #include "sim/frontseat_emulator.hpp"
@@ -144,8 +144,7 @@ DriverRun run_through_emulator(
   vehicle::ScaledClock clock(kFactor, 0.0);
   vehicle::M200 m200(driver_options(emulator), clock);
   EXPECT_TRUE(m200.wait_for_nav(std::chrono::seconds(5)));
-  app::MissionPlan plan =
-      app::create_mission_plan(db, mission_text_over_the_link(), m200.info());
+  app::MissionPlan plan = app::create_mission_plan(db, mission_text_over_the_link(), m200.info());
   DriverRun out;
   {
     app::MissionRecorder recorder(db, plan.mission_id);

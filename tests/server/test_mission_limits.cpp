@@ -1,13 +1,13 @@
-// Issue 13, defects 3 and 5 at the station: a mission too large to plan, or with a number JSON
-// cannot hold, is a 422 naming the field, and a start that fails leaves no mission row behind.
+// Mission input limits at the station: a mission too large to plan, or with a number JSON cannot
+// hold, is a 422 naming the field, and a start that fails leaves no mission row behind.
 #include <gtest/gtest.h>
 
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "mission/mission_config.hpp"
 #include "app/mission_plans.hpp"
+#include "mission/mission_config.hpp"
 #include "server/station.hpp"
 #include "sim/sim_config.hpp"
 #include "store/store.hpp"

@@ -1,5 +1,5 @@
 // `avk serve` as a process: the token rules, the default database location, what a failed start
-// leaves behind and what it says when it listens off this machine (issue 13, defects 9 and 10).
+// leaves behind and what it says when it listens off this machine.
 // A server that starts although it should not is stopped at the deadline and fails the test.
 
 #include <gtest/gtest.h>
@@ -94,7 +94,7 @@ class BusyPort {
   unsigned short port_ = 0;
 };
 
-// Issue 13, defect 10: a token of 16 'a's was accepted.
+// Regression: a token of 16 'a's was accepted.
 TEST(ServeOptions, AUserTokenMustBeLongAndUnpredictable) {
   avk::testing::TempDb db("avk_serve_token");
   const std::string log = db.path() + ".log";
@@ -109,7 +109,7 @@ TEST(ServeOptions, AUserTokenMustBeLongAndUnpredictable) {
   fs::remove(db.path() + ".token");
 }
 
-// Issue 13, defect 10: an existing token file readable by others (0644) was used silently.
+// Regression: an existing token file readable by others (0644) was used silently.
 TEST(ServeOptions, ATokenFileOthersCanReadIsRefused) {
   avk::testing::TempDb db("avk_serve_mode");
   const std::string token_file = db.path() + ".token";
@@ -126,7 +126,7 @@ TEST(ServeOptions, ATokenFileOthersCanReadIsRefused) {
   fs::remove(token_file);
 }
 
-// Issue 13, defect 9: `serve --db X` created $HOME/.local/share/avk-station anyway, and a start
+// Regression: `serve --db X` created $HOME/.local/share/avk-station anyway, and a start
 // that failed (here: the port is taken) left a new X.token behind.
 TEST(ServeOptions, AFailedStartWithDbLeavesNothingNewBehind) {
   avk::testing::TempDb db("avk_serve_fail");
@@ -151,7 +151,7 @@ TEST(ServeOptions, AFailedStartWithDbLeavesNothingNewBehind) {
   fs::remove_all(home);
 }
 
-// Issue 13, defect 10: --bind 0.0.0.0 printed no warning, only a 127.0.0.1 URL.
+// Regression: --bind 0.0.0.0 printed no warning, only a 127.0.0.1 URL.
 TEST(ServeOptions, ListeningOffThisMachineIsSaidAloud) {
   avk::testing::TempDb db("avk_serve_bind");
   const std::string log = db.path() + ".log";

@@ -1,5 +1,5 @@
 // The station's REST handlers over a real store and a real simulated vehicle (paced fast), called
-// without sockets: every endpoint and every error path of issue 6.
+// without sockets: every endpoint and every error path of the REST API.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -124,7 +124,7 @@ TEST_F(StationApi, HealthAndVehicle) {
   }
   EXPECT_EQ(v["link"], "LIVE");
   EXPECT_TRUE(v["nav"].is_object());
-  EXPECT_EQ(v["helm_mode"], "IDLE");
+  EXPECT_TRUE(v["helm_mode"].is_null()) << v.dump();  // no mission drives the helm
   EXPECT_EQ(call(get("/api/v1/vehicles/nobody")).status, 404);
   EXPECT_EQ(body(call(get("/api/v1/vehicles"))).size(), 1u);
 }

@@ -1,4 +1,4 @@
-// The Station behind the real transport, attacked as issue 13's hostile tester did: what the
+// The Station behind the real transport, attacked as a hostile client would: what the
 // header decides (the token, the route's body limit) before any body is read, nesting depth,
 // encodings, HEAD and the bearer scheme. Every exchange is a raw socket with a deadline.
 
@@ -112,7 +112,7 @@ class StationHttpTest : public ::testing::Test {
   unsigned short port = 0;
 };
 
-// Issue 13, defect 1: {"missions": [[[...]]]} 100,000 deep crashed the server (58,165 frames in
+// Regression: {"missions": [[[...]]]} 100,000 deep crashed the server (58,165 frames in
 // the serialiser under the model-fit handler).
 TEST_F(StationHttpTest, DeeplyNestedFitRequestIs400AndTheServerGoesOn) {
   const std::string deep = std::string(100000, '[') + std::string(100000, ']');
@@ -131,7 +131,7 @@ TEST_F(StationHttpTest, DeeplyNestedFitRequestIs400AndTheServerGoesOn) {
   EXPECT_EQ(status_of(send_and_read(port, request("GET", "/api/v1/health"))), 200);
 }
 
-// Issue 13, defect 2: without a token, the server first read the 62 MB body, then said 401.
+// Regression: without a token, the server first read the 62 MB body, then said 401.
 // The header is all it reads now: the answer comes although the body is never sent.
 TEST_F(StationHttpTest, ImportWithoutTheTokenIs401BeforeTheBody) {
   const auto raw = send_and_read(port,
@@ -155,8 +155,7 @@ TEST_F(StationHttpTest, ImportWithoutTheTokenIs401BeforeTheBody) {
   EXPECT_EQ(status_of(big), 413) << big;
 }
 
-// Issue 13, defect 10: "bearer" in lower case (RFC 7235: the scheme is case-insensitive) was
-// refused.
+// Regression: "bearer" in lower case (RFC 7235: the scheme is case-insensitive) was refused.
 TEST_F(StationHttpTest, TheBearerSchemeIsCaseInsensitive) {
   for (const std::string scheme : {"Bearer", "bearer", "BEARER", "bEaReR"}) {
     const auto raw =
@@ -174,16 +173,15 @@ TEST_F(StationHttpTest, TheBearerSchemeIsCaseInsensitive) {
   }
 }
 
-// Issue 13, defect 6: HEAD on the API answered Content-Length: 0.
+// Regression: HEAD on an API route answered Content-Length: 0.
 TEST_F(StationHttpTest, HeadGivesTheGetsHeadersAndNoBody) {
   for (const std::string path :
        {"/api/v1/health", "/api/v1/vehicles", "/api/v1/missions", "/api/v1/missions?format=csv",
         "/api/v1/turns", "/api/v1/vehicles/sim-usim", "/api/v1/vehicles/nobody/ckt",
         "/api/v1/models/12345"}) {
     const auto get = send_and_read(port, request("GET", path));
-    const auto head_then_get =
-        send_and_read(port, "HEAD " + path + " HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n" +
-                                request("GET", path));
+    const auto head_then_get = send_and_read(
+        port, "HEAD " + path + " HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n" + request("GET", path));
     EXPECT_EQ(status_of(head_then_get), status_of(get)) << path;
     EXPECT_EQ(header_value(head_then_get, "Content-Type"), header_value(get, "Content-Type"))
         << path;
@@ -197,11 +195,11 @@ TEST_F(StationHttpTest, HeadGivesTheGetsHeadersAndNoBody) {
   }
 }
 
-// Issue 13, defect 5: invalid UTF-8 in a path or query was a 500 with nlohmann's text.
+// Regression: invalid UTF-8 in a path or query was a 500 with nlohmann's text. No route has
+// such a path: 404.
 TEST_F(StationHttpTest, InvalidUtf8InAPathIs404) {
-  for (const std::string target :
-       {"/api/v1/%ff", "/api/v1/vehicles/%ff%fe", "/api/v1/vehicles/%c0%af/ckt",
-        "/api/v1/missions/%ed%a0%80"}) {
+  for (const std::string target : {"/api/v1/%ff", "/api/v1/vehicles/%ff%fe",
+                                   "/api/v1/vehicles/%c0%af/ckt", "/api/v1/missions/%ed%a0%80"}) {
     const auto raw = send_and_read(port, request("GET", target));
     EXPECT_EQ(status_of(raw), 404) << target << "\n" << raw;
     EXPECT_EQ(header_value(raw, "Content-Type"), "application/problem+json") << target;
@@ -211,6 +209,7 @@ TEST_F(StationHttpTest, InvalidUtf8InAPathIs404) {
   }
 }
 
+// In a query: 400, naming the parameter.
 TEST_F(StationHttpTest, InvalidUtf8InAQueryIsA400NamingTheParameter) {
   for (const auto& [target, named] : std::vector<std::pair<std::string, std::string>>{
            {"/api/v1/turns?limit=%ff", "'limit'"},

@@ -1,7 +1,7 @@
 // The live stream's token: off loopback every request needs the station's bearer token, and a
 // browser cannot set headers on a WebSocket, so the dashboard sends it as `?token=` on the
-// upgrade. Reproduces the Docker defect (issue 13, item 14): the stream had no way to carry the
-// token and let any address in.
+// upgrade. Reproduces the Docker deployment's defect: the stream had no way to carry the token
+// and let any address in.
 
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
-// Issue 13, defect 5 (sim config): a number JSON cannot hold as a double is a ParseError naming
-// its field, not nlohmann's out_of_range escaping a parser documented to throw ParseError.
+// Sim config input limits: a number JSON cannot hold as a double is a ParseError naming its field,
+// not nlohmann's out_of_range escaping a parser documented to throw ParseError.
 #include <gtest/gtest.h>
 
 #include <string>

@@ -26,7 +26,7 @@ double time_to_change(const TurnScenarioResult& r, double start_heading, double 
 }  // namespace
 
 // Thesis simulation setup (turn_rate 30, pMarinePID defaults, everything at 4 Hz) through the
-// real SimVehicle + scheduler: the MOOS-IvP reference turn of issue 3.
+// real SimVehicle + scheduler: the MOOS-IvP reference turn.
 TEST(SimVehicle, UsimReproducesTheMoosReferenceTurn) {
   TurnScenarioConfig c;
   c.speed_mps = 1.0;

@@ -73,9 +73,9 @@ void expect_mean_sd(const std::optional<avk::kinematics::MeanSd>& got, double me
 
 }  // namespace
 
-TEST(MissionQueries, SchemaIsVersionFive) {
+TEST(MissionQueries, SchemaIsVersionSix) {
   Store s(":memory:");
-  EXPECT_EQ(schema_version(), 5);
+  EXPECT_EQ(schema_version(), 6);
   EXPECT_EQ(s.user_version(), 6);
   EXPECT_FALSE(migration_step_sql(0).empty());
   EXPECT_NE(migration_step_sql(1).find("normalized_samples"), std::string_view::npos);

@@ -338,7 +338,8 @@ TEST(Store, IntegrityCheckPasses) {
 // Each vehicle's newest table answers for that vehicle only, whichever was imported last.
 TEST(Store, CktSnapshotIsTheVehiclesOwn) {
   Store s(":memory:");
-  avk::kinematics::Ckt a = avk::kinematics::Ckt::build(avk::testing::thesis_grid_turns(1, 0.25, 0.02));
+  avk::kinematics::Ckt a =
+      avk::kinematics::Ckt::build(avk::testing::thesis_grid_turns(1, 0.25, 0.02));
   avk::kinematics::Ckt b = a;
   a.vehicle_id = "alpha";
   b.vehicle_id = "bravo";

@@ -1,5 +1,5 @@
-// Issue 13, defect 8: one implausible timestamp must not discard the rest of a log. The line is
-// refused and counted with its number, and the time it claims never becomes "the newest".
+// Regression: one implausible timestamp discarded the rest of a log. Now the line is refused and
+// counted with its number, and the time it claims never becomes "the newest".
 #include <gtest/gtest.h>
 
 #include <sstream>

@@ -88,6 +88,7 @@ export const state = {
   recordedTurns: [],     // raw paths of the current mission's stored turns (history from REST)
   conditioningSinceT: null, // sim time the helm entered CONDITIONING
   events: [],            // the event log, newest last, bounded
+  eventLevels: new Map(), // event kind -> 'info' | 'warning', from the stream's hello
   track: new TrackBuffer(TRACK_CAPACITY),
   okTurns: 0,            // stored ok turns of the vehicle (0: the CKT and the comparison 404)
   testFeed: false,       // a ?test=1 hook feeds nav (the stream's nav is dropped meanwhile)

@@ -7,10 +7,6 @@ import { getJson, getAllItems } from './api.js';
 import { headingDiff, wrap360 } from './format.js';
 import { simplify } from './decimate.js';
 
-const WARNING_KINDS = new Set([
-  'halted', 'aborted', 'interrupted', 'turn_aborted', 'turn_rejected', 'turn_given_up', 'link',
-  'containment', 'condition_set_timeout',
-]);
 const STALE_AFTER_MS = 2000;
 const MAX_RECORDED_TURNS = 60; // drawn as history in Live; older ones are in the CKT view
 
@@ -199,15 +195,42 @@ function mergeIntoTrack(ht, hx, hy) {
   for (; a < live.t.length; a++) push(live.t[a], live.x[a], live.y[a]);
 }
 
+/** The level the station gives an event kind (its vocabulary, from the hello); info for a kind
+ *  it does not name (an old log's, or before the first hello). */
+function levelOf(kind) {
+  return state.eventLevels.get(kind) ?? 'info';
+}
+
 async function loadEvents(id) {
   const items = await getAllItems(`/missions/${id}/events`, {}, 2000);
+  // `logged`: the level is ours, not the server's, so a later vocabulary may correct it.
   state.events = items.map((e) => ({
     t: e.t_s,
     kind: e.kind,
-    level: WARNING_KINDS.has(e.kind) ? 'warning' : 'info',
+    level: levelOf(e.kind),
     message: e.message,
+    logged: true,
   }));
   emit('events', state.events);
+}
+
+/** Takes the vocabulary of a hello. The first read of the event log comes before the first hello,
+ *  so the levels given then are given again. */
+function applyVocabulary(hello) {
+  if (!Array.isArray(hello.event_kinds)) return; // an older server: every event stays info
+  state.eventLevels = new Map(
+    hello.event_kinds.map((e) => [e.kind, e.severity === 'warning' ? 'warning' : 'info']),
+  );
+  let changed = false;
+  for (const e of state.events) {
+    if (!e.logged) continue;
+    const level = levelOf(e.kind);
+    if (level !== e.level) {
+      e.level = level;
+      changed = true;
+    }
+  }
+  if (changed) emit('events', state.events);
 }
 
 async function loadRecordedTurns(id) {
@@ -243,6 +266,7 @@ export function onHello(hello) {
   const restarted = state.sessionId !== null && hello.session_id !== state.sessionId;
   state.sessionId = hello.session_id;
   state.serverVersion = hello.server_version;
+  applyVocabulary(hello);
   if (restarted) {
     state.track.clear();
     state.turn = null;

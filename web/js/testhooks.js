@@ -76,5 +76,8 @@ export function installTestHooks() {
     renderTimes: (reset = false) => (reset ? renderTimes.splice(0) : renderTimes.slice()),
     trackCapacity: () => state.track.capacity,
     state: () => ({ link: state.link, sessionId: state.sessionId, vehicleId: state.vehicleId, mission: state.mission?.id ?? null, okTurns: state.okTurns }),
+    /** The event log as shown ({kind, level}) and the levels the hello gave each kind. */
+    events: () => state.events.map((e) => ({ kind: e.kind, level: e.level })),
+    eventLevels: () => Object.fromEntries(state.eventLevels),
   };
 }

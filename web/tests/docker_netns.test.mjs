@@ -1,7 +1,6 @@
-// The dashboard as the Docker deployment serves it (issue 13, item 14): `avk serve` started with
-// the Dockerfile's own ENTRYPOINT (`--bind 0.0.0.0`), and Debian's Chromium driving the page from
-// a network namespace this test creates, so the browser is a non-loopback client as it is through
-// `docker run -p`. The server then wants the token for reads and for the stream too.
+// The dashboard as the Docker deployment serves it: `avk serve` started with the Dockerfile's own
+// ENTRYPOINT (`--bind 0.0.0.0`), and Debian's Chromium driving the page from a network namespace
+// this test creates, so the browser is a non-loopback client as it is through `docker run -p`. The server then wants the token for reads and for the stream too.
 //
 // The namespace is joined to the root namespace by a veth pair with private 10.213.x.y addresses
 // that exist only on this machine; nothing leaves it. Needs root and iproute2 (`ip netns`): CI

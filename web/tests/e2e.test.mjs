@@ -482,6 +482,32 @@ test('the link badge shows DISCONNECTED when the server stops and LIVE with a ne
   await until('the mission after catch-up', async () => (await page.evaluate(() => window.avkTest.state().mission)) === missionId, 15000);
 });
 
+test("the event log's levels are the ones the hello names", { timeout: slow(60000) }, async () => {
+  await goView('live');
+  // The dashboard keeps no list of its own: the warnings are the station's, from the hello.
+  const levels = await page.evaluate(() => window.avkTest.eventLevels());
+  assert.equal(levels.link, 'warning');
+  assert.equal(levels.turn_aborted, 'warning');
+  assert.equal(levels.returning, 'info');
+  // The finished mission's log, read over REST after the restart.
+  const events = await until('the mission\'s event log', async () => {
+    const e = await page.evaluate(() => window.avkTest.events());
+    return e.some((x) => x.kind === 'returning') ? e : null;
+  }, 15000);
+  for (const e of events) {
+    if (e.kind in levels) assert.equal(e.level, levels[e.kind], e.kind);
+  }
+  const shown = await page.evaluate(() =>
+    [...document.querySelectorAll('#event-log li')]
+      .filter((li) => li.querySelector('.kind'))
+      .map((li) => ({ kind: li.querySelector('.kind').textContent, cls: li.className })),
+  );
+  assert.ok(shown.length > 0, 'the event log shows the mission\'s events');
+  for (const li of shown) {
+    if (li.kind in levels) assert.equal(li.cls, `lvl-${levels[li.kind]}`, li.kind);
+  }
+});
+
 /** `avk frontseat-emulator` on a free port: resolves {child, port} once it listens. */
 function startEmulator() {
   return new Promise((resolve, reject) => {

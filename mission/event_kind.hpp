@@ -1,0 +1,50 @@
+#pragma once
+// The kinds of entry in a mission's event log and of the live stream's status messages, with how
+// loudly an operator is told about each. One list, so that the store, the stream, the command
+// line and the dashboard (through the stream's hello) cannot disagree about a name or a severity.
+// The names are stored in the database and sent over the API: never rename one.
+
+#include <optional>
+#include <string_view>
+#include <vector>
+
+namespace avk::mission {
+
+enum class EventKind {
+  // Events of a running mission (MissionObserver::on_event, stored in its event log).
+  link,                   // navigation lost or back
+  condition_set_timeout,  // the conditions for a turn were not set in time
+  containment,            // the vehicle reached the buffer zone: heading for the interior
+  turn_rejected,          // a finished turn failed the anomaly checks
+  turn_given_up,          // a cell's turn failed for the last allowed time
+  turn_aborted,           // a turn ended before its goal heading
+  excitation,             // persistent excitation started
+  returning,              // all done: heading for the return point
+  pause,
+  resume,
+  halted,       // the mission stopped itself (left the operating region)
+  aborted,      // an operator aborted the mission
+  interrupted,  // the station process went away mid-mission
+  // Station status (the stream's status topic only): a mission attached to or detached from the
+  // vehicle, and a mission's state changes (mission_<MissionState>).
+  mission_attached,
+  mission_detached,
+  mission_running,
+  mission_paused,
+  mission_interrupted,
+  mission_aborted,
+  mission_halted,
+  mission_done,
+};
+
+enum class Severity { info, warning };
+
+std::string_view to_string(EventKind k);
+std::optional<EventKind> event_kind_from_string(std::string_view s);
+std::string_view to_string(Severity s);
+// Warnings are what an operator must not miss: something went wrong or the mission stopped short.
+Severity severity(EventKind k);
+// Every kind, in declaration order.
+const std::vector<EventKind>& all_event_kinds();
+
+}  // namespace avk::mission
