@@ -230,26 +230,32 @@ Result<MissionReport> command_mission(Context& ctx, std::int64_t mission_id, Mis
   return mission_report(ctx, mission_id);
 }
 
-Result<Page<store::MissionEvent>> mission_events(Context& ctx, std::int64_t mission_id,
-                                                 std::int64_t after, int limit) {
+namespace {
+
+// A keyset page of a mission's rows: read(after, limit) gives them, cursor(row) is a row's key.
+template <class T, class Read, class Cursor>
+Result<Page<T>> mission_page(Context& ctx, std::int64_t mission_id, int limit, Read read,
+                             Cursor cursor) {
   if (limit < 1) return invalid_argument("limit", "must be at least 1");
   if (!ctx.db().get_mission(mission_id))
     return not_found("no mission " + std::to_string(mission_id));
-  Page<store::MissionEvent> page;
-  page.items = ctx.db().list_events(mission_id, after, limit);
-  if (static_cast<int>(page.items.size()) == limit) page.next = page.items.back().id;
-  return page;
+  return make_page<T>(read(), limit, cursor);
+}
+
+}  // namespace
+
+Result<Page<store::MissionEvent>> mission_events(Context& ctx, std::int64_t mission_id,
+                                                 std::int64_t after, int limit) {
+  return mission_page<store::MissionEvent>(
+      ctx, mission_id, limit, [&] { return ctx.db().list_events(mission_id, after, limit); },
+      [](const store::MissionEvent& e) { return e.id; });
 }
 
 Result<Page<store::NavPageRow>> mission_track(Context& ctx, std::int64_t mission_id,
                                               std::int64_t after, int limit) {
-  if (limit < 1) return invalid_argument("limit", "must be at least 1");
-  if (!ctx.db().get_mission(mission_id))
-    return not_found("no mission " + std::to_string(mission_id));
-  Page<store::NavPageRow> page;
-  page.items = ctx.db().nav_page(mission_id, after, limit);
-  if (static_cast<int>(page.items.size()) == limit) page.next = page.items.back().rowid;
-  return page;
+  return mission_page<store::NavPageRow>(
+      ctx, mission_id, limit, [&] { return ctx.db().nav_page(mission_id, after, limit); },
+      [](const store::NavPageRow& r) { return r.rowid; });
 }
 
 }  // namespace avk::app

@@ -90,6 +90,15 @@ struct Page {
   std::vector<T> items;
   std::optional<std::int64_t> next;
 };
+// The page of rows read with this limit: a full page has a next cursor, the last one has none.
+template <class T, class Cursor>
+Page<T> make_page(std::vector<T> items, int limit, Cursor cursor) {
+  Page<T> page;
+  page.items = std::move(items);
+  if (!page.items.empty() && static_cast<int>(page.items.size()) == limit)
+    page.next = cursor(page.items.back());
+  return page;
+}
 Result<Page<store::MissionEvent>> mission_events(Context& ctx, std::int64_t mission_id,
                                                  std::int64_t after, int limit);
 // The recorded navigation; the cursor is the row id, so rows recorded while a client pages are

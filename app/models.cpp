@@ -17,7 +17,7 @@ namespace {
 // Navigation of the vehicle under guidance: samples while the helm commanded motion (or imported
 // logs, whose helm state is unknown). All-stop stretches are left out, so they split segments.
 bool guided(const std::string& helm_mode) {
-  if (helm_mode == "IMPORTED") return true;
+  if (helm_mode == mission::kImportedHelmMode) return true;
   const auto m = mission::helm_mode_from_string(helm_mode);
   return m && mission::commands_motion(*m);
 }

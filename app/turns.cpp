@@ -6,10 +6,8 @@ namespace avk::app {
 
 Result<Page<store::TurnRow>> query_turns(Context& ctx, const store::TurnFilter& filter) {
   if (filter.limit < 1) return invalid_argument("limit", "must be at least 1");
-  Page<store::TurnRow> page;
-  page.items = ctx.db().list_turns(filter);
-  if (static_cast<int>(page.items.size()) == filter.limit) page.next = page.items.back().id;
-  return page;
+  return make_page<store::TurnRow>(ctx.db().list_turns(filter), filter.limit,
+                                   [](const store::TurnRow& t) { return t.id; });
 }
 
 Result<store::StoredTurn> get_turn(Context& ctx, std::int64_t turn_id) {

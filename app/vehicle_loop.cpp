@@ -7,22 +7,13 @@
 
 #include "app/mission_recorder.hpp"
 #include "sim/scheduler.hpp"
+#include "sim/sim_mission.hpp"
 #include "sim/sim_vehicle.hpp"
 #include "store/store.hpp"
 
 namespace avk::app {
 
 namespace {
-
-sim::SimVehicleConfig vehicle_config(const VehicleLoopOptions& o) {
-  sim::SimVehicleConfig v = o.setup.vehicle;
-  v.start_x_m = o.start.x_m;
-  v.start_y_m = o.start.y_m;
-  v.start_heading_deg = o.start.heading_deg;
-  v.start_speed_mps = 0.0;
-  v.seed = o.setup.scheduler.seed;
-  return v;
-}
 
 sim::SchedulerOptions scheduler_options(const VehicleLoopOptions& o) {
   sim::SchedulerOptions s = o.setup.scheduler;
@@ -99,7 +90,8 @@ struct VehicleLoop::Impl {
       m200 = std::make_unique<vehicle::M200>(*options.m200, *clock);
       vehicle_ptr = m200.get();
     } else {
-      sim_vehicle = std::make_unique<sim::SimVehicle>(vehicle_config(options), scheduler);
+      sim_vehicle = std::make_unique<sim::SimVehicle>(
+          sim::vehicle_at_rest(options.setup, options.start), scheduler);
       vehicle_ptr = sim_vehicle.get();
     }
   }

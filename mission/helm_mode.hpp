@@ -22,6 +22,10 @@ std::optional<HelmMode> helm_mode_from_string(std::string_view s);
 // Every mode, in declaration order.
 const std::vector<HelmMode>& all_helm_modes();
 
+// What navigation imported from a log records as its helm mode: the helm state is unknown, so it
+// is treated as guided (identification uses it).
+inline constexpr std::string_view kImportedHelmMode = "IMPORTED";
+
 // Modes in which the helm commands a heading and speed.
 bool commands_motion(HelmMode m);
 

@@ -52,16 +52,9 @@ std::optional<std::int64_t> id_param(const ApiRequest& r, const std::string& nam
 
 std::int64_t path_id(const PathParams& p, const std::string& key, const std::string& what) {
   const std::string& segment = p.at(key);
-  std::size_t used = 0;
-  long long id = 0;
-  try {
-    id = std::stoll(segment, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != segment.size() || id <= 0)
-    throw RequestError(404, "no " + what + " '" + segment + "'");
-  return id;
+  const auto id = record_id(segment);
+  if (!id) throw RequestError(404, "no " + what + " '" + segment + "'");
+  return *id;
 }
 
 namespace {

@@ -26,6 +26,8 @@ namespace avk::server {
 std::string num(double v);
 // Fixed decimals, for tables an operator reads.
 std::string fixed(double v, int decimals);
+// A record id as a path or an option gives it: a positive whole number, nothing else.
+std::optional<std::int64_t> record_id(const std::string& text);
 nlohmann::json optional_json(const std::optional<double>& v);
 nlohmann::json optional_json(const std::optional<std::int64_t>& v);
 nlohmann::json mean_sd_json(const std::optional<kinematics::MeanSd>& v);

@@ -18,6 +18,18 @@ std::string fixed(double v, int decimals) {
   return kin::fixed_text(v, decimals);
 }
 
+std::optional<std::int64_t> record_id(const std::string& text) {
+  std::size_t used = 0;
+  long long id = 0;
+  try {
+    id = std::stoll(text, &used);
+  } catch (const std::exception&) {
+    return std::nullopt;
+  }
+  if (used == 0 || used != text.size() || id <= 0) return std::nullopt;
+  return static_cast<std::int64_t>(id);
+}
+
 json optional_json(const std::optional<double>& v) {
   return v ? json(*v) : json();
 }

@@ -10,22 +10,22 @@ SchedulerOptions scheduler_options(const SimMissionOptions& o) {
   return s;
 }
 
-SimVehicleConfig vehicle_config(const SimMissionOptions& o) {
-  SimVehicleConfig v = o.setup.vehicle;
-  v.start_x_m = o.start.x_m;
-  v.start_y_m = o.start.y_m;
-  v.start_heading_deg = o.start.heading_deg;
+}  // namespace
+
+SimVehicleConfig vehicle_at_rest(const SimSetup& setup, const kinematics::Pose& start) {
+  SimVehicleConfig v = setup.vehicle;
+  v.start_x_m = start.x_m;
+  v.start_y_m = start.y_m;
+  v.start_heading_deg = start.heading_deg;
   v.start_speed_mps = 0.0;
-  v.seed = o.setup.scheduler.seed;
+  v.seed = setup.scheduler.seed;
   return v;
 }
-
-}  // namespace
 
 SimMission::SimMission(SimMissionOptions options)
     : options_(std::move(options)),
       scheduler_(scheduler_options(options_)),
-      vehicle_(vehicle_config(options_), scheduler_) {}
+      vehicle_(vehicle_at_rest(options_.setup, options_.start), scheduler_) {}
 
 SimMissionResult SimMission::run(mission::MissionRunner& runner, Pacer& pacer,
                                  const std::atomic<bool>* stop,

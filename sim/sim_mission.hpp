@@ -16,6 +16,9 @@
 
 namespace avk::sim {
 
+// The setup's vehicle at rest at a pose, seeded from the setup's scheduler.
+SimVehicleConfig vehicle_at_rest(const SimSetup& setup, const kinematics::Pose& start);
+
 struct SimMissionOptions {
   SimSetup setup{};
   kinematics::Pose start{};       // where the vehicle is when the mission starts, at rest

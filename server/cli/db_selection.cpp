@@ -4,19 +4,14 @@
 #include <set>
 #include <stdexcept>
 
+#include "server/serialize.hpp"
+
 namespace avk::server {
 
 std::int64_t parse_id(const std::string& text, const std::string& what) {
-  std::size_t used = 0;
-  long long id = 0;
-  try {
-    id = std::stoll(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || id <= 0)
-    throw UsageError(what + " needs a positive whole number, got '" + text + "'");
-  return id;
+  const auto id = record_id(text);
+  if (!id) throw UsageError(what + " needs a positive whole number, got '" + text + "'");
+  return *id;
 }
 
 std::vector<std::int64_t> mission_ids(const Args& a) {

@@ -1,0 +1,67 @@
+// The .alog import use case: navigation stored as imported rows of a mission that ends done, bad
+// lines counted and named, nothing stored for a request without a vehicle.
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "app/alog_import.hpp"
+#include "app/context.hpp"
+#include "app/missions.hpp"
+#include "mission/helm_mode.hpp"
+#include "support/temp_db.hpp"
+
+namespace {
+
+using namespace avk;
+
+std::string small_log() {
+  std::string log = "%% LOGFILE: test.alog\n";
+  for (int k = 0; k < 40; ++k) {
+    const std::string t = std::to_string(1.0 + 0.25 * k);
+    log += t + " NAV_X uSimMarine " + std::to_string(0.5 * k) + "\n";
+    log += t + " NAV_Y uSimMarine 3.0\n";
+    log += t + " NAV_HEADING uSimMarine 90\n";
+    log += t + " NAV_SPEED uSimMarine 2.0\n";
+    if (k == 10) log += "this line is not a posting\n";
+  }
+  return log;
+}
+
+TEST(AlogImport, StoresTheNavigationAsAFinishedMissionAndNamesBadLines) {
+  avk::testing::TempDb db("avk_app_alog");
+  app::Context ctx(db.path());
+  std::istringstream in(small_log());
+  app::AlogImportRequest r;
+  r.source = "test.alog";
+  r.mission_name = "test.alog";
+  r.vehicle_id = "kf";
+  const auto report = app::import_alog(ctx, in, r);
+  ASSERT_TRUE(report) << report.error().message;
+  EXPECT_EQ(report->nav_stored, 40u);
+  EXPECT_EQ(report->malformed.count, 1u);
+  ASSERT_FALSE(report->malformed.first.empty());
+  EXPECT_EQ(report->malformed.first[0].line, 46u);  // 1 header + 11 x 4 postings + 1
+  EXPECT_EQ(report->from_records.total() + report->from_extraction.total(), 0u);
+  const auto m = app::mission_report(ctx, report->mission_id);
+  ASSERT_TRUE(m);
+  EXPECT_EQ(m->summary.status, store::MissionStatus::done);
+  EXPECT_TRUE(m->cells.empty());  // an imported log plans no turn array
+  const auto nav = ctx.db().nav_for_mission(report->mission_id);
+  ASSERT_EQ(nav.size(), 40u);
+  EXPECT_EQ(nav[0].helm_mode, mission::kImportedHelmMode);
+  EXPECT_DOUBLE_EQ(nav.back().x_m, 19.5);
+  // The top speed seen becomes the vehicle's.
+  EXPECT_DOUBLE_EQ(ctx.db().get_vehicle("kf")->max_speed_mps, 2.0);
+}
+
+TEST(AlogImport, WithoutAVehicleNothingIsStored) {
+  avk::testing::TempDb db("avk_app_alog");
+  app::Context ctx(db.path());
+  std::istringstream in(small_log());
+  const auto report = app::import_alog(ctx, in, {});
+  ASSERT_FALSE(report);
+  EXPECT_EQ(report.error().field, "vehicle");
+  EXPECT_TRUE(ctx.db().list_missions().empty());
+}
+
+}  // namespace
