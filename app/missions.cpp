@@ -118,6 +118,12 @@ std::vector<MissionSummary> list_missions(Context& ctx,
   return out;
 }
 
+Result<MissionSummary> mission_summary(Context& ctx, std::int64_t mission_id) {
+  auto m = ctx.db().get_mission(mission_id);
+  if (!m) return not_found("no mission " + std::to_string(mission_id));
+  return summary_of(ctx.db(), std::move(*m));
+}
+
 Result<MissionReport> mission_report(Context& ctx, std::int64_t mission_id) {
   store::Store& db = ctx.db();
   auto m = db.get_mission(mission_id);

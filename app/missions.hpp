@@ -75,6 +75,7 @@ std::string status_text(const MissionReport& r);
 
 std::vector<MissionSummary> list_missions(Context& ctx,
                                           const std::optional<std::string>& vehicle_id);
+Result<MissionSummary> mission_summary(Context& ctx, std::int64_t mission_id);
 Result<MissionReport> mission_report(Context& ctx, std::int64_t mission_id);
 
 enum class MissionCommand { pause, resume, abort };

@@ -1,5 +1,3 @@
-#include <unistd.h>
-
 #include <cerrno>
 #include <chrono>
 #include <csignal>
@@ -13,10 +11,9 @@
 #include "app/context.hpp"
 #include "app/mission_liveness.hpp"
 #include "app/mission_plans.hpp"
-#include "app/mission_recorder.hpp"
+#include "app/mission_run.hpp"
 #include "app/missions.hpp"
 #include "kinematics/angles.hpp"
-#include "mission/helm_loop.hpp"
 #include "mission/mission_config.hpp"
 #include "mission/mission_runner.hpp"
 #include "mission/turn_plan.hpp"
@@ -28,7 +25,7 @@
 #include "server/cli/m200_options.hpp"
 #include "server/cli/sim_options.hpp"
 #include "server/serialize.hpp"
-#include "sim/sim_mission.hpp"
+#include "sim/sim_config.hpp"
 #include "store/store.hpp"
 #include "vehicle/m200.hpp"
 #include "vehicle/scaled_clock.hpp"
@@ -136,12 +133,6 @@ struct RunSpec {
   std::optional<vehicle::M200Options> m200;
 };
 
-struct RunResult {
-  double start_time_s = 0.0;
-  double end_time_s = 0.0;
-  bool stopped = false;
-};
-
 // Connects before anything is stored, so an unreachable vehicle leaves no mission behind.
 std::unique_ptr<vehicle::M200> connect_m200(const vehicle::M200Options& o,
                                             const vehicle::ScaledClock& clock, Io& io) {
@@ -159,81 +150,46 @@ std::unique_ptr<vehicle::M200> connect_m200(const vehicle::M200Options& o,
   return m;
 }
 
-int execute(store::Store& db, RunSpec spec, const Args& a, Io& io,
+int execute(app::Context& ctx, RunSpec spec, const Args& a, Io& io,
             const vehicle::ScaledClock* clock = nullptr, vehicle::M200* m200 = nullptr) {
-  double max_duration_s = 86400.0;
+  app::MissionRunOptions options;
   if (const auto limit = a.number("max-sim-time")) {
     if (!(*limit > 0.0)) throw UsageError("--max-sim-time must be positive (s)");
-    max_duration_s = *limit;
+    options.max_duration_s = *limit;
   }
-  std::optional<sim::SimMission> sim;
-  if (!m200) {
-    sim::SimMissionOptions so;
-    so.setup = spec.setup;
-    so.start = spec.plan.start;
-    so.start_time_s = spec.plan.clock_after_s;
-    so.max_duration_s = max_duration_s;
-    sim.emplace(so);
-  }
-  vehicle::Vehicle& vehicle = m200 ? static_cast<vehicle::Vehicle&>(*m200) : sim->vehicle();
-  app::MissionRecorder recorder(db, spec.plan.mission_id);
+  app::LocalVehicle local;
+  local.id = spec.vehicle_id;
+  local.setup = spec.setup;
+  local.realtime = a.flag("realtime");
+  local.realtime_factor = local.realtime ? realtime_factor_from(a) : 1.0;
+  local.m200 = m200;
+  local.clock = clock;
+  if (spec.m200) local.controller_hz = spec.m200->config.controller_hz;
   const int planned = static_cast<int>(mission::plan_turns(spec.plan.config).size());
   ProgressPrinter printer(io.out, planned, spec.plan.done_before, a.flag("quiet"));
-  mission::RunnerOptions ro;
-  ro.vehicle_id = spec.vehicle_id;
-  ro.mission_label = std::to_string(spec.plan.mission_id);
-  mission::MissionRunner runner(spec.plan.config, vehicle, spec.plan.tasks, ro);
-  runner.add_observer(recorder);
-  runner.add_observer(printer);
+  options.observers.push_back(&printer);
+  options.stop = &g_stop;
 
-  db.set_mission_runner(spec.plan.mission_id, static_cast<std::int64_t>(::getpid()));
   io.out << "mission " << spec.plan.mission_id << " '" << spec.plan.config.name << "' on "
          << spec.vehicle_id << ": " << spec.plan.tasks.size() << " turns to do"
          << (spec.plan.done_before ? " (" + std::to_string(spec.plan.done_before) + " done before)"
                                    : "")
          << "\n";
-  const auto wall_start = std::chrono::steady_clock::now();
-  RunResult result;
+  app::MissionRunOutcome r;
   {
     StopSignals signals;
-    if (m200) {
-      const auto r =
-          mission::run_helm_loop(runner, *clock, spec.setup.helm_hz, max_duration_s, &g_stop);
-      result = {r.start_time_s, r.end_time_s, r.stopped};
-      // Leave the vehicle stopped by our own command, not by the frontseat's watchdog.
-      m200->all_stop(clock->now_s());
-      clock->sleep_until(clock->now_s() + 3.0 / spec.m200->config.controller_hz);
-    } else if (a.flag("realtime")) {
-      sim::RealtimePacer pacer(realtime_factor_from(a));
-      const auto r = sim->run(runner, pacer, &g_stop);
-      result = {r.start_time_s, r.end_time_s, r.stopped};
-    } else {
-      sim::FastPacer pacer;
-      const auto r = sim->run(runner, pacer, &g_stop);
-      result = {r.start_time_s, r.end_time_s, r.stopped};
-    }
+    r = value_or_fail(app::run_mission_here(ctx, spec.plan, local, options));
   }
-  const double wall_s =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  recorder.flush();
-  db.set_mission_runner(spec.plan.mission_id, std::nullopt);
-
-  std::int64_t ok = 0, aborted = 0, rejected = 0;
-  for (const auto& c : db.mission_cell_stats(spec.plan.mission_id)) {
-    ok += c.n_ok;
-    aborted += c.n_aborted;
-    rejected += c.n_rejected;
-  }
-  const auto m = db.get_mission(spec.plan.mission_id);
-  io.out << "mission " << spec.plan.mission_id << " " << store::to_string(m->status);
-  if (!m->status_reason.empty()) io.out << " (" << m->status_reason << ")";
-  io.out << ": " << ok << "/" << planned << " turns ok, " << aborted << " aborted, " << rejected
-         << " rejected";
-  if (runner.turns_given_up()) io.out << ", " << runner.turns_given_up() << " given up";
-  io.out << "; " << (m200 ? "ran " : "simulated ")
-         << fixed(result.end_time_s - result.start_time_s, 1) << " s in " << fixed(wall_s, 3)
-         << " s of wall time ("
-         << fixed((result.end_time_s - result.start_time_s) / std::max(wall_s, 1e-9), 0) << "x)\n";
+  const store::Mission& m = r.summary.mission;
+  const double run_s = r.end_time_s - r.start_time_s;
+  io.out << "mission " << m.id << " " << store::to_string(m.status);
+  if (!m.status_reason.empty()) io.out << " (" << m.status_reason << ")";
+  io.out << ": " << r.summary.turns.ok << "/" << r.planned << " turns ok, "
+         << r.summary.turns.aborted << " aborted, " << r.summary.turns.rejected << " rejected";
+  if (r.turns_given_up) io.out << ", " << r.turns_given_up << " given up";
+  io.out << "; " << (m200 ? "ran " : "simulated ") << fixed(run_s, 1) << " s in "
+         << fixed(r.wall_s, 3) << " s of wall time (" << fixed(run_s / std::max(r.wall_s, 1e-9), 0)
+         << "x)\n";
   if (m200) {
     const auto st = m200->status();
     const auto& c = st.counters;
@@ -246,8 +202,8 @@ int execute(store::Store& db, RunSpec spec, const Args& a, Io& io,
     if (st.battery) io.out << ", battery " << fixed(st.battery->stack_v, 2) << " V";
     io.out << "\n";
   }
-  if (result.stopped) return 130;
-  return m->status == store::MissionStatus::done ? 0 : 1;
+  if (r.stopped) return 130;
+  return m.status == store::MissionStatus::done ? 0 : 1;
 }
 
 void print_config_errors(const app::Error& e, const std::string& name, Io& io) {
@@ -293,15 +249,15 @@ int run(const std::vector<std::string>& rest, Io& io) {
     print_config_errors(checked.error(), path, io);
     return 1;
   }
-  store::Store db(db_path);
+  app::Context ctx(db_path);
   std::optional<vehicle::ScaledClock> clock;
   std::unique_ptr<vehicle::M200> m200;
   if (spec.m200) {
-    clock.emplace(realtime_factor_from(a), db.station_clock_end_s() + 1.0);
+    clock.emplace(realtime_factor_from(a), ctx.db().station_clock_end_s() + 1.0);
     m200 = connect_m200(*spec.m200, *clock, io);
   }
-  spec.plan = app::create_mission_plan(db, text, info);
-  return execute(db, std::move(spec), a, io, clock ? &*clock : nullptr, m200.get());
+  spec.plan = app::create_mission_plan(ctx.db(), text, info);
+  return execute(ctx, std::move(spec), a, io, clock ? &*clock : nullptr, m200.get());
 }
 
 std::int64_t mission_id_arg(const Args& a) {
@@ -312,7 +268,8 @@ std::int64_t mission_id_arg(const Args& a) {
 int resume(const std::vector<std::string>& rest, Io& io) {
   const Args a(rest, kRunValues, kRunFlags);
   require_vehicle(a);
-  store::Store db(a.require("db"));
+  app::Context ctx(a.require("db"));
+  store::Store& db = ctx.db();
   const std::int64_t id = mission_id_arg(a);
   const auto m = db.get_mission(id);
   if (!m) throw std::runtime_error("no mission " + std::to_string(id) + " in the database");
@@ -354,7 +311,7 @@ int resume(const std::vector<std::string>& rest, Io& io) {
     return 1;
   }
   spec.plan.clock_after_s += 1.0;
-  return execute(db, std::move(spec), a, io, clock ? &*clock : nullptr, m200.get());
+  return execute(ctx, std::move(spec), a, io, clock ? &*clock : nullptr, m200.get());
 }
 
 int list(const std::vector<std::string>& rest, Io& io) {

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "app/context.hpp"
+#include "app/mission_run.hpp"
 #include "app/missions.hpp"
 #include "app/turns.hpp"
 #include "app/vehicles.hpp"
@@ -182,6 +183,54 @@ TEST(CellReports, CarryTheRunnersCounts) {
   EXPECT_EQ(cells[0].given_up, 1);
   EXPECT_TRUE(cells[0].running);
   EXPECT_FALSE(cells[0].advance_m);
+}
+
+}  // namespace
+
+namespace {
+
+using namespace avk;
+
+app::LocalVehicle simulated_usim(const std::string& id) {
+  app::LocalVehicle v;
+  v.id = id;
+  v.setup = sim::default_sim_setup("usim");
+  v.setup.vehicle.id = id;
+  return v;
+}
+
+TEST(MissionRunHere, RunsThePlanToItsEndAndRecordsIt) {
+  avk::testing::TempDb db("avk_app_run");
+  app::Context ctx(db.path());
+  app::LocalVehicle v = simulated_usim("sim-here");
+  const auto plan = app::create_mission_plan(ctx.db(), avk::testing::kSmallMission,
+                                             {v.id, "usim", 2.0, std::nullopt});
+  const auto r = app::run_mission_here(ctx, plan, v, {});
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_FALSE(r->stopped);
+  EXPECT_EQ(r->planned, 8);
+  EXPECT_EQ(r->summary.mission.id, plan.mission_id);
+  EXPECT_EQ(r->summary.status, store::MissionStatus::done);
+  EXPECT_EQ(r->summary.turns.ok, 8);
+  EXPECT_GT(r->end_time_s, r->start_time_s);
+  EXPECT_FALSE(ctx.db().get_mission(plan.mission_id)->runner_pid);  // no longer running here
+}
+
+TEST(MissionRunHere, ARaisedStopFlagInterruptsItResumably) {
+  avk::testing::TempDb db("avk_app_run");
+  app::Context ctx(db.path());
+  app::LocalVehicle v = simulated_usim("sim-here");
+  const auto plan = app::create_mission_plan(ctx.db(), avk::testing::kSmallMission,
+                                             {v.id, "usim", 2.0, std::nullopt});
+  const std::atomic<bool> stop{true};
+  app::MissionRunOptions o;
+  o.stop = &stop;
+  const auto r = app::run_mission_here(ctx, plan, v, o);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_TRUE(r->stopped);
+  EXPECT_EQ(r->summary.status, store::MissionStatus::interrupted);
+  const auto resumed = app::resume_mission_plan(ctx.db(), plan.mission_id, 2.0);
+  EXPECT_EQ(resumed.tasks.size(), 8u);
 }
 
 }  // namespace
