@@ -59,6 +59,8 @@ Result<Prediction> from_table(Prediction p, const kin::TurnPrediction& t) {
   p.trajectory = t.trajectory;
   p.advance_m = t.advance_m;
   p.transfer_m = t.transfer_m;
+  p.exact_cell = t.exact_cell;
+  p.extrapolated = t.extrapolated;
   return finish(std::move(p));
 }
 

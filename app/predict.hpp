@@ -36,6 +36,10 @@ struct Prediction {
   // avk: the table's expected advance and transfer at the end of the turn.
   std::optional<double> advance_m;
   std::optional<double> transfer_m;
+  // avk: answered by one cell of the table (not interpolated), and whether the heading change
+  // lies outside the table's (the nearest cell's shape carried by a fitted arc).
+  std::optional<bool> exact_cell;
+  std::optional<bool> extrapolated;
   std::optional<std::int64_t> model_id;     // model: the model that answered
   std::optional<std::int64_t> snapshot_id;  // avk: the imported table that answered, if one did
   std::optional<std::string> table_source;  // avk: "turns" or "imported"

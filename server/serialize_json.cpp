@@ -274,6 +274,8 @@ json prediction_json(const app::Prediction& p) {
   if (q.method == app::PredictionMethod::avk) {
     j["advance_m"] = optional_json(p.advance_m);
     j["transfer_m"] = optional_json(p.transfer_m);
+    j["exact_cell"] = p.exact_cell ? json(*p.exact_cell) : json();
+    j["extrapolated"] = p.extrapolated ? json(*p.extrapolated) : json();
     j["table_source"] = p.table_source ? json(*p.table_source) : json();
     j["snapshot_id"] = optional_json(p.snapshot_id);
   }

@@ -56,6 +56,20 @@ TEST_F(Predict, AvkAnswersFromTheVehiclesOwnTurnsThroughTheFineTable) {
   EXPECT_GT(p->trajectory.back().x_m, 1.0);
 }
 
+TEST_F(Predict, SaysWhenOneCellAnswersAndWhenTheTableIsExtrapolated) {
+  avk::testing::store_arc_turns(ctx_.db(), "alpha");  // heading changes 40, 100, 160 deg
+  const auto exact = app::predict(ctx_, query("alpha", 1.0, 100.0));
+  const auto between = app::predict(ctx_, query("alpha", 1.0, 70.0));
+  const auto beyond = app::predict(ctx_, query("alpha", 1.0, -175.0));
+  ASSERT_TRUE(exact && between && beyond);
+  EXPECT_EQ(exact->exact_cell, true);
+  EXPECT_EQ(exact->extrapolated, false);
+  EXPECT_EQ(between->exact_cell, false);
+  EXPECT_EQ(between->extrapolated, false);
+  EXPECT_EQ(beyond->extrapolated, true);
+  EXPECT_LT(beyond->trajectory.back().x_m, 0.0);  // a left turn
+}
+
 TEST_F(Predict, ALeftTurnIsTheMirrorImageOfTheRightOne) {
   avk::testing::store_arc_turns(ctx_.db(), "alpha");
   for (const auto method : {app::PredictionMethod::avk, app::PredictionMethod::instantaneous}) {
