@@ -54,31 +54,11 @@ constexpr std::array<const char*, 17> kKeys = {
 
 // A turn document is an object of arrays of arrays; anything deeper is not a turn, and refusing
 // it while parsing keeps a hostile "[[[[..." from building a huge tree first.
-constexpr std::size_t kMaxDepth = 3;
-constexpr std::size_t kMaxObjectKeys = 64;
-constexpr std::size_t kMaxArrayElements = kMaxTurnRecordSamples;
-constexpr std::size_t kMaxValues =
-    kMaxTurnRecordSamples * (kSampleArity + 1) + kMaxTurnRecordWarnings + 1024;
-
-// Appends rather than "/" + token: GCC 12 reports a false -Wrestrict on operator+(const char*,
-// std::string&&) at -O3.
-void append_pointer_token(std::string& out, std::string_view s) {
-  for (char c : s) {
-    if (c == '~') {
-      out += "~0";
-    } else if (c == '/') {
-      out += "~1";
-    } else {
-      out += c;
-    }
-  }
-}
-
-std::string member_pointer(std::string_view key) {
-  std::string out = "/";
-  append_pointer_token(out, key);
-  return out;
-}
+constexpr JsonLimits kTurnLimits{
+    .max_depth = 3,
+    .max_values = kMaxTurnRecordSamples * (kSampleArity + 1) + kMaxTurnRecordWarnings + 1024,
+    .max_array_elements = kMaxTurnRecordSamples,
+    .max_object_keys = 64};
 
 std::string sample_pointer(std::size_t i) {
   std::string out = "/samples/";
@@ -86,129 +66,28 @@ std::string sample_pointer(std::size_t i) {
   return out;
 }
 
-// Builds the DOM like nlohmann's own parser, but rejects duplicate keys (which nlohmann would
-// silently collapse to the last one) and bounds depth, width and total size as it goes.
-class BoundedDomBuilder {
- public:
-  explicit BoundedDomBuilder(json& root) : root_(root) {}
-
-  bool null() { return add(nullptr); }
-  bool boolean(bool v) { return add(v); }
-  bool number_integer(json::number_integer_t v) { return add(v); }
-  bool number_unsigned(json::number_unsigned_t v) { return add(v); }
-  bool number_float(json::number_float_t v, const json::string_t& /*text*/) { return add(v); }
-  bool string(json::string_t& v) { return add(std::move(v)); }
-  bool binary(json::binary_t& /*v*/) { fail("binary values are not JSON"); }
-
-  bool start_object(std::size_t /*size*/) { return open(json::object()); }
-  bool start_array(std::size_t /*size*/) { return open(json::array()); }
-  bool end_object() { return close(); }
-  bool end_array() { return close(); }
-
-  bool key(json::string_t& k) {
-    Frame& f = stack_.back();
-    f.key = k;
-    if (f.node->contains(k)) fail("duplicate key");
-    if (f.node->size() >= kMaxObjectKeys) fail("object has more keys than a turn");
-    return true;
-  }
-
-  [[noreturn]] bool parse_error(std::size_t position, const std::string& /*last_token*/,
-                                const json::exception& ex) {
-    // nlohmann counts bytes read including the offending one (and the end of input); the project
-    // reports 0-based offsets, so step back one to point at the byte itself.
-    throw ParseError("json", position == 0 ? 0 : position - 1,
-                     "not valid JSON: " + json_error_reason(ex));
-  }
-
- private:
-  struct Frame {
-    json* node = nullptr;
-    std::size_t next_index = 0;  // arrays: elements added so far
-    std::string key;             // objects: key of the member being read
-  };
-
-  // Pointer to the value now being added, for errors raised while building.
-  std::string pointer() const {
-    std::string out;
-    for (std::size_t d = 0; d < stack_.size(); ++d) {
-      const Frame& f = stack_[d];
-      if (f.node->is_object()) {
-        out += member_pointer(f.key);
-      } else {
-        const bool innermost = d + 1 == stack_.size();
-        out += '/';
-        out += std::to_string(innermost ? f.next_index : f.next_index - 1);
-      }
-    }
-    return out;
-  }
-
-  std::size_t sample_index() const {
-    if (stack_.size() < 2 || !stack_[0].node->is_object() || stack_[0].key != "samples" ||
-        !stack_[1].node->is_array()) {
-      return 0;
-    }
-    return stack_.size() == 2 ? stack_[1].next_index : stack_[1].next_index - 1;
-  }
-
-  [[noreturn]] void fail(const std::string& message) const {
-    throw ParseError(pointer(), sample_index(), message);
-  }
-
-  template <class V>
-  json* insert(V&& v) {
-    if (++values_ > kMaxValues) fail("document holds more values than any turn");
-    if (stack_.empty()) {
-      root_ = json(std::forward<V>(v));
-      return &root_;
-    }
-    Frame& f = stack_.back();
-    if (f.node->is_array()) {
-      if (f.next_index >= kMaxArrayElements) fail("array holds more elements than any turn");
-      f.node->push_back(json(std::forward<V>(v)));
-      ++f.next_index;
-      return &f.node->back();
-    }
-    json& slot = (*f.node)[f.key];
-    slot = json(std::forward<V>(v));
-    return &slot;
-  }
-
-  template <class V>
-  bool add(V&& v) {
-    insert(std::forward<V>(v));
-    return true;
-  }
-
-  bool open(json container) {
-    if (stack_.size() >= kMaxDepth) fail("nested deeper than a turn document");
-    json* node = insert(std::move(container));
-    stack_.push_back({node, 0, {}});
-    return true;
-  }
-
-  bool close() {
-    stack_.pop_back();
-    return true;
-  }
-
-  json& root_;
-  std::vector<Frame> stack_;
-  std::size_t values_ = 0;
-};
+// The sample a parse problem lies in ("/samples/12/3" -> 12), the position turn errors report.
+std::size_t sample_index_of(const std::string& pointer) {
+  constexpr std::string_view prefix = "/samples/";
+  if (!pointer.starts_with(prefix)) return 0;
+  std::size_t i = 0;
+  for (std::size_t k = prefix.size(); k < pointer.size() && pointer[k] >= '0' && pointer[k] <= '9';
+       ++k)
+    i = i * 10 + static_cast<std::size_t>(pointer[k] - '0');
+  return i;
+}
 
 const json& member(const json& j, const char* key) {
   const auto it = j.find(key);
-  if (it == j.end()) throw ParseError(member_pointer(key), 0, "missing key");
+  if (it == j.end()) throw ParseError(json_member_pointer(key), 0, "missing key");
   return *it;
 }
 
 std::string read_string(const json& j, const char* key) {
   const json& v = member(j, key);
-  if (!v.is_string()) throw ParseError(member_pointer(key), 0, "expected a string");
+  if (!v.is_string()) throw ParseError(json_member_pointer(key), 0, "expected a string");
   const auto& s = v.get_ref<const std::string&>();
-  if (!is_valid_utf8(s)) throw ParseError(member_pointer(key), 0, "string is not valid UTF-8");
+  if (!is_valid_utf8(s)) throw ParseError(json_member_pointer(key), 0, "string is not valid UTF-8");
   return s;
 }
 
@@ -266,7 +145,7 @@ TurnSequence turn_from_json(const json& j) {
     bool known = false;
     for (const char* k : kKeys)
       known = known || item.key() == k;
-    if (!known) throw ParseError(member_pointer(item.key()), 0, "unknown key");
+    if (!known) throw ParseError(json_member_pointer(item.key()), 0, "unknown key");
   }
   for (const char* k : kKeys)
     member(j, k);
@@ -282,7 +161,7 @@ TurnSequence turn_from_json(const json& j) {
   if (!normalized.is_boolean()) throw ParseError("/normalized", 0, "expected true or false");
   m.normalized = normalized.get<bool>();
   for (const auto& [name, ptr] : kMetaDoubles)
-    m.*ptr = read_double(member(j, name), member_pointer(name), 0);
+    m.*ptr = read_double(member(j, name), json_member_pointer(name), 0);
 
   const json& warnings = member(j, "warnings");
   if (!warnings.is_array()) throw ParseError("/warnings", 0, "expected an array of strings");
@@ -349,10 +228,13 @@ TurnSequence parse_turn_json(std::string_view text) {
                      "document is longer than " + std::to_string(kMaxTurnRecordBytes) + " bytes");
   }
   json root;
-  BoundedDomBuilder builder(root);
-  // strict: anything but whitespace after the document is a syntax error.
-  if (!json::sax_parse(text.begin(), text.end(), &builder, json::input_format_t::json, true)) {
-    throw ParseError("json", 0, "JSON parser stopped without reporting an error");
+  try {
+    root = parse_json_bounded(text, kTurnLimits);
+  } catch (const JsonSyntaxError& e) {
+    throw ParseError("json", e.position(), "not valid JSON: " + e.reason());
+  } catch (const ParseError& e) {
+    // Past a limit or a duplicate key: reported at the sample it lies in, as every turn error.
+    throw ParseError(e.field(), sample_index_of(e.field()), e.message());
   }
   return turn_from_json(root);
 }

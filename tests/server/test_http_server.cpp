@@ -22,7 +22,6 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
-#include <iostream>
 #include <memory>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -183,7 +182,6 @@ http::response<http::string_body> get(unsigned short port, const std::string& ta
 struct RawResult {
   std::string data;
   beast::error_code ec;  // how the read ended: eof/reset = closed by the server
-  std::chrono::milliseconds elapsed{};
   bool closed() const { return ec && ec != beast::error::timeout; }
 };
 
@@ -196,7 +194,6 @@ class RawClient {
   RawResult read_until_closed(std::chrono::milliseconds limit = 20000ms) {
     RawResult result;
     std::array<char, 4096> b{};
-    const auto t0 = Clock::now();
     stream_.expires_after(limit);
     std::function<void()> read = [&] {
       stream_.async_read_some(net::buffer(b), [&](beast::error_code e, std::size_t n) {
@@ -210,7 +207,6 @@ class RawClient {
     read();
     ioc_.restart();
     ioc_.run();
-    result.elapsed = std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - t0);
     return result;
   }
 
@@ -478,12 +474,27 @@ TEST_F(HttpServerTest, ClientThatStallsInTheHeaderIsDisconnected) {
   slow.send("GET /api/v1/echo HTTP/1.1\r\nHost: 127.0.0.1\r\n");  // and nothing more
   const auto r = slow.read_until_closed(20000ms);
   EXPECT_TRUE(r.closed()) << r.ec.message();
-  EXPECT_GE(r.elapsed, 150ms);  // not before the header timeout; how long after is load
   EXPECT_TRUE(r.data.empty());
   // A connection that sends nothing at all goes the same way.
   RawClient silent(port);
   EXPECT_TRUE(silent.read_until_closed(20000ms).closed());
   EXPECT_EQ(api.calls.load(), 0);
+}
+
+// The other side of the header timeout, without measuring time: a header that arrives in pieces,
+// with other requests answered in between, is answered once it is complete.
+TEST_F(HttpServerTest, HeaderSentInPiecesWithinTheTimeoutIsAnswered) {
+  HttpServerOptions o;
+  o.header_timeout = 60000ms;
+  start(o);
+  RawClient pieces(port);
+  pieces.send("GET /api/v1/echo HTTP/1.1\r\nHost: 127.0.0.1\r\n");
+  for (int i = 0; i < 3; ++i)
+    EXPECT_EQ(get(port, "/api/v1/echo").result_int(), 200);
+  pieces.send("Connection: close\r\n\r\n");
+  const auto r = pieces.read_until_closed(20000ms);
+  EXPECT_EQ(status_of(r.data), 200) << r.data;
+  EXPECT_EQ(api.calls.load(), 4);
 }
 
 TEST_F(HttpServerTest, IdleKeepAliveConnectionIsClosedAfterIdleTimeout) {
@@ -750,8 +761,6 @@ TEST_F(HttpServerTest, StalledEventClientIsClosedAndOthersKeepUp) {
   });
 
   const std::string pad(64 * 1024, 'p');
-  std::chrono::nanoseconds publish_time{0};
-  std::chrono::nanoseconds slowest{0};
   for (int i = 1; i <= kMessages; ++i) {
     {
       std::unique_lock lock(mutex);
@@ -760,20 +769,13 @@ TEST_F(HttpServerTest, StalledEventClientIsClosedAndOthersKeepUp) {
       if (!ok || !reader_ok) break;
     }
     const std::string data = R"({"i":)" + std::to_string(i) + R"(,"pad":")" + pad + R"("})";
-    const auto t0 = Clock::now();
     hub.publish("turn", i * 0.1, data);
-    const auto dt = Clock::now() - t0;
-    publish_time += dt;
-    slowest = std::max(slowest, std::chrono::duration_cast<std::chrono::nanoseconds>(dt));
   }
   reader_thread.join();
   EXPECT_TRUE(reader_ok) << reader_failure;
   EXPECT_EQ(received, kMessages);
-  // That the publisher never waited is the loop finishing with a client that never reads;
-  // the times are printed, not asserted (bench/stream_load measures them).
-  std::cout << "publish: " << std::chrono::duration<double, std::milli>(publish_time).count()
-            << " ms for " << kMessages << ", slowest "
-            << std::chrono::duration<double, std::milli>(slowest).count() << " ms\n";
+  // That the publisher never waited is the loop finishing with a client that never reads; how
+  // long a publish takes is bench/stream_load's to measure.
 
   // The stalled session is gone from the hub and the open count; it still has its close frame
   // to deliver behind what the socket holds.
@@ -839,7 +841,7 @@ TEST_F(HttpServerTest, StopClosesStreamsWithGoingAway) {
   HttpClient idle(port);
   EXPECT_EQ(idle.request(http::verb::get, "/api/v1/echo").result_int(), 200);
 
-  const auto t0 = Clock::now();
+  // A hang here fails by the test's own time limit; nothing below measures time.
   std::thread stopper([&] { server->stop(); });
   EXPECT_FALSE(a.read());
   EXPECT_EQ(a.error(), websocket::error::closed);
@@ -847,8 +849,6 @@ TEST_F(HttpServerTest, StopClosesStreamsWithGoingAway) {
   EXPECT_FALSE(b.read());
   EXPECT_EQ(b.close_reason().code, websocket::close_code::going_away);
   stopper.join();
-  // Bounded by close_timeout (5 s); the margin is for a loaded machine, the point is no hang.
-  EXPECT_LT(Clock::now() - t0, 60s);
   EXPECT_TRUE(idle.closed_by_server(20000ms));
   EXPECT_EQ(server->open_stream_sessions(), 0u);
   server->stop();                                      // idempotent
@@ -884,9 +884,7 @@ TEST_F(HttpServerTest, DestructionWithOpenConnectionsNeitherHangsNorCrashes) {
       std::this_thread::sleep_for(100us);
     }
   });
-  const auto t0 = Clock::now();
-  server.reset();
-  EXPECT_LT(Clock::now() - t0, 60s);  // no hang (close_timeout is 300 ms)
+  server.reset();  // returns (within close_timeout): a hang fails by the test's time limit
   std::this_thread::sleep_for(20ms);
   publishing = false;
   publisher.join();

@@ -13,6 +13,8 @@ import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 
+import { slow, sleep, until } from './wait.mjs';
+
 const here = path.dirname(fileURLToPath(import.meta.url));
 const webDir = path.resolve(here, '..');
 const repo = path.resolve(webDir, '..');
@@ -21,11 +23,6 @@ const SHOTS = path.resolve(process.env.AVK_SCREENSHOTS || path.join(repo, 'build
 const CHROMIUM = process.env.AVK_CHROMIUM || '/usr/bin/chromium';
 const DOC_SHOTS = path.join(repo, 'docs/screenshots');
 
-// Every wait is for a condition, with a limit: scaled by AVK_E2E_SLOW (default 4) so that a
-// 2-core machine running other builds beside the browser reaches none of them. A limit is how
-// long to wait before calling the page broken, not a speed the page must have.
-const SLOW = Number(process.env.AVK_E2E_SLOW || 4);
-const slow = (ms) => ms * SLOW;
 const SERVER_START_MS = slow(20000);
 // A 2-hour track at 10 Hz. How fast the page draws it is measured by web/bench/frame_time.mjs
 // (figures in docs/dashboard.md), not here: a test must pass on a loaded machine.
@@ -91,30 +88,10 @@ async function stopServer(s) {
   }
 }
 
-function sleep(ms) {
-  return new Promise((r) => setTimeout(r, ms));
-}
-
 async function api(pathname) {
   const res = await fetch(`${server.base}/api/v1${pathname}`, { signal: AbortSignal.timeout(slow(10000)) });
   assert.ok(res.ok, `GET ${pathname}: ${res.status}`);
   return res.json();
-}
-
-/** Polls fn until it returns a truthy value; fails with `what` after timeoutMs. */
-async function until(what, fn, timeoutMs = 20000, stepMs = 250) {
-  const end = Date.now() + slow(timeoutMs);
-  let last;
-  while (Date.now() < end) {
-    try {
-      last = await fn();
-      if (last) return last;
-    } catch (e) {
-      last = e;
-    }
-    await sleep(stepMs);
-  }
-  throw new Error(`timed out after ${slow(timeoutMs)} ms waiting for ${what} (last: ${last instanceof Error ? last.message : JSON.stringify(last)})`);
 }
 
 async function shot(name, p = page) {
