@@ -60,8 +60,8 @@ class AlogImport {
   const vehicle::AlogStats& reader_stats() const { return stats_; }
   const vehicle::AlogNavStats& nav_stats() const { return builder_.stats(); }
   const vehicle::AlogProblems& malformed() const { return malformed_; }
-  const TurnCounts& from_records() const { return from_records_; }
-  const TurnCounts& from_extraction() const { return from_extraction_; }
+  const store::TurnCounts& from_records() const { return from_records_; }
+  const store::TurnCounts& from_extraction() const { return from_extraction_; }
   std::size_t nav_stored() const { return nav_stored_; }
   std::optional<double> last_t_s() const { return last_t_s_; }
 
@@ -128,7 +128,7 @@ class AlogImport {
   vehicle::AlogProblems record_problems_;
   vehicle::AlogStats stats_;
   vehicle::AlogProblems malformed_;
-  TurnCounts from_records_, from_extraction_;
+  store::TurnCounts from_records_, from_extraction_;
 };
 
 // The mission's record of how it was imported: enough to import the log again the same way.

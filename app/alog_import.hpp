@@ -11,21 +11,12 @@
 #include "app/result.hpp"
 #include "kinematics/turn_sequence.hpp"
 #include "mission/turn_extractor.hpp"
+#include "store/store.hpp"
 #include "vehicle/alog.hpp"
 
 namespace avk::app {
 
 class Context;
-
-struct TurnCounts {
-  std::size_t ok = 0, aborted = 0, rejected = 0;
-  std::size_t total() const { return ok + aborted + rejected; }
-  void add(kinematics::TurnStatus s) {
-    (s == kinematics::TurnStatus::ok        ? ok
-     : s == kinematics::TurnStatus::aborted ? aborted
-                                            : rejected)++;
-  }
-};
 
 struct AlogImportRequest {
   std::string source;        // the log's name, for the mission's record and its status reason
@@ -41,7 +32,7 @@ struct AlogImportReport {
   vehicle::AlogNavStats nav;
   vehicle::AlogProblems malformed;
   std::size_t nav_stored = 0;
-  TurnCounts from_records, from_extraction;
+  store::TurnCounts from_records, from_extraction;
 };
 
 // Stores the log as a mission of the vehicle (running while it imports, so an import that dies

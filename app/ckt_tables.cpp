@@ -37,10 +37,9 @@ Result<VehicleTable> TableCache::get(Context& ctx, const std::string& vehicle_id
   e.checked = now;
   store::Store& db = ctx.db();
   const std::int64_t newest = db.newest_ok_turn_id(vehicle_id);
-  // Only a vehicle without turns is answered by an imported table, so only then is it read.
-  std::optional<store::CktSnapshot> snap;
-  if (newest == 0) snap = db.latest_ckt_snapshot(vehicle_id);
-  const std::int64_t snap_id = snap ? snap->id : 0;
+  // Only a vehicle without turns is answered by an imported table, so only then is it looked up;
+  // its document is read only when the newest id changed.
+  const std::int64_t snap_id = newest == 0 ? db.latest_ckt_snapshot_id(vehicle_id) : 0;
   if (e.value && newest == e.turns_seen && snap_id == e.snapshot_seen) return *e.value;
   VehicleTable t;
   t.vehicle_id = vehicle_id;
@@ -50,7 +49,7 @@ Result<VehicleTable> TableCache::get(Context& ctx, const std::string& vehicle_id
     built->vehicle_id = vehicle_id;
     t.table = std::move(built);
     t.source = TableSource::turns;
-  } else if (snap) {
+  } else if (auto snap = snap_id ? db.latest_ckt_snapshot(vehicle_id) : std::nullopt) {
     t.table = std::make_shared<kin::Ckt>(std::move(snap->table));
     t.source = TableSource::imported;
     t.snapshot_id = snap->id;

@@ -23,8 +23,8 @@ Error config_error(const mission::MissionConfigError& e) {
   return out;
 }
 
-TurnTotals totals_of(const std::vector<store::CellStats>& stats) {
-  TurnTotals t;
+store::TurnCounts totals_of(const std::vector<store::CellStats>& stats) {
+  store::TurnCounts t;
   for (const auto& c : stats) {
     t.ok += c.n_ok;
     t.aborted += c.n_aborted;
@@ -67,10 +67,10 @@ CellReport* find_cell(std::vector<CellReport>& cells, double speed_mps, double d
   return nullptr;
 }
 
-MissionSummary summary_of(store::Store& db, store::Mission m) {
+MissionSummary summary_of(store::Mission m, store::TurnCounts turns) {
   MissionSummary s;
   s.status = effective_status(m);
-  s.turns = totals_of(db.mission_cell_stats(m.id));
+  s.turns = turns;
   s.mission = std::move(m);
   return s;
 }
@@ -112,16 +112,20 @@ std::string status_text(const MissionReport& r) {
 std::vector<MissionSummary> list_missions(Context& ctx,
                                           const std::optional<std::string>& vehicle_id) {
   store::Store& db = ctx.db();
+  const auto counts = db.turn_counts_by_mission();
   std::vector<MissionSummary> out;
-  for (auto& m : db.list_missions())
-    if (!vehicle_id || m.vehicle_id == *vehicle_id) out.push_back(summary_of(db, std::move(m)));
+  for (auto& m : db.list_missions()) {
+    if (vehicle_id && m.vehicle_id != *vehicle_id) continue;
+    const auto it = counts.find(m.id);
+    out.push_back(summary_of(std::move(m), it == counts.end() ? store::TurnCounts{} : it->second));
+  }
   return out;
 }
 
 Result<MissionSummary> mission_summary(Context& ctx, std::int64_t mission_id) {
   auto m = ctx.db().get_mission(mission_id);
   if (!m) return not_found("no mission " + std::to_string(mission_id));
-  return summary_of(ctx.db(), std::move(*m));
+  return summary_of(std::move(*m), totals_of(ctx.db().mission_cell_stats(mission_id)));
 }
 
 Result<MissionReport> mission_report(Context& ctx, std::int64_t mission_id) {
@@ -167,7 +171,7 @@ Result<MissionReport> mission_report(Context& ctx, std::int64_t mission_id) {
   r.condition_set_count = set.size();
   if (!set.empty()) r.condition_set_time_s = kinematics::mean_sd(set);
   if (m->started_s && m->ended_s) r.duration_s = *m->ended_s - *m->started_s;
-  r.summary = summary_of(db, std::move(*m));
+  r.summary = summary_of(std::move(*m), totals_of(stats));
   return r;
 }
 

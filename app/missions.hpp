@@ -30,10 +30,6 @@ Result<mission::MissionConfig> validate_mission(const std::string& config_text,
 Result<std::int64_t> start_mission(Context& ctx, const std::string& vehicle_id,
                                    const std::string& config_text);
 
-struct TurnTotals {
-  std::int64_t ok = 0, aborted = 0, rejected = 0;
-};
-
 // One turn-array cell of a mission: what was planned, how its turns went, their statistics.
 struct CellReport {
   double speed_mps = 0.0;
@@ -53,7 +49,7 @@ std::vector<CellReport> cell_reports(const std::vector<mission::CellProgress>& c
 struct MissionSummary {
   store::Mission mission;
   store::MissionStatus status;  // a mission stored as running whose process died: interrupted
-  TurnTotals turns;
+  store::TurnCounts turns;
 };
 
 struct MissionReport {

@@ -566,6 +566,17 @@ double Store::station_clock_end_s() {
   return end;
 }
 
+std::map<std::int64_t, TurnCounts> Store::turn_counts_by_mission() {
+  auto s =
+      db_.prepare("SELECT mission_id, status, count(*) FROM turns GROUP BY mission_id, status");
+  std::map<std::int64_t, TurnCounts> out;
+  while (s.step()) {
+    const auto status = kinematics::turn_status_from_string(s.column_text(1));
+    out[s.column_int64(0)].add(status.value_or(kinematics::TurnStatus::ok), s.column_int64(2));
+  }
+  return out;
+}
+
 std::vector<CellStats> Store::mission_cell_stats(std::int64_t mission_id) {
   auto s = db_.prepare(
       "SELECT cell_speed_mps, cell_dheading_deg, status, advance_m, transfer_m, "
@@ -702,6 +713,13 @@ std::int64_t Store::save_ckt_snapshot(const kinematics::Ckt& table,
   s.bind(1, ids).bind(2, doc).bind(3, table.vehicle_id);
   s.run();
   return db_.last_insert_rowid();
+}
+
+std::int64_t Store::latest_ckt_snapshot_id(const std::string& vehicle_id) {
+  auto s = db_.prepare("SELECT coalesce(max(id), 0) FROM ckt_snapshots WHERE vehicle_id = ?");
+  s.bind(1, vehicle_id);
+  s.step();
+  return s.column_int64(0);
 }
 
 std::optional<CktSnapshot> Store::latest_ckt_snapshot(const std::string& vehicle_id) {

@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <memory>
 #include <optional>
 #include <span>
@@ -124,6 +125,18 @@ struct MissionEvent {
   friend bool operator==(const MissionEvent&, const MissionEvent&) = default;
 };
 
+// A mission's turns by status.
+struct TurnCounts {
+  std::int64_t ok = 0, aborted = 0, rejected = 0;
+  std::int64_t total() const { return ok + aborted + rejected; }
+  void add(kinematics::TurnStatus s, std::int64_t n = 1) {
+    (s == kinematics::TurnStatus::ok        ? ok
+     : s == kinematics::TurnStatus::aborted ? aborted
+                                            : rejected) += n;
+  }
+  friend bool operator==(const TurnCounts&, const TurnCounts&) = default;
+};
+
 // Per turn-array cell of one mission: cell = (cell_speed_mps, cell_dheading_deg) as stored.
 struct CellStats {
   double speed_mps = 0.0;
@@ -197,6 +210,8 @@ class Store {
   double station_clock_end_s();
   // Ordered by speed, then heading change.
   std::vector<CellStats> mission_cell_stats(std::int64_t mission_id);
+  // Every mission's turns by status, in one query (a listing without a query per mission).
+  std::map<std::int64_t, TurnCounts> turn_counts_by_mission();
 
   // Stores the turn with the given status and reason (written into its metadata too), its
   // normalised form and advance/transfer, in one transaction. A turn that cannot be normalised
@@ -230,6 +245,8 @@ class Store {
   // The newest snapshot of the vehicle's table. Throws StoreError when its stored document no
   // longer parses.
   std::optional<CktSnapshot> latest_ckt_snapshot(const std::string& vehicle_id);
+  // Its id alone (0: none), without reading the document: tells a cache whether it changed.
+  std::int64_t latest_ckt_snapshot_id(const std::string& vehicle_id);
 
   // Returns the model id (m.id is ignored). Reads throw StoreError for a corrupt document.
   std::int64_t save_model(const StoredModel& m);

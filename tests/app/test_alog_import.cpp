@@ -41,7 +41,7 @@ TEST(AlogImport, StoresTheNavigationAsAFinishedMissionAndNamesBadLines) {
   EXPECT_EQ(report->malformed.count, 1u);
   ASSERT_FALSE(report->malformed.first.empty());
   EXPECT_EQ(report->malformed.first[0].line, 46u);  // 1 header + 11 x 4 postings + 1
-  EXPECT_EQ(report->from_records.total() + report->from_extraction.total(), 0u);
+  EXPECT_EQ(report->from_records.total() + report->from_extraction.total(), 0);
   const auto m = app::mission_report(ctx, report->mission_id);
   ASSERT_TRUE(m);
   EXPECT_EQ(m->summary.status, store::MissionStatus::done);

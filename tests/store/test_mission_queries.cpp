@@ -527,6 +527,10 @@ TEST(MissionQueries, MigratesSchemaOneDatabase) {
                       s.get_turn(fresh)->row.end_time_s}));
   const auto cells = s.mission_cell_stats(7);
   ASSERT_EQ(cells.size(), 3u);
+  // The per-mission totals of one query agree with the cells.
+  const auto counts = s.turn_counts_by_mission();
+  ASSERT_EQ(counts.size(), 1u);
+  EXPECT_EQ(counts.at(7), (avk::store::TurnCounts{2, 1, 0}));
   EXPECT_EQ(cells[2].n_aborted, 1);
   EXPECT_EQ(cells[1].n_ok, 1);
   expect_mean_sd(cells[1].condition_set_time_s, 2.5, 0.0);

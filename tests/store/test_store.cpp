@@ -349,7 +349,10 @@ TEST(Store, CktSnapshotIsTheVehiclesOwn) {
   EXPECT_EQ(s.latest_ckt_snapshot("alpha")->table.vehicle_id, "alpha");
   EXPECT_EQ(s.latest_ckt_snapshot("bravo")->id, b1);
   EXPECT_FALSE(s.latest_ckt_snapshot("charlie").has_value());
+  EXPECT_EQ(s.latest_ckt_snapshot_id("charlie"), 0);
   const auto a2 = s.save_ckt_snapshot(a, {});
   EXPECT_EQ(s.latest_ckt_snapshot("alpha")->id, a2);
+  EXPECT_EQ(s.latest_ckt_snapshot_id("alpha"), a2);
+  EXPECT_EQ(s.latest_ckt_snapshot_id("bravo"), b1);
   EXPECT_EQ(s.latest_ckt_snapshot("bravo")->id, b1);
 }
