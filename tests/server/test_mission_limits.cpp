@@ -11,6 +11,7 @@
 #include "server/station.hpp"
 #include "sim/sim_config.hpp"
 #include "store/store.hpp"
+#include "support/sim_station.hpp"
 #include "support/temp_db.hpp"
 
 using nlohmann::json;
@@ -61,17 +62,8 @@ TEST(MissionLimitsStore, AMissionTooLargeToPlanLeavesNoRowBehind) {
 class MissionLimitsApi : public ::testing::Test {
  protected:
   void SetUp() override {
-    avk::server::StationOptions o;
-    o.db_path = db_.path();
-    o.token = kToken;
-    o.server_version = "test";
-    avk::app::VehicleLoopOptions v;
-    v.setup = avk::sim::default_sim_setup("usim");
-    v.setup.vehicle.id = "sim-usim";
-    v.realtime_factor = 50.0;
-    v.start = {0.0, -70.0, 0.0};
-    o.vehicle = v;
-    station_ = std::make_unique<avk::server::Station>(o, hub_);
+    station_ = std::make_unique<avk::server::Station>(
+        avk::testing::sim_station_options(db_.path(), kToken, 50.0), hub_);
     station_->start();
   }
   void TearDown() override { station_.reset(); }

@@ -20,6 +20,7 @@
 #include "server/station.hpp"
 #include "sim/sim_config.hpp"
 #include "support/http_client.hpp"
+#include "support/sim_station.hpp"
 #include "support/spawn_avk.hpp"
 #include "support/temp_db.hpp"
 
@@ -50,17 +51,7 @@ std::map<std::string, std::string> control_headers() {
 TEST(ServeE2E, MissionOverRestFollowedOverTheStreamAndEveryTurnIsServed) {
   avk::testing::TempDb db("avk_e2e");
   avk::server::StreamHub hub;
-  avk::server::StationOptions so;
-  so.db_path = db.path();
-  so.token = kToken;
-  so.server_version = "e2e";
-  avk::app::VehicleLoopOptions v;
-  v.setup = avk::sim::default_sim_setup("usim");
-  v.setup.vehicle.id = "sim-usim";
-  v.realtime_factor = 100.0;
-  v.start = {0.0, -70.0, 0.0};
-  so.vehicle = v;
-  avk::server::Station station(so, hub);
+  avk::server::Station station(avk::testing::sim_station_options(db.path(), kToken, 100.0), hub);
   station.start();
   avk::server::HttpServer server({}, station, hub);
   server.start();

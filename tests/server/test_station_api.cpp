@@ -12,6 +12,7 @@
 #include "server/station.hpp"
 #include "sim/sim_config.hpp"
 #include "store/store.hpp"
+#include "support/sim_station.hpp"
 #include "support/temp_db.hpp"
 
 using avk::server::ApiRequest;
@@ -68,18 +69,8 @@ class StationApi : public ::testing::Test {
 
   // telemetry_hz: how often the vehicle's snapshot is refreshed besides the helm's own updates.
   void start(double realtime_factor = 400.0, double telemetry_hz = 10.0) {
-    avk::server::StationOptions o;
-    o.db_path = db_.path();
-    o.token = kToken;
-    o.server_version = "test";
-    avk::app::VehicleLoopOptions v;
-    v.setup = avk::sim::default_sim_setup("usim");
-    v.setup.vehicle.id = "sim-usim";
-    v.realtime_factor = realtime_factor;
-    v.telemetry_hz = telemetry_hz;
-    v.start = {0.0, -70.0, 0.0};
-    o.vehicle = v;
-    station_ = std::make_unique<Station>(o, hub_);
+    station_ = std::make_unique<Station>(
+        avk::testing::sim_station_options(db_.path(), kToken, realtime_factor, telemetry_hz), hub_);
     station_->start();
   }
 

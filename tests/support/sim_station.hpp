@@ -1,0 +1,29 @@
+#pragma once
+// The options of a station that drives the simulated usim "sim-usim", at rest at the return point
+// of the tests' missions (0, -70) facing north, on a clock `realtime_factor` times the wall's.
+
+#include <string>
+
+#include "server/station.hpp"
+#include "sim/sim_config.hpp"
+
+namespace avk::testing {
+
+inline server::StationOptions sim_station_options(const std::string& db_path,
+                                                  const std::string& token, double realtime_factor,
+                                                  double telemetry_hz = 10.0) {
+  server::StationOptions o;
+  o.db_path = db_path;
+  o.token = token;
+  o.server_version = "test";
+  app::VehicleLoopOptions v;
+  v.setup = sim::default_sim_setup("usim");
+  v.setup.vehicle.id = "sim-usim";
+  v.realtime_factor = realtime_factor;
+  v.telemetry_hz = telemetry_hz;
+  v.start = {0.0, -70.0, 0.0};
+  o.vehicle = v;
+  return o;
+}
+
+}  // namespace avk::testing
