@@ -171,6 +171,16 @@ Result<MissionReport> mission_report(Context& ctx, std::int64_t mission_id) {
   r.condition_set_count = set.size();
   if (!set.empty()) r.condition_set_time_s = kinematics::mean_sd(set);
   if (m->started_s && m->ended_s) r.duration_s = *m->ended_s - *m->started_s;
+  store::TurnFilter filter;
+  filter.mission_id = mission_id;
+  filter.limit = 1000;
+  for (;;) {
+    auto page = db.list_turns(filter);
+    const bool last = static_cast<int>(page.size()) < filter.limit;
+    if (!page.empty()) filter.after_id = page.back().id;
+    r.turns.insert(r.turns.end(), page.begin(), page.end());
+    if (last) break;
+  }
   r.summary = summary_of(std::move(*m), totals_of(stats));
   return r;
 }

@@ -64,6 +64,9 @@ struct MissionReport {
   std::map<std::string, int> condition_set_episodes;
   std::optional<kinematics::MeanSd> condition_set_time_s;
   std::size_t condition_set_count = 0;
+  // Every turn of the mission, oldest first: how steady each began (heading error and yaw rate
+  // at its start) as well as how it ended.
+  std::vector<store::TurnRow> turns;
 };
 
 // The status a front end shows: the live state while the mission runs, else the stored one.

@@ -53,7 +53,8 @@ void BM_StoreTurn(benchmark::State& state) {
   const auto turn = avk::testing::make_arc_turn(spec);
   state.counters["samples"] = static_cast<double>(turn.samples().size());
   for (auto _ : state)
-    benchmark::DoNotOptimize(s.store_turn(m, turn, avk::kinematics::TurnStatus::ok, "", 1.0));
+    benchmark::DoNotOptimize(
+        s.store_turn(m, turn, avk::kinematics::TurnStatus::ok, "", {1.0, {}, {}}));
 }
 BENCHMARK(BM_StoreTurn)->Unit(benchmark::kMicrosecond);
 
@@ -91,7 +92,7 @@ class StoredTurns {
       spec.vehicle_id = "bench";
       const auto turn = avk::testing::make_arc_turn(spec);
       samples_ += turn.samples().size();
-      s.store_turn(m, turn, avk::kinematics::TurnStatus::ok, "", 2.0);
+      s.store_turn(m, turn, avk::kinematics::TurnStatus::ok, "", {2.0, {}, {}});
     }
   }
   TempDb file_;

@@ -242,6 +242,8 @@ MissionConfig parse_mission_config(std::string_view json_text, double max_speed_
     r.number("max_yaw_rate_dps", c.condition_set.max_yaw_rate_dps, 0.0, 90.0, false, true);
     r.integer("window", c.condition_set.window, 1, 100);
     r.number("timeout_s", c.condition_set.timeout_s, 0.0, 3600.0, false, true);
+    r.number("max_heading_error_deg", c.condition_set.max_heading_error_deg, 0.0, 180.0, false,
+             true);
     r.finish();
   }
   if (const json* ch = root.get("constant_heading", false)) {

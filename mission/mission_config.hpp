@@ -49,6 +49,9 @@ struct ConditionSetConfig {
   double max_yaw_rate_dps = 1.0;
   int window = 5;  // moving-average window of differenced headings (thesis eq. 4.2)
   double timeout_s = 120.0;
+  // The heading must also be within this of the course being held: at the far end of an
+  // overshoot swing the yaw rate passes through zero while the vehicle is well off course.
+  double max_heading_error_deg = 2.0;
 };
 
 struct OperatingRegion {

@@ -34,6 +34,9 @@ struct TurnOutcome {
   kinematics::TurnStatus status = kinematics::TurnStatus::ok;
   std::string reason;
   std::optional<double> condition_set_time_s;
+  // How steady the turn began: heading minus the held course, and the moving-average yaw rate.
+  std::optional<double> start_heading_error_deg;
+  std::optional<double> start_yaw_rate_dps;
   std::optional<double> advance_m;  // for ok turns
   std::optional<double> transfer_m;
   bool requeued = false;                  // aborted and put back into the queue

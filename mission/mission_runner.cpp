@@ -314,7 +314,7 @@ void MissionRunner::start_conditioning(const vehicle::NavSample& s) {
   }
   // ConditionSet notes the current course on becoming active and holds it (thesis §4.4.1).
   held_course_deg_ = s.heading_deg;
-  condition_set_.emplace(config_.condition_set, queue_.front().speed_mps);
+  condition_set_.emplace(config_.condition_set, queue_.front().speed_mps, held_course_deg_);
   condition_set_start_s_ = s.t_s;
   desired_heading_deg_ = held_course_deg_;
   desired_speed_mps_ = queue_.front().speed_mps;
@@ -346,6 +346,8 @@ const kinematics::Ckt* MissionRunner::table_for_auto() {
 
 void MissionRunner::start_turn(const vehicle::NavSample& s) {
   const double cs_time = s.t_s - condition_set_start_s_;
+  turn_start_heading_error_deg_ = condition_set_->heading_error_deg();
+  turn_start_yaw_rate_dps_ = condition_set_->yaw_rate_dps();
   end_condition_set(s.t_s, ConditionSetEpisode::Outcome::set);
   TurnTask& task = queue_.front();
   TurnSide side = task.side.value_or(TurnSide::right);
@@ -375,6 +377,8 @@ void MissionRunner::finish_turn(const vehicle::NavSample& s, Completion how) {
   if (how == Completion::passed_goal)
     out.raw.add_warning("completed by passing the goal heading between two samples");
   out.condition_set_time_s = turn_condition_set_time_s_;
+  out.start_heading_error_deg = turn_start_heading_error_deg_;
+  out.start_yaw_rate_dps = turn_start_yaw_rate_dps_;
   turn_.reset();
   const auto anomaly =
       turn_anomaly(out.raw, {config_.completion_threshold_deg, options_.max_sample_gap_s});
@@ -430,6 +434,8 @@ void MissionRunner::abort_turn(double t_s, const std::string& reason, bool count
   out.raw.meta().status = out.status;
   out.raw.meta().status_reason = reason;
   out.condition_set_time_s = turn_condition_set_time_s_;
+  out.start_heading_error_deg = turn_start_heading_error_deg_;
+  out.start_yaw_rate_dps = turn_start_yaw_rate_dps_;
   turn_.reset();
   CellProgress* cell = cell_of(task);
   if (cell) {

@@ -123,6 +123,8 @@ class MissionRunner {
   std::optional<TurnMonitor> turn_;
   double turn_start_s_ = 0.0;
   std::optional<double> turn_condition_set_time_s_;
+  std::optional<double> turn_start_heading_error_deg_;
+  std::optional<double> turn_start_yaw_rate_dps_;
   std::size_t given_up_ = 0;
   kinematics::TurnSide next_auto_preference_ = kinematics::TurnSide::right;
 

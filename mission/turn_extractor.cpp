@@ -95,6 +95,8 @@ void TurnExtractor::track_steady(const vehicle::GuidedNav& s) {
     steady_active_ = false;
     return;
   }
+  // No held course for the heading test: another helm may hold a steady course several degrees
+  // off its desired heading in a cross wind, and the log does not say which course it meant.
   if (!steady_active_ || *s.desired_speed_mps != steady_.target_speed_mps()) {
     steady_.reset(*s.desired_speed_mps);
     held_desired_deg_.clear();

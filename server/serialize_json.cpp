@@ -178,6 +178,9 @@ json report_json(const app::MissionReport& r, bool with_config) {
   j["condition_set"] = {{"episodes", r.condition_set_episodes},
                         {"time_to_set_s", mean_sd_json(r.condition_set_time_s)},
                         {"turn_starts", r.condition_set_count}};
+  j["turn_list"] = json::array();
+  for (const auto& t : r.turns)
+    j["turn_list"].push_back(turn_row_json(t));
   return j;
 }
 
@@ -211,7 +214,9 @@ json turn_row_json(const store::TurnRow& t) {
           {"end_time_s", t.end_time_s},
           {"advance_m", optional_json(t.advance_m)},
           {"transfer_m", optional_json(t.transfer_m)},
-          {"condition_set_time_s", optional_json(t.condition_set_time_s)}};
+          {"condition_set_time_s", optional_json(t.condition_set_time_s)},
+          {"start_heading_error_deg", optional_json(t.start_heading_error_deg)},
+          {"start_yaw_rate_dps", optional_json(t.start_yaw_rate_dps)}};
 }
 
 json turn_json(const store::StoredTurn& t) {

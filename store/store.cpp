@@ -21,7 +21,7 @@ namespace {
 
 // Each step moves the schema from version i to i + 1. Steps are append-only: a released step is
 // never edited, because databases in the field have already run it.
-constexpr std::array<const char*, 6> kMigrations = {
+constexpr std::array<const char*, 7> kMigrations = {
     R"sql(
 CREATE TABLE vehicles (
   id            TEXT PRIMARY KEY,
@@ -144,6 +144,12 @@ UPDATE ckt_snapshots SET vehicle_id = json_extract(document, '$.vehicle.id')
   WHERE json_valid(document);
 CREATE INDEX ckt_snapshots_by_vehicle ON ckt_snapshots (vehicle_id, id);
 )sql",
+    // How steady each turn began (the ConditionSet's heading error and yaw rate): a turn begun
+    // in the middle of a swing is visible in the report. Older turns have none.
+    R"sql(
+ALTER TABLE turns ADD COLUMN start_heading_error_deg REAL;
+ALTER TABLE turns ADD COLUMN start_yaw_rate_dps REAL;
+)sql",
 };
 
 constexpr const char* kMissionStatusNames[] = {"created", "running", "paused", "interrupted",
@@ -152,7 +158,8 @@ constexpr const char* kMissionStatusNames[] = {"created", "running", "paused", "
 constexpr const char* kTurnColumns =
     "id, mission_id, vehicle_id, cell_speed_mps, cell_dheading_deg, status, reason, "
     "commanded_speed_mps, goal_dheading_deg, observed_dheading_deg, start_time_s, end_time_s, "
-    "advance_m, transfer_m, condition_set_time_s";
+    "advance_m, transfer_m, condition_set_time_s, start_heading_error_deg, start_yaw_rate_dps";
+constexpr int kTurnRowColumns = 17;
 
 TurnRow read_turn_row(const Statement& s) {
   TurnRow r;
@@ -175,6 +182,8 @@ TurnRow read_turn_row(const Statement& s) {
   r.advance_m = s.column_optional_double(12);
   r.transfer_m = s.column_optional_double(13);
   r.condition_set_time_s = s.column_optional_double(14);
+  r.start_heading_error_deg = s.column_optional_double(15);
+  r.start_yaw_rate_dps = s.column_optional_double(16);
   return r;
 }
 
@@ -399,7 +408,7 @@ std::vector<Mission> Store::list_missions() {
 
 std::int64_t Store::store_turn(std::int64_t mission_id, const kinematics::TurnSequence& raw,
                                kinematics::TurnStatus status, const std::string& reason,
-                               std::optional<double> condition_set_time_s) {
+                               const TurnStart& start) {
   kinematics::TurnSequence turn = raw;
   turn.meta().status = status;
   turn.meta().status_reason = reason;
@@ -428,13 +437,14 @@ std::int64_t Store::store_turn(std::int64_t mission_id, const kinematics::TurnSe
       "INSERT INTO turns (mission_id, vehicle_id, cell_speed_mps, cell_dheading_deg, status, "
       "reason, commanded_speed_mps, goal_dheading_deg, observed_dheading_deg, start_time_s, "
       "end_time_s, advance_m, transfer_m, condition_set_time_s, raw_json, normalized_json, "
-      "normalized_meta_json, normalized_samples) "
-      "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+      "normalized_meta_json, normalized_samples, start_heading_error_deg, start_yaw_rate_dps) "
+      "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   s.bind(1, mission_id).bind(2, m.vehicle_id).bind(3, m.commanded_speed_mps);
   s.bind(4, std::abs(m.goal_dheading_deg)).bind(5, kinematics::to_string(status)).bind(6, reason);
   s.bind(7, m.commanded_speed_mps).bind(8, m.goal_dheading_deg).bind(9, m.observed_dheading_deg);
   s.bind(10, m.start_time_s).bind(11, m.end_time_s).bind(12, advance_m).bind(13, transfer_m);
-  s.bind(14, condition_set_time_s).bind(15, raw_json);
+  s.bind(14, start.condition_set_time_s).bind(15, raw_json);
+  s.bind(19, start.heading_error_deg).bind(20, start.yaw_rate_dps);
   if (normalized_json) {
     s.bind(16, *normalized_json).bind(17, *normalized_meta).bind_blob(18, normalized_samples);
   } else {
@@ -488,10 +498,13 @@ std::optional<StoredTurn> Store::get_turn(std::int64_t turn_id) {
                        ", raw_json, normalized_json FROM turns WHERE id = ?");
   s.bind(1, turn_id);
   if (!s.step()) return std::nullopt;
-  StoredTurn t{read_turn_row(s), parse_stored_turn(turn_id, "raw_json", s.column_text(15)),
+  // The two documents follow the kTurnRowColumns row columns.
+  StoredTurn t{read_turn_row(s),
+               parse_stored_turn(turn_id, "raw_json", s.column_text(kTurnRowColumns)),
                std::nullopt};
-  if (!s.is_null(16))
-    t.normalized = parse_stored_turn(turn_id, "normalized_json", s.column_text(16));
+  if (!s.is_null(kTurnRowColumns + 1))
+    t.normalized =
+        parse_stored_turn(turn_id, "normalized_json", s.column_text(kTurnRowColumns + 1));
   return t;
 }
 

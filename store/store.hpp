@@ -65,6 +65,15 @@ struct TurnRow {
   std::optional<double> advance_m;  // absent when the turn could not be normalised
   std::optional<double> transfer_m;
   std::optional<double> condition_set_time_s;
+  std::optional<double> start_heading_error_deg;
+  std::optional<double> start_yaw_rate_dps;
+};
+
+// How steady the vehicle was when its turn was commanded, as the ConditionSet saw it.
+struct TurnStart {
+  std::optional<double> condition_set_time_s;
+  std::optional<double> heading_error_deg;  // heading minus the held course
+  std::optional<double> yaw_rate_dps;       // moving average
 };
 
 struct StoredTurn {
@@ -218,7 +227,7 @@ class Store {
   // is kept without the normalised form only when it is not ok. Returns the turn id.
   std::int64_t store_turn(std::int64_t mission_id, const kinematics::TurnSequence& raw,
                           kinematics::TurnStatus status, const std::string& reason,
-                          std::optional<double> condition_set_time_s = std::nullopt);
+                          const TurnStart& start = {});
   // The id of the vehicle's newest ok turn (0 without any): tells a cache whether the vehicle's
   // table changed.
   std::int64_t newest_ok_turn_id(const std::string& vehicle_id);

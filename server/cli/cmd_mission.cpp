@@ -92,6 +92,9 @@ class ProgressPrinter final : public mission::MissionObserver {
     }
     if (t.condition_set_time_s)
       out_ << ", conditions set in " << fixed(*t.condition_set_time_s, 1) << " s";
+    if (t.start_heading_error_deg && t.start_yaw_rate_dps)
+      out_ << " (" << fixed(*t.start_heading_error_deg, 1) << "° off course, "
+           << fixed(*t.start_yaw_rate_dps, 2) << " °/s)";
     out_ << "  [t=" << fixed(t.raw.meta().end_time_s, 1) << " s";
     if (t.stored_id) out_ << ", turn " << *t.stored_id;
     out_ << "]" << std::endl;  // flushed: an operator may be watching a pipe or a log file
@@ -388,6 +391,22 @@ int report(const std::vector<std::string>& rest, Io& io) {
            << std::setw(9) << c.planned << std::setw(5) << c.ok << std::setw(9) << c.aborted
            << std::setw(10) << c.rejected << std::setw(18) << pm(c.advance_m, 2) << std::setw(18)
            << pm(c.transfer_m, 2) << std::setw(18) << pm(c.condition_set_time_s, 2) << "\n";
+  if (r.turns.empty()) return 0;
+  // How steady each turn began: a turn started in the middle of a swing shows here.
+  const auto opt = [](const std::optional<double>& v, int digits) {
+    return v ? fixed(*v, digits) : std::string("-");
+  };
+  io.out << "\n"
+         << std::setw(7) << "turn" << std::setw(9) << "speed" << std::setw(10) << "goal"
+         << std::setw(10) << "status" << std::setw(14) << "conditions s" << std::setw(18)
+         << "start heading err" << std::setw(16) << "start yaw rate"
+         << "\n";
+  for (const auto& t : r.turns)
+    io.out << std::setw(7) << t.id << std::setw(9) << fixed(t.commanded_speed_mps, 2)
+           << std::setw(10) << fixed(t.goal_dheading_deg, 0) << std::setw(10)
+           << kinematics::to_string(t.status) << std::setw(14) << opt(t.condition_set_time_s, 1)
+           << std::setw(16) << opt(t.start_heading_error_deg, 2) << " °" << std::setw(12)
+           << opt(t.start_yaw_rate_dps, 2) << " °/s\n";
   return 0;
 }
 

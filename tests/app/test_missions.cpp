@@ -3,6 +3,7 @@
 // apply without the station's vehicle. Without HTTP or argv.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <set>
 
 #include "app/context.hpp"
@@ -78,6 +79,15 @@ TEST_F(Missions, TheReportMergesThePlanWithWhatIsStored) {
   EXPECT_EQ(r->condition_set_episodes.at("set"), static_cast<int>(r->condition_set_count));
   ASSERT_TRUE(r->duration_s);
   EXPECT_GT(*r->duration_s, 0.0);
+  // Every turn, with how steady it began: no ok turn started off the held course or swinging.
+  ASSERT_EQ(static_cast<std::int64_t>(r->turns.size()), r->summary.turns.total());
+  for (const auto& t : r->turns) {
+    EXPECT_EQ(t.mission_id, mission_);
+    if (t.status != kinematics::TurnStatus::ok) continue;
+    ASSERT_TRUE(t.start_heading_error_deg && t.start_yaw_rate_dps) << "turn " << t.id;
+    EXPECT_LE(std::abs(*t.start_heading_error_deg), 2.0);
+    EXPECT_LE(std::abs(*t.start_yaw_rate_dps), 1.0);
+  }
   EXPECT_EQ(app::mission_report(ctx_, 9999).error().code, app::ErrorCode::not_found);
 }
 

@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <iterator>
+
 #include "mission/condition_set.hpp"
 #include "mission/turn_monitor.hpp"
 
@@ -21,10 +24,11 @@ NavSample nav(double t, double heading, double speed = 1.0, double x = 0, double
 TEST(ConditionSet, NeedsAFullWindowOfSteadyHeadingAtSpeed) {
   ConditionSetMonitor m({0.1, 1.0, 5, 60}, 1.0);
   // Six samples give five yaw rates; only then can conditions be set.
-  for (int k = 0; k < 5; ++k)
+  // Six samples give five yaw rates, the first moving average; five averages, ten samples.
+  for (int k = 0; k < 9; ++k)
     EXPECT_FALSE(m.update(nav(k * 0.25, 10.0)));
-  EXPECT_TRUE(m.update(nav(1.25, 10.0)));
-  EXPECT_FALSE(m.update(nav(1.5, 10.0, 1.2)));  // speed off by 0.2
+  EXPECT_TRUE(m.update(nav(2.25, 10.0)));
+  EXPECT_FALSE(m.update(nav(2.5, 10.0, 1.2)));  // speed off by 0.2
 }
 
 TEST(ConditionSet, YawRateIsWrapAwareMovingAverage) {
@@ -34,10 +38,64 @@ TEST(ConditionSet, YawRateIsWrapAwareMovingAverage) {
     m.update(nav(k, 358.0 + k >= 360.0 ? k - 2.0 : 358.0 + k));
   ASSERT_TRUE(m.yaw_rate_dps().has_value());
   EXPECT_DOUBLE_EQ(*m.yaw_rate_dps(), 1.0);
-  EXPECT_TRUE(m.conditions_set());  // 1 deg/s is within the limit
-  m.update(nav(5, 5.0));            // +3 deg/s enters the window: mean (1+1+1+3)/4
+  for (int k = 5; k < 8; ++k)
+    m.update(nav(k, k - 2.0));
+  EXPECT_TRUE(m.conditions_set());  // 1 deg/s is within the limit, over a window of averages
+  m.update(nav(8, 8.0));            // +3 deg/s enters the window: mean (1+1+1+3)/4
   EXPECT_DOUBLE_EQ(*m.yaw_rate_dps(), 1.5);
   EXPECT_FALSE(m.conditions_set());
+}
+
+TEST(ConditionSet, ASwingThroughTheHeldCourseNeverSetsConditions) {
+  // An overshoot swing about the held course 0°: ±12° with a 20 s period, sampled at 10 Hz. At
+  // each far end the moving-average yaw rate passes through zero; there the heading is 12° off.
+  // Through the held course the heading is right but the vehicle is swinging at ~3.8 °/s.
+  ConditionSetMonitor m({0.1, 1.0, 5, 60, 2.0}, 1.0, 0.0);
+  bool ever = false;
+  bool average_calm_off_course = false;
+  for (int k = 0; k <= 600; ++k) {
+    const double t = k * 0.1;
+    ever |= m.update(nav(t, 12.0 * std::sin(2.0 * M_PI * t / 20.0)));
+    if (m.yaw_rate_dps() && std::abs(*m.yaw_rate_dps()) <= 1.0 &&
+        std::abs(*m.heading_error_deg()) > 10.0)
+      average_calm_off_course = true;
+  }
+  EXPECT_TRUE(average_calm_off_course);  // the old rule would have fired here
+  EXPECT_FALSE(ever);
+}
+
+TEST(ConditionSet, EveryAverageOfTheWindowMustBeCalmNotOnlyTheNewest) {
+  // Heading within the tolerance of the held course throughout (±1.5°), but the rate swings:
+  // one calm moving average is not a steady course.
+  ConditionSetMonitor m({0.1, 1.0, 5, 60, 2.0}, 1.0, 0.0);
+  const double headings[] = {-1.5, -1.0, -0.5, 0.0, 0.5, 1.0, 1.5, 1.5, 1.5, 1.5, 1.5};
+  // From sample 6 on the last five differences include 0s: averages fall to 0.5, 0.5, ... but
+  // the window of averages still holds the 5 °/s ones.
+  for (std::size_t k = 0; k < std::size(headings); ++k) {
+    m.update(nav(0.1 * static_cast<double>(k), headings[k]));
+    if (k == 10) {
+      ASSERT_TRUE(m.yaw_rate_dps().has_value());
+      EXPECT_LE(std::abs(*m.yaw_rate_dps()), 1.0);  // the newest average alone is calm
+      EXPECT_FALSE(m.conditions_set());
+    }
+  }
+  for (int k = 11; k < 16; ++k)
+    m.update(nav(0.1 * k, 1.5));
+  EXPECT_TRUE(m.conditions_set());  // a full window of calm averages, 1.5° off: within 2°
+  EXPECT_DOUBLE_EQ(*m.heading_error_deg(), 1.5);
+}
+
+TEST(ConditionSet, HeadingMustBeWithinTheToleranceOfTheHeldCourseAcrossNorth) {
+  ConditionSetMonitor m({0.1, 1.0, 5, 60, 2.0}, 1.0, 359.0);
+  for (int k = 0; k < 12; ++k)
+    m.update(nav(0.25 * k, 0.5));  // 1.5° right of 359°, across north
+  EXPECT_TRUE(m.conditions_set());
+  EXPECT_NEAR(*m.heading_error_deg(), 1.5, 1e-12);
+  m.reset(1.0, 355.0);  // the same steady vehicle, 5.5° off another held course
+  for (int k = 12; k < 24; ++k)
+    m.update(nav(0.25 * k, 0.5));
+  EXPECT_FALSE(m.conditions_set());
+  EXPECT_NEAR(*m.heading_error_deg(), 5.5, 1e-12);
 }
 
 TEST(TurnMonitor, CompletesWithinTheThreshold) {

@@ -130,6 +130,21 @@ TEST_F(MissionCli, CatamaranInCurrentAndWindIsContainedAndLosesNoTurn) {
   const auto events = s.list_events(1);
   EXPECT_TRUE(std::any_of(events.begin(), events.end(),
                           [](const auto& e) { return e.kind == "containment"; }));
+  // In wind and current the catamaran overshoots and swings; no turn may start in a swing: the
+  // report lists every turn with its heading error and yaw rate at the start.
+  const Result report = run({"mission", "report", "1", "--db", db_.path(), "--format", "json"});
+  ASSERT_EQ(report.rc, 0) << report.err;
+  const json j = json::parse(report.out);
+  int ok_turns = 0;
+  for (const json& t : j["turn_list"]) {
+    if (t["status"] != "ok") continue;
+    ++ok_turns;
+    EXPECT_LE(std::abs(t["start_heading_error_deg"].get<double>()), 2.0) << t.dump();
+    EXPECT_LE(std::abs(t["start_yaw_rate_dps"].get<double>()), 1.0) << t.dump();
+  }
+  EXPECT_EQ(ok_turns, 18);
+  const Result text = run({"mission", "report", "1", "--db", db_.path()});
+  EXPECT_NE(text.out.find("start heading err"), std::string::npos) << text.out;
 }
 
 TEST_F(MissionCli, ExportedTableGrowsWithSpeedAndHeadingChangeAsPhysicsSays) {

@@ -73,17 +73,18 @@ void expect_mean_sd(const std::optional<avk::kinematics::MeanSd>& got, double me
 
 }  // namespace
 
-TEST(MissionQueries, SchemaIsVersionSix) {
+TEST(MissionQueries, SchemaIsVersionSeven) {
   Store s(":memory:");
-  EXPECT_EQ(schema_version(), 6);
-  EXPECT_EQ(s.user_version(), 6);
+  EXPECT_EQ(schema_version(), 7);
+  EXPECT_EQ(s.user_version(), 7);
   EXPECT_FALSE(migration_step_sql(0).empty());
   EXPECT_NE(migration_step_sql(1).find("normalized_samples"), std::string_view::npos);
   EXPECT_NE(migration_step_sql(2).find("yaw_models"), std::string_view::npos);
   EXPECT_NE(migration_step_sql(3).find("turns_by_vehicle_status"), std::string_view::npos);
   EXPECT_NE(migration_step_sql(4).find("nav_by_mission"), std::string_view::npos);
   EXPECT_NE(migration_step_sql(5).find("ckt_snapshots_by_vehicle"), std::string_view::npos);
-  EXPECT_THROW(migration_step_sql(6), std::out_of_range);
+  EXPECT_NE(migration_step_sql(6).find("start_heading_error_deg"), std::string_view::npos);
+  EXPECT_THROW(migration_step_sql(7), std::out_of_range);
   EXPECT_THROW(migration_step_sql(-1), std::out_of_range);
 }
 
@@ -271,14 +272,14 @@ TEST(MissionQueries, CellStatsMatchHandComputedValues) {
   EXPECT_TRUE(s.mission_cell_stats(other + 10).empty());
 
   // Cell (1.0, 90): ok turns with R = 2, 3, 5 (lead-in 2), right and left.
-  s.store_turn(m, exact_arc(1.0, 90.0, 2.0), TurnStatus::ok, "", 2.0);
-  s.store_turn(m, exact_arc(1.0, -90.0, 3.0), TurnStatus::ok, "", 4.0);
+  s.store_turn(m, exact_arc(1.0, 90.0, 2.0), TurnStatus::ok, "", {2.0, {}, {}});
+  s.store_turn(m, exact_arc(1.0, -90.0, 3.0), TurnStatus::ok, "", {4.0, {}, {}});
   s.store_turn(m, exact_arc(1.0, 90.0, 5.0), TurnStatus::ok, "");
   // Not ok turns count but never enter the means; neither does another mission.
-  s.store_turn(m, exact_arc(1.0, -90.0, 50.0), TurnStatus::aborted, "containment", 100.0);
-  s.store_turn(other, exact_arc(1.0, 90.0, 50.0), TurnStatus::ok, "", 100.0);
+  s.store_turn(m, exact_arc(1.0, -90.0, 50.0), TurnStatus::aborted, "containment", {100.0, {}, {}});
+  s.store_turn(other, exact_arc(1.0, 90.0, 50.0), TurnStatus::ok, "", {100.0, {}, {}});
   // Cell (1.0, 40): rejected only.
-  s.store_turn(m, exact_arc(1.0, 40.0, 3.0), TurnStatus::rejected, "noisy", 1.0);
+  s.store_turn(m, exact_arc(1.0, 40.0, 3.0), TurnStatus::rejected, "noisy", {1.0, {}, {}});
   // Cell (0.5, 90): one ok turn, without a ConditionSet time.
   s.store_turn(m, exact_arc(0.5, 90.0, 3.0), TurnStatus::ok, "");
 
@@ -328,7 +329,7 @@ TEST(MissionQueries, LoadNormalizedTurnsEqualsGetTurn) {
   warned.add_warning("NAV_X stream cut by 1 value");
   TurnSequence pre_normalized = arc(0.5, 70.0, 5).normalized();
   std::vector<std::int64_t> ok_m1, ok_m2;
-  ok_m1.push_back(s.store_turn(m1, arc(1.0, 90.0, 1), TurnStatus::ok, "", 3.0));
+  ok_m1.push_back(s.store_turn(m1, arc(1.0, 90.0, 1), TurnStatus::ok, "", {3.0, {}, {}}));
   ok_m1.push_back(s.store_turn(m1, arc(1.0, -40.0, 2), TurnStatus::ok, "kept despite drift"));
   s.store_turn(m1, arc(1.0, 90.0, 3), TurnStatus::aborted, "halt");
   ok_m1.push_back(s.store_turn(m1, warned, TurnStatus::ok, ""));

@@ -133,7 +133,7 @@ TEST(Store, TurnRoundTripIsBitExact) {
   Store s(":memory:");
   const auto mission = make_mission(s);
   const TurnSequence turn = arc(1.25, -70.0, 7);
-  const auto id = s.store_turn(mission, turn, TurnStatus::ok, "", 4.75);
+  const auto id = s.store_turn(mission, turn, TurnStatus::ok, "", {4.75, -1.25, 0.375});
   const auto got = s.get_turn(id);
   ASSERT_TRUE(got);
   EXPECT_EQ(got->raw, turn);
@@ -146,6 +146,8 @@ TEST(Store, TurnRoundTripIsBitExact) {
   EXPECT_EQ(got->row.cell_dheading_deg, 70.0);
   EXPECT_EQ(got->row.observed_dheading_deg, turn.meta().observed_dheading_deg);
   EXPECT_EQ(got->row.condition_set_time_s, 4.75);
+  EXPECT_EQ(got->row.start_heading_error_deg, -1.25);
+  EXPECT_EQ(got->row.start_yaw_rate_dps, 0.375);
   ASSERT_TRUE(got->row.advance_m && got->row.transfer_m);
   EXPECT_GT(*got->row.advance_m, 0.0);
   EXPECT_GT(*got->row.transfer_m, 0.0);
