@@ -1,5 +1,6 @@
 #include "app/compare.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "app/context.hpp"
@@ -28,6 +29,18 @@ double cell_course_deg(const kin::Ckt& table, double speed, double dheading) {
   return sx == 0.0 && sy == 0.0 ? 0.0 : kin::heading_of_deg(sx, sy);
 }
 
+double test_course_deg(const std::vector<kin::TurnSequence>& turns, double speed, double dheading) {
+  double sx = 0.0, sy = 0.0;
+  for (const auto& t : turns) {
+    if (std::abs(t.meta().commanded_speed_mps - speed) > 0.01 ||
+        std::abs(std::abs(t.meta().goal_dheading_deg) - dheading) > 0.1)
+      continue;
+    sx += std::sin(kin::deg_to_rad(t.meta().initial_heading_deg));
+    sy += std::cos(kin::deg_to_rad(t.meta().initial_heading_deg));
+  }
+  return sx == 0.0 && sy == 0.0 ? 0.0 : kin::heading_of_deg(sx, sy);
+}
+
 }  // namespace
 
 Result<Comparison> compare(Context& ctx, const CompareQuery& q) {
@@ -44,7 +57,22 @@ Result<Comparison> compare(Context& ctx, const CompareQuery& q) {
   }
   for (const auto id : q.missions)
     if (!ctx.db().get_mission(id)) return not_found("no mission " + std::to_string(id));
-  const auto turns = ctx.db().load_normalized_turns(q.missions, q.vehicle_id);
+  for (const auto id : q.test_missions)
+    if (!ctx.db().get_mission(id)) return not_found("no mission " + std::to_string(id));
+  std::vector<std::int64_t> table_missions = q.missions;
+  if (!q.test_missions.empty()) {
+    // The table never holds a turn it is judged on.
+    if (table_missions.empty()) {
+      for (const auto& m : ctx.db().list_missions())
+        if (m.vehicle_id == q.vehicle_id) table_missions.push_back(m.id);
+    }
+    std::erase_if(table_missions, [&](std::int64_t id) {
+      return std::find(q.test_missions.begin(), q.test_missions.end(), id) != q.test_missions.end();
+    });
+    if (table_missions.empty())
+      return invalid_argument("mission", "no mission is left to build the table from");
+  }
+  const auto turns = ctx.db().load_normalized_turns(table_missions, q.vehicle_id);
   if (turns.empty()) return not_found("no ok turns of '" + q.vehicle_id + "' to compare");
   c.table = kin::Ckt::build(turns);
   kin::TurnPredictor predictor;
@@ -55,6 +83,25 @@ Result<Comparison> compare(Context& ctx, const CompareQuery& q) {
     };
   }
   c.cells = kin::compare_predictions(c.table, c.model ? &predictor : nullptr);
+  if (!(q.corridor_share > 0.0 && q.corridor_share < 1.0))
+    return invalid_argument("corridor", "corridor share must be within (0, 1)");
+  kin::PredictiveOptions po;
+  po.corridor_share = q.corridor_share;
+  c.corridor_share = q.corridor_share;
+  c.predictive = kin::compare_predictive(c.table, c.model ? &predictor : nullptr, po);
+  if (!q.test_missions.empty()) {
+    const auto test = ctx.db().load_normalized_turns(q.test_missions, q.vehicle_id);
+    if (test.empty())
+      return not_found("no ok turns of '" + q.vehicle_id + "' in the test missions");
+    kin::TurnPredictor test_predictor;
+    if (c.model) {
+      test_predictor = [&](double u, double d) {
+        return kin::predict_normalized_turn(c.model->model, u, d, q.completion_threshold_deg,
+                                            test_course_deg(test, u, d));
+      };
+    }
+    c.test_cells = kin::evaluate_table(c.table, test, c.model ? &test_predictor : nullptr, po);
+  }
   return c;
 }
 

@@ -46,12 +46,17 @@ std::optional<Error> check(const PredictQuery& q) {
   if (q.pose && !(std::isfinite(q.pose->x_m) && std::isfinite(q.pose->y_m) &&
                   std::isfinite(q.pose->heading_deg)))
     return invalid_argument("x", "a pose needs finite x, y and heading");
+  if (!(q.corridor_share > 0.0 && q.corridor_share < 1.0))
+    return invalid_argument("corridor", "must be a share within (0, 1)");
   return std::nullopt;
 }
 
-Result<Prediction> finish(Prediction p) {
+Result<Prediction> finish(Prediction p, const std::optional<kin::Corridor>& corridor = {}) {
   if (p.query.pose)
     p.trajectory = kin::place_normalized(p.trajectory, *p.query.pose, kin::TurnSide::right);
+  // The band is built about the trajectory as it is answered, so it is in the same frame.
+  if (corridor && corridor->n_turns >= 2)
+    p.corridor = kin::corridor_band(p.trajectory, *corridor, p.query.corridor_share);
   return Result<Prediction>(std::move(p));
 }
 
@@ -61,7 +66,8 @@ Result<Prediction> from_table(Prediction p, kin::TurnPrediction t) {
   p.transfer_m = t.transfer_m;
   p.exact_cell = t.exact_cell;
   p.extrapolated = t.extrapolated;
-  return finish(std::move(p));
+  p.short_of_goal = t.short_of_goal;
+  return finish(std::move(p), t.corridor);
 }
 
 }  // namespace

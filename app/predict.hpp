@@ -28,6 +28,8 @@ struct PredictQuery {
   bool use_speed_model = false;           // model: let the model's speed response slow the turn
   double completion_threshold_deg = 5.0;  // model: the turn ends this close to the goal
   std::optional<kinematics::Pose> pose;   // where the turn starts; none: the normalised frame
+  // avk: the share of the vehicle's turns the corridor holds.
+  double corridor_share = kinematics::kDefaultCorridorShare;
 };
 
 struct Prediction {
@@ -43,6 +45,11 @@ struct Prediction {
   std::optional<std::int64_t> model_id;     // model: the model that answered
   std::optional<std::int64_t> snapshot_id;  // avk: the imported table that answered, if one did
   std::optional<std::string> table_source;  // avk: "turns" or "imported"
+  // avk: the lateral band about the trajectory that holds corridor_share of the vehicle's turns
+  // (kinematics/corridor.hpp), in the trajectory's frame; none when the table has no spread (a
+  // cell of one turn, or an imported table without corridors).
+  std::optional<kinematics::CorridorBand> corridor;
+  bool short_of_goal = false;  // avk: a cell that answered holds turns that stopped short
 };
 
 // invalid_argument names the parameter (speed, dheading, model, speed_model); not_found when the

@@ -94,6 +94,16 @@ AdvanceTransfer arc_model_extrapolate(const CktCell& c, double dheading_deg) {
 
 }  // namespace
 
+const char* to_string(MeanKind k) {
+  return k == MeanKind::arc_length ? "arc_length" : "x_grid";
+}
+
+std::optional<MeanKind> mean_kind_from_string(const std::string& s) {
+  if (s == "arc_length") return MeanKind::arc_length;
+  if (s == "x_grid") return MeanKind::x_grid;
+  return std::nullopt;
+}
+
 MeanSd mean_sd(const std::vector<double>& values) {
   MeanSd r;
   if (values.empty()) return r;
@@ -207,8 +217,34 @@ Ckt Ckt::build(const std::vector<TurnSequence>& turns, const CktOptions& options
       c.avk_error_m2 =
           cell_errors(paths, c.dheading_deg, {options.mean_x_step_m, 0.0}).avk_error_m2;
     }
-    c.mean_turn =
-        mean_turn(paths, c.dheading_deg, {options.mean_x_step_m, options.mean_x_margin_m}).points();
+    std::vector<StationedPath> stationed;
+    stationed.reserve(c.turns.size());
+    double observed = 0.0;
+    for (const auto& t : c.turns) {
+      stationed.push_back(stationed_by_time(t));
+      observed += std::abs(t.meta().observed_dheading_deg) / static_cast<double>(c.turns.size());
+    }
+    c.short_of_goal = observed < kShortOfGoalFraction * c.dheading_deg;
+    if (c.short_of_goal) {
+      rep.warnings.push_back("cell (" + fmt(c.speed_mps) + " m/s, " + fmt(c.dheading_deg) +
+                             " deg): its turns changed heading by " + fmt(observed) +
+                             " deg on average; past that the trajectory is extended, not seen");
+    }
+    const StationedPath arc_mean = mean_path_at_stations(stationed, c.dheading_deg);
+    c.corridor = corridor_of(stationed, arc_mean, c.dheading_deg);
+    if (options.mean_kind == MeanKind::arc_length) {
+      c.mean_turn = arc_mean.points;
+      // Run on along the goal heading past the longest turn, as the x-grid mean runs past the
+      // largest x, so the fit ends on the goal heading.
+      const Point last = c.mean_turn.back();
+      const double g = deg_to_rad(c.dheading_deg);
+      c.mean_turn.push_back({last.x_m + options.mean_x_margin_m * std::sin(g),
+                             last.y_m + options.mean_x_margin_m * std::cos(g)});
+    } else {
+      c.mean_turn =
+          mean_turn(paths, c.dheading_deg, {options.mean_x_step_m, options.mean_x_margin_m})
+              .points();
+    }
     c.fit = fit_curve(options.fit_kind, c.mean_turn);
     c.trajectory = piecewise_linear(c.fit, options.pwl_epsilon_m);
     // Every normalised turn starts at the origin; the fit misses it by its residual, and a
@@ -280,8 +316,12 @@ std::optional<std::pair<double, double>> Ckt::speed_range_mps() const {
 
 namespace {
 
+using CorridorSources = std::vector<std::pair<const std::optional<Corridor>*, double>>;
+
 struct RowAnswer {
   std::vector<WeightedProfile> profiles;
+  CorridorSources corridors;  // the same cells and weights as profiles
+  bool short_of_goal = false;
   double length_m = 0.0;
   AdvanceTransfer at;
   bool exact = false;
@@ -297,6 +337,8 @@ RowAnswer answer_row(const std::vector<const CktCell*>& row, double d) {
   for (const CktCell* c : row) {
     if (std::abs(c->dheading_deg - d) <= kGridEps) {
       a.profiles.push_back({&c->profile, 1.0});
+      a.corridors.push_back({&c->corridor, 1.0});
+      a.short_of_goal = c->short_of_goal;
       a.length_m = c->profile.length_m;
       a.at = {c->advance_m.mean, c->transfer_m.mean};
       a.exact = true;
@@ -308,6 +350,8 @@ RowAnswer answer_row(const std::vector<const CktCell*>& row, double d) {
   if (lo && hi) {
     const double w = (d - lo->dheading_deg) / (hi->dheading_deg - lo->dheading_deg);
     a.profiles = {{&lo->profile, 1.0 - w}, {&hi->profile, w}};
+    a.corridors = {{&lo->corridor, 1.0 - w}, {&hi->corridor, w}};
+    a.short_of_goal = lo->short_of_goal || hi->short_of_goal;
     a.length_m = (1.0 - w) * lo->profile.length_m + w * hi->profile.length_m;
     a.at = {(1.0 - w) * lo->advance_m.mean + w * hi->advance_m.mean,
             (1.0 - w) * lo->transfer_m.mean + w * hi->transfer_m.mean};
@@ -316,6 +360,8 @@ RowAnswer answer_row(const std::vector<const CktCell*>& row, double d) {
   const CktCell* near = lo ? lo : hi;
   a.extrapolated = true;
   a.profiles = {{&near->profile, 1.0}};
+  a.corridors = {{&near->corridor, 1.0}};
+  a.short_of_goal = near->short_of_goal;
   a.at = arc_model_extrapolate(*near, d);
   // The turning part grows with the heading change at the cell's radius; the lead-in does not.
   const double radius =
@@ -363,11 +409,14 @@ TurnPrediction Ckt::query(double speed_mps, double dheading_deg) const {
   p.speed_mps = speed_mps;
   p.dheading_deg = dheading_deg;
   std::vector<WeightedProfile> profiles;
+  CorridorSources corridors;
   double length_m = 0.0;
   AdvanceTransfer at;
   const RowAnswer a = answer_row(row_cells(*row_lo), d);
   if (*row_lo == *row_hi || std::abs(grid_.speeds_mps[*row_lo] - speed_mps) <= kGridEps) {
     profiles = a.profiles;
+    corridors = a.corridors;
+    p.short_of_goal = a.short_of_goal;
     length_m = a.length_m;
     at = a.at;
     p.exact_cell = a.exact;
@@ -380,6 +429,11 @@ TurnPrediction Ckt::query(double speed_mps, double dheading_deg) const {
       profiles.push_back({wp.profile, wp.weight * (1.0 - w)});
     for (auto wp : b.profiles)
       profiles.push_back({wp.profile, wp.weight * w});
+    for (auto [c, cw] : a.corridors)
+      corridors.push_back({c, cw * (1.0 - w)});
+    for (auto [c, cw] : b.corridors)
+      corridors.push_back({c, cw * w});
+    p.short_of_goal = a.short_of_goal || b.short_of_goal;
     length_m = (1.0 - w) * a.length_m + w * b.length_m;
     at = {(1.0 - w) * a.at.advance_m + w * b.at.advance_m,
           (1.0 - w) * a.at.transfer_m + w * b.at.transfer_m};
@@ -399,6 +453,7 @@ TurnPrediction Ckt::query(double speed_mps, double dheading_deg) const {
   }
   p.advance_m = at.advance_m;
   p.transfer_m = at.transfer_m;
+  p.corridor = blend_corridors(corridors);
   if (dheading_deg < 0.0) p.trajectory = reflect_x(std::move(p.trajectory));
   return p;
 }

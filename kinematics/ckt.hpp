@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "kinematics/corridor.hpp"
 #include "kinematics/curve_fit.hpp"
 #include "kinematics/geometry.hpp"
 #include "kinematics/turn_sequence.hpp"
@@ -26,8 +27,21 @@ struct MeanSd {
 };
 MeanSd mean_sd(const std::vector<double>& values);
 
+// How a cell's turns are averaged into its representative mean turn.
+enum class MeanKind {
+  // Positions averaged at equal arc length (stations from each turn's clock at its commanded
+  // speed, path_metric.hpp): a shallow turn's mean follows where its turns went.
+  arc_length,
+  // The thesis' y averaged at equal x (§5.2), which a shallow turn turns into a long line along
+  // the goal heading: available by name.
+  x_grid,
+};
+const char* to_string(MeanKind k);
+std::optional<MeanKind> mean_kind_from_string(const std::string& s);
+
 struct CktOptions {
   FitKind fit_kind = FitKind::arc_length_spline;
+  MeanKind mean_kind = MeanKind::arc_length;
   double pwl_epsilon_m = 0.05;
   double mean_x_step_m = 0.01;
   // The representative mean turn runs this far (in x) past the set's largest x so that it ends
@@ -66,6 +80,12 @@ struct CktCell {
   HeadingProfile profile;           // derived from trajectory
   std::vector<TurnSequence> turns;  // the observed turns, normalised (empty when loaded from file)
   Polyline mean_turn;               // the representative mean turn (empty when loaded from file)
+  // The spread of the turns about their mean (2 turns or more), for prediction corridors.
+  std::optional<Corridor> corridor;
+  // The turns, on average, stopped well short of the goal (mean observed change below
+  // kShortOfGoalFraction of it): the trajectory past their end is the table's extension along
+  // the goal heading, not something the vehicle was seen to do.
+  bool short_of_goal = false;
 
   bool has_data() const { return n_turns > 0; }
 };
@@ -80,7 +100,13 @@ struct TurnPrediction {
   double transfer_m = 0.0;
   bool exact_cell = false;    // answered by one cell, not interpolated
   bool extrapolated = false;  // |dheading| outside the heading changes the table holds
+  // The spread, blended from the cells that answered as the trajectory is; empty when one of
+  // them has none (a single turn, or a table file without corridors).
+  std::optional<Corridor> corridor;
+  bool short_of_goal = false;  // one of the cells that answered is short of its goal
 };
+
+inline constexpr double kShortOfGoalFraction = 0.8;
 
 class CktRangeError : public std::out_of_range {
  public:

@@ -165,7 +165,8 @@ json ckt_to_json(const Ckt& table) {
   doc["options"] = {
       {"fit_kind", to_string(o.fit_kind)},    {"pwl_epsilon_m", o.pwl_epsilon_m},
       {"mean_x_step_m", o.mean_x_step_m},     {"mean_x_margin_m", o.mean_x_margin_m},
-      {"speed_match_mps", o.speed_match_mps}, {"dheading_match_deg", o.dheading_match_deg}};
+      {"speed_match_mps", o.speed_match_mps}, {"dheading_match_deg", o.dheading_match_deg},
+      {"mean_kind", to_string(o.mean_kind)}};
   doc["grid"] = {{"speeds_mps", table.grid().speeds_mps},
                  {"dheadings_deg", table.grid().dheadings_deg}};
   json cells = json::array();
@@ -174,12 +175,19 @@ json ckt_to_json(const Ckt& table) {
     json stats = {{"advance_m", {{"mean", c.advance_m.mean}, {"sd", c.advance_m.sd}}},
                   {"transfer_m", {{"mean", c.transfer_m.mean}, {"sd", c.transfer_m.sd}}},
                   {"avk_error_m2", c.avk_error_m2 ? json(*c.avk_error_m2) : json(nullptr)}};
-    cells.push_back({{"speed_mps", c.speed_mps},
-                     {"dheading_deg", c.dheading_deg},
-                     {"n_turns", c.n_turns},
-                     {"stats", std::move(stats)},
-                     {"fit", fit_to_json(c.fit)},
-                     {"trajectory", points_to_json(c.trajectory)}});
+    json cell = {{"speed_mps", c.speed_mps},
+                 {"dheading_deg", c.dheading_deg},
+                 {"n_turns", c.n_turns},
+                 {"stats", std::move(stats)},
+                 {"fit", fit_to_json(c.fit)},
+                 {"trajectory", points_to_json(c.trajectory)},
+                 {"short_of_goal", c.short_of_goal}};
+    if (c.corridor) {
+      cell["corridor"] = {{"n_turns", c.corridor->n_turns},
+                          {"length_m", c.corridor->length_m},
+                          {"lateral_sd_m", c.corridor->lateral_sd_m}};
+    }
+    cells.push_back(std::move(cell));
   }
   doc["cells"] = std::move(cells);
   return doc;
@@ -218,14 +226,18 @@ Ckt ckt_from_json(const json& doc) {
     Reader::fail("/format", std::string("not a CKT file: format must be '") + kCktFormatName + "'");
   }
   const json& version = Reader::member(doc, root, "schema_version");
-  if (!version.is_number_integer() || version.get<long long>() != kCktSchemaVersion) {
+  if (!version.is_number_integer() || version.get<long long>() < kCktOldestSchemaVersion ||
+      version.get<long long>() > kCktSchemaVersion) {
     // The value is quoted only when it is a plain number: a document is the caller's input, and
     // dumping a deeply nested value into a message recurses once per level.
     Reader::fail("/schema_version",
                  "unsupported schema_version" +
                      (version.is_number() ? " " + version.dump() : std::string()) +
-                     "; this build reads version " + std::to_string(kCktSchemaVersion));
+                     "; this build reads versions " + std::to_string(kCktOldestSchemaVersion) +
+                     " to " + std::to_string(kCktSchemaVersion));
   }
+  // A version 1 document has none of the version 2 fields; each is checked where it is read.
+  const int schema = static_cast<int>(version.get<long long>());
   const json& vehicle = Reader::member(doc, root, "vehicle");
   Reader::only_keys(vehicle, "/vehicle", {"id", "length_m"});
   std::string vehicle_id = Reader::string(vehicle, "/vehicle", "id");
@@ -240,7 +252,7 @@ Ckt ckt_from_json(const json& doc) {
   const json& opts = Reader::member(doc, root, "options");
   Reader::only_keys(opts, "/options",
                     {"fit_kind", "pwl_epsilon_m", "mean_x_step_m", "mean_x_margin_m",
-                     "speed_match_mps", "dheading_match_deg"});
+                     "speed_match_mps", "dheading_match_deg", "mean_kind"});
   CktOptions options;
   const std::string fit_kind = Reader::string(opts, "/options", "fit_kind");
   if (!fit_kind_from_string(fit_kind))
@@ -251,6 +263,15 @@ Ckt ckt_from_json(const json& doc) {
   options.mean_x_margin_m = Reader::number(opts, "/options", "mean_x_margin_m");
   options.speed_match_mps = Reader::number(opts, "/options", "speed_match_mps");
   options.dheading_match_deg = Reader::number(opts, "/options", "dheading_match_deg");
+  // Version 1 tables were all built on the thesis' x grid.
+  options.mean_kind = MeanKind::x_grid;
+  if (opts.contains("mean_kind")) {
+    if (schema < 2) Reader::fail("/options/mean_kind", "not a field of schema_version 1");
+    const std::string kind = Reader::string(opts, "/options", "mean_kind");
+    const auto k = mean_kind_from_string(kind);
+    if (!k) Reader::fail("/options/mean_kind", "unknown mean kind '" + kind + "'");
+    options.mean_kind = *k;
+  }
 
   const json& g = Reader::member(doc, root, "grid");
   Reader::only_keys(g, "/grid", {"speeds_mps", "dheadings_deg"});
@@ -283,7 +304,10 @@ Ckt ckt_from_json(const json& doc) {
     const std::string path = "/cells/" + std::to_string(k);
     const json& cj = cells_json[k];
     Reader::only_keys(cj, path,
-                      {"speed_mps", "dheading_deg", "n_turns", "stats", "fit", "trajectory"});
+                      {"speed_mps", "dheading_deg", "n_turns", "stats", "fit", "trajectory",
+                       "short_of_goal", "corridor"});
+    if (schema < 2 && (cj.contains("short_of_goal") || cj.contains("corridor")))
+      Reader::fail(path, "corridor and short_of_goal are not fields of schema_version 1");
     CktCell c;
     c.speed_mps = Reader::number(cj, path, "speed_mps");
     c.dheading_deg = Reader::number(cj, path, "dheading_deg");
@@ -317,6 +341,34 @@ Ckt ckt_from_json(const json& doc) {
     c.trajectory = Reader::points(Reader::member(cj, path, "trajectory"), path + "/trajectory");
     if (c.trajectory.size() < 2)
       Reader::fail(path + "/trajectory", "a trajectory needs at least 2 vertices");
+    if (cj.contains("short_of_goal")) {
+      if (!cj["short_of_goal"].is_boolean())
+        Reader::fail(path + "/short_of_goal", "expected true or false");
+      c.short_of_goal = cj["short_of_goal"].get<bool>();
+    }
+    if (cj.contains("corridor")) {
+      const std::string cp = path + "/corridor";
+      const json& co = cj["corridor"];
+      if (!co.is_object()) Reader::fail(cp, "expected an object");
+      Reader::only_keys(co, cp, {"n_turns", "length_m", "lateral_sd_m"});
+      Corridor corridor;
+      const json& cn = Reader::member(co, cp, "n_turns");
+      if (!cn.is_number_unsigned() || cn.get<unsigned long long>() < 2 ||
+          cn.get<unsigned long long>() > c.n_turns)
+        Reader::fail(cp + "/n_turns", "expected a whole number from 2 to the cell's n_turns");
+      corridor.n_turns = cn.get<std::size_t>();
+      corridor.length_m = Reader::number(co, cp, "length_m");
+      if (!(corridor.length_m >= 0.0)) Reader::fail(cp + "/length_m", "must not be negative");
+      corridor.lateral_sd_m =
+          Reader::numbers(Reader::member(co, cp, "lateral_sd_m"), cp + "/lateral_sd_m");
+      if (corridor.lateral_sd_m.size() != kCorridorStations)
+        Reader::fail(cp + "/lateral_sd_m",
+                     "expected " + std::to_string(kCorridorStations) + " values");
+      for (std::size_t i = 0; i < corridor.lateral_sd_m.size(); ++i)
+        if (corridor.lateral_sd_m[i] < 0.0)
+          Reader::fail(cp + "/lateral_sd_m/" + std::to_string(i), "must not be negative");
+      c.corridor = std::move(corridor);
+    }
     cells.push_back(std::move(c));
   }
   Ckt table = Ckt::from_cells(std::move(grid), std::move(cells), options);

@@ -76,7 +76,10 @@ nlohmann::json model_headings_json(const app::ModelHeadings& h);
 nlohmann::json sweep_json(const std::vector<kinematics::HistorySweepRow>& rows);
 std::string sweep_csv(const std::vector<kinematics::HistorySweepRow>& rows);
 nlohmann::json comparison_json(const app::Comparison& c);
+// The thesis' in-sample table.
 std::string comparison_csv(const app::Comparison& c);
+// The leave-one-out table: path distance and y(x) MSE of every method, and corridor coverage.
+std::string predictive_csv(const app::Comparison& c);
 
 // A value a client sent, for an error message: a scalar shortened, a container by its kind only.
 std::string describe_value(const nlohmann::json& v);

@@ -95,6 +95,31 @@ std::string sweep_csv(const std::vector<kin::HistorySweepRow>& rows) {
   return csv;
 }
 
+std::string predictive_csv(const app::Comparison& c) {
+  std::string out =
+      "speed_mps,dheading_deg,n_turns,span_m,avk_path_m,avk_path_sd_m,model_path_m,"
+      "model_path_sd_m,instantaneous_path_m,instantaneous_path_sd_m,avk_yx_mse_m2,"
+      "model_yx_mse_m2,instantaneous_yx_mse_m2,corridor_inside,corridor_total\n";
+  const auto path = [](const kin::HeldOutScores* s) {
+    if (!s) return std::string(",");
+    const kin::MeanSd m = s->path();
+    return num(m.mean) + ',' + num(m.sd);
+  };
+  const auto mse = [](const kin::HeldOutScores* s) {
+    return s ? num(s->yx_mse().mean) : std::string();
+  };
+  for (const auto& cell : c.predictive) {
+    const kin::HeldOutScores* m = cell.model ? &*cell.model : nullptr;
+    out += num(cell.speed_mps) + ',' + num(cell.dheading_deg) + ',' + std::to_string(cell.n_turns) +
+           ',' + num(cell.span_m) + ',' + path(&cell.avk) + ',' + path(m) + ',' +
+           path(&cell.instantaneous) + ',' + mse(&cell.avk) + ',' + mse(m) + ',' +
+           mse(&cell.instantaneous) + ',' +
+           (cell.coverage ? std::to_string(cell.coverage->inside) : std::string()) + ',' +
+           (cell.coverage ? std::to_string(cell.coverage->total) : std::string()) + '\n';
+  }
+  return out;
+}
+
 std::string comparison_csv(const app::Comparison& c) {
   const auto mse = [](const kin::MethodError* e) { return e ? num(e->mse_m2) : std::string(); };
   const auto pct = [](const kin::MethodError* e) {

@@ -283,6 +283,18 @@ json prediction_json(const app::Prediction& p) {
     j["extrapolated"] = p.extrapolated ? json(*p.extrapolated) : json();
     j["table_source"] = p.table_source ? json(*p.table_source) : json();
     j["snapshot_id"] = optional_json(p.snapshot_id);
+    j["short_of_goal"] = p.short_of_goal;
+    if (p.corridor) {
+      const auto& c = *p.corridor;
+      j["corridor"] = {{"share", c.share},
+                       {"n_turns", c.n_turns},
+                       {"s_m", c.s_m},
+                       {"half_width_m", c.half_width_m},
+                       {"left", points_json(c.left)},
+                       {"right", points_json(c.right)}};
+    } else {
+      j["corridor"] = nullptr;
+    }
   }
   if (q.method == app::PredictionMethod::model) {
     j["model_id"] = optional_json(p.model_id);
@@ -359,8 +371,71 @@ json optional_error_json(const std::optional<kin::MethodError>& e) {
 
 }  // namespace
 
+json held_out_json(const kin::HeldOutScores* s) {
+  if (!s) return json();
+  const kin::MeanSd path = s->path(), mse = s->yx_mse();
+  return {{"path_m", {{"mean", path.mean}, {"sd", path.sd}}},
+          {"yx_mse_m2", {{"mean", mse.mean}, {"sd", mse.sd}}}};
+}
+
+json coverage_json(const kin::Coverage& c) {
+  return {{"inside", c.inside}, {"total", c.total}, {"share", c.total ? json(c.share()) : json()}};
+}
+
+json predictive_json(const app::Comparison& c) {
+  json cells = json::array();
+  std::size_t below_70 = 0;
+  for (const auto& cell : c.predictive) {
+    json j = {{"speed_mps", cell.speed_mps},
+              {"dheading_deg", cell.dheading_deg},
+              {"n_turns", cell.n_turns},
+              {"span_m", cell.span_m},
+              {"avk", held_out_json(&cell.avk)},
+              {"model", held_out_json(cell.model ? &*cell.model : nullptr)},
+              {"instantaneous", held_out_json(&cell.instantaneous)},
+              {"corridor_coverage", cell.coverage ? coverage_json(*cell.coverage) : json()}};
+    if (cell.coverage && cell.n_turns >= app::kCoverageMinTurns && cell.coverage->total &&
+        cell.coverage->share() < 0.7)
+      ++below_70;
+    cells.push_back(std::move(j));
+  }
+  json out = {
+      {"scoring", "leave_one_out"}, {"default_metric", "path_m"}, {"cells", std::move(cells)}};
+  for (const auto& [name, method] : {std::pair{"avk", kin::PredictionMethod::avk},
+                                     {"model", kin::PredictionMethod::model},
+                                     {"instantaneous", kin::PredictionMethod::instantaneous}}) {
+    out["median_path_m"][name] =
+        optional_json(kin::median_held_out(c.predictive, method, kin::PathMetric::path_distance));
+    out["median_yx_mse_m2"][name] =
+        optional_json(kin::median_held_out(c.predictive, method, kin::PathMetric::yx_mse));
+  }
+  out["corridor"] = coverage_json(kin::total_coverage(c.predictive, app::kCoverageMinTurns));
+  out["corridor"]["share_nominal"] = c.corridor_share;
+  out["corridor"]["min_turns"] = app::kCoverageMinTurns;
+  out["corridor"]["cells_below_70_pct"] = below_70;
+  return out;
+}
+
+json test_cells_json(const app::Comparison& c) {
+  json cells = json::array();
+  for (const auto& cell : c.test_cells)
+    cells.push_back({{"speed_mps", cell.speed_mps},
+                     {"dheading_deg", cell.dheading_deg},
+                     {"n_turns", cell.n_turns},
+                     {"on_grid", cell.on_grid},
+                     {"span_m", cell.span_m},
+                     {"avk", held_out_json(&cell.avk)},
+                     {"model", held_out_json(cell.model ? &*cell.model : nullptr)},
+                     {"instantaneous", held_out_json(&cell.instantaneous)}});
+  return cells;
+}
+
 json comparison_json(const app::Comparison& c) {
   json out = {{"vehicle_id", c.vehicle_id}, {"model_id", c.model ? json(c.model->id) : json()}};
+  if (!c.test_cells.empty()) out["test"] = {{"cells", test_cells_json(c)}};
+  // The fair comparison first; "cells" and the medians below are the thesis' in-sample table.
+  out["predictive"] = predictive_json(c);
+  out["in_sample_scoring"] = "thesis: AVK = spread of the cell's turns about their own mean";
   json jc = json::array();
   for (const auto& cell : c.cells) {
     json j = {{"speed_mps", cell.speed_mps},

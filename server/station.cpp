@@ -119,6 +119,7 @@ app::PredictQuery predict_query(const ApiRequest& r, const std::string& vid) {
   if ((x || y || heading) && !(x && y && heading))
     throw bad_parameter(x ? (y ? "heading" : "y") : "x", "a pose needs x, y and heading");
   if (x) q.pose = kinematics::Pose{*x, *y, *heading};
+  q.corridor_share = number_param(r, "corridor", 0.5, 0.999).value_or(q.corridor_share);
   return q;
 }
 
@@ -319,9 +320,23 @@ void Station::add_routes() {
     app::CompareQuery q;
     q.vehicle_id = p.at("vid");
     q.model_id = id_param(r, "model");
-    return answer(app::compare(ctx, q), false, [f, &q](const app::Comparison& c) {
+    q.corridor_share = number_param(r, "corridor", 0.5, 0.999).value_or(q.corridor_share);
+    for (auto [it, end] = r.multi_query.equal_range("test_mission"); it != end; ++it) {
+      const json v = json::parse(it->second, nullptr, false);
+      if (!v.is_number_integer() || v.get<std::int64_t>() <= 0)
+        throw bad_parameter("test_mission", "must be a mission id");
+      q.test_missions.push_back(v.get<std::int64_t>());
+    }
+    bool in_sample = false;
+    if (const auto it = r.query.find("scoring"); it != r.query.end()) {
+      if (it->second != "predictive" && it->second != "in_sample")
+        throw bad_parameter("scoring", "must be predictive or in_sample");
+      in_sample = it->second == "in_sample";
+    }
+    return answer(app::compare(ctx, q), false, [f, &q, in_sample](const app::Comparison& c) {
       if (f == Format::csv)
-        return csv_response(comparison_csv(c), "compare-" + q.vehicle_id + ".csv");
+        return csv_response(in_sample ? comparison_csv(c) : predictive_csv(c),
+                            "compare-" + q.vehicle_id + ".csv");
       return json_response(comparison_json(c));
     });
   });

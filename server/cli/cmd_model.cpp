@@ -148,8 +148,79 @@ int model_show(const std::vector<std::string>& rest, Io& io) {
   return 0;
 }
 
+// The leave-one-out table: each method's mean ± sd over the held-out turns of every cell.
+void print_predictive(const app::Comparison& c, bool path, Io& io) {
+  io.out << "vehicle " << c.vehicle_id;
+  if (c.model)
+    io.out << ", model " << c.model->id << " (" << kin::to_string(c.model->model.form)
+           << (c.model->model.refined ? ", refined" : "") << ")";
+  io.out << "\nscored on held-out turns (AVK: leave-one-out), "
+         << (path ? "mean distance at equal arc length, m" : "thesis y(x) MSE, m^2") << "\n"
+         << "  speed  dheading   n              AVK            model    instantaneous   "
+            "corridor\n";
+  const auto cell_txt = [path](const kin::HeldOutScores* s) {
+    std::ostringstream o;
+    if (!s) {
+      o << std::setw(17) << "-";
+      return o.str();
+    }
+    const kin::MeanSd m = path ? s->path() : s->yx_mse();
+    o << std::setw(17) << (fixed(m.mean, path ? 2 : 3) + " ± " + fixed(m.sd, path ? 2 : 3));
+    return o.str();
+  };
+  for (const auto& cell : c.predictive) {
+    std::string cov = "-";
+    if (cell.coverage && cell.coverage->total)
+      cov = fixed(100.0 * cell.coverage->share(), 0) + " %";
+    io.out << std::setw(7) << fixed(cell.speed_mps, 2) << std::setw(10)
+           << fixed(cell.dheading_deg, 0) << std::setw(4) << cell.n_turns << cell_txt(&cell.avk)
+           << cell_txt(cell.model ? &*cell.model : nullptr) << cell_txt(&cell.instantaneous)
+           << std::setw(11) << cov << "\n";
+  }
+  const auto metric = path ? kin::PathMetric::path_distance : kin::PathMetric::yx_mse;
+  io.out
+      << "median: AVK "
+      << num(kin::median_held_out(c.predictive, kin::PredictionMethod::avk, metric).value_or(NAN))
+      << ", model "
+      << num(kin::median_held_out(c.predictive, kin::PredictionMethod::model, metric).value_or(NAN))
+      << ", instantaneous "
+      << num(kin::median_held_out(c.predictive, kin::PredictionMethod::instantaneous, metric)
+                 .value_or(NAN))
+      << (path ? " m" : " m^2") << "\n";
+  const kin::Coverage cov = kin::total_coverage(c.predictive, app::kCoverageMinTurns);
+  if (cov.total)
+    io.out << "corridor " << fixed(100.0 * c.corridor_share, 0)
+           << " %: " << fixed(100.0 * cov.share(), 1)
+           << " % of held-out points inside (cells with >= " << app::kCoverageMinTurns
+           << " turns)\n";
+}
+
+// The table judged on turns from missions it was not built from, on and off its grid.
+void print_test_cells(const app::Comparison& c, bool path, Io& io) {
+  io.out << "\nthe table on the test missions' turns (" << (path ? "m" : "m^2") << ")\n"
+         << "  speed  dheading   n  grid              AVK            model    instantaneous\n";
+  for (const auto& cell : c.test_cells) {
+    const auto txt = [path](const kin::HeldOutScores* s) {
+      std::ostringstream o;
+      if (!s) {
+        o << std::setw(17) << "-";
+        return o.str();
+      }
+      const kin::MeanSd m = path ? s->path() : s->yx_mse();
+      o << std::setw(17) << (fixed(m.mean, path ? 2 : 3) + " ± " + fixed(m.sd, path ? 2 : 3));
+      return o.str();
+    };
+    io.out << std::setw(7) << fixed(cell.speed_mps, 2) << std::setw(10)
+           << fixed(cell.dheading_deg, 0) << std::setw(4) << cell.n_turns << std::setw(6)
+           << (cell.on_grid ? "on" : "off") << txt(&cell.avk)
+           << txt(cell.model ? &*cell.model : nullptr) << txt(&cell.instantaneous) << "\n";
+  }
+}
+
 int compare(const std::vector<std::string>& rest, Io& io) {
-  const Args a(rest, {"db", "model", "vehicle", "format", "threshold"}, {"no-model"}, {"mission"});
+  const Args a(rest,
+               {"db", "model", "vehicle", "format", "threshold", "metric", "scoring", "corridor"},
+               {"no-model"}, {"mission", "test-mission"});
   app::Context ctx(a.require("db"));
   const std::string format = a.get("format").value_or("table");
   if (format != "table" && format != "csv" && format != "json")
@@ -160,6 +231,18 @@ int compare(const std::vector<std::string>& rest, Io& io) {
   q.vehicle_id = vehicle_of(a, ctx.db(), q.missions);
   q.model_id = model_option(a);
   q.without_model = a.flag("no-model");
+  for (const auto& v : a.all("test-mission"))
+    q.test_missions.push_back(parse_id(v, "--test-mission"));
+  const std::string scoring = a.get("scoring").value_or("predictive");
+  if (scoring != "predictive" && scoring != "in_sample")
+    throw UsageError("--scoring must be predictive or in_sample");
+  const std::string metric = a.get("metric").value_or("path");
+  if (metric != "path" && metric != "thesis_mse")
+    throw UsageError("--metric must be path or thesis_mse");
+  if (const auto share = a.number("corridor")) {
+    if (!(*share > 0.0 && *share < 1.0)) throw UsageError("--corridor must be within (0, 1)");
+    q.corridor_share = *share;
+  }
   const std::string& vehicle = q.vehicle_id;
   const app::Comparison comparison = value_or_fail(app::compare(ctx, q));
   const auto& cells = comparison.cells;
@@ -169,7 +252,12 @@ int compare(const std::vector<std::string>& rest, Io& io) {
     return 0;
   }
   if (format == "csv") {
-    io.out << comparison_csv(comparison);
+    io.out << (scoring == "in_sample" ? comparison_csv(comparison) : predictive_csv(comparison));
+    return 0;
+  }
+  if (scoring == "predictive") {
+    print_predictive(comparison, metric == "path", io);
+    if (!comparison.test_cells.empty()) print_test_cells(comparison, metric == "path", io);
     return 0;
   }
   io.out << "vehicle " << vehicle;
@@ -214,7 +302,7 @@ int compare(const std::vector<std::string>& rest, Io& io) {
 int predict(const std::vector<std::string>& rest, Io& io) {
   const Args a(rest,
                {"db", "speed", "dheading", "method", "model", "x", "y", "heading", "format",
-                "vehicle", "threshold"},
+                "vehicle", "threshold", "corridor"},
                {"speed-model"});
   app::Context ctx(a.require("db"));
   app::PredictQuery q;
@@ -238,6 +326,10 @@ int predict(const std::vector<std::string>& rest, Io& io) {
   q.model_id = model_option(a);
   q.use_speed_model = a.flag("speed-model");
   q.completion_threshold_deg = a.number("threshold").value_or(5.0);
+  if (const auto share = a.number("corridor")) {
+    if (!(*share > 0.0 && *share < 1.0)) throw UsageError("--corridor must be within (0, 1)");
+    q.corridor_share = *share;
+  }
   q.vehicle_id = vehicle_of(a, ctx.db(), {});
   const app::Prediction p = value_or_fail(app::predict(ctx, q));
   io.out << (format == "csv" ? trajectory_csv(p.trajectory) : prediction_json(p).dump() + "\n");

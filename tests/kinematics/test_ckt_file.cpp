@@ -81,13 +81,13 @@ TEST(CktFile, SingleTurnCellsHaveNoAvkError) {
 
 TEST(CktFile, WrongVersionOrFormatIsRefused) {
   json doc = ckt_to_json(sample_table());
-  doc["schema_version"] = 2;
+  doc["schema_version"] = 3;
   try {
     ckt_from_json(doc);
     FAIL();
   } catch (const ParseError& e) {
     EXPECT_EQ(e.field(), "/schema_version");
-    EXPECT_NE(std::string(e.what()).find("unsupported schema_version 2"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("unsupported schema_version 3"), std::string::npos);
   }
   doc = ckt_to_json(sample_table());
   doc["format"] = "something-else";

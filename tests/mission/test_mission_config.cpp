@@ -48,6 +48,13 @@ TEST(MissionConfig, ThesisFigure41Example) {
   EXPECT_EQ(c.region.buffer_m, 25.0);
 }
 
+TEST(MissionConfig, OffGridExampleFliesBetweenTheFigure41Cells) {
+  const MissionConfig c = parse_mission_config(example("off-grid-turns.json"), 1.7);
+  EXPECT_EQ(c.turn_array.speeds_mps, (std::vector<double>{0.75, 1.25}));
+  EXPECT_EQ(c.turn_array.dheadings_deg, (std::vector<double>{25, 55, 85, 115, 145}));
+  EXPECT_EQ(c.condition_set.max_heading_error_deg, 2.0);
+}
+
 TEST(MissionConfig, PersistentExcitationExample) {
   const MissionConfig c = parse_mission_config(example("persistent-excitation.json"), 1.7);
   EXPECT_EQ(c.kind, MissionKind::persistent_excitation);
