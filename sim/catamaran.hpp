@@ -27,6 +27,13 @@ enum class ThrusterKind {
   // The lag acts on shaft speed n (rad/s); the command maps linearly to n on each side of 0 and
   // thrust is k n|n| (k_pos forward, k_neg astern), as for a fixed-pitch propeller.
   shaft_speed,
+  // A waterjet: the lag acts on the impeller speed n (rad/s), the command maps linearly to n on
+  // each side of 0 (n_max_rps at ±100 %) and thrust goes as n² (max_forward_thrust_n at n_max).
+  // Astern the impeller still turns ahead and a reversing bucket turns the jet round, which wastes
+  // most of it: thrust is −jet_reverse_fraction × the ahead thrust at that impeller speed. The
+  // sign of the state stands for the bucket's position (a simplification: a real bucket moves
+  // while the impeller keeps turning, here the jet passes through zero).
+  waterjet,
 };
 
 struct CatamaranParams {
@@ -36,19 +43,28 @@ struct CatamaranParams {
   double max_speed_mps = 0.0;  // rated operating speed, for guidance; not a limit of the model
   // Rigid-body plus added mass, [[m11, 0, 0], [0, m22, m23], [0, m32, m33]] (kg, kg·m, kg·m²).
   Eigen::Matrix3d mass = Eigen::Matrix3d::Identity();
-  // Damping: −[X_u u + X_uu |u|u, Y_v v + Y_vv |v|v, N_r (1 + g|r|) r + N_rr |r|r], all <= 0.
+  // Damping: −[X_u u + X_uu |u|u, Y_v v + Y_vv |v|v, (N_r + N_ru |u|)(1 + g|r|) r + N_rr |r|r],
+  // all <= 0 (N_ru is nr_per_speed below).
   double xu = 0.0, yv = 0.0, nr = 0.0;     // N·s/m, N·s/m, N·m·s
   double xuu = 0.0, yvv = 0.0, nrr = 0.0;  // N·s²/m², N·s²/m², N·m·s²
   double yaw_damping_rate_gain = 0.0;      // g above (s/rad): the Otter's 10
+  // Linear yaw damping that grows with speed through the water: N_r += nr_per_speed × |u_r|
+  // (N·m·s per m/s, <= 0). Slender hulls yawing at speed work as low-aspect-ratio wings, so their
+  // lift moment, and with it the yaw damping, is proportional to u (Clarke et al. 1983).
+  double nr_per_speed = 0.0;
   // Thrusters at (thruster_x_m, ±thruster_y_m), pushing along body x; x does not enter 3-DOF.
   double thruster_y_m = 0.0;
   double thruster_x_m = 0.0;
   double lag_s = 0.1;
   ThrusterKind thruster = ThrusterKind::thrust;
-  // ThrusterKind::thrust: thrust at +100 % and magnitude at −100 %.
+  // ThrusterKind::thrust: thrust at +100 % and magnitude at −100 %; ThrusterKind::waterjet:
+  // thrust at n_max_rps (max_reverse_thrust_n is not used).
   double max_forward_thrust_n = 0.0;
   double max_reverse_thrust_n = 0.0;
-  // ThrusterKind::shaft_speed: k in N·s²/rad², shaft speed at +100 % and at −100 % (negative).
+  // ThrusterKind::waterjet: astern thrust as a fraction of ahead thrust at the same impeller speed.
+  double jet_reverse_fraction = 0.0;
+  // ThrusterKind::shaft_speed: k in N·s²/rad², shaft speed at +100 % and at −100 % (negative);
+  // ThrusterKind::waterjet: n_max_rps only (rad/s).
   double prop_k_pos = 0.0;
   double prop_k_neg = 0.0;
   double n_max_rps = 0.0;
@@ -62,12 +78,18 @@ struct CatamaranParams {
   double water_density_kg_m3 = 1025.0;
   double internal_step_s = 0.01;
 
+  // The Kingfisher M200 of the thesis: twin waterjets (docs/sim-config.md says where each number
+  // comes from).
   static CatamaranParams m200();
+  // A propeller-driven Clearpath Heron, from its Gazebo description (heron_gazebo): what m200()
+  // was before the M200 got its waterjets.
+  static CatamaranParams heron();
   static CatamaranParams otter();
-  // "m200" or "otter"; nullopt for anything else.
+  // "m200", "heron" or "otter"; nullopt for anything else.
   static std::optional<CatamaranParams> by_name(std::string_view name);
 
-  // Actuator state (thrust N or shaft speed rad/s) a command settles to; pct clamped to ±100.
+  // Actuator state (thrust N, shaft or impeller speed rad/s) a command settles to; pct clamped to
+  // ±100.
   double actuator_target(double pct) const;
   // Thrust (N) of one thruster at an actuator state.
   double thrust_from_actuator_n(double actuator) const;
@@ -82,7 +104,7 @@ struct CatamaranState {
   double x_m = 0.0, y_m = 0.0, heading_deg = 0.0;  // heading in [0, 360)
   // Velocity over ground in body axes (m/s) and yaw rate (rad/s, + to starboard).
   double u_mps = 0.0, v_mps = 0.0, r_rps = 0.0;
-  // Lagged thrust (N) or shaft speed (rad/s), see ThrusterKind.
+  // Lagged thrust (N), shaft speed or impeller speed (rad/s), see ThrusterKind.
   double left_actuator = 0.0, right_actuator = 0.0;
 };
 

@@ -79,7 +79,7 @@ FrontseatEmulatorOptions checked(FrontseatEmulatorOptions o) {
   if (o.vehicle.kind == "usim") {
     throw std::invalid_argument(
         "frontseat emulator: vehicle kind usim has no left and right thrusters for $PYDIR; use "
-        "catamaran, catamaran:m200 or catamaran:otter");
+        "catamaran, catamaran:m200, catamaran:heron or catamaran:otter");
   }
   o.vehicle = with_kind_defaults(std::move(o.vehicle));
   require(o.plant_hz > 0.0 && o.plant_hz <= 1000.0, "plant_hz must be in (0, 1000]");

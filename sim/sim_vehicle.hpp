@@ -23,7 +23,8 @@ namespace avk::sim {
 
 struct SimVehicleConfig {
   std::string id = "sim-1";
-  // "usim", "catamaran" (= catamaran:m200), "catamaran:m200", "catamaran:otter"
+  // "usim", "catamaran" (= catamaran:m200), "catamaran:m200", "catamaran:heron",
+  // "catamaran:otter"
   std::string kind = "usim";
   UsimConfig usim{};
   std::optional<CatamaranParams> catamaran;  // filled from kind when empty
@@ -42,8 +43,9 @@ struct SimVehicleConfig {
 };
 
 // Defaults for a kind: the thesis' uSimMarine (turn rate 30, exact navigation at the plant tick)
-// or a catamaran with GNSS/compass noise published at 10 Hz. Throws std::invalid_argument for an
-// unknown kind, naming it.
+// or a catamaran with GNSS/compass noise published at 10 Hz. The M200 gets the thesis' in-water
+// controller (Table 3.1, MarinePidConfig::m200_in_water), every other kind the simulation one
+// (Table 5.1). Throws std::invalid_argument for an unknown kind, naming it.
 SimVehicleConfig sim_vehicle_defaults(const std::string& kind);
 
 // The config with the catamaran parameters of its kind filled in when absent (kind "catamaran"

@@ -31,7 +31,8 @@ int cmd_frontseat_emulator(const std::vector<std::string>& args, Io& io) {
   if (setup.vehicle.kind == "usim") {
     throw UsageError(
         "vehicle usim cannot be a frontseat: $PYDIR drives left and right thrusters, which only "
-        "the differential-drive kinds have (catamaran, catamaran:m200, catamaran:otter)");
+        "the differential-drive kinds have (catamaran, catamaran:m200, catamaran:heron, "
+        "catamaran:otter)");
   }
 
   sim::FrontseatEmulatorOptions o;

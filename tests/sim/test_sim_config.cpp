@@ -50,6 +50,18 @@ TEST(SimConfig, EmptyDocumentGivesTheDefaults) {
   EXPECT_EQ(s.vehicle_max_speed_mps(), 5.0);
 }
 
+// The thesis ran pHelmIvP at 10 Hz on the M200 (§3.4.2); the simulated kinds keep 4 Hz (Table
+// 5.1). A config file still overrides either.
+TEST(SimConfig, TheM200HelmRunsAt10Hz) {
+  EXPECT_EQ(default_sim_setup("catamaran:m200").helm_hz, 10.0);
+  EXPECT_EQ(default_sim_setup("catamaran").helm_hz, 10.0);
+  EXPECT_EQ(parse_sim_config("{}", "catamaran:m200").helm_hz, 10.0);
+  EXPECT_EQ(parse_sim_config(R"({"ticks_hz": {"helm": 4}})", "catamaran:m200").helm_hz, 4.0);
+  EXPECT_EQ(default_sim_setup("catamaran:heron").helm_hz, 4.0);
+  EXPECT_EQ(default_sim_setup("catamaran:otter").helm_hz, 4.0);
+  EXPECT_EQ(default_sim_setup("usim").helm_hz, 4.0);
+}
+
 TEST(SimConfig, ErrorsNameTheField) {
   EXPECT_EQ(error_field(R"({"curent": {}})"), "/curent");
   EXPECT_EQ(error_field(R"({"current": {"speed_mps": -1}})"), "/current/speed_mps");

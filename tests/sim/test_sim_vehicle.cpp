@@ -103,7 +103,7 @@ TEST(SimVehicle, LeftAndRightTurnsMirrorOnUsim) {
 }
 
 TEST(SimVehicle, CatamaranCompletesTurnsBothWaysAtSeveralSpeeds) {
-  for (const char* kind : {"catamaran:m200", "catamaran:otter"}) {
+  for (const char* kind : {"catamaran:m200", "catamaran:heron", "catamaran:otter"}) {
     for (double u : {0.5, 1.0, 1.5}) {
       TurnScenarioConfig c;
       c.vehicle = sim_vehicle_defaults(kind);
@@ -172,12 +172,38 @@ TEST(SimVehicle, TakeNavHandsOverEverySampleOnce) {
   EXPECT_LE(n, 101u);
 }
 
+// The M200 runs the thesis' in-water controller (Table 3.1), the other hulls the simulation one
+// (Table 5.1); "catamaran" alone is the M200.
+TEST(SimVehicle, KindDefaultsNameTheirPlantAndController) {
+  const auto table31 = avk::vehicle::MarinePidConfig::m200_in_water();
+  const auto table51 = avk::vehicle::MarinePidConfig::thesis_sim();
+  for (const char* kind : {"catamaran", "catamaran:m200"}) {
+    const SimVehicleConfig c = sim_vehicle_defaults(kind);
+    EXPECT_EQ(c.kind, "catamaran:m200");
+    ASSERT_TRUE(c.catamaran);
+    EXPECT_EQ(c.catamaran->thruster, ThrusterKind::waterjet);
+    EXPECT_EQ(c.pid.yaw.kp, table31.yaw.kp);
+    EXPECT_EQ(c.pid.yaw.ki, table31.yaw.ki);
+    EXPECT_EQ(c.pid.yaw.integral_limit, table31.yaw.integral_limit);
+    EXPECT_EQ(c.controller_hz, 4.0);  // pMarinePID AppTick
+    EXPECT_EQ(c.plant_hz, 10.0);      // iM200 AppTick: navigation at 10 Hz
+  }
+  for (const char* kind : {"catamaran:heron", "catamaran:otter", "usim"}) {
+    const SimVehicleConfig c = sim_vehicle_defaults(kind);
+    EXPECT_EQ(c.kind, kind);
+    EXPECT_EQ(c.pid.yaw.kp, table51.yaw.kp) << kind;
+    EXPECT_EQ(c.pid.yaw.ki, table51.yaw.ki) << kind;
+  }
+  EXPECT_EQ(sim_vehicle_defaults("catamaran:heron").catamaran->thruster, ThrusterKind::thrust);
+}
+
 TEST(SimVehicle, UnknownKindIsNamed) {
   try {
     sim_vehicle_defaults("submarine");
     FAIL();
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("submarine"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("catamaran:heron"), std::string::npos);
   }
   EXPECT_THROW(sim_vehicle_defaults("catamaran:ferry"), std::invalid_argument);
 }

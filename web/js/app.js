@@ -28,8 +28,12 @@ function renderBadge(link) {
 function renderVehicle() {
   const v = state.vehicle;
   document.getElementById('vehicle-name').textContent = v
-    ? `${v.id} (${v.kind}, ≤ ${v.max_speed_mps} m/s)`
+    ? `${v.id} (${v.kind ?? 'kind unknown'}, ≤ ${v.max_speed_mps ?? '?'} m/s)`
     : state.vehicleId ?? 'no vehicle';
+  // The kind in the Vehicle panel too: which plant (or real boat) the track comes from matters
+  // when reading its turns.
+  const kind = document.getElementById('live-kind');
+  if (kind) kind.textContent = v?.kind ?? '–';
 }
 
 function main() {
