@@ -38,6 +38,27 @@ void BM_MaterializedLookup(benchmark::State& state) {
 }
 BENCHMARK(BM_MaterializedLookup);
 
+// What GET /predict answers: random speeds and heading changes, so nearly every query falls
+// between the fine table's rows and columns.
+void BM_MaterializedQueryOffGrid(benchmark::State& state) {
+  const MaterializedCkt m(thesis_table());
+  const auto qs = random_queries(3);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const auto& q = qs[i++ & 1023];
+    benchmark::DoNotOptimize(m.query(q.first, q.second));
+  }
+}
+BENCHMARK(BM_MaterializedQueryOffGrid);
+
+// A speed between two fine rows at a heading change between two columns (issue 15: 0.75 m/s).
+void BM_MaterializedQuery075(benchmark::State& state) {
+  const MaterializedCkt m(thesis_table());
+  for (auto _ : state)
+    benchmark::DoNotOptimize(m.query(0.75, 55.5));
+}
+BENCHMARK(BM_MaterializedQuery075);
+
 void BM_InterpolatedQuery(benchmark::State& state) {
   const Ckt& t = thesis_table();
   const auto qs = random_queries(2);

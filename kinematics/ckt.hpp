@@ -160,7 +160,9 @@ class Ckt {
 HeadingProfile heading_profile(const Polyline& trajectory, double goal_dheading_deg);
 
 // The fine table guidance uses (default 0.1 m/s x 1 deg), computed once so that a lookup is an
-// index computation.
+// index computation. Between its rows and columns a query blends the neighbouring fine cells the
+// way Ckt::query blends table cells, so an answer does not jump to the nearer row (issue 15:
+// 0.75 m/s answered by the 0.8 m/s row moved a turn's error from 0.65 to 0.95 m).
 struct FineGridSpec {
   double speed_step_mps = 0.1;
   double dheading_step_deg = 1.0;
@@ -182,24 +184,48 @@ class MaterializedCkt {
     const TurnPrediction* right_turn;  // the stored right turn; reflect x for a left turn
     TurnSide side;
   };
-  // The nearest fine cell. Throws CktRangeError outside the speed range.
+  // The nearest fine cell. Throws CktRangeError outside the speed range (half a step of slack).
   Lookup lookup(double speed_mps, double dheading_deg) const;
-  // The nearest fine cell as a prediction: a copy, reflected for a left turn, with the speed and
-  // heading change as asked.
+  // A prediction with the speed and heading change as asked, reflected for a left turn: on a fine
+  // grid point a copy of that cell; between them the heading profiles of the two neighbouring
+  // speed rows and heading-change columns blended over fraction of arc length (Ckt::query's
+  // blend), so it ends on the asked heading and agrees with Ckt::query to the table's simplifying
+  // tolerance. exact_cell only on a fine grid point that is a table cell; extrapolated when any
+  // blended fine cell is. Throws as lookup does.
   TurnPrediction query(double speed_mps, double dheading_deg) const;
 
+  // Rows (columns) are a step apart from the lowest speed (0 deg); the last one is the top of the
+  // range (180 deg) even when that is less than a step past the one before.
   std::size_t speed_count() const { return speed_count_; }
   std::size_t dheading_count() const { return dheading_count_; }
   double speed_min_mps() const { return speed_min_mps_; }
+  double row_speed_mps(std::size_t row) const;
+  double column_dheading_deg(std::size_t column) const;
   // The spec in force: its speed step is coarser than asked when the speed range needs it.
   const FineGridSpec& spec() const { return spec_; }
 
  private:
+  // Where a value falls between two rows (columns): value = (1 - weight) lo + weight hi; lo == hi
+  // on a row.
+  struct Bracket {
+    std::size_t lo = 0;
+    std::size_t hi = 0;
+    double weight = 0.0;
+  };
+  Bracket speed_bracket(double speed_mps) const;
+  Bracket dheading_bracket(double dheading_deg) const;
+  void check_range(double speed_mps, double dheading_deg) const;
+
   FineGridSpec spec_;
   double speed_min_mps_ = 0.0;
+  double speed_max_mps_ = 0.0;
+  double pwl_epsilon_m_ = 0.05;  // the table's: an interpolated answer is thinned as Ckt::query's
   std::size_t speed_count_ = 0;
   std::size_t dheading_count_ = 0;
   std::vector<TurnPrediction> entries_;  // row-major: speed, dheading 0..180
+  // The heading profile of each entry, for the blend; the 0 deg column, whose profile has no
+  // shape, carries the 1-step column's shape with its own length.
+  std::vector<HeadingProfile> profiles_;
 };
 
 }  // namespace avk::kinematics

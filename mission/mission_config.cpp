@@ -248,8 +248,19 @@ MissionConfig parse_mission_config(std::string_view json_text, double max_speed_
   }
   if (const json* ch = root.get("constant_heading", false)) {
     Reader r(*ch, "/constant_heading", errors);
-    r.number("completion_threshold_deg", c.completion_threshold_deg, 0.0, 45.0, false, true);
+    r.number("completion_threshold_deg", c.completion.threshold_deg, 0.0, 45.0, false, true);
+    r.number("completion_fraction", c.completion.fraction, 0.0, 1.0, false, true);
+    r.number("completion_floor_deg", c.completion.floor_deg, 0.0, 45.0, false, true);
     r.number("timeout_s", c.turn_timeout_s, 0.0, 3600.0, false, true);
+    // A floor above the threshold is a contradiction in the file, refused rather than guessed
+    // at. A threshold alone below the default floor (valid before the floor existed) is not one:
+    // the threshold bounds the rule (completion_threshold_deg).
+    if (ch->is_object() && ch->contains("completion_floor_deg") &&
+        c.completion.floor_deg > c.completion.threshold_deg) {
+      r.error("/constant_heading/completion_floor_deg",
+              "must be <= completion_threshold_deg (" + json(c.completion.threshold_deg).dump() +
+                  "), got " + json(c.completion.floor_deg).dump());
+    }
     r.finish();
   }
   if (const json* reg = root.get("operating_region", true)) {

@@ -54,6 +54,18 @@ struct ConditionSetConfig {
   double max_heading_error_deg = 2.0;
 };
 
+// ConstantHeading's completion (thesis §4.4.3), relative to the commanded change: a turn is
+// complete within max(floor, min(threshold, fraction x |goal|)) of its goal heading. A fixed 5 deg
+// recorded a 10 deg turn as complete after about 5 deg, slow and drifting (issue 15 §5); the
+// fraction records a small turn to its end, the threshold still spares a large one the slow
+// final approach, and the floor keeps a small turn above the heading noise.
+// mission::completion_threshold_deg (turn_monitor.hpp) computes it for every user.
+struct CompletionRule {
+  double threshold_deg = 5.0;
+  double fraction = 0.1;
+  double floor_deg = 1.0;
+};
+
 struct OperatingRegion {
   kinematics::Polyline polygon;  // local grid, metres
   double buffer_m = 10.0;
@@ -78,7 +90,7 @@ struct MissionConfig {
   MissionKind kind = MissionKind::turns;
   TurnArray turn_array;
   ConditionSetConfig condition_set;
-  double completion_threshold_deg = 5.0;
+  CompletionRule completion;  // constant_heading.completion_*
   // A turn that has not completed after this long is aborted (and re-queued).
   double turn_timeout_s = 120.0;
   OperatingRegion region;

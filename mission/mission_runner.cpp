@@ -359,7 +359,7 @@ void MissionRunner::start_turn(const vehicle::NavSample& s) {
     next_auto_preference_ = side == TurnSide::right ? TurnSide::left : TurnSide::right;
   }
   const double signed_dheading = side == TurnSide::left ? -task.dheading_deg : task.dheading_deg;
-  turn_.emplace(s, task.speed_mps, signed_dheading, config_.completion_threshold_deg);
+  turn_.emplace(s, task.speed_mps, signed_dheading, config_.completion);
   turn_start_s_ = s.t_s;
   turn_condition_set_time_s_ = cs_time;
   desired_heading_deg_ = turn_->goal_heading_deg();
@@ -380,8 +380,7 @@ void MissionRunner::finish_turn(const vehicle::NavSample& s, Completion how) {
   out.start_heading_error_deg = turn_start_heading_error_deg_;
   out.start_yaw_rate_dps = turn_start_yaw_rate_dps_;
   turn_.reset();
-  const auto anomaly =
-      turn_anomaly(out.raw, {config_.completion_threshold_deg, options_.max_sample_gap_s});
+  const auto anomaly = turn_anomaly(out.raw, {config_.completion, options_.max_sample_gap_s});
   CellProgress* cell = cell_of(out.task);
   if (cell) cell->running = false;
   if (anomaly) {

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
+#include "mission/turn_monitor.hpp"
+
 namespace avk::mission {
 
 namespace {
@@ -32,8 +34,10 @@ std::optional<std::string> turn_anomaly(const kinematics::TurnSequence& raw,
            " deg";
   }
   // Completion is within the threshold of the goal, or past it; anything shorter is a turn that
-  // ended for another reason and would enter the table as a smaller heading change.
-  if (std::abs(goal) - std::abs(observed) > options.completion_threshold_deg + 1.0) {
+  // ended for another reason and would enter the table as a smaller heading change. The threshold
+  // is the goal's own (the monitor's), so a 10 deg turn may stop at most 2 deg short, not 6.
+  if (std::abs(goal) - std::abs(observed) >
+      completion_threshold_deg(options.completion, goal) + 1.0) {
     return "stopped short: observed " + num(observed) + " deg for a goal of " + num(goal) + " deg";
   }
   return std::nullopt;

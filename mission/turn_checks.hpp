@@ -6,11 +6,12 @@
 #include <string>
 
 #include "kinematics/turn_sequence.hpp"
+#include "mission/mission_config.hpp"
 
 namespace avk::mission {
 
 struct TurnCheckOptions {
-  double completion_threshold_deg = 5.0;
+  CompletionRule completion;      // the rule the turn was recorded under
   double max_sample_gap_s = 2.0;  // a longer gap in navigation leaves the trajectory unknown
 };
 

@@ -75,7 +75,7 @@ std::optional<kinematics::TurnSequence> TurnExtractor::feed(const vehicle::Guide
     const double goal =
         kinematics::angle180_deg(*s.desired_heading_deg - previous_->nav.heading_deg);
     if (std::abs(change) > kNoChange_deg && std::abs(goal) >= options_.min_step_deg) {
-      turn_.emplace(previous_->nav, *s.desired_speed_mps, goal, options_.completion_threshold_deg);
+      turn_.emplace(previous_->nav, *s.desired_speed_mps, goal, options_.completion);
       turn_start_s_ = previous_->nav.t_s;
       turn_desired_heading_deg_ = *s.desired_heading_deg;
       turn_desired_speed_mps_ = *s.desired_speed_mps;
@@ -127,7 +127,7 @@ kinematics::TurnSequence TurnExtractor::finish_turn(Completion how) {
   turn_.reset();
   if (how == Completion::passed_goal)
     raw.add_warning("completed by passing the goal heading between two samples");
-  const auto anomaly = turn_anomaly(raw, {options_.completion_threshold_deg, options_.max_gap_s});
+  const auto anomaly = turn_anomaly(raw, {options_.completion, options_.max_gap_s});
   raw.meta().status = anomaly ? kinematics::TurnStatus::rejected : kinematics::TurnStatus::ok;
   raw.meta().status_reason = anomaly.value_or("");
   return raw;

@@ -28,7 +28,7 @@ struct TurnExtractorOptions {
   // waypoints), is not a series of turns.
   double held_course_tolerance_deg = 0.0;
   ConditionSetConfig condition_set;
-  double completion_threshold_deg = 5.0;
+  CompletionRule completion;      // the mission's default, as the mission judges its turns
   double max_gap_s = 2.0;         // navigation gap that aborts a turn (and resets ConditionSet)
   double turn_timeout_s = 120.0;  // as the mission's turn timeout; also bounds a turn's memory
 };

@@ -1,16 +1,22 @@
 #include "mission/turn_monitor.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "kinematics/angles.hpp"
 
 namespace avk::mission {
 
+double completion_threshold_deg(const CompletionRule& rule, double goal_dheading_deg) {
+  const double relative = rule.fraction * std::abs(goal_dheading_deg);
+  return std::min(rule.threshold_deg, std::max(rule.floor_deg, relative));
+}
+
 TurnMonitor::TurnMonitor(const vehicle::NavSample& start, double commanded_speed_mps,
-                         double goal_dheading_deg, double completion_threshold_deg)
+                         double goal_dheading_deg, const CompletionRule& completion)
     : commanded_speed_mps_(commanded_speed_mps),
       goal_dheading_deg_(goal_dheading_deg),
-      threshold_deg_(completion_threshold_deg),
+      threshold_deg_(completion_threshold_deg(completion, goal_dheading_deg)),
       goal_heading_deg_(kinematics::wrap360_deg(start.heading_deg + goal_dheading_deg)),
       // Errors are signed towards the turn, so the goal starts ahead for either side.
       previous_error_deg_(std::abs(goal_dheading_deg)) {

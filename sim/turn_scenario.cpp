@@ -53,8 +53,7 @@ TurnScenarioResult run_turn_scenario(const TurnScenarioConfig& config, Pacer& pa
         phase = Phase::turning;
         phase_start = now;
         result.command_time_s = now;
-        monitor.emplace(*previous, config.speed_mps, config.dheading_deg,
-                        config.completion_threshold_deg);
+        monitor.emplace(*previous, config.speed_mps, config.dheading_deg, config.completion);
         result.goal_heading_deg = monitor->goal_heading_deg();
         desired_heading = result.goal_heading_deg;
       }

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "kinematics/turn_sequence.hpp"
+#include "mission/mission_config.hpp"
 #include "sim/scheduler.hpp"
 #include "sim/sim_vehicle.hpp"
 
@@ -23,7 +24,9 @@ struct TurnScenarioConfig {
   double max_settle_s = 300.0;
   double steady_speed_tolerance_mps = 0.05;
   double steady_yaw_rate_dps = 1.0;
-  double completion_threshold_deg = 2.0;
+  // The mission's rule (relative to the commanded change) with a tighter 2 deg bound, so the
+  // printed turn runs closer to its goal than a mission's.
+  mission::CompletionRule completion{2.0, 0.1, 1.0};
   double after_turn_s = 10.0;  // keep running (and printing) after the turn completes
   double timeout_s = 300.0;    // the turn itself
 };

@@ -50,7 +50,7 @@ int import_alog(const std::vector<std::string>& rest, Io& io) {
     names.turn_record = *v;
   }
   mission::TurnExtractorOptions options;
-  options.completion_threshold_deg = positive(a, "threshold", options.completion_threshold_deg);
+  options.completion.threshold_deg = positive(a, "threshold", options.completion.threshold_deg);
   options.condition_set.speed_tolerance_mps =
       positive(a, "speed-tolerance", options.condition_set.speed_tolerance_mps);
   options.condition_set.max_yaw_rate_dps =

@@ -39,7 +39,7 @@ sim::TurnScenarioConfig scenario_from(const Args& a, const sim::SimSetup& setup)
   c.dheading_deg = *dheading;
   if (const auto th = a.number("threshold")) {
     if (!(*th > 0.0 && *th < 90.0)) throw UsageError("--threshold must be in (0, 90) degrees");
-    c.completion_threshold_deg = *th;
+    c.completion.threshold_deg = *th;
   }
   return c;
 }

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 #include "app/ckt_tables.hpp"
 #include "app/context.hpp"
@@ -68,6 +69,27 @@ TEST_F(Predict, SaysWhenOneCellAnswersAndWhenTheTableIsExtrapolated) {
   EXPECT_EQ(between->extrapolated, false);
   EXPECT_EQ(beyond->extrapolated, true);
   EXPECT_LT(beyond->trajectory.back().x_m, 0.0);  // a left turn
+}
+
+// Between the fine table's rows (0.75 m/s) the answer is blended, not the 0.8 m/s row's, and its
+// flags say what the table's own query says.
+TEST_F(Predict, ASpeedBetweenFineRowsIsInterpolatedAndFlaggedAsTheTableWould) {
+  avk::testing::store_arc_turns(ctx_.db(), "alpha");  // heading changes 40, 100, 160 deg
+  const auto table = kinematics::Ckt::build(ctx_.db().load_normalized_turns({}, "alpha"));
+  for (const auto& [u, d] : {std::pair{0.75, 100.0}, std::pair{1.25, -55.5}, std::pair{0.83, 175.5},
+                             std::pair{1.0, 100.0}}) {
+    const auto p = app::predict(ctx_, query("alpha", u, d));
+    ASSERT_TRUE(p) << p.error().message;
+    const kinematics::TurnPrediction truth = table.query(u, d);
+    EXPECT_NEAR(*p->advance_m, truth.advance_m, 0.01) << u << " " << d;
+    EXPECT_NEAR(*p->transfer_m, truth.transfer_m, 0.01) << u << " " << d;
+    EXPECT_LT(kinematics::distance_m(p->trajectory.back(), truth.trajectory.back()), 0.1);
+    EXPECT_EQ(p->exact_cell, truth.exact_cell) << u << " " << d;
+    EXPECT_EQ(p->extrapolated, truth.extrapolated) << u << " " << d;
+  }
+  EXPECT_EQ(app::predict(ctx_, query("alpha", 1.0, 100.0))->exact_cell, true);
+  EXPECT_EQ(app::predict(ctx_, query("alpha", 0.75, 100.0))->exact_cell, false);
+  EXPECT_EQ(app::predict(ctx_, query("alpha", 0.83, 175.5))->extrapolated, true);
 }
 
 TEST_F(Predict, ALeftTurnIsTheMirrorImageOfTheRightOne) {

@@ -223,4 +223,11 @@ TEST(Corridor, CellsCarryItAndQueriesBlendIt) {
     }
   EXPECT_GE(between.corridor->lateral_sd_m[50], lo - 1e-12);
   EXPECT_LE(between.corridor->lateral_sd_m[50], hi + 1e-12);
+  // The fine table guidance asks carries it too, between its rows as on them.
+  const MaterializedCkt fine(table);
+  const TurnPrediction f = fine.query(0.75, 55.5);
+  ASSERT_TRUE(f.corridor);
+  EXPECT_EQ(f.corridor->n_turns, 5u);
+  EXPECT_NEAR(f.corridor->lateral_sd_m[50], table.query(0.75, 55.5).corridor->lateral_sd_m[50],
+              0.05 * hi + 1e-9);
 }

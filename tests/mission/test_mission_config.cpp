@@ -43,7 +43,9 @@ TEST(MissionConfig, ThesisFigure41Example) {
   EXPECT_EQ(c.turn_array.dheadings_deg.size(), 6u);
   EXPECT_EQ(c.turn_array.direction, DirectionPolicy::alternate);
   EXPECT_EQ(c.condition_set.window, 5);
-  EXPECT_EQ(c.completion_threshold_deg, 5.0);
+  EXPECT_EQ(c.completion.threshold_deg, 5.0);
+  EXPECT_EQ(c.completion.fraction, 0.1);  // defaults: the example does not set them
+  EXPECT_EQ(c.completion.floor_deg, 1.0);
   EXPECT_EQ(c.region.polygon.size(), 4u);
   EXPECT_EQ(c.region.buffer_m, 25.0);
 }
@@ -79,6 +81,16 @@ TEST(MissionConfig, EveryProblemIsNamed) {
             V{"/condition_set/speed_tolerance_kts"});
   EXPECT_EQ(fields_of([](json& d) { d["constant_heading"]["completion_threshold_deg"] = "5"; }),
             V{"/constant_heading/completion_threshold_deg"});
+  EXPECT_EQ(fields_of([](json& d) { d["constant_heading"]["completion_fraction"] = 0; }),
+            V{"/constant_heading/completion_fraction"});
+  EXPECT_EQ(fields_of([](json& d) { d["constant_heading"]["completion_fraction"] = 1.5; }),
+            V{"/constant_heading/completion_fraction"});
+  EXPECT_EQ(fields_of([](json& d) { d["constant_heading"]["completion_fraction"] = "10%"; }),
+            V{"/constant_heading/completion_fraction"});
+  EXPECT_EQ(fields_of([](json& d) { d["constant_heading"]["completion_floor_deg"] = -1; }),
+            V{"/constant_heading/completion_floor_deg"});
+  EXPECT_EQ(fields_of([](json& d) { d["constant_heading"]["completion_floor_deg"] = 6; }),
+            V{"/constant_heading/completion_floor_deg"});  // above the 5 deg threshold
   EXPECT_EQ(fields_of([](json& d) {
               d["operating_region"]["polygon_m"] = {{0, 0}, {100, 100}, {100, 0}, {0, 100}};
             }),
@@ -152,4 +164,27 @@ TEST(MissionConfig, RunnerFieldsHaveDefaultsAndRanges) {
             std::vector<std::string>{"/operating_region/return_speed_mps"});
   EXPECT_EQ(fields_of([](json& d) { d["operating_region"]["capture_radius_m"] = "3"; }),
             std::vector<std::string>{"/operating_region/capture_radius_m"});
+}
+
+TEST(MissionConfig, CompletionRuleFieldsAreReadAndChecked) {
+  json doc = json::parse(example("thesis-fig4-1.json"));
+  doc["constant_heading"]["completion_fraction"] = 0.2;
+  doc["constant_heading"]["completion_floor_deg"] = 0.5;
+  const MissionConfig set = parse_mission_config(doc.dump(), 1.7);
+  EXPECT_DOUBLE_EQ(set.completion.threshold_deg, 5.0);
+  EXPECT_DOUBLE_EQ(set.completion.fraction, 0.2);
+  EXPECT_DOUBLE_EQ(set.completion.floor_deg, 0.5);
+
+  // A file from before the floor, with a threshold below the default floor, still loads.
+  json old = json::parse(example("thesis-fig4-1.json"));
+  old["constant_heading"] = {{"completion_threshold_deg", 0.5}};
+  EXPECT_DOUBLE_EQ(parse_mission_config(old.dump(), 1.7).completion.threshold_deg, 0.5);
+  // Every problem of the section at once, each by its field.
+  EXPECT_EQ(fields_of([](json& d) {
+              d["constant_heading"] = {{"completion_threshold_deg", 2},
+                                       {"completion_fraction", -0.1},
+                                       {"completion_floor_deg", 3}};
+            }),
+            (std::vector<std::string>{"/constant_heading/completion_fraction",
+                                      "/constant_heading/completion_floor_deg"}));
 }

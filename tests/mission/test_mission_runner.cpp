@@ -281,7 +281,7 @@ TEST(MissionRunner, TwoTurnMissionGoesThroughTheModes) {
     EXPECT_EQ(t.status, TurnStatus::ok) << t.reason;
     EXPECT_EQ(t.task.index, i);
     EXPECT_LE(std::abs(meta.observed_dheading_deg - meta.goal_dheading_deg),
-              r.config.completion_threshold_deg);
+              completion_threshold_deg(r.config.completion, meta.goal_dheading_deg));
     EXPECT_NEAR(r.rec.started[i].goal_heading_deg,
                 k::wrap360_deg(meta.initial_heading_deg + meta.goal_dheading_deg), 1e-9);
     EXPECT_TRUE(t.advance_m.has_value());
@@ -582,7 +582,7 @@ TEST(MissionRunner, TurnTheWrongWayIsRejectedAndRequeued) {
 }
 
 TEST(TurnAnomaly, FindsWhatMakesATurnUnusable) {
-  const TurnCheckOptions opt{5.0, 2.0};
+  const TurnCheckOptions opt{CompletionRule{5.0, 0.1, 1.0}, 2.0};
   const auto reason = [&](const k::TurnSequence& t) { return turn_anomaly(t, opt).value_or(""); };
   EXPECT_TRUE(contains(reason(turn_of(90, {0, 88})), "too_few_samples"));
   EXPECT_TRUE(contains(reason(turn_of(90, {0, 30, 60, 88}, {0, 1, 3.5, 4.5})), "navigation gap"));
@@ -596,6 +596,18 @@ TEST(TurnAnomaly, FindsWhatMakesATurnUnusable) {
   EXPECT_FALSE(turn_anomaly(turn_of(-90, {350, 300, 262}), opt));  // left, 2 deg past the goal
 }
 
+// The check allows what the monitor allows for the turn's own goal: a 10 deg turn completes
+// within 1 deg, so it may stop at most 1 + 1 deg short, not 5 + 1.
+TEST(TurnAnomaly, ASmallTurnIsJudgedByItsOwnThreshold) {
+  const TurnCheckOptions opt{CompletionRule{5.0, 0.1, 1.0}, 2.0};
+  EXPECT_FALSE(turn_anomaly(turn_of(10, {0, 5, 9.2}), opt));     // completed within 1 deg
+  EXPECT_FALSE(turn_anomaly(turn_of(-10, {0, 355, 351}), opt));  // left, 1 deg short
+  EXPECT_FALSE(turn_anomaly(turn_of(10, {0, 5, 8.5}), opt));     // 1.5 short: within 1 + 1
+  EXPECT_TRUE(turn_anomaly(turn_of(10, {0, 3, 5}), opt));        // what 5 deg used to accept
+  EXPECT_TRUE(contains(turn_anomaly(turn_of(10, {0, 3, 7.5}), opt).value_or(""), "stopped short"));
+  EXPECT_FALSE(turn_anomaly(turn_of(90, {0, 45, 85}), opt));  // 90 deg: still 5 + 1
+}
+
 // A left turn whose heading passes the goal between the start sample and the first sample
 // after it must complete like the mirror-image right turn does.
 // BUG (mission/turn_monitor.cpp, constructor): previous_error_deg_ starts at the *signed* goal,
@@ -603,9 +615,9 @@ TEST(TurnAnomaly, FindsWhatMakesATurnUnusable) {
 // goes on recording the overshoot until the heading comes back within the threshold (or until
 // turn_timeout_s). Fix: initialise previous_error_deg_ with std::abs(goal_dheading_deg).
 TEST(TurnMonitor, PassThroughOnTheFirstSampleCompletesLeftTurnsToo) {
-  TurnMonitor right(nav_at(0, 20), 1.0, 10.0, 2.0);  // goal 30, first sample at 35
+  TurnMonitor right(nav_at(0, 20), 1.0, 10.0, CompletionRule{});  // goal 30, first sample at 35
   EXPECT_EQ(right.update(nav_at(1, 35)), Completion::passed_goal);
-  TurnMonitor left(nav_at(0, 20), 1.0, -10.0, 2.0);  // goal 10, first sample at 5
+  TurnMonitor left(nav_at(0, 20), 1.0, -10.0, CompletionRule{});  // goal 10, first sample at 5
   EXPECT_EQ(left.update(nav_at(1, 5)), Completion::passed_goal);
 }
 

@@ -19,6 +19,13 @@ NavSample nav(double t, double heading, double speed = 1.0, double x = 0, double
   n.y_m = y;
   return n;
 }
+
+// The mission's rule with another threshold.
+CompletionRule rule(double threshold_deg) {
+  CompletionRule r;
+  r.threshold_deg = threshold_deg;
+  return r;
+}
 }  // namespace
 
 TEST(ConditionSet, NeedsAFullWindowOfSteadyHeadingAtSpeed) {
@@ -99,7 +106,7 @@ TEST(ConditionSet, HeadingMustBeWithinTheToleranceOfTheHeldCourseAcrossNorth) {
 }
 
 TEST(TurnMonitor, CompletesWithinTheThreshold) {
-  TurnMonitor t(nav(0, 350), 1.0, 60.0, 5.0);  // goal 50 across north
+  TurnMonitor t(nav(0, 350), 1.0, 60.0, rule(5.0));  // goal 50 across north
   EXPECT_DOUBLE_EQ(t.goal_heading_deg(), 50.0);
   EXPECT_EQ(t.update(nav(1, 10)), Completion::none);
   EXPECT_EQ(t.update(nav(2, 30)), Completion::none);
@@ -110,7 +117,7 @@ TEST(TurnMonitor, CompletesWithinTheThreshold) {
 }
 
 TEST(TurnMonitor, CompletesWhenTheHeadingPassesTheGoalBetweenSamples) {
-  TurnMonitor t(nav(0, 0), 1.0, 90.0, 2.0);
+  TurnMonitor t(nav(0, 0), 1.0, 90.0, rule(2.0));
   EXPECT_EQ(t.update(nav(1, 60)), Completion::none);
   EXPECT_EQ(t.update(nav(2, 85)), Completion::none);
   EXPECT_EQ(t.update(nav(3, 97)), Completion::passed_goal);  // never within 2 deg
@@ -119,10 +126,48 @@ TEST(TurnMonitor, CompletesWhenTheHeadingPassesTheGoalBetweenSamples) {
 }
 
 TEST(TurnMonitor, LeftTurnsCompleteToo) {
-  TurnMonitor t(nav(0, 20), 1.0, -100.0, 3.0);  // goal 280
+  TurnMonitor t(nav(0, 20), 1.0, -100.0, rule(3.0));  // goal 280
   EXPECT_EQ(t.update(nav(1, 340)), Completion::none);
   EXPECT_EQ(t.update(nav(2, 300)), Completion::none);
   EXPECT_EQ(t.update(nav(3, 275)), Completion::passed_goal);
-  TurnMonitor u(nav(0, 20), 1.0, -100.0, 3.0);
+  TurnMonitor u(nav(0, 20), 1.0, -100.0, rule(3.0));
   EXPECT_EQ(u.update(nav(1, 282)), Completion::within_threshold);
+}
+
+TEST(CompletionThreshold, IsAFractionOfTheCommandedChangeBetweenTheFloorAndTheThreshold) {
+  const CompletionRule r;  // 5 deg, 10 %, 1 deg
+  EXPECT_DOUBLE_EQ(completion_threshold_deg(r, 10.0), 1.0);
+  EXPECT_DOUBLE_EQ(completion_threshold_deg(r, -10.0), 1.0);
+  EXPECT_DOUBLE_EQ(completion_threshold_deg(r, 5.0), 1.0);  // the floor
+  EXPECT_DOUBLE_EQ(completion_threshold_deg(r, 25.0), 2.5);
+  EXPECT_DOUBLE_EQ(completion_threshold_deg(r, -40.0), 4.0);
+  EXPECT_DOUBLE_EQ(completion_threshold_deg(r, 90.0), 5.0);  // the threshold
+  EXPECT_DOUBLE_EQ(completion_threshold_deg(r, 180.0), 5.0);
+  // A threshold set alone below the floor (an old file, `--threshold 0.5`) still bounds it.
+  EXPECT_DOUBLE_EQ(completion_threshold_deg(rule(0.5), 90.0), 0.5);
+  EXPECT_DOUBLE_EQ(completion_threshold_deg(rule(0.5), 10.0), 0.5);
+}
+
+// Issue 15 §5: with a fixed 5 deg a 10 deg turn was complete after about 5 deg.
+TEST(TurnMonitor, ASmallTurnIsNotCompleteHalfWayButWithinADegree) {
+  TurnMonitor t(nav(0, 100), 1.0, 10.0, CompletionRule{});  // goal 110
+  EXPECT_DOUBLE_EQ(t.threshold_deg(), 1.0);
+  EXPECT_EQ(t.update(nav(1, 103)), Completion::none);
+  EXPECT_EQ(t.update(nav(2, 105)), Completion::none);  // 5 deg to go: complete before
+  EXPECT_EQ(t.update(nav(3, 107.5)), Completion::none);
+  EXPECT_EQ(t.update(nav(4, 108.5)), Completion::none);
+  EXPECT_EQ(t.update(nav(5, 109.2)), Completion::within_threshold);
+  EXPECT_NEAR(t.build("v", "m").meta().observed_dheading_deg, 9.2, 1e-9);
+
+  TurnMonitor left(nav(0, 5), 1.0, -10.0, CompletionRule{});  // goal 355
+  EXPECT_EQ(left.update(nav(1, 0)), Completion::none);
+  EXPECT_EQ(left.update(nav(2, 355.8)), Completion::within_threshold);
+}
+
+TEST(TurnMonitor, ALargeTurnStillCompletesWithinTheThreshold) {
+  TurnMonitor t(nav(0, 0), 1.0, 90.0, CompletionRule{});
+  EXPECT_DOUBLE_EQ(t.threshold_deg(), 5.0);
+  EXPECT_EQ(t.update(nav(1, 60)), Completion::none);
+  EXPECT_EQ(t.update(nav(2, 84)), Completion::none);
+  EXPECT_EQ(t.update(nav(3, 85.5)), Completion::within_threshold);
 }

@@ -282,14 +282,14 @@ TEST(TurnExtractor, AStepWhileNotSteadyIsNotATurn) {
 }
 
 TEST(TurnExtractor, ATurnTheChecksRefuseIsRejectedWithTheirReason) {
-  // A 6-degree step completed (within the 5-degree threshold) by the first sample after it:
-  // two samples are too few for a turn.
+  // A 6-degree step completed (within its 1-degree threshold, 10 % of the step) by the first
+  // sample after it: two samples are too few for a turn.
   TurnExtractor x = extractor();
   Boat boat(0.0, 1.0);
   Collected run;
   for (int i = 0; i < 20; ++i)
     run.take(x.feed(boat.step(0.0, 1.0, 10.0)));
-  boat.set_heading(1.5);
+  boat.set_heading(5.5);
   for (int i = 0; i < 10; ++i)
     run.take(x.feed(boat.step(6.0, 1.0, 10.0)));
   ASSERT_EQ(run.turns.size(), 1u);

@@ -10,6 +10,7 @@
 #include <chrono>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -54,6 +55,33 @@ std::map<std::pair<double, double>, std::pair<double, double>> cell_means(
 class MissionCli : public ::testing::Test {
  protected:
   TempDb db_{"avk_mission_cli"};
+
+  // The Figure 4-1 mission (changed by `edit`) with the fixed 5 deg completion threshold it had
+  // before completion became relative to the commanded change (completion_fraction 1 gives
+  // min(5, |goal|) = 5 deg for every heading change of the grid), written next to the database.
+  // The containment, direction and table-shape scenarios below were laid out on that timeline:
+  // which turn meets the buffer, and the GNSS noise each single M200 turn of a cell draws, follow
+  // from how long every earlier turn took. What they test does not depend on how a 10 deg turn
+  // ends, which test_small_turns.cpp covers.
+  std::string fixed_threshold_mission(const std::string& tag,
+                                      const std::function<void(json&)>& edit = {}) {
+    json doc;
+    std::ifstream(example("thesis-fig4-1.json")) >> doc;
+    doc["constant_heading"]["completion_fraction"] = 1.0;
+    if (edit) edit(doc);
+    const fs::path path = fs::path(db_.path()).replace_extension("." + tag + ".json");
+    std::ofstream(path) << doc.dump();
+    written_.push_back(path);
+    return path.string();
+  }
+  void TearDown() override {
+    std::error_code ec;
+    for (const auto& p : written_)
+      fs::remove(p, ec);
+  }
+
+ private:
+  std::vector<fs::path> written_;
 };
 
 TEST_F(MissionCli, Figure41OnUsimCompletesEveryTurnAndStoresEverything) {
@@ -192,22 +220,23 @@ TEST_F(MissionCli, UsimTransferGrowsWithHeadingChange) {
     // Up to 130 deg the vehicle is still moving to the turn side when the turn completes.
     for (double d : {10.0, 40.0, 70.0, 100.0})
       EXPECT_LT(m.at({u, d}).second, m.at({u, d + 30.0}).second) << u << " " << d;
-    EXPECT_LT(m.at({u, 10.0}).first, m.at({u, 40.0}).first);
+    // Completion within 10 % of the change: the heading closes on its goal at about the same
+    // rate whatever the change, so a 10 deg turn runs as long as a 40 deg one (measured: 18.4 m
+    // of advance against 14.9-15.2 m) while barely bending.
+    EXPECT_GT(m.at({u, 10.0}).first, m.at({u, 40.0}).first);
     // Past 90 deg the vehicle comes back along its original course: advance falls.
     EXPECT_GT(m.at({u, 100.0}).first, m.at({u, 160.0}).first);
   }
 }
 
 TEST_F(MissionCli, DirectionAutoLosesFewerTurnsToContainmentThanAlternate) {
-  const fs::path auto_config = fs::path(db_.path()).replace_extension(".auto.json");
-  json doc;
-  std::ifstream(example("thesis-fig4-1.json")) >> doc;
-  doc["turn_array"]["direction"] = "auto";
-  std::ofstream(auto_config) << doc.dump();
-  ASSERT_EQ(run({"mission", "run", "--config", example("thesis-fig4-1.json"), "--db", db_.path(),
-                 "--sim", "--quiet"})
-                .rc,
-            0);
+  const std::string alternate_config = fixed_threshold_mission("alternate");
+  const fs::path auto_config =
+      fixed_threshold_mission("auto", [](json& doc) { doc["turn_array"]["direction"] = "auto"; });
+  ASSERT_EQ(
+      run({"mission", "run", "--config", alternate_config, "--db", db_.path(), "--sim", "--quiet"})
+          .rc,
+      0);
   ASSERT_EQ(run({"mission", "run", "--config", auto_config.string(), "--db", db_.path(), "--sim",
                  "--quiet"})
                 .rc,
@@ -230,7 +259,6 @@ TEST_F(MissionCli, DirectionAutoLosesFewerTurnsToContainmentThanAlternate) {
   for (const auto& t : s.list_turns(f))
     sides.insert(t.goal_dheading_deg > 0 ? 1.0 : -1.0);
   EXPECT_EQ(sides.size(), 2u);
-  fs::remove(auto_config);
 }
 
 TEST_F(MissionCli, InvalidMissionNamesTheFieldAndStoresNothing) {

@@ -33,7 +33,7 @@ TEST(SimVehicle, UsimReproducesTheMoosReferenceTurn) {
   c.dheading_deg = 90.0;
   c.min_settle_s = 60.0;
   c.after_turn_s = 30.0;
-  c.completion_threshold_deg = 0.5;
+  c.completion.threshold_deg = 0.5;
   const TurnScenarioResult r = run_turn_scenario(c);
   ASSERT_TRUE(r.completed);
   double start_heading = 0.0;
@@ -71,7 +71,7 @@ TEST(SimVehicle, SameSeedSameTrajectoryBitForBit) {
     c.scheduler = {seed, 0.1, true};
     c.speed_mps = 1.0;
     c.dheading_deg = -70.0;
-    c.completion_threshold_deg = 5.0;
+    c.completion.threshold_deg = 5.0;
     return run_turn_scenario(c);
   };
   const auto a = run(3), b = run(3), c = run(4);
@@ -109,7 +109,7 @@ TEST(SimVehicle, CatamaranCompletesTurnsBothWaysAtSeveralSpeeds) {
       c.vehicle = sim_vehicle_defaults(kind);
       c.speed_mps = u;
       c.dheading_deg = u == 1.0 ? -100.0 : 100.0;
-      c.completion_threshold_deg = 5.0;
+      c.completion.threshold_deg = 5.0;
       const auto r = run_turn_scenario(c);
       EXPECT_TRUE(r.completed) << kind << " " << u;
       const auto at = kin::advance_transfer(r.turn);
@@ -211,7 +211,7 @@ TEST(SimVehicle, UnknownKindIsNamed) {
 TEST(Variability, JitterMakesAFewDistinctOutcomesAndNoJitterNone) {
   VariabilityConfig vc;
   vc.repeats = 12;
-  vc.base.completion_threshold_deg = 2.0;
+  vc.base.completion.threshold_deg = 2.0;
   vc.jitter = false;
   const auto steady = run_variability(vc);
   EXPECT_EQ(steady.distinct_outcomes, 1);
