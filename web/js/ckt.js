@@ -1,12 +1,13 @@
 // The CKT view: the table's grid as a heat map (n, AVK error, advance, transfer) with an accessible
 // table of the same cells; a chosen cell shows its turns (blue), the mean turn (red), the fit, the
-// CKT's piecewise-linear trajectory and the model and instantaneous predictions (thesis Figures
-// 5-6, 5-7); advance and transfer against the heading change per speed with ±1 sd error bars
+// CKT's piecewise-linear trajectory with the AVK prediction's corridor (the band that holds 90 %
+// of the cell's turns), and the model and instantaneous predictions (thesis Figures 5-6, 5-7);
+// advance and transfer against the heading change per speed with ±1 sd error bars
 // (Figures 5-4, 5-5).
 
 import { state, on } from './state.js';
 import { getJson } from './api.js';
-import { C, SERIES, SYMBOLS, METHOD_STYLE, baseLayout, axis, equalAxes, draw, showEmpty, onPlotClick } from './plots.js';
+import { C, SERIES, SYMBOLS, METHOD_STYLE, baseLayout, axis, equalAxes, draw, showEmpty, onPlotClick, corridorTrace } from './plots.js';
 import { el, meanSd, setStatus } from './format.js';
 import { refreshTurnCount } from './sync.js';
 
@@ -33,6 +34,10 @@ export function initCkt() {
   });
   on('restart', () => {
     table = null;
+  });
+  // A page opened at #ckt shows the view before it knows the vehicle: load once it does.
+  on('synced', () => {
+    if (visible && !table) load();
   });
 }
 
@@ -175,15 +180,18 @@ async function openCell(speed, dheading) {
   const plot = $('ckt-cell-plot');
   $('ckt-cell-title').textContent = `Cell ${speed} m/s, Δψ ${dheading}°`;
   const cellSummary = cellAt(speed, dheading);
+  showShortOfGoal(false);
   if (!cellSummary || !cellSummary.n_turns) {
     $('ckt-cell-info').textContent = 'No turns in this cell.';
+    delete plot.dataset.cell;
     showEmpty(plot, 'No turns in this cell.');
     return;
   }
   try {
     const cell = await getJson(`/vehicles/${vid}/ckt/cells`, { speed, dheading });
     const preds = {};
-    const methods = ['instantaneous', ...(state.models.length ? ['model'] : [])];
+    // AVK too, for its corridor and short_of_goal (its trajectory is the cell's own, drawn above).
+    const methods = ['avk', 'instantaneous', ...(state.models.length ? ['model'] : [])];
     await Promise.all(methods.map(async (m) => {
       try {
         preds[m] = await getJson(`/vehicles/${vid}/predict`, { speed, dheading, method: m });
@@ -191,9 +199,13 @@ async function openCell(speed, dheading) {
         // A method that cannot answer is left out of the plot.
       }
     }));
+    if (chosen?.speed !== speed || chosen?.dheading !== dheading) return; // another cell was chosen meanwhile
+    const noCorridor = preds.avk && !preds.avk.corridor ? ` · no corridor (${cell.n_turns < 2 ? 'needs 2 turns' : 'none in the table'})` : '';
     $('ckt-cell-info').textContent =
-      `${cell.n_turns} turn${cell.n_turns === 1 ? '' : 's'} · advance ${meanSd(cell.advance_m, 2, ' m')} · transfer ${meanSd(cell.transfer_m, 2, ' m')} · AVK error ${typeof cell.avk_error_m2 === 'number' ? cell.avk_error_m2.toPrecision(3) + ' m²' : '– (needs 2 turns)'}`;
-    const traces = [];
+      `${cell.n_turns} turn${cell.n_turns === 1 ? '' : 's'} · advance ${meanSd(cell.advance_m, 2, ' m')} · transfer ${meanSd(cell.transfer_m, 2, ' m')} · AVK error ${typeof cell.avk_error_m2 === 'number' ? cell.avk_error_m2.toPrecision(3) + ' m²' : '– (needs 2 turns)'}${noCorridor}`;
+    showShortOfGoal(preds.avk?.short_of_goal === true);
+    // The corridor first, so the turns and the trajectories are drawn over it.
+    const traces = [corridorTrace(preds.avk?.corridor)];
     (cell.turns ?? []).forEach((t, i) => {
       traces.push({
         type: 'scatter',
@@ -222,10 +234,19 @@ async function openCell(speed, dheading) {
       ...equalAxes('x: to the right of the start (m)', 'y: ahead of the start (m)'),
       showlegend: true,
     });
+    plot.dataset.cell = `${speed}|${dheading}`; // which cell is drawn (the browser tests wait for it)
   } catch (e) {
     $('ckt-cell-info').textContent = e.message;
+    delete plot.dataset.cell;
     showEmpty(plot, e.message);
   }
+}
+
+/** The cell's turns stopped short of their goal: the prediction's end is the mean turn extended
+ *  along the goal heading, not measured. */
+function showShortOfGoal(on) {
+  const w = $('ckt-cell-warning');
+  if (w) w.hidden = !on;
 }
 
 function renderAdvanceTransfer() {

@@ -1,6 +1,10 @@
-// The Compare view: the mean squared error of each prediction method per heading change, one
-// plot per speed on a log axis (thesis Figures 5-8, A-6, A-7), and the comparison table beneath
-// (the same numbers as `avk compare` and docs/results.md).
+// The Compare view. By default the fair comparison (GET /compare's `predictive` part): every
+// method scored on held-out turns (AVK leave-one-out), per speed the mean path distance at equal
+// arc length (m) against the heading change, error bars ± 1 sd over the cell's held-out turns. A
+// control switches to the thesis' y(x) MSE on the same held-out turns, or to the thesis'
+// in-sample MSE (the old `cells`: Figures 5-8, A-6, A-7, log axis). The medians, the AVK
+// corridor's measured coverage and the table beneath follow the chosen metric (the same numbers as
+// `avk compare` and docs/results.md).
 
 import { state, on } from './state.js';
 import { getJson } from './api.js';
@@ -10,15 +14,57 @@ import { refreshTurnCount } from './sync.js';
 
 const $ = (id) => document.getElementById(id);
 const METHODS = ['avk', 'model', 'instantaneous'];
+
+/** The metrics the control offers: where each reads its numbers and how it is drawn. */
+export const METRICS = {
+  path_m: {
+    title: (s) => `Mean path distance on held-out turns at ${s} m/s`,
+    file: (s) => `avk-compare-${s}mps-path`,
+    yTitle: 'mean distance at equal arc length (m), ± 1 sd',
+    log: false,
+    unit: 'm',
+    median: 'Median path distance (held out)',
+    fmt: (v) => num(v, 2),
+  },
+  yx_mse_m2: {
+    title: (s) => `y(x) MSE on held-out turns at ${s} m/s`,
+    file: (s) => `avk-compare-${s}mps-yx-mse`,
+    yTitle: 'y(x) MSE (m², log), ± 1 sd',
+    log: true,
+    unit: 'm²',
+    median: 'Median y(x) MSE (held out)',
+    fmt: fmtSci,
+  },
+  in_sample: {
+    title: (s) => `MSE per heading change at ${s} m/s (thesis, in sample)`,
+    file: (s) => `avk-compare-${s}mps`,
+    yTitle: 'MSE (m², log)',
+    log: true,
+    unit: 'm²',
+    median: 'Median MSE (thesis, in sample)',
+    fmt: fmtSci,
+  },
+};
+
 let visible = false;
+let plotKey = '';
 let plotIds = [];
+let last = null; // the last GET /compare answer: a metric change redraws it without a request
 
 export function initCompare() {
   $('cmp-refresh').addEventListener('click', load);
   $('cmp-model').addEventListener('change', load);
+  $('cmp-metric').addEventListener('change', () => {
+    if (last) render(last);
+    else load();
+  });
   on('models', renderModelChoice);
   on('turns-changed', () => {
     if (visible) load();
+  });
+  // A page opened at #compare shows the view before it knows the vehicle: load once it does.
+  on('synced', () => {
+    if (visible && !last) load();
   });
 }
 
@@ -41,6 +87,11 @@ function fmtSci(v) {
   return typeof v === 'number' && Number.isFinite(v) ? v.toPrecision(3) : '–';
 }
 
+function metricKey() {
+  const k = $('cmp-metric').value;
+  return k in METRICS ? k : 'path_m';
+}
+
 export async function load() {
   const status = $('cmp-status');
   const plots = $('cmp-plots');
@@ -48,9 +99,11 @@ export async function load() {
   await refreshTurnCount().catch(() => {});
   if (state.okTurns === 0) {
     setStatus(status, 'No ok turns yet: run a mission first.');
+    last = null;
     clearPlots(plots);
     $('cmp-table').replaceChildren();
     $('cmp-median').textContent = '';
+    $('cmp-corridor').textContent = '';
     return;
   }
   setStatus(status, 'Loading…');
@@ -58,55 +111,152 @@ export async function load() {
     const model = $('cmp-model').value;
     const cmp = await getJson(`/vehicles/${encodeURIComponent(state.vehicleId)}/compare`, { model: model || undefined });
     setStatus(status, cmp.model_id ? `Model ${cmp.model_id}.` : 'No model stored: AVK and instantaneous only.');
-    const med = cmp.median_mse_m2 ?? {};
-    $('cmp-median').textContent = `Median MSE: ${METHODS.map((m) => `${METHOD_STYLE[m].name} ${typeof med[m] === 'number' ? `${fmtSci(med[m])} m²` : 'none'}`).join(' · ')}`;
-    renderPlots(plots, cmp);
-    renderTable(cmp);
+    last = cmp;
+    render(cmp);
   } catch (e) {
     setStatus(status, e.message, 'error');
   }
 }
 
+/** The rows of the chosen metric: {speed_mps, dheading_deg, n_turns, value(m) -> {mean, sd}|null}. */
+function rowsOf(cmp, key) {
+  if (key === 'in_sample') {
+    return (cmp.cells ?? []).map((c) => ({
+      speed_mps: c.speed_mps,
+      dheading_deg: c.dheading_deg,
+      n_turns: c.n_turns,
+      value: (m) => (typeof c[m]?.mse_m2 === 'number' ? { mean: c[m].mse_m2, sd: null } : null),
+    }));
+  }
+  return (cmp.predictive?.cells ?? []).map((c) => ({
+    speed_mps: c.speed_mps,
+    dheading_deg: c.dheading_deg,
+    n_turns: c.n_turns,
+    value: (m) => (typeof c[m]?.[key]?.mean === 'number' ? c[m][key] : null),
+  }));
+}
+
+function medianOf(cmp, key) {
+  if (key === 'in_sample') return cmp.median_mse_m2 ?? {};
+  return cmp.predictive?.[key === 'path_m' ? 'median_path_m' : 'median_yx_mse_m2'] ?? {};
+}
+
+function render(cmp) {
+  const key = metricKey();
+  const metric = METRICS[key];
+  const plots = $('cmp-plots');
+  const med = medianOf(cmp, key);
+  $('cmp-median').textContent = `${metric.median}: ${METHODS.map((m) => `${METHOD_STYLE[m].name} ${typeof med[m] === 'number' ? `${metric.fmt(med[m])} ${metric.unit}` : 'none'}`).join(' · ')}`;
+  $('cmp-corridor').textContent = corridorLine(cmp.predictive?.corridor);
+  if (key !== 'in_sample' && !cmp.predictive) {
+    setStatus($('cmp-status'), 'This server sends no held-out (predictive) scoring: choose the thesis in-sample MSE.', 'error');
+  }
+  renderPlots(plots, rowsOf(cmp, key), key);
+  if (key === 'in_sample') renderInSampleTable(cmp);
+  else renderPredictiveTable(cmp);
+}
+
+/** "90 % corridor holds 88.1 % of held-out points over cells with ≥ 5 turns; 0 cells below 70 %". */
+export function corridorLine(c) {
+  if (!c) return '';
+  const nominal = `${Math.round((c.share_nominal ?? 0.9) * 100)} %`;
+  const minTurns = c.min_turns ?? 5;
+  if (!c.total || typeof c.share !== 'number') {
+    return `${nominal} corridor: no cell with ≥ ${minTurns} turns yet, so its coverage of held-out turns is not measured.`;
+  }
+  const below = c.cells_below_70_pct ?? 0;
+  return `${nominal} corridor holds ${num(c.share * 100, 1)} % of held-out points over cells with ≥ ${minTurns} turns (${c.inside} of ${c.total}); ${below} cell${below === 1 ? '' : 's'} below 70 %.`;
+}
+
 function clearPlots(plots) {
   plotIds.forEach(forgetPlot);
   plotIds = [];
+  plotKey = '';
   plots.replaceChildren();
 }
 
-function renderPlots(plots, cmp) {
-  const speeds = [...new Set(cmp.cells.map((c) => c.speed_mps))].sort((a, b) => a - b);
+function renderPlots(plots, rows, key) {
+  const metric = METRICS[key];
+  const speeds = [...new Set(rows.map((c) => c.speed_mps))].sort((a, b) => a - b);
   const wanted = speeds.map((s) => `cmp-plot-${String(s).replace('.', '_')}`);
-  if (wanted.join() !== plotIds.join()) {
+  // A plot's title and PNG file name are set when it is made: a new metric makes them again.
+  const wantedKey = `${key}|${wanted.join()}`;
+  if (wantedKey !== plotKey) {
     clearPlots(plots);
-    speeds.forEach((s, i) => makePlot(plots, wanted[i], `MSE per heading change at ${s} m/s`, `avk-compare-${s}mps`));
+    speeds.forEach((s, i) => {
+      const p = makePlot(plots, wanted[i], metric.title(s), metric.file(s));
+      p.dataset.metric = key;
+    });
     plotIds = wanted;
+    plotKey = wantedKey;
   }
   speeds.forEach((s, i) => {
-    const cells = cmp.cells.filter((c) => c.speed_mps === s).sort((a, b) => a.dheading_deg - b.dheading_deg);
+    const cells = rows.filter((c) => c.speed_mps === s).sort((a, b) => a.dheading_deg - b.dheading_deg);
     const traces = METHODS.map((m, k) => {
-      const pts = cells.filter((c) => typeof c[m]?.mse_m2 === 'number' && c[m].mse_m2 > 0);
+      const pts = cells.filter((c) => {
+        const v = c.value(m);
+        return v && Number.isFinite(v.mean) && (!metric.log || v.mean > 0);
+      });
+      const vals = pts.map((c) => c.value(m));
       const st = METHOD_STYLE[m];
-      return {
+      const sds = vals.map((v) => (typeof v.sd === 'number' && Number.isFinite(v.sd) ? v.sd : 0));
+      const trace = {
         type: 'scatter',
         mode: 'lines+markers',
         name: st.name,
         x: pts.map((c) => c.dheading_deg),
-        y: pts.map((c) => c[m].mse_m2),
+        y: vals.map((v) => v.mean),
+        customdata: pts.map((c, j) => [c.n_turns, sds[j]]),
         line: { color: st.color, dash: st.dash, width: 2 },
         marker: { color: st.color, symbol: SYMBOLS[k], size: 8 },
-        hovertemplate: `${st.name}, Δψ %{x}°: %{y:.3g} m²<extra></extra>`,
+        hovertemplate:
+          key === 'in_sample'
+            ? `${st.name}, Δψ %{x}°: %{y:.3g} m²<extra></extra>`
+            : `${st.name}, Δψ %{x}°: %{y:.3g} ± %{customdata[1]:.2g} ${metric.unit} (n %{customdata[0]})<extra></extra>`,
       };
+      if (key !== 'in_sample') {
+        // On the log axis a bar cannot reach zero: its lower half stops at 1 % of the mean.
+        const minus = metric.log ? sds.map((sd, j) => Math.min(sd, 0.99 * vals[j].mean)) : sds;
+        trace.error_y = { type: 'data', symmetric: false, array: sds, arrayminus: minus, visible: true, color: st.color, thickness: 1.2, width: 4 };
+      }
+      return trace;
     });
     draw($(wanted[i]), traces, {
       ...baseLayout(),
       xaxis: axis('heading change Δψ (°)', { range: [0, 185], dtick: 20 }),
-      yaxis: axis('MSE (m², log)', { type: 'log', exponentformat: 'power' }),
+      yaxis: axis(metric.yTitle, metric.log ? { type: 'log', exponentformat: 'power' } : { rangemode: 'tozero' }),
       showlegend: true,
     });
   });
 }
 
-function renderTable(cmp) {
+const sorted = (cells) => [...(cells ?? [])].sort((a, b) => a.speed_mps - b.speed_mps || a.dheading_deg - b.dheading_deg);
+
+function msd(v, fmt) {
+  if (!v || typeof v.mean !== 'number') return '–';
+  return typeof v.sd === 'number' ? `${fmt(v.mean)} ± ${fmt(v.sd)}` : fmt(v.mean);
+}
+
+function renderPredictiveTable(cmp) {
+  const p2 = (v) => num(v, 2);
+  const cols = [
+    { key: 'speed_mps', label: 'speed (m/s)' },
+    { key: 'dheading_deg', label: 'Δψ (°)' },
+    { key: 'n_turns', label: 'n' },
+    { key: 'span_m', label: 'span (m)', fmt: (v) => num(v, 1) },
+    ...METHODS.map((m) => ({ get: (c) => c[m]?.path_m, label: `${m} path (m)`, fmt: (v) => msd(v, p2) })),
+    ...METHODS.map((m) => ({ get: (c) => c[m]?.yx_mse_m2, label: `${m} y(x) MSE (m²)`, fmt: (v) => msd(v, fmtSci) })),
+    {
+      get: (c) => c.corridor_coverage,
+      label: `AVK ${Math.round((cmp.predictive?.corridor?.share_nominal ?? 0.9) * 100)} % corridor holds`,
+      fmt: (v) => (v && typeof v.share === 'number' ? `${num(v.share * 100, 0)} % (${v.inside}/${v.total})` : '–'),
+    },
+  ];
+  fillTable($('cmp-table'), cols, sorted(cmp.predictive?.cells));
+  $('cmp-table').dataset.metric = 'predictive';
+}
+
+function renderInSampleTable(cmp) {
   const cols = [
     { key: 'speed_mps', label: 'speed (m/s)' },
     { key: 'dheading_deg', label: 'Δψ (°)' },
@@ -117,6 +267,6 @@ function renderTable(cmp) {
     ...METHODS.map((m) => ({ get: (c) => c[m]?.advance_error_m, label: `${m} advance err (m)`, fmt: (v) => num(v, 2) })),
     ...METHODS.map((m) => ({ get: (c) => c[m]?.transfer_error_m, label: `${m} transfer err (m)`, fmt: (v) => num(v, 2) })),
   ];
-  const rows = [...cmp.cells].sort((a, b) => a.speed_mps - b.speed_mps || a.dheading_deg - b.dheading_deg);
-  fillTable($('cmp-table'), cols, rows);
+  fillTable($('cmp-table'), cols, sorted(cmp.cells));
+  $('cmp-table').dataset.metric = 'in_sample';
 }

@@ -72,11 +72,12 @@ async function turnsCsv() {
   }
 }
 
-async function compareCsv() {
+/** The comparison as CSV: the held-out (predictive) table, or the thesis' in-sample one. */
+async function compareCsv(scoring) {
   if (!state.vehicleId || !(await needTurns())) return;
   try {
-    const { text } = await getText(`/vehicles/${encodeURIComponent(state.vehicleId)}/compare`, { format: 'csv' });
-    downloadText(text, `compare-${state.vehicleId}.csv`, 'text/csv');
+    const { text } = await getText(`/vehicles/${encodeURIComponent(state.vehicleId)}/compare`, { format: 'csv', scoring: scoring === 'in_sample' ? 'in_sample' : undefined });
+    downloadText(text, `compare-${state.vehicleId}${scoring === 'in_sample' ? '-in-sample' : ''}.csv`, 'text/csv');
     setStatus($('exp-status'), 'Comparison CSV saved.', 'ok');
   } catch (e) {
     setStatus($('exp-status'), e.message, 'error');
@@ -104,7 +105,8 @@ export function initExport() {
   $('exp-ckt-json').addEventListener('click', () => cktDownload('json'));
   $('exp-ckt-csv').addEventListener('click', () => cktDownload('csv'));
   $('exp-turns-csv').addEventListener('click', turnsCsv);
-  $('exp-compare-csv').addEventListener('click', compareCsv);
+  $('exp-compare-csv').addEventListener('click', () => compareCsv('predictive'));
+  $('exp-compare-insample-csv').addEventListener('click', () => compareCsv('in_sample'));
   on('missions', renderMissionChoice);
   onPlotsChanged(renderPlotList);
 }

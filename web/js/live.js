@@ -1,5 +1,6 @@
 // The Live view: the track in the local grid with the region and its buffer, the vehicle and its
-// heading, the turn in progress with its predictions and its commanded goal, the helm readout,
+// heading, the turn in progress with its predictions (AVK's with its corridor) and its commanded
+// goal, the helm readout,
 // the mission's turn-array grid and the event log.
 //
 // Drawing is decoupled from the stream: messages only mark the view dirty, and one
@@ -7,7 +8,7 @@
 // 72,000-point track at 10 Hz costs one plot update per nav message at most.
 
 import { state, on } from './state.js';
-import { C, METHOD_STYLE, baseLayout, equalAxes, draw, showEmpty } from './plots.js';
+import { C, METHOD_STYLE, baseLayout, equalAxes, draw, showEmpty, corridorTrace } from './plots.js';
 import { insetPolygon, ring, along } from './geometry.js';
 import { TrackDecimator } from './decimate.js';
 import { num, meanSd, headingDiff, el } from './format.js';
@@ -28,6 +29,7 @@ let recordedCache = { n: -1, x: [], y: [] };
 let trackCache = { version: -1, older: null, tail: null };
 let decimator = null;
 let turnPlotKey = null;
+let turnPlotStart = null; // the start time of the turn the close-up shows
 
 export function initLive() {
   plotEl = document.getElementById('live-plot');
@@ -184,6 +186,11 @@ function renderPlot() {
       hoverinfo: 'name',
     };
   };
+  // AVK's corridor: the server places it at the turn's start pose with the trajectory (sync.js
+  // asks /predict with x, y, heading), so it is drawn as it comes, in the same frame.
+  const avkCorridor = turn?.predictions?.avk?.corridor ?? null;
+  const band = corridorTrace(avkCorridor, { opacity: faded });
+  if (turn?.ended && avkCorridor) band.name += ' (last turn)';
   // Commanded: the goal heading from the turn's start. Measured: the heading from the vehicle.
   let goalRay = { x: [], y: [] };
   if (turn?.start) {
@@ -206,6 +213,7 @@ function renderPlot() {
     // The track: its simplified older part (unchanged between updates) and the raw newest minute.
     { type: 'scatter', mode: 'lines', name: 'track', legendgroup: 'track', showlegend: false, x: trk.older.x, y: trk.older.y, line: { color: C.blue, width: 1.5 }, hoverinfo: 'skip' },
     { type: 'scatter', mode: 'lines', name: 'track', legendgroup: 'track', x: trk.tail.x, y: trk.tail.y, line: { color: C.blue, width: 1.5 }, hoverinfo: 'skip' },
+    band,
     { type: 'scatter', mode: 'lines', name: turn?.ended ? `last turn (${turn.outcome})` : 'current turn', x: turnX, y: turnY, opacity: faded, line: { color: C.orange, width: 5 }, hoverinfo: 'skip' },
     pred('avk'),
     pred('model'),
@@ -229,12 +237,12 @@ function renderPlot() {
     showlegend: true,
   };
   draw(plotEl, traces, layout, { scrollZoom: true });
-  renderTurnPlot(turn, { turnX, turnY, goalRay, preds: [pred('avk'), pred('model'), pred('instantaneous')], nav, faded });
+  renderTurnPlot(turn, { turnX, turnY, goalRay, band, preds: [pred('avk'), pred('model'), pred('instantaneous')], nav, faded });
 }
 
 /** The turn close-up: the turn and its predictions at a scale where they can be told apart (the
  *  track plot shows the whole region). Redrawn only when something in it changed. */
-function renderTurnPlot(turn, { turnX, turnY, goalRay, preds, nav, faded }) {
+function renderTurnPlot(turn, { turnX, turnY, goalRay, band, preds, nav, faded }) {
   const el = document.getElementById('turn-plot');
   if (!turn?.start) {
     if (turnPlotKey !== 'empty') {
@@ -250,6 +258,7 @@ function renderTurnPlot(turn, { turnX, turnY, goalRay, preds, nav, faded }) {
   if (key === turnPlotKey) return;
   turnPlotKey = key;
   const traces = [
+    { ...band, showlegend: false },
     { type: 'scatter', mode: 'lines+markers', name: running ? 'turn so far' : `turn (${turn.outcome})`, x: turnX, y: turnY, line: { color: C.orange, width: 4 }, marker: { size: 4 }, opacity: faded },
     ...preds.map((t) => ({ ...t, showlegend: false, visible: t.visible === true })),
     { type: 'scatter', mode: 'lines', name: 'goal heading', showlegend: false, x: goalRay.x, y: goalRay.y, line: { color: C.vermillion, width: 2, dash: 'longdash' }, opacity: faded },
@@ -263,6 +272,10 @@ function renderTurnPlot(turn, { turnX, turnY, goalRay, preds, nav, faded }) {
       marker: { symbol: 'triangle-up', size: 14, angle: nav?.heading_deg ?? 0, color: C.yellow, line: { color: C.black, width: 2 } },
     },
   ];
+  // A new turn is a new figure: Plotly.react from the last turn's equal axes, somewhere else on
+  // the grid, could collapse the y axis to a line and keep it so for the whole turn.
+  if (turn.start.t !== turnPlotStart && el._fullLayout) window.Plotly?.purge(el);
+  turnPlotStart = turn.start.t;
   draw(el, traces, { ...baseLayout({ margin: { l: 44, r: 8, t: 8, b: 36 } }), ...equalAxes('x (m)', 'y (m)'), showlegend: false });
 }
 

@@ -176,3 +176,41 @@ export function onPlotClick(el, fn) {
   el.dataset.clickBound = '1';
   el.on?.('plotly_click', fn);
 }
+
+/** A colour with an alpha: '#rrggbb' -> 'rgba(r, g, b, a)'. */
+export function withAlpha(hex, alpha) {
+  const n = parseInt(hex.slice(1), 16);
+  return `rgba(${(n >> 16) & 255}, ${(n >> 8) & 255}, ${n & 255}, ${alpha})`;
+}
+
+/** The legend name of an AVK corridor: "AVK 90 % corridor (7 turns)". */
+export function corridorName(corridor) {
+  const pct = Math.round((corridor?.share ?? 0.9) * 100);
+  const n = corridor?.n_turns;
+  return `AVK ${pct} % corridor${typeof n === 'number' ? ` (${n} turn${n === 1 ? '' : 's'})` : ''}`;
+}
+
+/** The band of an AVK prediction's corridor (GET /predict: `corridor.left`, `corridor.right`, in
+ *  the frame of the prediction's trajectory) as one filled polygon: the left boundary, then the
+ *  right one reversed, closed. An empty trace (nothing drawn, no legend entry) when there is no
+ *  corridor, so a figure keeps the same traces in the same order either way. */
+export function corridorTrace(corridor, extra = {}) {
+  const left = corridor?.left ?? [];
+  const right = corridor?.right ?? [];
+  const has = left.length >= 2 && right.length >= 2;
+  const ring = has ? [...left, ...[...right].reverse(), left[0]] : [];
+  return {
+    type: 'scatter',
+    mode: 'lines',
+    name: has ? corridorName(corridor) : 'AVK corridor',
+    x: ring.map((p) => p[0]),
+    y: ring.map((p) => p[1]),
+    fill: 'toself',
+    fillcolor: withAlpha(METHOD_STYLE.avk.color, 0.16),
+    line: { color: withAlpha(METHOD_STYLE.avk.color, 0.35), width: 0.5 },
+    hoverinfo: 'name',
+    showlegend: has,
+    visible: has,
+    ...extra,
+  };
+}

@@ -179,6 +179,26 @@ test('the embedded example missions equal examples/', async () => {
   }
 });
 
+test('an AVK corridor is drawn as one closed band: the left boundary, then the right one reversed', async () => {
+  const { corridorTrace, corridorName } = await import(pathToFileURL(path.join(webDir, 'js/plots.js')).href);
+  const corridor = { share: 0.9, n_turns: 3, s_m: [0, 1, 2], half_width_m: [0, 0.5, 1], left: [[0, 0], [-0.5, 1], [-1, 2]], right: [[0, 0], [0.5, 1], [1, 2]] };
+  const t = corridorTrace(corridor);
+  assert.equal(t.fill, 'toself');
+  assert.equal(t.visible, true);
+  assert.equal(t.name, 'AVK 90 % corridor (3 turns)');
+  assert.deepEqual(t.x, [0, -0.5, -1, 1, 0.5, 0, 0]);
+  assert.deepEqual(t.y, [0, 1, 2, 2, 1, 0, 0]);
+  assert.match(t.fillcolor, /^rgba\(0, 0, 0, 0\.\d+\)$/, 'the AVK colour (black), semi-transparent');
+  assert.equal(corridorName({ share: 0.8, n_turns: 1 }), 'AVK 80 % corridor (1 turn)');
+  // No corridor (a single turn, an imported table without corridors): nothing drawn, no legend entry.
+  for (const none of [null, undefined, { share: 0.9, n_turns: 1, left: [], right: [] }]) {
+    const e = corridorTrace(none);
+    assert.equal(e.visible, false);
+    assert.equal(e.showlegend, false);
+    assert.deepEqual(e.x, []);
+  }
+});
+
 test('the page loads with no console errors, and every view opens', { timeout: slow(90000) }, async () => {
   phase = 'load';
   await page.goto(`${server.base}/?token=${server.token}&test=1#live`, { waitUntil: 'load', timeout: slow(20000) });
@@ -276,6 +296,18 @@ test('starting a small mission from the Mission view makes the vehicle move in L
   await page
     .waitForFunction(() => /predictions: .*avk/.test(document.getElementById('turn-status').textContent), null, { timeout: slow(10000) })
     .catch(() => {});
+  // When the last turn has its AVK prediction with a corridor, the band starts where the
+  // prediction does: both are placed at the turn's start pose by the server.
+  const live = await page.evaluate(() => {
+    const d = document.getElementById('live-plot').data ?? [];
+    const band = d.find((t) => / corridor /.test(t.name) && t.visible === true);
+    const avk = d.find((t) => /^AVK \(CKT\) prediction/.test(t.name) && t.visible === true);
+    return band && avk ? { band: [band.x[0], band.y[0]], avk: [avk.x[0], avk.y[0]], fill: band.fill } : null;
+  });
+  if (live) {
+    assert.equal(live.fill, 'toself');
+    assert.ok(Math.hypot(live.band[0] - live.avk[0], live.band[1] - live.avk[1]) < 1e-6, `the band starts at ${live.band}, the AVK prediction at ${live.avk}`);
+  }
   await sleep(500);
   await shot('live');
 });
@@ -297,6 +329,101 @@ test('a finished turn appears in the CKT view', { timeout: slow(90000) }, async 
   await until('all four cells', async () => (await page.$$('#ckt-table button[data-n]')).length >= 4, 15000, 500).catch(() => {});
   await sleep(500);
   await shot('ckt');
+});
+
+test("the CKT cell plot draws the AVK prediction's corridor for a cell of ≥ 2 turns", { timeout: slow(60000) }, async () => {
+  phase = 'ckt-corridor';
+  await goView('ckt');
+  // Every cell of the finished mission holds two turns (repeats 2).
+  const cell = await until('a CKT cell with n ≥ 2', async () => {
+    const found = await page.$$eval('#ckt-table button[data-n]', (bs) =>
+      bs.filter((b) => Number(b.dataset.n) >= 2).map((b) => ({ speed: Number(b.dataset.speed), dheading: Number(b.dataset.dheading), n: Number(b.dataset.n) })),
+    );
+    if (found.length > 0) return found[0];
+    await page.click('#ckt-refresh');
+    return null;
+  }, 30000, 1000);
+  const pred = await api(`/vehicles/sim-usim/predict?speed=${cell.speed}&dheading=${cell.dheading}&method=avk`);
+  assert.ok(pred.corridor, 'the server sends a corridor for a cell of two turns');
+  await page.click(`#ckt-table button[data-speed="${cell.speed}"][data-dheading="${cell.dheading}"]`);
+  const band = await until('the corridor in the cell plot', () =>
+    page.evaluate(({ speed, dheading }) => {
+      const plot = document.getElementById('ckt-cell-plot');
+      if (plot.dataset.cell !== `${speed}|${dheading}`) return null;
+      const t = (plot.data ?? []).find((d) => d.fill === 'toself' && d.visible === true);
+      return t ? { name: t.name, x: t.x, y: t.y } : null;
+    }, cell),
+  15000, 250);
+  assert.equal(band.name, `AVK 90 % corridor (${pred.corridor.n_turns} turns)`);
+  const ring = [...pred.corridor.left, ...[...pred.corridor.right].reverse(), pred.corridor.left[0]];
+  assert.equal(band.x.length, ring.length, 'the left boundary, the right one reversed, closed');
+  ring.forEach((p, i) => {
+    assert.ok(Math.abs(band.x[i] - p[0]) < 1e-9 && Math.abs(band.y[i] - p[1]) < 1e-9, `vertex ${i}: (${band.x[i]}, ${band.y[i]}) vs (${p[0]}, ${p[1]})`);
+  });
+  // The short-of-goal warning follows the prediction's flag.
+  assert.equal(await page.isHidden('#ckt-cell-warning'), pred.short_of_goal !== true);
+  await shot('ckt-corridor');
+});
+
+test('the Compare view plots held-out path distance by default and switches to the thesis metrics', { timeout: slow(60000) }, async () => {
+  phase = 'compare-metric';
+  await goView('compare');
+  const cmp = await api('/vehicles/sim-usim/compare');
+  assert.equal(cmp.predictive?.default_metric, 'path_m');
+  assert.equal(await page.inputValue('#cmp-metric'), 'path_m', 'the fair comparison is the default');
+  const speed = Math.min(...cmp.predictive.cells.map((c) => c.speed_mps));
+  const id = `cmp-plot-${String(speed).replace('.', '_')}`;
+  // Reads the plot of the lowest speed once it shows `metric`.
+  const plotOf = (metric) =>
+    until(`the ${metric} plot`, () =>
+      page.evaluate(({ id, metric }) => {
+        const e = document.getElementById(id);
+        if (!e || e.dataset.metric !== metric || !e._fullLayout || !e.data) return null;
+        return {
+          yTitle: e.layout.yaxis.title.text,
+          yType: e._fullLayout.yaxis.type,
+          traces: e.data.map((t) => ({ name: t.name, x: [...t.x], y: [...t.y], err: t.error_y ? [...t.error_y.array] : null })),
+          median: document.getElementById('cmp-median').textContent,
+          corridor: document.getElementById('cmp-corridor').textContent,
+          table: document.getElementById('cmp-table').dataset.metric,
+        };
+      }, { id, metric }),
+    15000, 250);
+
+  const path = await plotOf('path_m');
+  assert.match(path.yTitle, /distance/);
+  assert.equal(path.yType, 'linear');
+  assert.match(path.median, /^Median path distance \(held out\): AVK \(CKT\) \d/);
+  assert.match(path.corridor, /^90 % corridor/);
+  assert.equal(path.table, 'predictive');
+  // The plotted points and error bars are the API's held-out means and sds.
+  const avk = path.traces.find((t) => t.name === 'AVK (CKT)');
+  const cells = cmp.predictive.cells.filter((c) => c.speed_mps === speed && c.avk).sort((a, b) => a.dheading_deg - b.dheading_deg);
+  assert.deepEqual(avk.x, cells.map((c) => c.dheading_deg));
+  assert.deepEqual(avk.y, cells.map((c) => c.avk.path_m.mean));
+  assert.deepEqual(avk.err, cells.map((c) => c.avk.path_m.sd ?? 0));
+  assert.ok(path.traces.find((t) => t.name === 'instantaneous').y.length > 0, 'the instantaneous assumption is plotted');
+
+  await page.selectOption('#cmp-metric', 'yx_mse_m2');
+  const yx = await plotOf('yx_mse_m2');
+  assert.match(yx.yTitle, /y\(x\) MSE/);
+  assert.equal(yx.yType, 'log');
+  assert.match(yx.median, /^Median y\(x\) MSE \(held out\)/);
+  assert.deepEqual(yx.traces.find((t) => t.name === 'AVK (CKT)').y, cells.filter((c) => c.avk.yx_mse_m2.mean > 0).map((c) => c.avk.yx_mse_m2.mean));
+
+  await page.selectOption('#cmp-metric', 'in_sample');
+  const thesis = await plotOf('in_sample');
+  assert.equal(thesis.yTitle, 'MSE (m², log)');
+  assert.equal(thesis.yType, 'log');
+  assert.match(thesis.median, /^Median MSE \(thesis, in sample\)/);
+  assert.equal(thesis.table, 'in_sample');
+  assert.ok(thesis.traces.every((t) => t.err === null), 'the thesis figure has no error bars');
+  const inSample = cmp.cells.filter((c) => c.speed_mps === speed && c.avk?.mse_m2 > 0).sort((a, b) => a.dheading_deg - b.dheading_deg);
+  assert.deepEqual(thesis.traces.find((t) => t.name === 'AVK (CKT)').y, inSample.map((c) => c.avk.mse_m2));
+
+  // Back to the default for the screenshots that follow.
+  await page.selectOption('#cmp-metric', 'path_m');
+  await plotOf('path_m');
 });
 
 test('the CKT JSON export downloads a file that `avk ckt import` accepts', { timeout: slow(60000) }, async () => {
