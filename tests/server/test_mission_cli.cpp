@@ -183,7 +183,7 @@ TEST_F(MissionCli, ExportedTableGrowsWithSpeedAndHeadingChangeAsPhysicsSays) {
   // its turning circle widens with speed: advance grows with speed for every heading change,
   // transfer for the large ones. (The M200's hull-lift damping grows with speed and keeps its
   // turning circle nearly the same at every speed, so this ordering is the Heron's.)
-  ASSERT_EQ(run({"mission", "run", "--config", example("thesis-fig4-1.json"), "--db", db_.path(),
+  ASSERT_EQ(run({"mission", "run", "--config", fixed_threshold_mission("fixed"), "--db", db_.path(),
                  "--sim", "--vehicle", "catamaran:heron", "--quiet"})
                 .rc,
             0);
