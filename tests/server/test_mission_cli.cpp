@@ -59,7 +59,7 @@ class MissionCli : public ::testing::Test {
   // The Figure 4-1 mission (changed by `edit`) with the fixed 5 deg completion threshold it had
   // before completion became relative to the commanded change (completion_fraction 1 gives
   // min(5, |goal|) = 5 deg for every heading change of the grid), written next to the database.
-  // The containment, direction and table-shape scenarios below were laid out on that timeline:
+  // The direction and table-shape scenarios below were laid out on that timeline:
   // which turn meets the buffer, and the GNSS noise each single M200 turn of a cell draws, follow
   // from how long every earlier turn took. What they test does not depend on how a 10 deg turn
   // ends, which test_small_turns.cpp covers.
