@@ -14,22 +14,11 @@ namespace kin = avk::kinematics;
 
 namespace {
 
-// Where each cell's turns started: the thesis form is not rotation invariant, so it is asked to
-// predict from the course the vehicle actually held (the circular mean of the cell's turns).
-double cell_course_deg(const kin::Ckt& table, double speed, double dheading) {
-  double sx = 0.0, sy = 0.0;
-  for (const auto& c : table.cells()) {
-    if (std::abs(c.speed_mps - speed) > 1e-9 || std::abs(c.dheading_deg - dheading) > 1e-9)
-      continue;
-    for (const auto& t : c.turns) {
-      sx += std::sin(kin::deg_to_rad(t.meta().initial_heading_deg));
-      sy += std::cos(kin::deg_to_rad(t.meta().initial_heading_deg));
-    }
-  }
-  return sx == 0.0 && sy == 0.0 ? 0.0 : kin::heading_of_deg(sx, sy);
-}
-
-double test_course_deg(const std::vector<kin::TurnSequence>& turns, double speed, double dheading) {
+// Where a cell's turns started: the thesis form is not rotation invariant, so it is asked to
+// predict from the course the vehicle actually held (the circular mean of the turns' initial
+// headings, over the turns commanded at this speed and heading change).
+double start_course_deg(const std::vector<kin::TurnSequence>& turns, double speed,
+                        double dheading) {
   double sx = 0.0, sy = 0.0;
   for (const auto& t : turns) {
     if (std::abs(t.meta().commanded_speed_mps - speed) > 0.01 ||
@@ -79,7 +68,7 @@ Result<Comparison> compare(Context& ctx, const CompareQuery& q) {
   if (c.model) {
     predictor = [&](double u, double d) {
       return kin::predict_normalized_turn(c.model->model, u, d, q.completion_threshold_deg,
-                                          cell_course_deg(c.table, u, d));
+                                          start_course_deg(turns, u, d));
     };
   }
   c.cells = kin::compare_predictions(c.table, c.model ? &predictor : nullptr);
@@ -97,7 +86,7 @@ Result<Comparison> compare(Context& ctx, const CompareQuery& q) {
     if (c.model) {
       test_predictor = [&](double u, double d) {
         return kin::predict_normalized_turn(c.model->model, u, d, q.completion_threshold_deg,
-                                            test_course_deg(test, u, d));
+                                            start_course_deg(test, u, d));
       };
     }
     c.test_cells = kin::evaluate_table(c.table, test, c.model ? &test_predictor : nullptr, po);

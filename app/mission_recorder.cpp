@@ -50,9 +50,9 @@ void MissionRecorder::flush() {
 }
 
 void MissionRecorder::on_turn(mission::TurnOutcome& t) {
-  t.stored_id = store_.store_turn(
-      mission_id_, t.raw, t.status, t.reason,
-      {t.condition_set_time_s, t.start_heading_error_deg, t.start_yaw_rate_dps});
+  t.stored_id =
+      store_.store_turn(mission_id_, t.raw, t.status, t.reason,
+                        {t.condition_set_time_s, t.start_heading_error_deg, t.start_yaw_rate_dps});
 }
 
 void MissionRecorder::on_condition_set(const mission::ConditionSetEpisode& e) {

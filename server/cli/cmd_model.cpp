@@ -148,6 +148,18 @@ int model_show(const std::vector<std::string>& rest, Io& io) {
   return 0;
 }
 
+// One method's mean ± sd over a cell's held-out turns, in a 17-wide column; "-" without it.
+std::string held_out_text(const kin::HeldOutScores* s, bool path) {
+  std::ostringstream o;
+  if (!s) {
+    o << std::setw(17) << "-";
+    return o.str();
+  }
+  const kin::MeanSd m = path ? s->path() : s->yx_mse();
+  o << std::setw(17) << (fixed(m.mean, path ? 2 : 3) + " ± " + fixed(m.sd, path ? 2 : 3));
+  return o.str();
+}
+
 // The leave-one-out table: each method's mean ± sd over the held-out turns of every cell.
 void print_predictive(const app::Comparison& c, bool path, Io& io) {
   io.out << "vehicle " << c.vehicle_id;
@@ -158,16 +170,7 @@ void print_predictive(const app::Comparison& c, bool path, Io& io) {
          << (path ? "mean distance at equal arc length, m" : "thesis y(x) MSE, m^2") << "\n"
          << "  speed  dheading   n              AVK            model    instantaneous   "
             "corridor\n";
-  const auto cell_txt = [path](const kin::HeldOutScores* s) {
-    std::ostringstream o;
-    if (!s) {
-      o << std::setw(17) << "-";
-      return o.str();
-    }
-    const kin::MeanSd m = path ? s->path() : s->yx_mse();
-    o << std::setw(17) << (fixed(m.mean, path ? 2 : 3) + " ± " + fixed(m.sd, path ? 2 : 3));
-    return o.str();
-  };
+  const auto cell_txt = [path](const kin::HeldOutScores* s) { return held_out_text(s, path); };
   for (const auto& cell : c.predictive) {
     std::string cov = "-";
     if (cell.coverage && cell.coverage->total)
@@ -200,16 +203,7 @@ void print_test_cells(const app::Comparison& c, bool path, Io& io) {
   io.out << "\nthe table on the test missions' turns (" << (path ? "m" : "m^2") << ")\n"
          << "  speed  dheading   n  grid              AVK            model    instantaneous\n";
   for (const auto& cell : c.test_cells) {
-    const auto txt = [path](const kin::HeldOutScores* s) {
-      std::ostringstream o;
-      if (!s) {
-        o << std::setw(17) << "-";
-        return o.str();
-      }
-      const kin::MeanSd m = path ? s->path() : s->yx_mse();
-      o << std::setw(17) << (fixed(m.mean, path ? 2 : 3) + " ± " + fixed(m.sd, path ? 2 : 3));
-      return o.str();
-    };
+    const auto txt = [path](const kin::HeldOutScores* s) { return held_out_text(s, path); };
     io.out << std::setw(7) << fixed(cell.speed_mps, 2) << std::setw(10)
            << fixed(cell.dheading_deg, 0) << std::setw(4) << cell.n_turns << std::setw(6)
            << (cell.on_grid ? "on" : "off") << txt(&cell.avk)
