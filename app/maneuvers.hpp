@@ -1,0 +1,75 @@
+#pragma once
+// Maneuver evaluation as guidance asks for it (thesis §1.1, §6.1, §6.2): every candidate heading
+// change predicted by one method (the vehicle's CKT, its black-box model, or the instantaneous
+// assumption), placed at the vehicle's pose, scored by closest point of approach to each contact,
+// and the choice. Also the evaluation of a maneuver in progress. Commands nothing.
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/predict.hpp"
+#include "app/result.hpp"
+#include "kinematics/maneuver.hpp"
+
+namespace avk::app {
+
+class Context;
+
+struct ManeuverQuery {
+  std::string vehicle_id;
+  kinematics::Pose own;           // position (local grid) and heading now
+  double speed_mps = 1.0;         // steady speed now
+  std::vector<kinematics::Contact> contacts;
+  double standoff_m = 10.0;
+  double horizon_s = 120.0;
+  // Candidate heading changes (deg, + starboard); empty: -180..180 in candidate_step_deg.
+  std::vector<double> candidates_deg;
+  double candidate_step_deg = 5.0;
+  // The speed of every candidate; none: the current speed.
+  std::optional<double> candidate_speed_mps;
+  PredictionMethod method = PredictionMethod::avk;
+  std::optional<std::int64_t> model_id;  // model: this one; none: the vehicle's newest
+  double corridor_share = kinematics::kDefaultCorridorShare;
+  bool use_corridor = true;  // avk: judge by the corridor's nearer edge
+};
+
+struct ManeuverEvaluation {
+  ManeuverQuery query;
+  std::vector<kinematics::CandidateEvaluation> candidates;  // in the order asked
+  std::optional<std::size_t> chosen;                        // index into candidates
+  std::optional<std::int64_t> model_id;                     // model: the model that answered
+  std::optional<std::string> table_source;                  // avk: "turns" or "imported"
+  // avk: the times along the trajectories come from the recorded turns (else constant speed: an
+  // imported table without timing).
+  bool timed_by_turns = false;
+};
+
+// invalid_argument names the field (speed, own, contacts/K/..., standoff, horizon, candidates,
+// candidate_speed, corridor); not_found without a table (avk) or model (model).
+Result<ManeuverEvaluation> evaluate_maneuvers(Context& ctx, const ManeuverQuery& q);
+
+struct OngoingQuery {
+  std::string vehicle_id;
+  kinematics::Pose start;      // where the maneuver was commanded
+  double dheading_deg = 0.0;   // + starboard
+  double speed_mps = 1.0;
+  double elapsed_s = 0.0;      // since it was commanded
+  std::optional<kinematics::Point> measured;  // the position now
+  PredictionMethod method = PredictionMethod::avk;
+  std::optional<std::int64_t> model_id;
+  double corridor_share = kinematics::kDefaultCorridorShare;
+  double horizon_s = 120.0;  // how far the prediction runs
+};
+
+struct OngoingManeuver {
+  OngoingQuery query;
+  kinematics::OngoingEvaluation evaluation;
+  kinematics::TimedPath prediction;  // the whole placed prediction
+  std::optional<std::int64_t> model_id;
+};
+
+Result<OngoingManeuver> evaluate_ongoing(Context& ctx, const OngoingQuery& q);
+
+}  // namespace avk::app

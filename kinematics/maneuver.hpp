@@ -1,0 +1,133 @@
+#pragma once
+// Choosing an avoidance maneuver by predicted closest point of approach (CPA), thesis §1.1 and
+// §6.1: each candidate heading change is a predicted trajectory in time; each contact moves on a
+// straight line; the candidate clears when its CPA to every contact is at least the standoff.
+//
+// Frames: the local grid (x east, y north, metres), headings in degrees clockwise from north,
+// times in seconds from the moment the maneuver is commanded (t = 0).
+
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include "kinematics/geometry.hpp"
+#include "kinematics/turn_timing.hpp"
+
+namespace avk::kinematics {
+
+struct TimedPoint {
+  double t_s = 0.0;
+  double x_m = 0.0;
+  double y_m = 0.0;
+  friend bool operator==(const TimedPoint&, const TimedPoint&) = default;
+};
+// Times non-decreasing; between two points the vehicle moves linearly in time.
+using TimedPath = std::vector<TimedPoint>;
+
+// A contact on a straight line at constant speed; its position at t = 0.
+struct Contact {
+  double x_m = 0.0;
+  double y_m = 0.0;
+  double course_deg = 0.0;  // clockwise from north
+  double speed_mps = 0.0;
+};
+Point contact_position(const Contact& c, double t_s);
+
+// A predicted maneuver in the normalised frame (start at the origin heading north; a left turn
+// already reflected): the path in time until it has settled on its new heading, and the lateral
+// half width of the uncertainty corridor at each point (empty: no corridor).
+struct PredictedManeuver {
+  double dheading_deg = 0.0;  // signed: + starboard
+  double speed_mps = 0.0;
+  TimedPath path;
+  std::vector<double> half_width_m;  // empty, or one per path point
+  bool timed_by_turns = false;       // the times come from recorded turns, not constant speed
+};
+
+// A normalised trajectory given times along it: from the timing when there is one, else at
+// constant speed. Half widths, when given, are per trajectory vertex (CorridorBand::half_width_m).
+PredictedManeuver timed_maneuver(double dheading_deg, double speed_mps, const Polyline& trajectory,
+                                 const std::optional<TurnTiming>& timing,
+                                 std::vector<double> half_width_m = {});
+
+// The path continued from its last point along its final heading (dheading in the normalised
+// frame) at speed_mps up to horizon_s, so a CPA looks as far ahead as asked. The corridor's last
+// half width is carried along. Paths already reaching the horizon are cut there.
+PredictedManeuver extended_to_horizon(PredictedManeuver m, double horizon_s);
+
+// The normalised path placed at a pose (rotated to its heading, translated to its position).
+TimedPath placed(const TimedPath& normalized, const Pose& pose);
+
+struct Approach {
+  double distance_m = 0.0;
+  double time_s = 0.0;
+};
+
+// The closest approach over the path's time span (exact: the relative motion is linear on each
+// segment). A path of one point stands still there. Throws std::invalid_argument for an empty
+// path.
+Approach closest_approach(const TimedPath& own, const Contact& contact);
+
+// The conservative figure: the smallest distance to the contact minus the corridor's half width
+// at that time (floored at 0), i.e. the distance from the corridor's nearer edge. Evaluated at each
+// segment's ends and at the segment's closest approach. Throws std::invalid_argument when the
+// half widths do not match the path.
+Approach closest_approach_of_corridor(const TimedPath& own, const std::vector<double>& half_width_m,
+                                      const Contact& contact);
+
+struct ContactApproach {
+  Approach cpa;                       // of the predicted path
+  std::optional<Approach> edge_cpa;   // of the corridor's nearer edge, when there is a corridor
+};
+
+struct ManeuverProblem {
+  Pose own;                       // position and heading now, steady
+  std::vector<Contact> contacts;
+  double standoff_m = 10.0;
+  double horizon_s = 120.0;
+  // Judge a candidate by its corridor's nearer edge when it has a corridor.
+  bool use_corridor = true;
+};
+
+struct CandidateEvaluation {
+  double dheading_deg = 0.0;
+  double speed_mps = 0.0;
+  TimedPath path;                    // world frame, to the horizon
+  std::vector<double> half_width_m;  // per path point; empty without a corridor
+  std::vector<ContactApproach> contacts;
+  double min_cpa_m = 0.0;                 // over contacts
+  std::optional<double> min_edge_cpa_m;   // over contacts, with a corridor
+  bool clears = false;  // the judged figure (edge when used and present) >= standoff for all
+};
+
+// One candidate against the problem's contacts.
+CandidateEvaluation evaluate_candidate(const ManeuverProblem& problem,
+                                       const PredictedManeuver& normalized);
+
+// The rule: the smallest |dheading| that clears; between equal |dheading|, starboard (+). None
+// when no candidate clears.
+std::optional<std::size_t> choose_maneuver(const std::vector<CandidateEvaluation>& candidates);
+
+// -180, -180 + step, ..., 180 (73 candidates at the default 5 deg). Throws std::invalid_argument
+// unless 0 < step <= 180.
+std::vector<double> candidate_dheadings_deg(double step_deg = 5.0);
+
+// A maneuver in progress (§6.2): where the vehicle should be after elapsed_s along the placed
+// prediction, what remains of it, and how far a measured position is from it.
+struct OngoingEvaluation {
+  double elapsed_s = 0.0;
+  Point expected;                      // on the prediction at elapsed_s
+  TimedPath remaining;                 // from expected to the end of the prediction
+  std::optional<double> half_width_m;  // the corridor at elapsed_s
+  std::optional<double> deviation_m;   // measured to expected (along-time error)
+  std::optional<double> cross_track_m; // measured to the nearest point of the whole prediction
+  std::optional<bool> inside_corridor; // cross-track within the half width at elapsed_s
+};
+
+// Throws std::invalid_argument for an empty path, mismatched half widths or a negative or
+// non-finite elapsed time. Past the path's end the expected position is its last point.
+OngoingEvaluation evaluate_ongoing(const TimedPath& placed_path,
+                                   const std::vector<double>& half_width_m, double elapsed_s,
+                                   std::optional<Point> measured);
+
+}  // namespace avk::kinematics
