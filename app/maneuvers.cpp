@@ -70,7 +70,7 @@ Result<kin::PredictedManeuver> predict_one(const Predictor& p, double speed_mps,
       }
       std::vector<double> widths;
       if (t.corridor && t.corridor->n_turns >= 2)
-        widths = kin::corridor_band(t.trajectory, *t.corridor, p.corridor_share).half_width_m;
+        widths = kin::corridor_half_widths_m(t.trajectory, *t.corridor, p.corridor_share);
       return kin::timed_maneuver(dheading_deg, speed_mps, t.trajectory, t.timing,
                                  std::move(widths));
     }
