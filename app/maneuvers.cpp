@@ -81,8 +81,12 @@ Result<kin::PredictedManeuver> predict_one(const Predictor& p, double speed_mps,
       kin::PredictOptions o;
       o.steps = static_cast<std::size_t>(std::ceil(horizon_s * m.rate_hz));
       const double d = std::abs(dheading_deg);
-      const auto steps =
-          kin::predict(m, kin::steady_history(m, 0.0), d, {0.0, 0.0, 0.0}, speed_mps, o);
+      std::vector<kin::PredictedStep> steps;
+      try {
+        steps = kin::predict(m, kin::steady_history(m, 0.0), d, {0.0, 0.0, 0.0}, speed_mps, o);
+      } catch (const std::invalid_argument& e) {
+        return internal_error("model " + std::to_string(p.model->id) + ": " + e.what());
+      }
       kin::PredictedManeuver out;
       out.dheading_deg = dheading_deg;
       out.speed_mps = speed_mps;

@@ -59,7 +59,8 @@ PredictedManeuver extended_to_horizon(PredictedManeuver m, double horizon_s) {
     return m;
   }
   const TimedPoint last = m.path.back();
-  if (last.t_s >= horizon_s) return m;
+  // A path that ends within rounding of the horizon needs no run-on of a nanometre.
+  if (last.t_s >= horizon_s - 1e-9) return m;
   // Past the prediction the vehicle holds its new heading (the goal, as the CKT's trajectories
   // end on it) at the commanded speed.
   const double run = (horizon_s - last.t_s) * m.speed_mps;
