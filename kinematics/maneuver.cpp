@@ -135,9 +135,9 @@ std::pair<Approach, std::optional<Approach>> approaches(const TimedPath& own,
     if (s.distance2_m2 < best2) best2 = s.distance2_m2, best_t = s.time_s;
     if (!half_width_m) continue;
     const double w0 = (*half_width_m)[i - 1], w1 = (*half_width_m)[i];
-    // The edge can only come nearer than it is where the path is nearest less the widest width.
-    const double lower = std::sqrt(s.distance2_m2) - std::max(w0, w1);
-    if (lower >= edge->distance_m) continue;
+    // On this segment the edge comes no nearer than the path does less the widest half width.
+    const double reach = edge->distance_m + std::max(w0, w1);
+    if (s.distance2_m2 >= reach * reach) continue;
     // The half width changes by centimetres along a segment, so the smallest distance less width
     // is at an end or at the segment's closest approach.
     const double at_end = edge_of(distance2_at(own[i], c), w1);
