@@ -358,11 +358,14 @@ TEST(M200Mission, StaleCommandsStopTheBoatAndTheWatchdogStopsItWhenTheBackseatIs
     clock.sleep_until(clock.now_s() + 0.25);
   }
   ASSERT_GT(std::abs(emulator.status().left_pct), 1.0);
+  // Counted from here: on a starved machine a $PYDIR can come late while commanding (at x10 a
+  // stall of 0.1 s is a second of boat time), and the watchdog rightly trips on that.
+  const std::uint64_t trips_commanding = emulator.status().watchdog_trips;
   clock.sleep_until(clock.now_s() + 2.5);
   EXPECT_EQ(m200.status().failsafe, vehicle::Failsafe::command_stale);
   EXPECT_EQ(emulator.status().left_pct, 0.0);
   EXPECT_EQ(emulator.status().right_pct, 0.0);
-  EXPECT_EQ(emulator.status().watchdog_trips, 0u);
+  EXPECT_EQ(emulator.status().watchdog_trips, trips_commanding);
 
   // Commanding again, then the backseat vanishes mid-command: the watchdog zeroes the motors
   // within 1.1 s of the last $PYDIR.
@@ -374,10 +377,16 @@ TEST(M200Mission, StaleCommandsStopTheBoatAndTheWatchdogStopsItWhenTheBackseatIs
   ASSERT_GT(std::abs(emulator.status().left_pct), 1.0);
   m200.stop();
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
-  while (emulator.status().watchdog_trips == 0 && std::chrono::steady_clock::now() < deadline)
+  // The trip that answers the silence is the one after the last $PYDIR (an earlier one may have
+  // answered a stall while commanding).
+  const auto tripped_after_last_pydir = [&] {
+    const auto s = emulator.status();
+    return s.last_pydir_s && s.last_watchdog_trip_s && *s.last_watchdog_trip_s > *s.last_pydir_s;
+  };
+  while (!tripped_after_last_pydir() && std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   const auto es = emulator.status();
-  ASSERT_EQ(es.watchdog_trips, 1u);
+  ASSERT_GE(es.watchdog_trips, 1u);
   ASSERT_TRUE(es.last_pydir_s && es.last_watchdog_trip_s);
   std::printf("watchdog zeroed the motors %.3f s after the last $PYDIR\n",
               *es.last_watchdog_trip_s - *es.last_pydir_s);
