@@ -464,8 +464,9 @@ constexpr double kMinRangeM = 15.0, kMaxRangeM = 80.0;
 constexpr double kMinSpeedMps = 0.5, kMaxGenSpeedMps = 1.5;
 constexpr double kMinAimS = 15.0, kMaxAimS = 60.0;
 
-double rounded(double v, double step) {
-  return std::round(v / step) * step;
+// v rounded to 1/per_unit (per_unit whole), so that it prints as short as it reads: 36.3.
+double rounded(double v, double per_unit) {
+  return std::round(v * per_unit) / per_unit;
 }
 
 double course_held_cpa_m(const EncounterScenario& s, const kin::Contact& c) {
@@ -515,9 +516,9 @@ std::optional<kin::Contact> aimed_contact(std::mt19937_64& rng, EncounterKind ki
   const double c = kin::deg_to_rad(course);
   kin::Contact out;
   out.course_deg = rounded(kin::wrap360_deg(course), 1.0);
-  out.speed_mps = rounded(speed, 0.05);
-  out.x_m = rounded(aim_x - std::sin(c) * speed * aim_s, 0.1);
-  out.y_m = rounded(aim_y - std::cos(c) * speed * aim_s, 0.1);
+  out.speed_mps = rounded(speed, 20.0);
+  out.x_m = rounded(aim_x - std::sin(c) * speed * aim_s, 10.0);
+  out.y_m = rounded(aim_y - std::cos(c) * speed * aim_s, 10.0);
   const double range = std::hypot(out.x_m, out.y_m);
   if (range < kMinRangeM || range > kMaxRangeM) return std::nullopt;
   if (out.speed_mps < kMinSpeedMps || out.speed_mps > kMaxGenSpeedMps) return std::nullopt;
@@ -546,7 +547,7 @@ Result<EncounterFile> generate_encounters(std::uint64_t seed, int count) {
     // Overtaking needs a slower contact and being overtaken a faster one, both within 0.5-1.5.
     const double lo = kind == EncounterKind::overtaking ? 0.8 : kMinSpeedMps;
     const double hi = kind == EncounterKind::overtaken ? 1.2 : kMaxGenSpeedMps;
-    s.own_speed_mps = rounded(std::uniform_real_distribution<double>(lo, hi)(rng), 0.05);
+    s.own_speed_mps = rounded(std::uniform_real_distribution<double>(lo, hi)(rng), 20.0);
     const int contacts =
         kind == EncounterKind::several ? std::uniform_int_distribution<int>(2, 3)(rng) : 1;
     for (int k = 0; k < contacts; ++k) {
