@@ -54,8 +54,8 @@ struct SimulatedManeuverQuery {
 };
 
 struct SimulatedManeuver {
-  kinematics::TimedPath track;                 // world frame, t = 0 at the command
-  std::vector<kinematics::Approach> cpa;       // actual, per contact
+  kinematics::TimedPath track;            // world frame, t = 0 at the command
+  std::vector<kinematics::Approach> cpa;  // actual, per contact
   double min_cpa_m = 0.0;
 };
 

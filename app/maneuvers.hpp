@@ -19,8 +19,8 @@ class Context;
 
 struct ManeuverQuery {
   std::string vehicle_id;
-  kinematics::Pose own;           // position (local grid) and heading now
-  double speed_mps = 1.0;         // steady speed now
+  kinematics::Pose own;    // position (local grid) and heading now
+  double speed_mps = 1.0;  // steady speed now
   std::vector<kinematics::Contact> contacts;
   double standoff_m = 10.0;
   double horizon_s = 120.0;
@@ -46,16 +46,17 @@ struct ManeuverEvaluation {
   bool timed_by_turns = false;
 };
 
-// invalid_argument names the field (speed, own, contacts/K/..., standoff, horizon, candidates,
-// candidate_speed, corridor); not_found without a table (avk) or model (model).
+// invalid_argument names the field as a JSON pointer of the request document (/own/speed_mps,
+// /contacts/K/speed_mps, /standoff_m, /horizon_s, /candidates_deg/K, /candidate_step_deg,
+// /candidate_speed_mps, /corridor); not_found without a table (avk) or model (model).
 Result<ManeuverEvaluation> evaluate_maneuvers(Context& ctx, const ManeuverQuery& q);
 
 struct OngoingQuery {
   std::string vehicle_id;
-  kinematics::Pose start;      // where the maneuver was commanded
-  double dheading_deg = 0.0;   // + starboard
+  kinematics::Pose start;     // where the maneuver was commanded
+  double dheading_deg = 0.0;  // + starboard
   double speed_mps = 1.0;
-  double elapsed_s = 0.0;      // since it was commanded
+  double elapsed_s = 0.0;                     // since it was commanded
   std::optional<kinematics::Point> measured;  // the position now
   PredictionMethod method = PredictionMethod::avk;
   std::optional<std::int64_t> model_id;
@@ -66,10 +67,13 @@ struct OngoingQuery {
 struct OngoingManeuver {
   OngoingQuery query;
   kinematics::OngoingEvaluation evaluation;
-  kinematics::TimedPath prediction;  // the whole placed prediction
+  kinematics::TimedPath prediction;  // the whole placed prediction, to the horizon
+  std::vector<double> half_width_m;  // the corridor per prediction point; empty without one
   std::optional<std::int64_t> model_id;
 };
 
+// invalid_argument names the query parameter (x, dheading, speed, elapsed, horizon, mx,
+// corridor); not_found as evaluate_maneuvers.
 Result<OngoingManeuver> evaluate_ongoing(Context& ctx, const OngoingQuery& q);
 
 }  // namespace avk::app

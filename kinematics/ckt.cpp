@@ -282,6 +282,7 @@ Ckt Ckt::build(const std::vector<TurnSequence>& turns, const CktOptions& options
       }
     }
     c.profile = heading_profile(c.trajectory, c.dheading_deg);
+    c.timing = timing_of(arc_mean, c.speed_mps, c.trajectory);
   }
   return table;
 }
@@ -330,10 +331,12 @@ std::optional<std::pair<double, double>> Ckt::speed_range_mps() const {
 namespace {
 
 using CorridorSources = std::vector<std::pair<const std::optional<Corridor>*, double>>;
+using TimingSources = std::vector<std::pair<const std::optional<TurnTiming>*, double>>;
 
 struct RowAnswer {
   std::vector<WeightedProfile> profiles;
   CorridorSources corridors;  // the same cells and weights as profiles
+  TimingSources timings;      // likewise
   bool short_of_goal = false;
   double length_m = 0.0;
   AdvanceTransfer at;
@@ -351,6 +354,7 @@ RowAnswer answer_row(const std::vector<const CktCell*>& row, double d) {
     if (std::abs(c->dheading_deg - d) <= kGridEps) {
       a.profiles.push_back({&c->profile, 1.0});
       a.corridors.push_back({&c->corridor, 1.0});
+      a.timings.push_back({&c->timing, 1.0});
       a.short_of_goal = c->short_of_goal;
       a.length_m = c->profile.length_m;
       a.at = {c->advance_m.mean, c->transfer_m.mean};
@@ -364,6 +368,7 @@ RowAnswer answer_row(const std::vector<const CktCell*>& row, double d) {
     const double w = (d - lo->dheading_deg) / (hi->dheading_deg - lo->dheading_deg);
     a.profiles = {{&lo->profile, 1.0 - w}, {&hi->profile, w}};
     a.corridors = {{&lo->corridor, 1.0 - w}, {&hi->corridor, w}};
+    a.timings = {{&lo->timing, 1.0 - w}, {&hi->timing, w}};
     a.short_of_goal = lo->short_of_goal || hi->short_of_goal;
     a.length_m = (1.0 - w) * lo->profile.length_m + w * hi->profile.length_m;
     a.at = {(1.0 - w) * lo->advance_m.mean + w * hi->advance_m.mean,
@@ -374,6 +379,7 @@ RowAnswer answer_row(const std::vector<const CktCell*>& row, double d) {
   a.extrapolated = true;
   a.profiles = {{&near->profile, 1.0}};
   a.corridors = {{&near->corridor, 1.0}};
+  a.timings = {{&near->timing, 1.0}};
   a.short_of_goal = near->short_of_goal;
   a.at = arc_model_extrapolate(*near, d);
   // The turning part grows with the heading change at the cell's radius; the lead-in does not.
@@ -423,12 +429,14 @@ TurnPrediction Ckt::query(double speed_mps, double dheading_deg) const {
   p.dheading_deg = dheading_deg;
   std::vector<WeightedProfile> profiles;
   CorridorSources corridors;
+  TimingSources timings;
   double length_m = 0.0;
   AdvanceTransfer at;
   const RowAnswer a = answer_row(row_cells(*row_lo), d);
   if (*row_lo == *row_hi || std::abs(grid_.speeds_mps[*row_lo] - speed_mps) <= kGridEps) {
     profiles = a.profiles;
     corridors = a.corridors;
+    timings = a.timings;
     p.short_of_goal = a.short_of_goal;
     length_m = a.length_m;
     at = a.at;
@@ -446,6 +454,10 @@ TurnPrediction Ckt::query(double speed_mps, double dheading_deg) const {
       corridors.push_back({c, cw * (1.0 - w)});
     for (auto [c, cw] : b.corridors)
       corridors.push_back({c, cw * w});
+    for (auto [t, tw] : a.timings)
+      timings.push_back({t, tw * (1.0 - w)});
+    for (auto [t, tw] : b.timings)
+      timings.push_back({t, tw * w});
     p.short_of_goal = a.short_of_goal || b.short_of_goal;
     length_m = (1.0 - w) * a.length_m + w * b.length_m;
     at = {(1.0 - w) * a.at.advance_m + w * b.at.advance_m,
@@ -461,6 +473,10 @@ TurnPrediction Ckt::query(double speed_mps, double dheading_deg) const {
   p.advance_m = at.advance_m;
   p.transfer_m = at.transfer_m;
   p.corridor = blend_corridors(corridors);
+  // Spanning the answered length: a turn carried beyond the table is longer than its cell, at
+  // the cell's mean speed.
+  p.timing = blend_timings(timings);
+  if (p.timing) p.timing = scaled_timing(*p.timing, arc_length_m(p.trajectory));
   if (dheading_deg < 0.0) p.trajectory = reflect_x(std::move(p.trajectory));
   return p;
 }
@@ -584,6 +600,7 @@ TurnPrediction MaterializedCkt::query(double speed_mps, double dheading_deg) con
     std::vector<WeightedProfile> sources;
     sources.reserve(4);
     CorridorSources corridors;
+    TimingSources timings;
     double length_m = 0.0;
     p.exact_cell = false;
     for (const auto& [i, wi] : {std::pair{r.lo, 1.0 - r.weight}, std::pair{r.hi, r.weight}}) {
@@ -598,10 +615,13 @@ TurnPrediction MaterializedCkt::query(double speed_mps, double dheading_deg) con
         p.extrapolated = p.extrapolated || entries_[k].extrapolated;
         p.short_of_goal = p.short_of_goal || entries_[k].short_of_goal;
         corridors.push_back({&entries_[k].corridor, w});
+        timings.push_back({&entries_[k].timing, w});
       }
     }
     p.trajectory = blended_trajectory(sources, length_m, std::abs(dheading_deg), pwl_epsilon_m_);
     p.corridor = blend_corridors(corridors);
+    p.timing = blend_timings(timings);
+    if (p.timing) p.timing = scaled_timing(*p.timing, arc_length_m(p.trajectory));
   }
   p.speed_mps = speed_mps;
   p.dheading_deg = dheading_deg;

@@ -17,6 +17,7 @@
 #include "kinematics/curve_fit.hpp"
 #include "kinematics/geometry.hpp"
 #include "kinematics/turn_sequence.hpp"
+#include "kinematics/turn_timing.hpp"
 
 namespace avk::kinematics {
 
@@ -82,6 +83,9 @@ struct CktCell {
   Polyline mean_turn;               // the representative mean turn (empty when loaded from file)
   // The spread of the turns about their mean (2 turns or more), for prediction corridors.
   std::optional<Corridor> corridor;
+  // When the turns, on average, passed each point of the trajectory (turn_timing.hpp); empty in a
+  // table file of schema 1 or 2.
+  std::optional<TurnTiming> timing;
   // The turns, on average, stopped well short of the goal (mean observed change below
   // kShortOfGoalFraction of it): the trajectory past their end is the table's extension along
   // the goal heading, not something the vehicle was seen to do.
@@ -103,6 +107,9 @@ struct TurnPrediction {
   // The spread, blended from the cells that answered as the trajectory is; empty when one of
   // them has none (a single turn, or a table file without corridors).
   std::optional<Corridor> corridor;
+  // When the trajectory's points are passed, blended like the corridor and spanning the answered
+  // trajectory; empty when one of the cells that answered has none.
+  std::optional<TurnTiming> timing;
   bool short_of_goal = false;  // one of the cells that answered is short of its goal
 };
 

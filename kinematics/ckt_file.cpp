@@ -152,6 +152,22 @@ MeanSd mean_sd_from_json(const json& j, const std::string& path) {
   return m;
 }
 
+TurnTiming timing_from_json(const json& j, const std::string& path) {
+  if (!j.is_object()) Reader::fail(path, "expected an object");
+  Reader::only_keys(j, path, {"length_m", "time_s"});
+  TurnTiming t;
+  t.length_m = Reader::number(j, path, "length_m");
+  if (!(t.length_m > 0.0)) Reader::fail(path + "/length_m", "must be positive");
+  t.time_s = Reader::numbers(Reader::member(j, path, "time_s"), path + "/time_s");
+  if (t.time_s.size() != kTimingStations)
+    Reader::fail(path + "/time_s", "expected " + std::to_string(kTimingStations) + " values");
+  if (t.time_s[0] != 0.0) Reader::fail(path + "/time_s/0", "the first time must be 0");
+  for (std::size_t i = 1; i < t.time_s.size(); ++i)
+    if (!(t.time_s[i] >= t.time_s[i - 1]))
+      Reader::fail(path + "/time_s/" + std::to_string(i), "times must not decrease");
+  return t;
+}
+
 }  // namespace
 
 json ckt_to_json(const Ckt& table) {
@@ -186,6 +202,9 @@ json ckt_to_json(const Ckt& table) {
       cell["corridor"] = {{"n_turns", c.corridor->n_turns},
                           {"length_m", c.corridor->length_m},
                           {"lateral_sd_m", c.corridor->lateral_sd_m}};
+    }
+    if (c.timing) {
+      cell["timing"] = {{"length_m", c.timing->length_m}, {"time_s", c.timing->time_s}};
     }
     cells.push_back(std::move(cell));
   }
@@ -305,9 +324,11 @@ Ckt ckt_from_json(const json& doc) {
     const json& cj = cells_json[k];
     Reader::only_keys(cj, path,
                       {"speed_mps", "dheading_deg", "n_turns", "stats", "fit", "trajectory",
-                       "short_of_goal", "corridor"});
+                       "short_of_goal", "corridor", "timing"});
     if (schema < 2 && (cj.contains("short_of_goal") || cj.contains("corridor")))
       Reader::fail(path, "corridor and short_of_goal are not fields of schema_version 1");
+    if (schema < 3 && cj.contains("timing"))
+      Reader::fail(path + "/timing", "not a field of schema_version " + std::to_string(schema));
     CktCell c;
     c.speed_mps = Reader::number(cj, path, "speed_mps");
     c.dheading_deg = Reader::number(cj, path, "dheading_deg");
@@ -369,6 +390,7 @@ Ckt ckt_from_json(const json& doc) {
           Reader::fail(cp + "/lateral_sd_m/" + std::to_string(i), "must not be negative");
       c.corridor = std::move(corridor);
     }
+    if (cj.contains("timing")) c.timing = timing_from_json(cj["timing"], path + "/timing");
     cells.push_back(std::move(c));
   }
   Ckt table = Ckt::from_cells(std::move(grid), std::move(cells), options);

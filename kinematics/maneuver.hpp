@@ -76,12 +76,12 @@ Approach closest_approach_of_corridor(const TimedPath& own, const std::vector<do
                                       const Contact& contact);
 
 struct ContactApproach {
-  Approach cpa;                       // of the predicted path
-  std::optional<Approach> edge_cpa;   // of the corridor's nearer edge, when there is a corridor
+  Approach cpa;                      // of the predicted path
+  std::optional<Approach> edge_cpa;  // of the corridor's nearer edge, when there is a corridor
 };
 
 struct ManeuverProblem {
-  Pose own;                       // position and heading now, steady
+  Pose own;  // position and heading now, steady
   std::vector<Contact> contacts;
   double standoff_m = 10.0;
   double horizon_s = 120.0;
@@ -95,8 +95,8 @@ struct CandidateEvaluation {
   TimedPath path;                    // world frame, to the horizon
   std::vector<double> half_width_m;  // per path point; empty without a corridor
   std::vector<ContactApproach> contacts;
-  double min_cpa_m = 0.0;                 // over contacts
-  std::optional<double> min_edge_cpa_m;   // over contacts, with a corridor
+  double min_cpa_m = 0.0;                // over contacts
+  std::optional<double> min_edge_cpa_m;  // over contacts, with a corridor
   bool clears = false;  // the judged figure (edge when used and present) >= standoff for all
 };
 
@@ -116,12 +116,12 @@ std::vector<double> candidate_dheadings_deg(double step_deg = 5.0);
 // prediction, what remains of it, and how far a measured position is from it.
 struct OngoingEvaluation {
   double elapsed_s = 0.0;
-  Point expected;                      // on the prediction at elapsed_s
-  TimedPath remaining;                 // from expected to the end of the prediction
-  std::optional<double> half_width_m;  // the corridor at elapsed_s
-  std::optional<double> deviation_m;   // measured to expected (along-time error)
-  std::optional<double> cross_track_m; // measured to the nearest point of the whole prediction
-  std::optional<bool> inside_corridor; // cross-track within the half width at elapsed_s
+  Point expected;                       // on the prediction at elapsed_s
+  TimedPath remaining;                  // from expected to the end of the prediction
+  std::optional<double> half_width_m;   // the corridor at elapsed_s
+  std::optional<double> deviation_m;    // measured to expected (along-time error)
+  std::optional<double> cross_track_m;  // measured to the nearest point of the whole prediction
+  std::optional<bool> inside_corridor;  // cross-track within the half width at elapsed_s
 };
 
 // Throws std::invalid_argument for an empty path, mismatched half widths or a negative or

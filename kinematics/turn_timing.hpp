@@ -24,8 +24,8 @@ namespace avk::kinematics {
 inline constexpr std::size_t kTimingStations = 101;
 
 struct TurnTiming {
-  double length_m = 0.0;        // the length of the trajectory the times are along
-  std::vector<double> time_s;   // kTimingStations values at fractions 0..1; [0] = 0, non-decreasing
+  double length_m = 0.0;       // the length of the trajectory the times are along
+  std::vector<double> time_s;  // kTimingStations values at fractions 0..1; [0] = 0, non-decreasing
   friend bool operator==(const TurnTiming&, const TurnTiming&) = default;
 };
 

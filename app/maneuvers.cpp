@@ -1,0 +1,202 @@
+#include "app/maneuvers.hpp"
+
+#include <cmath>
+#include <string>
+
+#include "app/ckt_tables.hpp"
+#include "app/context.hpp"
+#include "kinematics/ckt.hpp"
+#include "kinematics/corridor.hpp"
+#include "kinematics/yaw_model.hpp"
+
+namespace avk::app {
+
+namespace kin = avk::kinematics;
+
+namespace {
+
+// Limits that keep one request's work bounded (a request is answered on the server's threads).
+constexpr double kMaxHorizonS = 600.0;
+constexpr std::size_t kMaxContacts = 50;
+constexpr std::size_t kMaxCandidates = 721;
+
+bool finite(double v) {
+  return std::isfinite(v);
+}
+
+// What predicts one candidate: the table, the model or the ray, resolved once per request.
+struct Predictor {
+  PredictionMethod method = PredictionMethod::avk;
+  std::shared_ptr<const kin::MaterializedCkt> fine;
+  std::optional<store::StoredModel> model;
+  std::optional<std::string> table_source;
+  double corridor_share = kin::kDefaultCorridorShare;
+};
+
+Result<Predictor> predictor_for(Context& ctx, const std::string& vehicle_id,
+                                PredictionMethod method, std::optional<std::int64_t> model_id,
+                                double corridor_share) {
+  Predictor p;
+  p.method = method;
+  p.corridor_share = corridor_share;
+  if (method == PredictionMethod::avk) {
+    auto t = vehicle_table(ctx, vehicle_id);
+    if (!t) return t.error();
+    if (!t->fine) return invalid_argument("speed", "the table holds no turn to predict from");
+    p.fine = t->fine;
+    p.table_source = to_string(t->source);
+  } else if (method == PredictionMethod::model) {
+    store::Store& db = ctx.db();
+    p.model = model_id ? db.get_model(*model_id) : db.latest_model(vehicle_id);
+    if (!p.model)
+      return not_found(model_id ? "no model " + std::to_string(*model_id)
+                                : "no model of '" + vehicle_id + "' is stored");
+  }
+  return p;
+}
+
+// One candidate in the normalised frame, timed. `speed_field` names the parameter a speed the
+// table cannot answer is reported against.
+Result<kin::PredictedManeuver> predict_one(const Predictor& p, double speed_mps,
+                                           double dheading_deg, double horizon_s,
+                                           const std::string& speed_field) {
+  switch (p.method) {
+    case PredictionMethod::avk: {
+      kin::TurnPrediction t;
+      try {
+        t = p.fine->query(speed_mps, dheading_deg);
+      } catch (const kin::CktRangeError& e) {
+        return invalid_argument(speed_field, e.what());
+      }
+      std::vector<double> widths;
+      if (t.corridor && t.corridor->n_turns >= 2)
+        widths = kin::corridor_band(t.trajectory, *t.corridor, p.corridor_share).half_width_m;
+      return kin::timed_maneuver(dheading_deg, speed_mps, t.trajectory, t.timing,
+                                 std::move(widths));
+    }
+    case PredictionMethod::model: {
+      // The model flown for the whole horizon: its own dynamics settle it on the new heading, and
+      // its steps carry their times.
+      const kin::YawModel& m = p.model->model;
+      kin::PredictOptions o;
+      o.steps = static_cast<std::size_t>(std::ceil(horizon_s * m.rate_hz));
+      const double d = std::abs(dheading_deg);
+      const auto steps =
+          kin::predict(m, kin::steady_history(m, 0.0), d, {0.0, 0.0, 0.0}, speed_mps, o);
+      kin::PredictedManeuver out;
+      out.dheading_deg = dheading_deg;
+      out.speed_mps = speed_mps;
+      out.path.reserve(steps.size());
+      const double mirror = dheading_deg < 0.0 ? -1.0 : 1.0;
+      for (const auto& s : steps) {
+        if (!finite(s.x_m) || !finite(s.y_m)) break;
+        out.path.push_back({s.t_s, mirror * s.x_m, s.y_m});
+      }
+      return out;
+    }
+    case PredictionMethod::instantaneous: {
+      const kin::Point d = kin::rotate_by_heading({0.0, speed_mps * horizon_s}, dheading_deg);
+      return kin::timed_maneuver(dheading_deg, speed_mps, {{0.0, 0.0}, d}, std::nullopt);
+    }
+  }
+  return internal_error("unknown prediction method");
+}
+
+std::optional<Error> check(const ManeuverQuery& q) {
+  if (!finite(q.own.x_m) || !finite(q.own.y_m))
+    return invalid_argument("/own/x_m", "the position must be finite (m)");
+  if (!finite(q.own.heading_deg))
+    return invalid_argument("/own/heading_deg", "the heading must be finite (deg)");
+  if (!finite(q.speed_mps) || !(q.speed_mps > 0.0))
+    return invalid_argument("/own/speed_mps", "must be a positive speed (m/s)");
+  if (q.contacts.size() > kMaxContacts)
+    return invalid_argument("/contacts", "at most " + std::to_string(kMaxContacts) + " contacts");
+  for (std::size_t k = 0; k < q.contacts.size(); ++k) {
+    const kin::Contact& c = q.contacts[k];
+    const std::string at = "/contacts/" + std::to_string(k);
+    if (!finite(c.x_m)) return invalid_argument(at + "/x_m", "must be finite (m)");
+    if (!finite(c.y_m)) return invalid_argument(at + "/y_m", "must be finite (m)");
+    if (!finite(c.course_deg)) return invalid_argument(at + "/course_deg", "must be finite (deg)");
+    if (!finite(c.speed_mps) || c.speed_mps < 0.0)
+      return invalid_argument(at + "/speed_mps", "must be a speed of 0 or more (m/s)");
+  }
+  if (!finite(q.standoff_m) || !(q.standoff_m > 0.0))
+    return invalid_argument("/standoff_m", "must be a positive distance (m)");
+  if (!finite(q.horizon_s) || !(q.horizon_s > 0.0) || q.horizon_s > kMaxHorizonS)
+    return invalid_argument("/horizon_s", "must be within (0, " + std::to_string(600) + "] s");
+  if (q.candidates_deg.size() > kMaxCandidates)
+    return invalid_argument("/candidates_deg",
+                            "at most " + std::to_string(kMaxCandidates) + " candidates");
+  for (std::size_t k = 0; k < q.candidates_deg.size(); ++k)
+    if (!finite(q.candidates_deg[k]) || std::abs(q.candidates_deg[k]) > 180.0)
+      return invalid_argument("/candidates_deg/" + std::to_string(k),
+                              "must be a heading change within [-180, 180] deg");
+  if (q.candidates_deg.empty() && (!finite(q.candidate_step_deg) ||
+                                   !(q.candidate_step_deg >= 0.5) || q.candidate_step_deg > 180.0))
+    return invalid_argument("/candidate_step_deg", "must be within [0.5, 180] deg");
+  if (q.candidate_speed_mps && (!finite(*q.candidate_speed_mps) || !(*q.candidate_speed_mps > 0.0)))
+    return invalid_argument("/candidate_speed_mps", "must be a positive speed (m/s)");
+  if (!(q.corridor_share > 0.0 && q.corridor_share < 1.0))
+    return invalid_argument("/corridor", "must be a share within (0, 1)");
+  return std::nullopt;
+}
+
+}  // namespace
+
+Result<ManeuverEvaluation> evaluate_maneuvers(Context& ctx, const ManeuverQuery& q) {
+  if (auto e = check(q)) return *e;
+  auto pred = predictor_for(ctx, q.vehicle_id, q.method, q.model_id, q.corridor_share);
+  if (!pred) return pred.error();
+  ManeuverEvaluation out;
+  out.query = q;
+  out.table_source = pred->table_source;
+  if (pred->model) out.model_id = pred->model->id;
+  const double speed = q.candidate_speed_mps.value_or(q.speed_mps);
+  const std::string speed_field = q.candidate_speed_mps ? "/candidate_speed_mps" : "/own/speed_mps";
+  const std::vector<double> candidates = q.candidates_deg.empty()
+                                             ? kin::candidate_dheadings_deg(q.candidate_step_deg)
+                                             : q.candidates_deg;
+  const kin::ManeuverProblem problem{q.own, q.contacts, q.standoff_m, q.horizon_s, q.use_corridor};
+  out.candidates.reserve(candidates.size());
+  out.timed_by_turns = q.method == PredictionMethod::avk;
+  for (const double d : candidates) {
+    auto m = predict_one(*pred, speed, d, q.horizon_s, speed_field);
+    if (!m) return m.error();
+    if (q.method == PredictionMethod::avk && !m->timed_by_turns) out.timed_by_turns = false;
+    out.candidates.push_back(kin::evaluate_candidate(problem, *m));
+  }
+  out.chosen = kin::choose_maneuver(out.candidates);
+  return out;
+}
+
+Result<OngoingManeuver> evaluate_ongoing(Context& ctx, const OngoingQuery& q) {
+  if (!finite(q.start.x_m) || !finite(q.start.y_m) || !finite(q.start.heading_deg))
+    return invalid_argument("x", "the start pose needs finite x, y (m) and heading (deg)");
+  if (!finite(q.dheading_deg) || std::abs(q.dheading_deg) > 180.0)
+    return invalid_argument("dheading", "must be a heading change within [-180, 180] deg");
+  if (!finite(q.speed_mps) || !(q.speed_mps > 0.0))
+    return invalid_argument("speed", "must be a positive speed (m/s)");
+  if (!finite(q.elapsed_s) || q.elapsed_s < 0.0)
+    return invalid_argument("elapsed", "must be a time of 0 s or more");
+  if (!finite(q.horizon_s) || !(q.horizon_s > 0.0) || q.horizon_s > kMaxHorizonS)
+    return invalid_argument("horizon", "must be within (0, 600] s");
+  if (q.measured && (!finite(q.measured->x_m) || !finite(q.measured->y_m)))
+    return invalid_argument("mx", "the measured position must be finite (m)");
+  if (!(q.corridor_share > 0.0 && q.corridor_share < 1.0))
+    return invalid_argument("corridor", "must be a share within (0, 1)");
+  auto pred = predictor_for(ctx, q.vehicle_id, q.method, q.model_id, q.corridor_share);
+  if (!pred) return pred.error();
+  auto m = predict_one(*pred, q.speed_mps, q.dheading_deg, q.horizon_s, "speed");
+  if (!m) return m.error();
+  const kin::PredictedManeuver whole = kin::extended_to_horizon(std::move(*m), q.horizon_s);
+  OngoingManeuver out;
+  out.query = q;
+  out.prediction = kin::placed(whole.path, q.start);
+  out.evaluation =
+      kin::evaluate_ongoing(out.prediction, whole.half_width_m, q.elapsed_s, q.measured);
+  out.half_width_m = whole.half_width_m;
+  if (pred->model) out.model_id = pred->model->id;
+  return out;
+}
+
+}  // namespace avk::app

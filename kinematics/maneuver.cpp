@@ -1,0 +1,244 @@
+#include "kinematics/maneuver.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace avk::kinematics {
+
+Point contact_position(const Contact& c, double t_s) {
+  const Point d = rotate_by_heading({0.0, c.speed_mps * t_s}, c.course_deg);
+  return {c.x_m + d.x_m, c.y_m + d.y_m};
+}
+
+PredictedManeuver timed_maneuver(double dheading_deg, double speed_mps, const Polyline& trajectory,
+                                 const std::optional<TurnTiming>& timing,
+                                 std::vector<double> half_width_m) {
+  if (trajectory.empty()) throw std::invalid_argument("a maneuver needs a trajectory");
+  if (!(speed_mps > 0.0)) throw std::invalid_argument("a maneuver needs a positive speed");
+  if (!half_width_m.empty() && half_width_m.size() != trajectory.size())
+    throw std::invalid_argument("one corridor half width per trajectory point");
+  PredictedManeuver m;
+  m.dheading_deg = dheading_deg;
+  m.speed_mps = speed_mps;
+  m.half_width_m = std::move(half_width_m);
+  m.timed_by_turns = timing.has_value() && timing->time_s.size() == kTimingStations;
+  const std::vector<double> s = cumulative_arc_length_m(trajectory);
+  const double length = s.back();
+  // The timing spans the cell's own trajectory; a blended or re-simplified trajectory is a little
+  // longer or shorter, so lengths map by fraction.
+  const double to_timing = m.timed_by_turns && length > 0.0 ? timing->length_m / length : 1.0;
+  m.path.reserve(trajectory.size());
+  for (std::size_t i = 0; i < trajectory.size(); ++i) {
+    const double t = m.timed_by_turns ? time_at_length_s(*timing, s[i] * to_timing, speed_mps)
+                                      : s[i] / speed_mps;
+    m.path.push_back({t, trajectory[i].x_m, trajectory[i].y_m});
+  }
+  return m;
+}
+
+PredictedManeuver extended_to_horizon(PredictedManeuver m, double horizon_s) {
+  if (m.path.empty()) throw std::invalid_argument("a maneuver needs a path");
+  if (!(horizon_s > 0.0) || !std::isfinite(horizon_s))
+    throw std::invalid_argument("the horizon must be a positive time");
+  const bool widths = !m.half_width_m.empty();
+  // Cut at the horizon.
+  for (std::size_t i = 1; i < m.path.size(); ++i) {
+    if (m.path[i].t_s < horizon_s) continue;
+    const TimedPoint a = m.path[i - 1], b = m.path[i];
+    const double w = b.t_s > a.t_s ? (horizon_s - a.t_s) / (b.t_s - a.t_s) : 1.0;
+    m.path[i] = {horizon_s, a.x_m + w * (b.x_m - a.x_m), a.y_m + w * (b.y_m - a.y_m)};
+    m.path.resize(i + 1);
+    if (widths) {
+      m.half_width_m[i] = m.half_width_m[i - 1] + w * (m.half_width_m[i] - m.half_width_m[i - 1]);
+      m.half_width_m.resize(i + 1);
+    }
+    return m;
+  }
+  const TimedPoint last = m.path.back();
+  if (last.t_s >= horizon_s) return m;
+  // Past the prediction the vehicle holds its new heading (the goal, as the CKT's trajectories
+  // end on it) at the commanded speed.
+  const double run = (horizon_s - last.t_s) * m.speed_mps;
+  const Point d = rotate_by_heading({0.0, run}, m.dheading_deg);
+  m.path.push_back({horizon_s, last.x_m + d.x_m, last.y_m + d.y_m});
+  if (widths) m.half_width_m.push_back(m.half_width_m.back());
+  return m;
+}
+
+TimedPath placed(const TimedPath& normalized, const Pose& pose) {
+  TimedPath out;
+  out.reserve(normalized.size());
+  for (const TimedPoint& p : normalized) {
+    const Point r = rotate_by_heading({p.x_m, p.y_m}, pose.heading_deg);
+    out.push_back({p.t_s, pose.x_m + r.x_m, pose.y_m + r.y_m});
+  }
+  return out;
+}
+
+namespace {
+
+struct SegmentApproach {
+  double distance_m;
+  double time_s;
+  double weight;  // where along the segment, 0..1
+};
+
+// The closest approach on one segment of own path: the relative position is linear in time.
+SegmentApproach segment_approach(const TimedPoint& a, const TimedPoint& b, const Contact& c) {
+  const Point ca = contact_position(c, a.t_s);
+  const double rx = a.x_m - ca.x_m, ry = a.y_m - ca.y_m;
+  const double dt = b.t_s - a.t_s;
+  if (!(dt > 0.0)) return {std::hypot(rx, ry), a.t_s, 0.0};
+  const Point cb = contact_position(c, b.t_s);
+  const double dx = (b.x_m - cb.x_m) - rx, dy = (b.y_m - cb.y_m) - ry;
+  const double dd = dx * dx + dy * dy;
+  const double w = dd > 0.0 ? std::clamp(-(rx * dx + ry * dy) / dd, 0.0, 1.0) : 0.0;
+  return {std::hypot(rx + w * dx, ry + w * dy), a.t_s + w * dt, w};
+}
+
+double distance_at(const TimedPoint& p, const Contact& c) {
+  const Point q = contact_position(c, p.t_s);
+  return std::hypot(p.x_m - q.x_m, p.y_m - q.y_m);
+}
+
+}  // namespace
+
+Approach closest_approach(const TimedPath& own, const Contact& contact) {
+  if (own.empty()) throw std::invalid_argument("a closest approach needs a path");
+  Approach best{distance_at(own.front(), contact), own.front().t_s};
+  for (std::size_t i = 1; i < own.size(); ++i) {
+    const SegmentApproach s = segment_approach(own[i - 1], own[i], contact);
+    if (s.distance_m < best.distance_m) best = {s.distance_m, s.time_s};
+  }
+  return best;
+}
+
+Approach closest_approach_of_corridor(const TimedPath& own, const std::vector<double>& half_width_m,
+                                      const Contact& contact) {
+  if (own.empty()) throw std::invalid_argument("a closest approach needs a path");
+  if (half_width_m.size() != own.size())
+    throw std::invalid_argument("one corridor half width per path point");
+  const auto edge = [](double d, double w) { return std::max(0.0, d - w); };
+  Approach best{edge(distance_at(own.front(), contact), half_width_m.front()), own.front().t_s};
+  const auto consider = [&](double d, double t) {
+    if (d < best.distance_m) best = {d, t};
+  };
+  for (std::size_t i = 1; i < own.size(); ++i) {
+    const double w0 = half_width_m[i - 1], w1 = half_width_m[i];
+    consider(edge(distance_at(own[i], contact), w1), own[i].t_s);
+    // The half width changes by centimetres along a segment, so the smallest distance less width
+    // is at an end or at the segment's closest approach.
+    const SegmentApproach s = segment_approach(own[i - 1], own[i], contact);
+    consider(edge(s.distance_m, w0 + s.weight * (w1 - w0)), s.time_s);
+  }
+  return best;
+}
+
+CandidateEvaluation evaluate_candidate(const ManeuverProblem& problem,
+                                       const PredictedManeuver& normalized) {
+  const PredictedManeuver m = extended_to_horizon(normalized, problem.horizon_s);
+  CandidateEvaluation e;
+  e.dheading_deg = m.dheading_deg;
+  e.speed_mps = m.speed_mps;
+  e.path = placed(m.path, problem.own);
+  e.half_width_m = m.half_width_m;
+  e.min_cpa_m = std::numeric_limits<double>::infinity();
+  const bool corridor = !e.half_width_m.empty();
+  if (corridor) e.min_edge_cpa_m = std::numeric_limits<double>::infinity();
+  e.clears = true;
+  e.contacts.reserve(problem.contacts.size());
+  for (const Contact& c : problem.contacts) {
+    ContactApproach a;
+    a.cpa = closest_approach(e.path, c);
+    e.min_cpa_m = std::min(e.min_cpa_m, a.cpa.distance_m);
+    if (corridor) {
+      a.edge_cpa = closest_approach_of_corridor(e.path, e.half_width_m, c);
+      e.min_edge_cpa_m = std::min(*e.min_edge_cpa_m, a.edge_cpa->distance_m);
+    }
+    const double judged =
+        problem.use_corridor && a.edge_cpa ? a.edge_cpa->distance_m : a.cpa.distance_m;
+    if (judged < problem.standoff_m) e.clears = false;
+    e.contacts.push_back(a);
+  }
+  return e;
+}
+
+std::optional<std::size_t> choose_maneuver(const std::vector<CandidateEvaluation>& candidates) {
+  std::optional<std::size_t> best;
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    const CandidateEvaluation& c = candidates[i];
+    if (!c.clears) continue;
+    if (!best) {
+      best = i;
+      continue;
+    }
+    const CandidateEvaluation& b = candidates[*best];
+    const double ab = std::abs(b.dheading_deg), ac = std::abs(c.dheading_deg);
+    if (ac < ab - 1e-9 || (std::abs(ac - ab) <= 1e-9 && c.dheading_deg > b.dheading_deg)) best = i;
+  }
+  return best;
+}
+
+std::vector<double> candidate_dheadings_deg(double step_deg) {
+  if (!(step_deg > 0.0 && step_deg <= 180.0))
+    throw std::invalid_argument("the candidate step must be within (0, 180] degrees");
+  // Symmetric about 0 so that keeping course is always a candidate and each starboard turn has
+  // its port twin; +-180 close the set even when the step does not divide 180.
+  std::vector<double> out{0.0};
+  for (int k = 1; static_cast<double>(k) * step_deg < 180.0 - 1e-9; ++k) {
+    out.push_back(static_cast<double>(k) * step_deg);
+    out.push_back(-static_cast<double>(k) * step_deg);
+  }
+  out.push_back(180.0);
+  out.push_back(-180.0);
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+OngoingEvaluation evaluate_ongoing(const TimedPath& path, const std::vector<double>& half_width_m,
+                                   double elapsed_s, std::optional<Point> measured) {
+  if (path.empty()) throw std::invalid_argument("an ongoing maneuver needs its prediction");
+  if (!half_width_m.empty() && half_width_m.size() != path.size())
+    throw std::invalid_argument("one corridor half width per path point");
+  if (!(elapsed_s >= 0.0) || !std::isfinite(elapsed_s))
+    throw std::invalid_argument("the elapsed time must be a non-negative number of seconds");
+  if (measured && !(std::isfinite(measured->x_m) && std::isfinite(measured->y_m)))
+    throw std::invalid_argument("the measured position must be finite");
+  OngoingEvaluation e;
+  e.elapsed_s = elapsed_s;
+  // The first segment that ends at or after elapsed_s.
+  std::size_t i = 1;
+  while (i < path.size() && path[i].t_s < elapsed_s)
+    ++i;
+  std::size_t next = i;  // first point strictly ahead of expected
+  if (i >= path.size()) {
+    e.expected = {path.back().x_m, path.back().y_m};
+    if (!half_width_m.empty()) e.half_width_m = half_width_m.back();
+    next = path.size();
+  } else {
+    const TimedPoint& a = path[i - 1];
+    const TimedPoint& b = path[i];
+    const double w =
+        b.t_s > a.t_s ? std::clamp((elapsed_s - a.t_s) / (b.t_s - a.t_s), 0.0, 1.0) : 1.0;
+    e.expected = {a.x_m + w * (b.x_m - a.x_m), a.y_m + w * (b.y_m - a.y_m)};
+    if (!half_width_m.empty())
+      e.half_width_m = half_width_m[i - 1] + w * (half_width_m[i] - half_width_m[i - 1]);
+  }
+  e.remaining.push_back({std::max(elapsed_s, path.front().t_s), e.expected.x_m, e.expected.y_m});
+  for (std::size_t k = next; k < path.size(); ++k)
+    if (path[k].t_s > elapsed_s) e.remaining.push_back(path[k]);
+  if (measured) {
+    e.deviation_m = distance_m(*measured, e.expected);
+    Polyline line;
+    line.reserve(path.size());
+    for (const TimedPoint& p : path)
+      line.push_back({p.x_m, p.y_m});
+    e.cross_track_m = distance_to_polyline_m(*measured, line);
+    if (e.half_width_m) e.inside_corridor = *e.cross_track_m <= *e.half_width_m;
+  }
+  return e;
+}
+
+}  // namespace avk::kinematics
