@@ -166,7 +166,7 @@ template <class T>
 app::Result<T> checked(T value, const std::vector<app::FieldError>& errors) {
   if (errors.empty()) return value;
   const app::FieldError& first = errors.front();
-  app::Error e = app::invalid_argument(first.field.substr(1), first.message);
+  app::Error e = app::invalid_argument(first.field, first.message);
   e.fields = errors;
   return e;
 }
@@ -193,7 +193,7 @@ app::Result<ManeuverRequest> maneuver_request(const json& body, const std::strin
                 f.number_value((*list)[i], "/candidates_deg/" + std::to_string(i), -180.0, 180.0))
           q.candidates_deg.push_back(*d);
     }
-    if (const auto step = f.number("candidate_step_deg", 0.0, 180.0, false, true)) {
+    if (const auto step = f.number("candidate_step_deg", 0.5, 180.0, false)) {
       if (body.contains("candidates_deg"))
         f.error("/candidate_step_deg", "give candidates_deg or candidate_step_deg, not both");
       q.candidate_step_deg = *step;

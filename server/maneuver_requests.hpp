@@ -19,7 +19,7 @@ namespace avk::server {
 
 // What a request may ask at most: every candidate is a predicted path per contact, and a
 // simulation runs the plant for the whole horizon.
-inline constexpr std::size_t kMaxManeuverContacts = 64;
+inline constexpr std::size_t kMaxManeuverContacts = 50;
 inline constexpr std::size_t kMaxManeuverCandidates = 721;
 inline constexpr double kMaxManeuverHorizonS = 600.0;
 inline constexpr std::size_t kMaxSimulatedContacts = 16;
@@ -34,7 +34,7 @@ struct ManeuverRequest {
 };
 
 // POST /vehicles/{vid}/maneuvers/evaluate. invalid_argument with every problem in Error::fields
-// (JSON pointers) and the first one in Error::field (without its leading '/').
+// (JSON pointers) and the first one in Error::field.
 app::Result<ManeuverRequest> maneuver_request(const nlohmann::json& body,
                                               const std::string& vehicle_id);
 
