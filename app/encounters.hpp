@@ -57,8 +57,85 @@ struct SimulatedManeuver {
   kinematics::TimedPath track;            // world frame, t = 0 at the command
   std::vector<kinematics::Approach> cpa;  // actual, per contact
   double min_cpa_m = 0.0;
+  // What the vehicle did before the command: the simulated time it took to settle (ConditionSet
+  // with the held course), and its true heading and speed at the command.
+  double settle_s = 0.0;
+  double heading_at_command_deg = 0.0;
+  double speed_at_command_mps = 0.0;
 };
 
+// invalid_argument names the field (own_speed, dheading, speed, horizon, contacts/K/...).
 Result<SimulatedManeuver> simulate_maneuver(const SimulatedManeuverQuery& q);
+
+// The bench over a scenario file: every candidate of every scenario flown once (shared by all
+// methods), each method's choice from evaluate_maneuvers and the flight of the chosen candidate.
+struct EncounterBenchQuery {
+  std::string vehicle_id;  // the database's vehicle whose CKT and model the methods use
+  sim::SimSetup setup;     // the simulated plant, controller and disturbances
+  std::uint64_t seed = 1;  // every flight of the bench (so all candidates meet the same sea)
+  std::vector<PredictionMethod> methods{PredictionMethod::avk, PredictionMethod::model,
+                                        PredictionMethod::instantaneous};
+  double candidate_step_deg = 5.0;  // candidates -180..180 in this step
+  int threads = 2;                  // scenarios flown in parallel; results do not depend on it
+};
+
+struct EncounterMethodResult {
+  PredictionMethod method = PredictionMethod::avk;
+  std::optional<double> chosen_dheading_deg;   // none: no candidate cleared (course held)
+  std::optional<double> predicted_cpa_m;       // of the chosen candidate's predicted path
+  std::optional<double> predicted_edge_cpa_m;  // avk: of its corridor's nearer edge
+  // Flown: the chosen candidate, or the course held (dheading 0) when none was chosen.
+  double actual_cpa_m = 0.0;
+  bool violation = false;                      // actual < standoff
+  bool no_maneuver_while_one_existed = false;  // none chosen, yet some candidate flew clear
+  bool unsafe_while_safe_existed = false;      // chose one that violated, yet one flew clear
+};
+
+struct EncounterScenarioResult {
+  std::string name;
+  double standoff_m = 0.0;
+  std::vector<double> candidates_deg;
+  std::vector<double> flown_cpa_m;             // per candidate: the actual CPA over contacts
+  double course_held_cpa_m = 0.0;              // flown with dheading 0
+  bool safe_existed = false;                   // some candidate's flown CPA >= standoff
+  std::vector<EncounterMethodResult> methods;  // one per available method, in the query's order
+};
+
+struct EncounterMethodSummary {
+  PredictionMethod method = PredictionMethod::avk;
+  bool available = true;
+  std::string note;  // why the method is not available (no model, no table)
+  int scenarios = 0;
+  int violations = 0;
+  double violation_rate = 0.0;
+  int no_maneuver = 0;
+  int no_maneuver_while_one_existed = 0;
+  int unsafe_while_safe_existed = 0;
+  std::optional<double> mean_abs_dheading_deg;  // over the scenarios with a choice
+  // Predicted minus actual CPA of the chosen candidates.
+  std::optional<double> mean_cpa_error_m;
+  std::optional<double> mean_abs_cpa_error_m;
+  std::optional<std::int64_t> model_id;  // model: the model that answered
+};
+
+struct EncounterBench {
+  std::vector<EncounterScenarioResult> scenarios;
+  std::vector<EncounterMethodSummary> summary;  // one per method asked, in order
+  std::size_t flights = 0;                      // maneuvers flown
+};
+
+// invalid_argument names the field (methods, candidate_step, threads); a method the vehicle
+// cannot answer (no model, no table) is reported unavailable in its summary, not an error.
+Result<EncounterBench> run_encounter_bench(Context& ctx, const EncounterFile& file,
+                                           const EncounterBenchQuery& q);
+
+// A reproducible scenario file (docs/encounter-format.md, "Generating scenarios"): count
+// scenarios cycling through head-on, crossing from starboard, crossing from port, overtaking,
+// being overtaken and several contacts; every contact aimed near a point of own track 15-60 s
+// ahead, so holding course violates the standoff. invalid_argument for count < 1.
+Result<EncounterFile> generate_encounters(std::uint64_t seed, int count);
+
+// The file as JSON text (the format parse_encounter_file reads).
+std::string encounter_file_json(const EncounterFile& file);
 
 }  // namespace avk::app

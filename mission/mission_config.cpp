@@ -6,6 +6,7 @@
 #include <set>
 
 #include "kinematics/json_parse.hpp"
+#include "mission/document_reader.hpp"
 
 namespace avk::mission {
 
@@ -34,83 +35,7 @@ std::string describe(const std::vector<FieldError>& errors) {
   return s;
 }
 
-// Reads one object, recording problems rather than stopping at the first one.
-class Reader {
- public:
-  Reader(const json& obj, std::string path, std::vector<FieldError>& errors)
-      : obj_(obj), path_(std::move(path)), errors_(errors) {
-    ok_ = obj.is_object();
-    if (!ok_) error(path_.empty() ? "/" : path_, "expected an object");
-  }
-  bool ok() const { return ok_; }
-
-  void error(const std::string& field, const std::string& message) {
-    errors_.push_back({field, message});
-  }
-  std::string at(const char* key) const { return path_ + "/" + key; }
-
-  const json* get(const char* key, bool required) {
-    known_.insert(key);
-    if (!ok_) return nullptr;
-    const auto it = obj_.find(key);
-    if (it == obj_.end()) {
-      if (required) error(at(key), "missing required field");
-      return nullptr;
-    }
-    return &*it;
-  }
-
-  void number(const char* key, double& target, double min, double max, bool required = false,
-              bool min_exclusive = false) {
-    const json* v = get(key, required);
-    if (!v) return;
-    if (!v->is_number() || !std::isfinite(v->get<double>())) {
-      error(at(key), "expected a number");
-      return;
-    }
-    const double d = v->get<double>();
-    if (d < min || d > max || (min_exclusive && d == min)) {
-      error(at(key), std::string("must be ") + (min_exclusive ? "> " : ">= ") + json(min).dump() +
-                         " and <= " + json(max).dump() + ", got " + v->dump());
-      return;
-    }
-    target = d;
-  }
-
-  void integer(const char* key, int& target, int min, int max) {
-    const json* v = get(key, false);
-    if (!v) return;
-    if (!v->is_number_integer() || v->get<long long>() < min || v->get<long long>() > max) {
-      error(at(key),
-            "expected a whole number from " + std::to_string(min) + " to " + std::to_string(max));
-      return;
-    }
-    target = static_cast<int>(v->get<long long>());
-  }
-
-  std::optional<kinematics::Point> point(const json& v, const std::string& field) {
-    if (!v.is_array() || v.size() != 2 || !v[0].is_number() || !v[1].is_number() ||
-        !std::isfinite(v[0].get<double>()) || !std::isfinite(v[1].get<double>())) {
-      error(field, "expected [x_m, y_m]");
-      return std::nullopt;
-    }
-    return kinematics::Point{v[0].get<double>(), v[1].get<double>()};
-  }
-
-  void finish() {
-    if (!ok_) return;
-    for (const auto& [k, v] : obj_.items()) {
-      if (!known_.count(k)) error(path_ + "/" + k, "unknown field");
-    }
-  }
-
- private:
-  const json& obj_;
-  std::string path_;
-  std::vector<FieldError>& errors_;
-  std::set<std::string> known_;
-  bool ok_ = true;
-};
+using Reader = DocumentReader;
 
 std::vector<double> number_list(Reader& r, const char* key, double min, double max,
                                 bool min_exclusive, const std::string& unit, std::size_t max_count,

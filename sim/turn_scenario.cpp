@@ -3,8 +3,8 @@
 #include <cmath>
 
 #include "kinematics/angles.hpp"
-#include "mission/condition_set.hpp"
 #include "mission/turn_monitor.hpp"
+#include "sim/settle_leg.hpp"
 
 namespace avk::sim {
 
@@ -21,13 +21,14 @@ TurnScenarioResult run_turn_scenario(const TurnScenarioConfig& config, Pacer& pa
   const double start_heading = vc.start_heading_deg;
   double desired_heading = start_heading;
   double phase_start = 0.0;
-  std::optional<vehicle::NavSample> previous;
   bool timed_out = false;
   // The mission's own ConditionSet and turn recorder, so `avk sim turn` starts and ends a turn
   // exactly as a mission does.
-  mission::ConditionSetMonitor steady(
-      {config.steady_speed_tolerance_mps, config.steady_yaw_rate_dps, 5, config.max_settle_s},
-      config.speed_mps);
+  SettleLeg settle({.min_settle_s = config.min_settle_s,
+                    .max_settle_s = config.max_settle_s,
+                    .speed_tolerance_mps = config.steady_speed_tolerance_mps,
+                    .max_yaw_rate_dps = config.steady_yaw_rate_dps},
+                   config.speed_mps);
   std::optional<mission::TurnMonitor> monitor;
 
   const auto finish_turn = [&](double now) {
@@ -41,19 +42,17 @@ TurnScenarioResult run_turn_scenario(const TurnScenarioConfig& config, Pacer& pa
       const auto a = vehicle.last_actuators().value_or(vehicle::ActuatorCommand{});
       result.rows.push_back({s.t_s, s.x_m, s.y_m, s.heading_deg, s.speed_mps, desired_heading,
                              config.speed_mps, a.rudder_pct, a.thrust_pct});
-      steady.update(s);
-      previous = s;
+      settle.update(s);
       if (phase == Phase::turning && monitor->update(s) != mission::Completion::none) {
         finish_turn(now);
       }
     }
-    if (phase == Phase::settling && previous) {
-      if ((now - phase_start >= config.min_settle_s && steady.conditions_set()) ||
-          now - phase_start >= config.max_settle_s) {
+    if (phase == Phase::settling) {
+      if (settle.done(now)) {
         phase = Phase::turning;
         phase_start = now;
         result.command_time_s = now;
-        monitor.emplace(*previous, config.speed_mps, config.dheading_deg, config.completion);
+        monitor.emplace(*settle.newest(), config.speed_mps, config.dheading_deg, config.completion);
         result.goal_heading_deg = monitor->goal_heading_deg();
         desired_heading = result.goal_heading_deg;
       }

@@ -65,6 +65,14 @@ void usage(std::ostream& out) {
          "P]\n"
          "              [--mission ID]... [--test-mission ID]...  (judge the table on other "
          "turns)\n"
+         "  avk encounter run --scenarios FILE --db FILE [--vehicle-id ID]\n"
+         "                  [--vehicle KIND (catamaran:m200)] [--sim-config FILE] [--seed N]\n"
+         "                  [--method avk|model|instantaneous|all] [--step DEG] [--threads 2]\n"
+         "                  [--format table|json|csv]\n"
+         "      the encounter bench: each method's maneuver choice flown in the simulator, and\n"
+         "      every candidate flown to know whether a safe one existed\n"
+         "  avk encounter generate [--seed N] [--count 60]\n"
+         "      a reproducible scenario file (head-on, crossing, overtaking, several contacts)\n"
          "  avk serve [--db FILE] [--sim [--vehicle KIND] [--sim-config FILE]\n"
          "                  | --m200 HOST:PORT [--datum LAT,LON] [--pid P]] [--realtime-factor K]\n"
          "                  [--bind 127.0.0.1] [--port 8080] [--web DIR] [--token T]\n"
@@ -103,6 +111,7 @@ int run_cli(const std::vector<std::string>& args, std::istream& in, std::ostream
     if (args[0] == "predict") return cmd_predict(rest, io);
     if (args[0] == "maneuver") return cmd_maneuver(rest, io);
     if (args[0] == "import") return cmd_import(rest, io);
+    if (args[0] == "encounter") return cmd_encounter(rest, io);
     if (args[0] == "serve") return cmd_serve(rest, io);
     if (args[0] == "frontseat-emulator") return cmd_frontseat_emulator(rest, io);
   } catch (const UsageError& e) {

@@ -36,8 +36,9 @@ std::vector<std::int64_t> mission_ids(const Args& a) {
   return ids;
 }
 
-std::string vehicle_of(const Args& a, store::Store& db, const std::vector<std::int64_t>& ids) {
-  if (const auto v = a.get("vehicle")) return *v;
+std::string vehicle_of(const Args& a, store::Store& db, const std::vector<std::int64_t>& ids,
+                       const std::string& option) {
+  if (const auto v = a.get(option)) return *v;
   std::set<std::string> vehicles;
   for (const auto& m : db.list_missions()) {
     if (ids.empty() || std::find(ids.begin(), ids.end(), m.id) != ids.end())
@@ -51,8 +52,8 @@ std::string vehicle_of(const Args& a, store::Store& db, const std::vector<std::i
     std::string names;
     for (const auto& v : vehicles)
       names += (names.empty() ? "" : ", ") + v;
-    throw UsageError("the missions are of several vehicles (" + names +
-                     "): choose one with --vehicle");
+    throw UsageError("the missions are of several vehicles (" + names + "): choose one with --" +
+                     option);
   }
   return *vehicles.begin();
 }

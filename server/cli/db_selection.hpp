@@ -24,9 +24,10 @@ app::PredictionMethod method_option(const Args& a);
 // Every --mission, each a positive whole number (UsageError otherwise); empty: all missions.
 std::vector<std::int64_t> mission_ids(const Args& a);
 
-// --vehicle, or the only vehicle of the chosen missions (all missions when none are chosen).
-// Mixing vehicles would average different hulls: several vehicles without --vehicle is a
-// UsageError naming them; an unknown mission or an empty database a runtime_error.
-std::string vehicle_of(const Args& a, store::Store& db, const std::vector<std::int64_t>& ids);
+// --vehicle (or the option named), or the only vehicle of the chosen missions (all missions when
+// none are chosen). Mixing vehicles would average different hulls: several vehicles without the
+// option is a UsageError naming them; an unknown mission or an empty database a runtime_error.
+std::string vehicle_of(const Args& a, store::Store& db, const std::vector<std::int64_t>& ids,
+                       const std::string& option = "vehicle");
 
 }  // namespace avk::server

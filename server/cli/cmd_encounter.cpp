@@ -1,0 +1,244 @@
+// avk encounter run|generate: the encounter test bench (docs/encounter-format.md).
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+#include <ostream>
+#include <sstream>
+
+#include "app/context.hpp"
+#include "app/encounters.hpp"
+#include "server/cli/app_error.hpp"
+#include "server/cli/args.hpp"
+#include "server/cli/commands.hpp"
+#include "server/cli/db_selection.hpp"
+#include "server/cli/files.hpp"
+#include "server/cli/sim_options.hpp"
+#include "server/serialize.hpp"
+
+namespace avk::server {
+
+namespace {
+
+using nlohmann::json;
+
+std::string opt_text(const std::optional<double>& v, int decimals, bool sign = false) {
+  if (!v) return "-";
+  std::ostringstream s;
+  if (sign) s << std::showpos;
+  s << std::fixed << std::setprecision(decimals) << *v;
+  return s.str();
+}
+
+std::vector<app::PredictionMethod> methods_from(const Args& a) {
+  const std::string m = a.get("method").value_or("all");
+  if (m == "all") {
+    return {app::PredictionMethod::avk, app::PredictionMethod::model,
+            app::PredictionMethod::instantaneous};
+  }
+  const auto one = app::prediction_method_from_string(m);
+  if (!one) throw UsageError("--method must be avk, model, instantaneous or all, got '" + m + "'");
+  return {*one};
+}
+
+int whole_option(const Args& a, const std::string& name, int fallback, int lo, int hi) {
+  const auto v = a.number(name);
+  if (!v) return fallback;
+  if (*v < lo || *v > hi || std::floor(*v) != *v) {
+    throw UsageError("--" + name + " must be a whole number from " + std::to_string(lo) + " to " +
+                     std::to_string(hi));
+  }
+  return static_cast<int>(*v);
+}
+
+std::string flags_text(const app::EncounterMethodResult& r) {
+  std::string f;
+  if (r.violation) f += "VIOLATION ";
+  if (r.no_maneuver_while_one_existed) f += "none-while-safe-existed ";
+  if (r.unsafe_while_safe_existed) f += "unsafe-while-safe-existed ";
+  return f;
+}
+
+json bench_json(const app::EncounterBench& b, const app::EncounterBenchQuery& q) {
+  json scenarios = json::array();
+  for (const auto& s : b.scenarios) {
+    json methods = json::array();
+    for (const auto& r : s.methods) {
+      methods.push_back({{"method", app::to_string(r.method)},
+                         {"chosen_dheading_deg", optional_json(r.chosen_dheading_deg)},
+                         {"predicted_cpa_m", optional_json(r.predicted_cpa_m)},
+                         {"predicted_edge_cpa_m", optional_json(r.predicted_edge_cpa_m)},
+                         {"actual_cpa_m", r.actual_cpa_m},
+                         {"violation", r.violation},
+                         {"no_maneuver_while_one_existed", r.no_maneuver_while_one_existed},
+                         {"unsafe_while_safe_existed", r.unsafe_while_safe_existed}});
+    }
+    scenarios.push_back({{"name", s.name},
+                         {"standoff_m", s.standoff_m},
+                         {"safe_existed", s.safe_existed},
+                         {"course_held_cpa_m", s.course_held_cpa_m},
+                         {"candidates_deg", s.candidates_deg},
+                         {"flown_cpa_m", s.flown_cpa_m},
+                         {"methods", methods}});
+  }
+  json summary = json::array();
+  for (const auto& m : b.summary) {
+    summary.push_back({{"method", app::to_string(m.method)},
+                       {"available", m.available},
+                       {"note", m.note},
+                       {"model_id", optional_json(m.model_id)},
+                       {"scenarios", m.scenarios},
+                       {"violations", m.violations},
+                       {"violation_rate", m.violation_rate},
+                       {"no_maneuver", m.no_maneuver},
+                       {"no_maneuver_while_one_existed", m.no_maneuver_while_one_existed},
+                       {"unsafe_while_safe_existed", m.unsafe_while_safe_existed},
+                       {"mean_abs_dheading_deg", optional_json(m.mean_abs_dheading_deg)},
+                       {"mean_cpa_error_m", optional_json(m.mean_cpa_error_m)},
+                       {"mean_abs_cpa_error_m", optional_json(m.mean_abs_cpa_error_m)}});
+  }
+  return {{"vehicle_id", q.vehicle_id},
+          {"plant", q.setup.vehicle.kind},
+          {"seed", q.seed},
+          {"candidate_step_deg", q.candidate_step_deg},
+          {"flights", b.flights},
+          {"scenarios", scenarios},
+          {"summary", summary}};
+}
+
+void print_csv(const app::EncounterBench& b, Io& io) {
+  io.out << "scenario,standoff_m,safe_existed,course_held_cpa_m,method,chosen_dheading_deg,"
+            "predicted_cpa_m,predicted_edge_cpa_m,actual_cpa_m,violation,"
+            "no_maneuver_while_one_existed,unsafe_while_safe_existed\n";
+  const auto opt = [](const std::optional<double>& v) { return v ? num(*v) : std::string(); };
+  for (const auto& s : b.scenarios) {
+    for (const auto& r : s.methods) {
+      io.out << s.name << ',' << num(s.standoff_m) << ',' << (s.safe_existed ? 1 : 0) << ','
+             << num(s.course_held_cpa_m) << ',' << app::to_string(r.method) << ','
+             << opt(r.chosen_dheading_deg) << ',' << opt(r.predicted_cpa_m) << ','
+             << opt(r.predicted_edge_cpa_m) << ',' << num(r.actual_cpa_m) << ','
+             << (r.violation ? 1 : 0) << ',' << (r.no_maneuver_while_one_existed ? 1 : 0) << ','
+             << (r.unsafe_while_safe_existed ? 1 : 0) << '\n';
+    }
+  }
+}
+
+void print_summary(const app::EncounterBench& b, std::ostream& out) {
+  out << "method         scenarios  violations   rate  no-maneuver  none-while-safe  "
+         "unsafe-while-safe  mean|dpsi|  cpa-err  |cpa-err|\n";
+  for (const auto& m : b.summary) {
+    out << std::left << std::setw(15) << app::to_string(m.method) << std::right;
+    if (!m.available) {
+      out << "not available: " << m.note << "\n";
+      continue;
+    }
+    out << std::setw(9) << m.scenarios << std::setw(12) << m.violations << std::setw(7)
+        << fixed(m.violation_rate, 3) << std::setw(13) << m.no_maneuver << std::setw(17)
+        << m.no_maneuver_while_one_existed << std::setw(19) << m.unsafe_while_safe_existed
+        << std::setw(12) << opt_text(m.mean_abs_dheading_deg, 1) << std::setw(9)
+        << opt_text(m.mean_cpa_error_m, 2, true) << std::setw(11)
+        << opt_text(m.mean_abs_cpa_error_m, 2) << "\n";
+  }
+}
+
+void print_table(const app::EncounterBench& b, Io& io) {
+  io.out << "scenario                              standoff  held  safe  method          dpsi  "
+            "pred-cpa  edge-cpa  actual  flags\n";
+  for (const auto& s : b.scenarios) {
+    for (const auto& r : s.methods) {
+      io.out << std::left << std::setw(38) << s.name << std::right << std::setw(8)
+             << fixed(s.standoff_m, 1) << std::setw(6) << fixed(s.course_held_cpa_m, 1)
+             << std::setw(6) << (s.safe_existed ? "yes" : "no") << "  " << std::left
+             << std::setw(14) << app::to_string(r.method) << std::right << std::setw(6)
+             << opt_text(r.chosen_dheading_deg, 0, true) << std::setw(10)
+             << opt_text(r.predicted_cpa_m, 1) << std::setw(10)
+             << opt_text(r.predicted_edge_cpa_m, 1) << std::setw(8) << fixed(r.actual_cpa_m, 1)
+             << "  " << flags_text(r) << "\n";
+    }
+  }
+  io.out << "\n";
+  print_summary(b, io.out);
+  // Where the methods chose differently: what each chose and what it got.
+  bool header = false;
+  for (const auto& s : b.scenarios) {
+    bool differ = false;
+    for (const auto& r : s.methods)
+      differ = differ || r.chosen_dheading_deg != s.methods.front().chosen_dheading_deg;
+    if (!differ) continue;
+    if (!header) io.out << "\nscenarios where the methods disagree (dpsi deg -> actual CPA m)\n";
+    header = true;
+    io.out << "  " << std::left << std::setw(38) << s.name << std::right;
+    for (const auto& r : s.methods) {
+      io.out << "  " << app::to_string(r.method) << " " << opt_text(r.chosen_dheading_deg, 0, true)
+             << " -> " << fixed(r.actual_cpa_m, 1) << (r.violation ? "!" : "");
+    }
+    io.out << "\n";
+  }
+}
+
+int encounter_run(const std::vector<std::string>& rest, Io& io) {
+  const Args a(rest,
+               {"scenarios", "db", "vehicle-id", "vehicle", "sim-config", "method", "seed", "ticks",
+                "format", "step", "threads"},
+               {"jitter"});
+  const std::string format = a.get("format").value_or("table");
+  if (format != "table" && format != "json" && format != "csv")
+    throw UsageError("--format must be table, json or csv");
+  const std::string scenarios_path = a.require("scenarios");
+  app::Context ctx(a.require("db"));
+  app::EncounterBenchQuery q;
+  q.setup = sim_setup_from(a, io, "catamaran:m200");
+  q.seed = q.setup.scheduler.seed;
+  q.methods = methods_from(a);
+  q.candidate_step_deg = a.number("step").value_or(5.0);
+  if (!(q.candidate_step_deg > 0.0 && q.candidate_step_deg <= 180.0))
+    throw UsageError("--step must be in (0, 180] degrees");
+  q.threads = whole_option(a, "threads", 2, 1, 64);
+  q.vehicle_id = vehicle_of(a, ctx.db(), {}, "vehicle-id");
+  const app::EncounterFile file =
+      value_or_fail(app::parse_encounter_file(read_file(scenarios_path, io.in)));
+  const auto started = std::chrono::steady_clock::now();
+  const app::EncounterBench bench = value_or_fail(app::run_encounter_bench(ctx, file, q));
+  const std::chrono::duration<double> took = std::chrono::steady_clock::now() - started;
+  if (format == "json") {
+    io.out << bench_json(bench, q).dump(2) << "\n";
+  } else if (format == "csv") {
+    print_csv(bench, io);
+  } else {
+    print_table(bench, io);
+  }
+  if (format != "table") print_summary(bench, io.err);
+  for (const auto& m : bench.summary) {
+    if (!m.available)
+      io.err << "encounter run: method " << app::to_string(m.method) << " skipped: " << m.note
+             << "\n";
+  }
+  io.err << "encounter run: " << file.scenarios.size() << " scenarios, " << bench.flights
+         << " maneuvers flown on " << q.threads << " thread(s) in " << fixed(took.count(), 1)
+         << " s (vehicle " << q.vehicle_id << ", plant " << q.setup.vehicle.kind << ", seed "
+         << q.seed << ")\n";
+  return 0;
+}
+
+int encounter_generate(const std::vector<std::string>& rest, Io& io) {
+  const Args a(rest, {"seed", "count"});
+  const auto seed = a.number("seed").value_or(1.0);
+  if (seed < 0 || std::floor(seed) != seed) throw UsageError("--seed needs a whole number >= 0");
+  const int count = whole_option(a, "count", 60, 1, 100000);
+  const app::EncounterFile f =
+      value_or_fail(app::generate_encounters(static_cast<std::uint64_t>(seed), count));
+  io.out << app::encounter_file_json(f);
+  return 0;
+}
+
+}  // namespace
+
+int cmd_encounter(const std::vector<std::string>& args, Io& io) {
+  if (args.empty()) throw UsageError("expected 'encounter run' or 'encounter generate'");
+  const std::vector<std::string> rest(args.begin() + 1, args.end());
+  if (args[0] == "run") return encounter_run(rest, io);
+  if (args[0] == "generate") return encounter_generate(rest, io);
+  throw UsageError("unknown subcommand 'encounter " + args[0] + "'");
+}
+
+}  // namespace avk::server
