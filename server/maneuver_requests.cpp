@@ -1,10 +1,10 @@
 #include "server/maneuver_requests.hpp"
 
 #include <cmath>
-#include <set>
+#include <limits>
 #include <vector>
 
-#include "kinematics/json_parse.hpp"
+#include "mission/document_reader.hpp"
 #include "server/api_params.hpp"
 #include "server/serialize.hpp"
 
@@ -14,116 +14,72 @@ using nlohmann::json;
 
 namespace {
 
-// Reads the members of one object of a request, recording every problem under its JSON pointer;
-// finish() reports the members nobody asked for.
-class Fields {
- public:
-  Fields(const json& obj, std::string pointer, std::vector<app::FieldError>& errors)
-      : obj_(obj), pointer_(std::move(pointer)), errors_(errors) {
-    ok_ = obj.is_object();
-    if (!ok_) error(pointer_.empty() ? "/" : pointer_, "must be an object");
-  }
-  Fields(const Fields&) = delete;
-  Fields& operator=(const Fields&) = delete;
-  ~Fields() {
-    if (!ok_) return;
-    for (const auto& [key, value] : obj_.items())
-      if (!known_.count(key))
-        error(pointer_ + kinematics::json_member_pointer(key), "is not a known field");
-  }
+using Reader = mission::DocumentReader;
+using Errors = std::vector<mission::FieldError>;
 
-  std::string at(const char* key) const { return pointer_ + "/" + key; }
-  // Where the problems go, for the nested objects read with their own Fields.
-  std::vector<app::FieldError>& errors() { return errors_; }
-  void error(const std::string& pointer, const std::string& message) {
-    errors_.push_back({pointer, message});
+// What mission::DocumentReader does not read itself. A null member counts as absent.
+const json* present(Reader& r, const char* key, bool required) {
+  const json* v = r.get(key, required);
+  if (v && v->is_null()) {
+    if (required) r.error(r.at(key), "missing required field");
+    return nullptr;
   }
+  return v;
+}
 
-  const json* get(const char* key, bool required) {
-    known_.insert(key);
-    if (!ok_) return nullptr;
-    const auto it = obj_.find(key);
-    if (it == obj_.end() || it->is_null()) {
-      if (required) error(at(key), "is missing");
-      return nullptr;
-    }
-    return &*it;
+std::optional<double> number(Reader& r, const char* key, double min, double max, bool required,
+                             bool min_exclusive = false) {
+  if (!present(r, key, required)) return std::nullopt;
+  // The reader sets the target only for a good value.
+  double v = std::numeric_limits<double>::quiet_NaN();
+  r.number(key, v, min, max, required, min_exclusive);
+  return std::isnan(v) ? std::nullopt : std::optional<double>(v);
+}
+
+std::optional<bool> boolean(Reader& r, const char* key) {
+  const json* v = present(r, key, false);
+  if (!v) return std::nullopt;
+  if (!v->is_boolean()) {
+    r.error(r.at(key), "expected true or false");
+    return std::nullopt;
   }
+  return v->get<bool>();
+}
 
-  // A finite number in [min, max] (or (min, max] when min_exclusive).
-  std::optional<double> number(const char* key, double min, double max, bool required,
-                               bool min_exclusive = false) {
-    const json* v = get(key, required);
-    return v ? number_value(*v, at(key), min, max, min_exclusive) : std::nullopt;
+std::optional<app::PredictionMethod> method(Reader& r, const char* key) {
+  const json* v = present(r, key, false);
+  if (!v) return std::nullopt;
+  const auto m =
+      v->is_string() ? app::prediction_method_from_string(v->get<std::string>()) : std::nullopt;
+  if (!m) r.error(r.at(key), "must be avk, model or instantaneous");
+  return m;
+}
+
+std::optional<std::int64_t> id(Reader& r, const char* key) {
+  const json* v = present(r, key, false);
+  if (!v) return std::nullopt;
+  if (!v->is_number_integer() || v->get<std::int64_t>() <= 0) {
+    r.error(r.at(key), "expected a positive whole number, got " + describe_value(*v));
+    return std::nullopt;
   }
+  return v->get<std::int64_t>();
+}
 
-  std::optional<double> number_value(const json& v, const std::string& pointer, double min,
-                                     double max, bool min_exclusive = false) {
-    if (!v.is_number() || !std::isfinite(v.get<double>())) {
-      error(pointer, "must be a number, got " + describe_value(v));
-      return std::nullopt;
-    }
-    const double d = v.get<double>();
-    if (d < min || d > max || (min_exclusive && d == min)) {
-      error(pointer, std::string("must be in ") + (min_exclusive ? "(" : "[") + num(min) + ", " +
-                         num(max) + "], got " + num(d));
-      return std::nullopt;
-    }
-    return d;
+// A non-empty array of at most max_count elements.
+const json* array(Reader& r, const char* key, bool required, std::size_t max_count) {
+  const json* v = present(r, key, required);
+  if (!v) return nullptr;
+  if (!v->is_array() || v->empty()) {
+    r.error(r.at(key), "expected a non-empty array");
+    return nullptr;
   }
-
-  std::optional<bool> boolean(const char* key) {
-    const json* v = get(key, false);
-    if (!v) return std::nullopt;
-    if (!v->is_boolean()) {
-      error(at(key), "must be true or false");
-      return std::nullopt;
-    }
-    return v->get<bool>();
+  if (v->size() > max_count) {
+    r.error(r.at(key), "holds " + std::to_string(v->size()) + " elements, at most " +
+                           std::to_string(max_count) + " are taken");
+    return nullptr;
   }
-
-  std::optional<app::PredictionMethod> method(const char* key) {
-    const json* v = get(key, false);
-    if (!v) return std::nullopt;
-    const auto m =
-        v->is_string() ? app::prediction_method_from_string(v->get<std::string>()) : std::nullopt;
-    if (!m) error(at(key), "must be avk, model or instantaneous");
-    return m;
-  }
-
-  std::optional<std::int64_t> id(const char* key) {
-    const json* v = get(key, false);
-    if (!v) return std::nullopt;
-    if (!v->is_number_integer() || v->get<std::int64_t>() <= 0) {
-      error(at(key), "must be a positive whole number, got " + describe_value(*v));
-      return std::nullopt;
-    }
-    return v->get<std::int64_t>();
-  }
-
-  // An array of at least one and at most max_count elements.
-  const json* array(const char* key, bool required, std::size_t max_count) {
-    const json* v = get(key, required);
-    if (!v) return nullptr;
-    if (!v->is_array() || v->empty()) {
-      error(at(key), "must be a non-empty array");
-      return nullptr;
-    }
-    if (v->size() > max_count) {
-      error(at(key), "holds " + std::to_string(v->size()) + " elements, at most " +
-                         std::to_string(max_count) + " are taken");
-      return nullptr;
-    }
-    return v;
-  }
-
- private:
-  const json& obj_;
-  std::string pointer_;
-  std::vector<app::FieldError>& errors_;
-  std::set<std::string> known_;
-  bool ok_ = true;
-};
+  return v;
+}
 
 constexpr double kMaxCoordinateM = 1e6;
 constexpr double kMaxSpeedMps = 20.0;  // own vehicle; the station's vehicles are small
@@ -134,109 +90,111 @@ struct Own {
   double speed_mps = 1.0;
 };
 
-Own own_of(Fields& body) {
+Own own_of(Reader& body, Errors& errors) {
   Own own;
-  const json* v = body.get("own", true);
+  const json* v = present(body, "own", true);
   if (!v) return own;
-  Fields f(*v, "/own", body.errors());
-  own.pose.x_m = f.number("x_m", -kMaxCoordinateM, kMaxCoordinateM, false).value_or(0.0);
-  own.pose.y_m = f.number("y_m", -kMaxCoordinateM, kMaxCoordinateM, false).value_or(0.0);
-  own.pose.heading_deg = f.number("heading_deg", -360.0, 360.0, true).value_or(0.0);
-  own.speed_mps = f.number("speed_mps", 0.0, kMaxSpeedMps, true, true).value_or(1.0);
+  Reader r(*v, "/own", errors);
+  r.number("x_m", own.pose.x_m, -kMaxCoordinateM, kMaxCoordinateM);
+  r.number("y_m", own.pose.y_m, -kMaxCoordinateM, kMaxCoordinateM);
+  r.number("heading_deg", own.pose.heading_deg, -360.0, 360.0, true);
+  r.number("speed_mps", own.speed_mps, 0.0, kMaxSpeedMps, true, true);
+  r.finish();
   return own;
 }
 
-std::vector<kinematics::Contact> contacts_of(Fields& body, std::size_t max_count) {
+std::vector<kinematics::Contact> contacts_of(Reader& body, Errors& errors, std::size_t max_count) {
   std::vector<kinematics::Contact> out;
-  const json* list = body.array("contacts", true, max_count);
+  const json* list = array(body, "contacts", true, max_count);
   if (!list) return out;
   for (std::size_t i = 0; i < list->size(); ++i) {
-    Fields f((*list)[i], "/contacts/" + std::to_string(i), body.errors());
+    Reader r((*list)[i], "/contacts/" + std::to_string(i), errors);
     kinematics::Contact c;
-    c.x_m = f.number("x_m", -kMaxCoordinateM, kMaxCoordinateM, true).value_or(0.0);
-    c.y_m = f.number("y_m", -kMaxCoordinateM, kMaxCoordinateM, true).value_or(0.0);
-    c.course_deg = f.number("course_deg", -360.0, 360.0, true).value_or(0.0);
-    c.speed_mps = f.number("speed_mps", 0.0, kMaxContactSpeedMps, true).value_or(0.0);
+    r.number("x_m", c.x_m, -kMaxCoordinateM, kMaxCoordinateM, true);
+    r.number("y_m", c.y_m, -kMaxCoordinateM, kMaxCoordinateM, true);
+    r.number("course_deg", c.course_deg, -360.0, 360.0, true);
+    r.number("speed_mps", c.speed_mps, 0.0, kMaxContactSpeedMps, true);
+    r.finish();
     out.push_back(c);
   }
   return out;
 }
 
 template <class T>
-app::Result<T> checked(T value, const std::vector<app::FieldError>& errors) {
+app::Result<T> checked(T value, const Errors& errors) {
   if (errors.empty()) return value;
-  const app::FieldError& first = errors.front();
-  app::Error e = app::invalid_argument(first.field, first.message);
-  e.fields = errors;
+  app::Error e = app::invalid_argument(errors.front().field, errors.front().message);
+  for (const auto& f : errors)
+    e.fields.push_back({f.field, f.message});
   return e;
 }
 
 }  // namespace
 
 app::Result<ManeuverRequest> maneuver_request(const json& body, const std::string& vehicle_id) {
-  std::vector<app::FieldError> errors;
+  Errors errors;
   ManeuverRequest out;
   app::ManeuverQuery& q = out.query;
   q.vehicle_id = vehicle_id;
-  {
-    Fields f(body, "", errors);
-    const Own own = own_of(f);
-    q.own = own.pose;
-    q.speed_mps = own.speed_mps;
-    q.contacts = contacts_of(f, kMaxManeuverContacts);
-    q.standoff_m = f.number("standoff_m", 0.0, 1000.0, false, true).value_or(q.standoff_m);
-    q.horizon_s =
-        f.number("horizon_s", 0.0, kMaxManeuverHorizonS, false, true).value_or(q.horizon_s);
-    if (const json* list = f.array("candidates_deg", false, kMaxManeuverCandidates)) {
-      for (std::size_t i = 0; i < list->size(); ++i)
-        if (const auto d =
-                f.number_value((*list)[i], "/candidates_deg/" + std::to_string(i), -180.0, 180.0))
-          q.candidates_deg.push_back(*d);
+  Reader r(body, "", errors);
+  const Own own = own_of(r, errors);
+  q.own = own.pose;
+  q.speed_mps = own.speed_mps;
+  q.contacts = contacts_of(r, errors, kMaxManeuverContacts);
+  q.standoff_m = number(r, "standoff_m", 0.0, 1000.0, false, true).value_or(q.standoff_m);
+  q.horizon_s =
+      number(r, "horizon_s", 0.0, kMaxManeuverHorizonS, false, true).value_or(q.horizon_s);
+  if (const json* list = array(r, "candidates_deg", false, kMaxManeuverCandidates)) {
+    for (std::size_t i = 0; i < list->size(); ++i) {
+      const json& d = (*list)[i];
+      if (d.is_number() && std::abs(d.get<double>()) <= 180.0)
+        q.candidates_deg.push_back(d.get<double>());
+      else
+        r.error("/candidates_deg/" + std::to_string(i), "expected a heading change in [-180, 180]");
     }
-    if (const auto step = f.number("candidate_step_deg", 0.5, 180.0, false)) {
-      if (body.contains("candidates_deg"))
-        f.error("/candidate_step_deg", "give candidates_deg or candidate_step_deg, not both");
-      q.candidate_step_deg = *step;
-    }
-    q.candidate_speed_mps = f.number("candidate_speed_mps", 0.0, kMaxSpeedMps, false, true);
-    q.method = f.method("method").value_or(q.method);
-    q.model_id = f.id("model_id");
-    q.corridor_share = f.number("corridor", 0.5, 0.999, false).value_or(q.corridor_share);
-    q.use_corridor = f.boolean("use_corridor").value_or(q.use_corridor);
-    out.path_step_s = f.number("path_step_s", 0.0, 60.0, false).value_or(out.path_step_s);
   }
+  if (const auto step = number(r, "candidate_step_deg", 0.5, 180.0, false)) {
+    if (!q.candidates_deg.empty())
+      r.error("/candidate_step_deg", "give candidates_deg or candidate_step_deg, not both");
+    q.candidate_step_deg = *step;
+  }
+  q.candidate_speed_mps = number(r, "candidate_speed_mps", 0.0, kMaxSpeedMps, false, true);
+  q.method = method(r, "method").value_or(q.method);
+  q.model_id = id(r, "model_id");
+  q.corridor_share = number(r, "corridor", 0.5, 0.999, false).value_or(q.corridor_share);
+  q.use_corridor = boolean(r, "use_corridor").value_or(q.use_corridor);
+  out.path_step_s = number(r, "path_step_s", 0.0, 60.0, false).value_or(out.path_step_s);
+  r.finish();
   return checked(std::move(out), errors);
 }
 
 app::Result<SimulateRequest> simulate_request(const json& body) {
-  std::vector<app::FieldError> errors;
+  Errors errors;
   SimulateRequest out;
   app::SimulatedManeuverQuery& q = out.query;
-  {
-    Fields f(body, "", errors);
-    const Own own = own_of(f);
-    out.own_position = {own.pose.x_m, own.pose.y_m};
-    q.own_heading_deg = own.pose.heading_deg;
-    q.own_speed_mps = own.speed_mps;
-    // The simulator's own vehicle starts at the origin: the contacts are moved with it.
-    q.contacts = contacts_of(f, kMaxSimulatedContacts);
-    for (auto& c : q.contacts) {
-      c.x_m -= own.pose.x_m;
-      c.y_m -= own.pose.y_m;
-    }
-    q.dheading_deg = f.number("dheading_deg", -180.0, 180.0, true).value_or(0.0);
-    q.speed_mps = f.number("speed_mps", 0.0, kMaxSpeedMps, false, true);
-    q.horizon_s =
-        f.number("horizon_s", 0.0, kMaxSimulatedHorizonS, false, true).value_or(q.horizon_s);
-    if (const json* seed = f.get("seed", false)) {
-      if (seed->is_number_unsigned())
-        q.seed = seed->get<std::uint64_t>();
-      else
-        f.error("/seed", "must be a whole number >= 0");
-    }
-    out.standoff_m = f.number("standoff_m", 0.0, 1000.0, false, true);
-    out.path_step_s = f.number("path_step_s", 0.0, 60.0, false).value_or(out.path_step_s);
+  Reader r(body, "", errors);
+  const Own own = own_of(r, errors);
+  out.own_position = {own.pose.x_m, own.pose.y_m};
+  q.own_heading_deg = own.pose.heading_deg;
+  q.own_speed_mps = own.speed_mps;
+  // The simulator's own vehicle starts at the origin: the contacts are moved with it.
+  q.contacts = contacts_of(r, errors, kMaxSimulatedContacts);
+  for (auto& c : q.contacts) {
+    c.x_m -= own.pose.x_m;
+    c.y_m -= own.pose.y_m;
   }
+  r.number("dheading_deg", q.dheading_deg, -180.0, 180.0, true);
+  q.speed_mps = number(r, "speed_mps", 0.0, kMaxSpeedMps, false, true);
+  r.number("horizon_s", q.horizon_s, 0.0, kMaxSimulatedHorizonS, false, true);
+  if (const json* seed = present(r, "seed", false)) {
+    if (seed->is_number_unsigned())
+      q.seed = seed->get<std::uint64_t>();
+    else
+      r.error("/seed", "expected a whole number >= 0");
+  }
+  out.standoff_m = number(r, "standoff_m", 0.0, 1000.0, false, true);
+  out.path_step_s = number(r, "path_step_s", 0.0, 60.0, false).value_or(out.path_step_s);
+  r.finish();
   return checked(std::move(out), errors);
 }
 

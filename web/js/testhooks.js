@@ -4,7 +4,7 @@
 
 import { state, on } from './state.js';
 import { applyNav } from './sync.js';
-import { renderNow, renderTimes } from './live.js';
+import { renderNow, renderTimes, deviationLog } from './live.js';
 
 /** A lawn-mower survey at 1 m/s sampled at 10 Hz: long straight legs joined by half circles,
  *  which is what two hours of turn collection looks like to the renderer. */
@@ -75,6 +75,8 @@ export function installTestHooks() {
     /** Durations (ms) of the Live plot updates so far; `reset` empties the list. */
     renderTimes: (reset = false) => (reset ? renderTimes.splice(0) : renderTimes.slice()),
     trackCapacity: () => state.track.capacity,
+    /** The deviations from the prediction the Live view showed while turns ran. */
+    deviations: () => deviationLog.slice(),
     state: () => ({ link: state.link, sessionId: state.sessionId, vehicleId: state.vehicleId, mission: state.mission?.id ?? null, okTurns: state.okTurns }),
     /** The event log as shown ({kind, level}) and the levels the hello gave each kind. */
     events: () => state.events.map((e) => ({ kind: e.kind, level: e.level })),
