@@ -37,7 +37,7 @@ class ManeuverApi : public ::testing::Test {
  protected:
   void SetUp() override {
     store::Store db(db_.path());
-    testing::store_arc_turns(db, "boat");
+    avk::testing::store_arc_turns(db, "boat");
   }
 
   server::StationOptions options() const {
@@ -88,7 +88,7 @@ class ManeuverApi : public ::testing::Test {
     EXPECT_NE(p["detail"].get<std::string>().find(pointer), std::string::npos) << p.dump();
   }
 
-  testing::TempDb db_{"avk_maneuver_api"};
+  avk::testing::TempDb db_{"avk_maneuver_api"};
   server::StreamHub hub_;
   std::unique_ptr<server::Station> station_;
 };
@@ -289,7 +289,7 @@ TEST_F(ManeuverApi, SimulateFliesTheManeuverAndCapsTheQuestion) {
 }
 
 TEST_F(ManeuverApi, SimulateUsesTheStationsSimulatedVehicle) {
-  server::Station station(testing::sim_station_options(db_.path(), kToken, 1.0), hub_);
+  server::Station station(avk::testing::sim_station_options(db_.path(), kToken, 1.0), hub_);
   json body = head_on();
   body.erase("method");
   body["dheading_deg"] = 40.0;
@@ -306,26 +306,26 @@ TEST_F(ManeuverApi, CliPrintsTheChoiceAndTheSameDocumentAsTheApi) {
   const std::vector<std::string> args = {"maneuver",   "evaluate", "--db",      db_.path(),
                                          "--own",      "0,0,0,1",  "--contact", "0,40,180,1",
                                          "--standoff", "10",       "--method",  "instantaneous"};
-  const auto table = testing::run(args);
+  const auto table = avk::testing::run(args);
   ASSERT_EQ(table.rc, 0) << table.err;
   EXPECT_NE(table.out.find("chosen: +30° (CPA 10.4 m)"), std::string::npos) << table.out;
   EXPECT_NE(table.out.find("<- chosen"), std::string::npos);
   auto json_args = args;
   json_args.insert(json_args.end(), {"--format", "json"});
-  const auto j = testing::run(json_args);
+  const auto j = avk::testing::run(json_args);
   ASSERT_EQ(j.rc, 0) << j.err;
   json api = ok(post("evaluate", head_on().dump()));
   EXPECT_EQ(json::parse(j.out), api);
 
   auto bad = args;
   bad[7] = "0,40,180,-1";
-  const auto err = testing::run(bad);
+  const auto err = avk::testing::run(bad);
   EXPECT_EQ(err.rc, 1);
   EXPECT_NE(err.err.find("/contacts/0/speed_mps"), std::string::npos) << err.err;
 
-  const auto ongoing = testing::run({"maneuver", "ongoing", "--db", db_.path(), "--start", "0,0,0",
-                                     "--dheading", "90", "--speed", "1", "--elapsed", "5",
-                                     "--measured", "5,1", "--method", "instantaneous"});
+  const auto ongoing = avk::testing::run({"maneuver", "ongoing", "--db", db_.path(), "--start",
+                                          "0,0,0", "--dheading", "90", "--speed", "1", "--elapsed",
+                                          "5", "--measured", "5,1", "--method", "instantaneous"});
   ASSERT_EQ(ongoing.rc, 0) << ongoing.err;
   EXPECT_NE(ongoing.out.find("x 5.00 m, y 0.00 m"), std::string::npos) << ongoing.out;
   EXPECT_NE(ongoing.out.find("deviation 1.00 m"), std::string::npos) << ongoing.out;

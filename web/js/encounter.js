@@ -227,9 +227,10 @@ function axes() {
 function pointer(ev) {
   const fl = axes();
   if (!fl) return null;
+  // Pixels from the axes' own origin: with equal axes the x axis is narrowed inside the margins.
   const r = plotEl.getBoundingClientRect();
-  const px = ev.clientX - r.left - fl._size.l;
-  const py = ev.clientY - r.top - fl._size.t;
+  const px = ev.clientX - r.left - fl.xaxis._offset;
+  const py = ev.clientY - r.top - fl.yaxis._offset;
   return { px, py, x: fl.xaxis.p2c(px), y: fl.yaxis.p2c(py) };
 }
 
@@ -244,7 +245,8 @@ function pickUp(ev) {
     if (d <= PICK_PX && (!best || d < best.d)) best = { i, d };
   });
   if (!best) return;
-  drag = { index: best.i };
+  // The axes hold still while dragging: the pointer's grid position must not move under it.
+  drag = { index: best.i, range: viewRange() };
   plotEl.classList.add('dragging');
   ev.preventDefault();
   ev.stopPropagation();
@@ -433,7 +435,7 @@ function render() {
       },
     },
   ];
-  const r = viewRange();
+  const r = drag?.range ?? viewRange();
   const ax = equalAxes();
   ax.xaxis.range = [-r, r];
   ax.yaxis.range = [-r, r];
