@@ -70,7 +70,7 @@ Result<kin::PredictedManeuver> predict_one(const Predictor& p, double speed_mps,
       }
       std::vector<double> widths;
       if (t.corridor && t.corridor->n_turns >= 2)
-        widths = kin::corridor_band(t.trajectory, *t.corridor, p.corridor_share).half_width_m;
+        widths = kin::corridor_half_widths_m(t.trajectory, *t.corridor, p.corridor_share);
       return kin::timed_maneuver(dheading_deg, speed_mps, t.trajectory, t.timing,
                                  std::move(widths));
     }
@@ -81,8 +81,12 @@ Result<kin::PredictedManeuver> predict_one(const Predictor& p, double speed_mps,
       kin::PredictOptions o;
       o.steps = static_cast<std::size_t>(std::ceil(horizon_s * m.rate_hz));
       const double d = std::abs(dheading_deg);
-      const auto steps =
-          kin::predict(m, kin::steady_history(m, 0.0), d, {0.0, 0.0, 0.0}, speed_mps, o);
+      std::vector<kin::PredictedStep> steps;
+      try {
+        steps = kin::predict(m, kin::steady_history(m, 0.0), d, {0.0, 0.0, 0.0}, speed_mps, o);
+      } catch (const std::invalid_argument& e) {
+        return internal_error("model " + std::to_string(p.model->id) + ": " + e.what());
+      }
       kin::PredictedManeuver out;
       out.dheading_deg = dheading_deg;
       out.speed_mps = speed_mps;

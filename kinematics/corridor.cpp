@@ -90,24 +90,32 @@ double lateral_offset_m(const StationedPath& path, double s_m, Point q, double g
   return (q.x_m - p.x_m) * t.y_m - (q.y_m - p.y_m) * t.x_m;
 }
 
-CorridorBand corridor_band(const Polyline& trajectory, const Corridor& c, double share) {
-  CorridorBand b;
-  b.share = share;
-  b.n_turns = c.n_turns;
+std::vector<double> corridor_half_widths_m(const Polyline& trajectory, const Corridor& c,
+                                           double share) {
   const double factor = corridor_factor(c.n_turns, share);
   const std::vector<double> s = cumulative_arc_length_m(trajectory);
   const double length = s.empty() ? 0.0 : s.back();
   // The corridor's stations were measured on the mean path; the trajectory (a fit of it, or a
   // blend of cells) is a little shorter or longer, so stations map by fraction of length.
   const double to_corridor = length > 0.0 ? c.length_m / length : 0.0;
+  std::vector<double> w(s.size());
+  for (std::size_t i = 0; i < s.size(); ++i)
+    w[i] = factor * lateral_sd_at_m(c, s[i] * to_corridor);
+  return w;
+}
+
+CorridorBand corridor_band(const Polyline& trajectory, const Corridor& c, double share) {
+  CorridorBand b;
+  b.share = share;
+  b.n_turns = c.n_turns;
+  b.s_m = cumulative_arc_length_m(trajectory);
+  b.half_width_m = corridor_half_widths_m(trajectory, c, share);
   for (std::size_t i = 0; i < trajectory.size(); ++i) {
     const Point a = trajectory[i > 0 ? i - 1 : i];
     const Point z = trajectory[i + 1 < trajectory.size() ? i + 1 : i];
     const Point t = unit({z.x_m - a.x_m, z.y_m - a.y_m});
     const Point right{t.y_m, -t.x_m};
-    const double w = factor * lateral_sd_at_m(c, s[i] * to_corridor);
-    b.s_m.push_back(s[i]);
-    b.half_width_m.push_back(w);
+    const double w = b.half_width_m[i];
     b.left.push_back({trajectory[i].x_m - w * right.x_m, trajectory[i].y_m - w * right.y_m});
     b.right.push_back({trajectory[i].x_m + w * right.x_m, trajectory[i].y_m + w * right.y_m});
   }

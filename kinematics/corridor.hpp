@@ -66,6 +66,10 @@ struct CorridorBand {
   Polyline left, right;
 };
 CorridorBand corridor_band(const Polyline& trajectory, const Corridor& c, double share);
+// Only the half widths of the band (one per trajectory vertex), for maneuver evaluation, which
+// asks for them for every candidate and never draws the edges.
+std::vector<double> corridor_half_widths_m(const Polyline& trajectory, const Corridor& c,
+                                           double share);
 
 // Points of a held-out turn inside a band built without it.
 struct Coverage {

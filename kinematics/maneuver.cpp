@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 #include <stdexcept>
+#include <tuple>
+#include <utility>
 
 namespace avk::kinematics {
 
@@ -57,7 +59,8 @@ PredictedManeuver extended_to_horizon(PredictedManeuver m, double horizon_s) {
     return m;
   }
   const TimedPoint last = m.path.back();
-  if (last.t_s >= horizon_s) return m;
+  // A path that ends within rounding of the horizon needs no run-on of a nanometre.
+  if (last.t_s >= horizon_s - 1e-9) return m;
   // Past the prediction the vehicle holds its new heading (the goal, as the CKT's trajectories
   // end on it) at the commanded speed.
   const double run = (horizon_s - last.t_s) * m.speed_mps;
@@ -68,72 +71,92 @@ PredictedManeuver extended_to_horizon(PredictedManeuver m, double horizon_s) {
 }
 
 TimedPath placed(const TimedPath& normalized, const Pose& pose) {
+  // rotate_by_heading's rotation, with its sine and cosine taken once for the whole path.
+  const Point ex = rotate_by_heading({1.0, 0.0}, pose.heading_deg);
+  const Point ey = rotate_by_heading({0.0, 1.0}, pose.heading_deg);
   TimedPath out;
   out.reserve(normalized.size());
-  for (const TimedPoint& p : normalized) {
-    const Point r = rotate_by_heading({p.x_m, p.y_m}, pose.heading_deg);
-    out.push_back({p.t_s, pose.x_m + r.x_m, pose.y_m + r.y_m});
-  }
+  for (const TimedPoint& p : normalized)
+    out.push_back({p.t_s, pose.x_m + p.x_m * ex.x_m + p.y_m * ey.x_m,
+                   pose.y_m + p.x_m * ex.y_m + p.y_m * ey.y_m});
   return out;
 }
 
 namespace {
 
+// A contact's motion with its velocity resolved once: the CPA loops below run over every segment
+// of every candidate, and a sine and cosine per evaluation were most of their time.
+struct Motion {
+  double x0, y0, vx, vy;
+  explicit Motion(const Contact& c) {
+    const Point v = rotate_by_heading({0.0, c.speed_mps}, c.course_deg);
+    x0 = c.x_m, y0 = c.y_m, vx = v.x_m, vy = v.y_m;
+  }
+};
+
 struct SegmentApproach {
-  double distance_m;
+  double distance2_m2;  // squared
   double time_s;
   double weight;  // where along the segment, 0..1
 };
 
 // The closest approach on one segment of own path: the relative position is linear in time.
-SegmentApproach segment_approach(const TimedPoint& a, const TimedPoint& b, const Contact& c) {
-  const Point ca = contact_position(c, a.t_s);
-  const double rx = a.x_m - ca.x_m, ry = a.y_m - ca.y_m;
+SegmentApproach segment_approach(const TimedPoint& a, const TimedPoint& b, const Motion& c) {
+  const double rx = a.x_m - (c.x0 + c.vx * a.t_s), ry = a.y_m - (c.y0 + c.vy * a.t_s);
   const double dt = b.t_s - a.t_s;
-  if (!(dt > 0.0)) return {std::hypot(rx, ry), a.t_s, 0.0};
-  const Point cb = contact_position(c, b.t_s);
-  const double dx = (b.x_m - cb.x_m) - rx, dy = (b.y_m - cb.y_m) - ry;
+  if (!(dt > 0.0)) return {rx * rx + ry * ry, a.t_s, 0.0};
+  const double dx = (b.x_m - a.x_m) - c.vx * dt, dy = (b.y_m - a.y_m) - c.vy * dt;
   const double dd = dx * dx + dy * dy;
   const double w = dd > 0.0 ? std::clamp(-(rx * dx + ry * dy) / dd, 0.0, 1.0) : 0.0;
-  return {std::hypot(rx + w * dx, ry + w * dy), a.t_s + w * dt, w};
+  const double ex = rx + w * dx, ey = ry + w * dy;
+  return {ex * ex + ey * ey, a.t_s + w * dt, w};
 }
 
-double distance_at(const TimedPoint& p, const Contact& c) {
-  const Point q = contact_position(c, p.t_s);
-  return std::hypot(p.x_m - q.x_m, p.y_m - q.y_m);
+double distance2_at(const TimedPoint& p, const Motion& c) {
+  const double rx = p.x_m - (c.x0 + c.vx * p.t_s), ry = p.y_m - (c.y0 + c.vy * p.t_s);
+  return rx * rx + ry * ry;
+}
+
+// One pass over the path for the CPA and, with half widths, the corridor's nearer edge.
+std::pair<Approach, std::optional<Approach>> approaches(const TimedPath& own,
+                                                        const std::vector<double>* half_width_m,
+                                                        const Contact& contact) {
+  if (own.empty()) throw std::invalid_argument("a closest approach needs a path");
+  if (half_width_m && half_width_m->size() != own.size())
+    throw std::invalid_argument("one corridor half width per path point");
+  const Motion c(contact);
+  double best2 = distance2_at(own.front(), c);
+  double best_t = own.front().t_s;
+  std::optional<Approach> edge;
+  const auto edge_of = [](double d2, double w) { return std::max(0.0, std::sqrt(d2) - w); };
+  if (half_width_m) edge = Approach{edge_of(best2, half_width_m->front()), own.front().t_s};
+  for (std::size_t i = 1; i < own.size(); ++i) {
+    const SegmentApproach s = segment_approach(own[i - 1], own[i], c);
+    if (s.distance2_m2 < best2) best2 = s.distance2_m2, best_t = s.time_s;
+    if (!half_width_m) continue;
+    const double w0 = (*half_width_m)[i - 1], w1 = (*half_width_m)[i];
+    // On this segment the edge comes no nearer than the path does less the widest half width.
+    const double reach = edge->distance_m + std::max(w0, w1);
+    if (s.distance2_m2 >= reach * reach) continue;
+    // The half width changes by centimetres along a segment, so the smallest distance less width
+    // is at an end or at the segment's closest approach.
+    const double at_end = edge_of(distance2_at(own[i], c), w1);
+    if (at_end < edge->distance_m) edge = Approach{at_end, own[i].t_s};
+    const double at_cpa = edge_of(s.distance2_m2, w0 + s.weight * (w1 - w0));
+    if (at_cpa < edge->distance_m) edge = Approach{at_cpa, s.time_s};
+  }
+  return {Approach{std::sqrt(best2), best_t}, edge};
 }
 
 }  // namespace
 
 Approach closest_approach(const TimedPath& own, const Contact& contact) {
-  if (own.empty()) throw std::invalid_argument("a closest approach needs a path");
-  Approach best{distance_at(own.front(), contact), own.front().t_s};
-  for (std::size_t i = 1; i < own.size(); ++i) {
-    const SegmentApproach s = segment_approach(own[i - 1], own[i], contact);
-    if (s.distance_m < best.distance_m) best = {s.distance_m, s.time_s};
-  }
-  return best;
+  return approaches(own, nullptr, contact).first;
 }
 
 Approach closest_approach_of_corridor(const TimedPath& own, const std::vector<double>& half_width_m,
                                       const Contact& contact) {
-  if (own.empty()) throw std::invalid_argument("a closest approach needs a path");
-  if (half_width_m.size() != own.size())
-    throw std::invalid_argument("one corridor half width per path point");
-  const auto edge = [](double d, double w) { return std::max(0.0, d - w); };
-  Approach best{edge(distance_at(own.front(), contact), half_width_m.front()), own.front().t_s};
-  const auto consider = [&](double d, double t) {
-    if (d < best.distance_m) best = {d, t};
-  };
-  for (std::size_t i = 1; i < own.size(); ++i) {
-    const double w0 = half_width_m[i - 1], w1 = half_width_m[i];
-    consider(edge(distance_at(own[i], contact), w1), own[i].t_s);
-    // The half width changes by centimetres along a segment, so the smallest distance less width
-    // is at an end or at the segment's closest approach.
-    const SegmentApproach s = segment_approach(own[i - 1], own[i], contact);
-    consider(edge(s.distance_m, w0 + s.weight * (w1 - w0)), s.time_s);
-  }
-  return best;
+  return *approaches(own, &half_width_m, contact).second;
 }
 
 CandidateEvaluation evaluate_candidate(const ManeuverProblem& problem,
@@ -151,12 +174,9 @@ CandidateEvaluation evaluate_candidate(const ManeuverProblem& problem,
   e.contacts.reserve(problem.contacts.size());
   for (const Contact& c : problem.contacts) {
     ContactApproach a;
-    a.cpa = closest_approach(e.path, c);
+    std::tie(a.cpa, a.edge_cpa) = approaches(e.path, corridor ? &e.half_width_m : nullptr, c);
     e.min_cpa_m = std::min(e.min_cpa_m, a.cpa.distance_m);
-    if (corridor) {
-      a.edge_cpa = closest_approach_of_corridor(e.path, e.half_width_m, c);
-      e.min_edge_cpa_m = std::min(*e.min_edge_cpa_m, a.edge_cpa->distance_m);
-    }
+    if (corridor) e.min_edge_cpa_m = std::min(*e.min_edge_cpa_m, a.edge_cpa->distance_m);
     const double judged =
         problem.use_corridor && a.edge_cpa ? a.edge_cpa->distance_m : a.cpa.distance_m;
     if (judged < problem.standoff_m) e.clears = false;
