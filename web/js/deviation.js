@@ -54,13 +54,13 @@ async function poll(turn) {
   }
 }
 
-/** "deviation 0.8 m (inside 90 % corridor)"; a prediction without a corridor says its method. */
+/** "deviation 0.8 m (inside 90 % corridor)"; otherwise the method that predicted, and whether it
+ *  had a corridor. */
 export function deviationText(o) {
   if (!o || typeof o.deviation_m !== 'number') return '–';
   const pct = Math.round((o.corridor ?? 0.9) * 100);
-  const where =
-    typeof o.inside_corridor === 'boolean'
-      ? `${o.inside_corridor ? 'inside' : 'outside'} ${pct} % corridor`
-      : `${o.method} prediction, no corridor`;
+  let where = `${o.method} prediction, no corridor`;
+  if (typeof o.inside_corridor === 'boolean') where = `${o.inside_corridor ? 'inside' : 'outside'} ${pct} % corridor`;
+  else if (typeof o.half_width_m === 'number') where = `${o.method} prediction`;
   return `deviation ${num(o.deviation_m, 1)} m (${where})`;
 }
