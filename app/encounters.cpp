@@ -567,9 +567,13 @@ Result<EncounterFile> generate_encounters(std::uint64_t seed, int count) {
         });
     char index[8];
     std::snprintf(index, sizeof index, "%02d", i + 1);
-    s.name = std::string(kind_name(kind)) +
-             (kind == EncounterKind::several ? "-" + std::to_string(contacts) : "") + "-" +
-             range_text(*nearest) + "-" + index;
+    // Appended piece by piece: GCC 12's -Wrestrict misfires on "-" + std::string at -O3.
+    s.name = kind_name(kind);
+    if (kind == EncounterKind::several) s.name += "-" + std::to_string(contacts);
+    s.name += "-";
+    s.name += range_text(*nearest);
+    s.name += "-";
+    s.name += index;
     f.scenarios.push_back(std::move(s));
   }
   return f;

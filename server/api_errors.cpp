@@ -19,8 +19,10 @@ ApiResponse problem_of(const app::Error& e, bool document) {
       status = document ? 422 : 400;
       if (!e.field.empty()) {
         if (document) {
-          extra["pointer"] = "/" + e.field;
-          detail = "/" + e.field + ": " + e.message;
+          // A field is a JSON pointer, with or without its leading '/'.
+          const std::string pointer = e.field.front() == '/' ? e.field : "/" + e.field;
+          extra["pointer"] = pointer;
+          detail = pointer + ": " + e.message;
         } else {
           extra["parameter"] = e.field;
           detail = "parameter '" + e.field + "': " + e.message;

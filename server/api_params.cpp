@@ -50,6 +50,14 @@ std::optional<std::int64_t> id_param(const ApiRequest& r, const std::string& nam
   return whole_param(r, name, 0, 9'000'000'000'000'000);
 }
 
+std::optional<app::PredictionMethod> method_param(const ApiRequest& r) {
+  const auto it = r.query.find("method");
+  if (it == r.query.end()) return std::nullopt;
+  const auto m = app::prediction_method_from_string(it->second);
+  if (!m) throw bad_parameter("method", "must be avk, model or instantaneous");
+  return m;
+}
+
 std::int64_t path_id(const PathParams& p, const std::string& key, const std::string& what) {
   const std::string& segment = p.at(key);
   const auto id = record_id(segment);

@@ -7,6 +7,7 @@
 #include <optional>
 #include <string>
 
+#include "app/predict.hpp"
 #include "server/api_types.hpp"
 #include "server/http/router.hpp"
 
@@ -21,6 +22,9 @@ std::optional<std::int64_t> whole_param(const ApiRequest& r, const std::string& 
 std::optional<std::int64_t> id_param(const ApiRequest& r, const std::string& name);
 // A record id in the path: 404 naming `what` unless a positive whole number.
 std::int64_t path_id(const PathParams& p, const std::string& key, const std::string& what);
+
+// ?method=avk|model|instantaneous; none when absent.
+std::optional<app::PredictionMethod> method_param(const ApiRequest& r);
 
 enum class Format { json, csv };
 // ?format= wins; otherwise Accept. Anything the resource cannot produce is 406 (400 for a bad

@@ -10,6 +10,8 @@
 
 #include "app/ckt_tables.hpp"
 #include "app/compare.hpp"
+#include "app/encounters.hpp"
+#include "app/maneuvers.hpp"
 #include "app/missions.hpp"
 #include "app/models.hpp"
 #include "app/predict.hpp"
@@ -67,6 +69,23 @@ nlohmann::json ckt_summary_json(const app::VehicleTable& t);
 nlohmann::json ckt_cell_json(const kinematics::CktCell& c);
 nlohmann::json prediction_json(const app::Prediction& p);
 std::string trajectory_csv(const kinematics::Polyline& line);
+
+// --- maneuvers ------------------------------------------------------------------------------
+
+// The indices of a timed path kept at one point per step_s (0: every point); the first and the
+// last are always kept. What the answers draw; their CPAs come from the whole paths.
+std::vector<std::size_t> thinned_indices(const kinematics::TimedPath& path, double step_s);
+// [[t_s, x_m, y_m], ...] at those indices.
+nlohmann::json timed_path_json(const kinematics::TimedPath& path, double step_s = 0.0);
+nlohmann::json approach_json(const kinematics::Approach& a);  // {distance_m, time_s}
+nlohmann::json contact_json(const kinematics::Contact& c);
+// Every candidate with its path, corridor half widths, CPA per contact, and the choice.
+nlohmann::json maneuver_evaluation_json(const app::ManeuverEvaluation& e, double path_step_s);
+nlohmann::json ongoing_maneuver_json(const app::OngoingManeuver& o);
+// The flown track (shifted by `origin`: the simulator starts at the origin) and the actual CPAs;
+// with a standoff, whether it was violated.
+nlohmann::json simulated_maneuver_json(const app::SimulatedManeuver& s, kinematics::Point origin,
+                                       std::optional<double> standoff_m, double path_step_s);
 
 // --- models, the comparison ----------------------------------------------------------------
 

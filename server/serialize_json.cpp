@@ -304,6 +304,144 @@ json prediction_json(const app::Prediction& p) {
   return j;
 }
 
+// --- maneuvers ------------------------------------------------------------------------------
+
+std::vector<std::size_t> thinned_indices(const kin::TimedPath& path, double step_s) {
+  std::vector<std::size_t> keep;
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const bool last = i + 1 == path.size();
+    if (keep.empty() || last || !(step_s > 0.0) || path[i].t_s - path[keep.back()].t_s >= step_s)
+      keep.push_back(i);
+  }
+  return keep;
+}
+
+namespace {
+
+json timed_points_json(const kin::TimedPath& path, const std::vector<std::size_t>& keep) {
+  json a = json::array();
+  for (const std::size_t i : keep)
+    a.push_back({path[i].t_s, path[i].x_m, path[i].y_m});
+  return a;
+}
+
+json point_json(const kin::Point& p) {
+  return {{"x_m", p.x_m}, {"y_m", p.y_m}};
+}
+
+json optional_approach_json(const std::optional<kin::Approach>& a) {
+  return a ? approach_json(*a) : json();
+}
+
+json candidate_json(const kin::CandidateEvaluation& c, double path_step_s) {
+  const std::vector<std::size_t> keep = thinned_indices(c.path, path_step_s);
+  json widths = json::array();
+  if (c.half_width_m.size() == c.path.size())
+    for (const std::size_t i : keep)
+      widths.push_back(c.half_width_m[i]);
+  json contacts = json::array();
+  for (const auto& a : c.contacts)
+    contacts.push_back(
+        {{"cpa", approach_json(a.cpa)}, {"edge_cpa", optional_approach_json(a.edge_cpa)}});
+  return {{"dheading_deg", c.dheading_deg},
+          {"speed_mps", c.speed_mps},
+          {"path", timed_points_json(c.path, keep)},
+          {"half_width_m", c.half_width_m.empty() ? json() : widths},
+          {"contacts", std::move(contacts)},
+          {"min_cpa_m", c.min_cpa_m},
+          {"min_edge_cpa_m", optional_json(c.min_edge_cpa_m)},
+          {"clears", c.clears}};
+}
+
+}  // namespace
+
+json timed_path_json(const kin::TimedPath& path, double step_s) {
+  return timed_points_json(path, thinned_indices(path, step_s));
+}
+
+json approach_json(const kin::Approach& a) {
+  return {{"distance_m", a.distance_m}, {"time_s", a.time_s}};
+}
+
+json contact_json(const kin::Contact& c) {
+  return {{"x_m", c.x_m}, {"y_m", c.y_m}, {"course_deg", c.course_deg}, {"speed_mps", c.speed_mps}};
+}
+
+json maneuver_evaluation_json(const app::ManeuverEvaluation& e, double path_step_s) {
+  const app::ManeuverQuery& q = e.query;
+  json contacts = json::array();
+  for (const auto& c : q.contacts)
+    contacts.push_back(contact_json(c));
+  json candidates = json::array();
+  for (const auto& c : e.candidates)
+    candidates.push_back(candidate_json(c, path_step_s));
+  json chosen;
+  if (e.chosen) {
+    const kin::CandidateEvaluation& c = e.candidates.at(*e.chosen);
+    chosen = {{"index", *e.chosen},
+              {"dheading_deg", c.dheading_deg},
+              {"min_cpa_m", c.min_cpa_m},
+              {"min_edge_cpa_m", optional_json(c.min_edge_cpa_m)}};
+  }
+  return {{"vehicle_id", q.vehicle_id},
+          {"method", app::to_string(q.method)},
+          {"model_id", optional_json(e.model_id)},
+          {"table_source", e.table_source ? json(*e.table_source) : json()},
+          {"timed_by_turns", e.timed_by_turns},
+          {"own",
+           {{"x_m", q.own.x_m},
+            {"y_m", q.own.y_m},
+            {"heading_deg", q.own.heading_deg},
+            {"speed_mps", q.speed_mps}}},
+          {"contacts", std::move(contacts)},
+          {"standoff_m", q.standoff_m},
+          {"horizon_s", q.horizon_s},
+          {"corridor", q.corridor_share},
+          {"use_corridor", q.use_corridor},
+          {"path_step_s", path_step_s},
+          {"candidates", std::move(candidates)},
+          {"chosen", std::move(chosen)}};
+}
+
+json ongoing_maneuver_json(const app::OngoingManeuver& o) {
+  const app::OngoingQuery& q = o.query;
+  const kin::OngoingEvaluation& e = o.evaluation;
+  return {
+      {"vehicle_id", q.vehicle_id},
+      {"method", app::to_string(q.method)},
+      {"model_id", optional_json(o.model_id)},
+      {"start", {{"x_m", q.start.x_m}, {"y_m", q.start.y_m}, {"heading_deg", q.start.heading_deg}}},
+      {"dheading_deg", q.dheading_deg},
+      {"speed_mps", q.speed_mps},
+      {"elapsed_s", e.elapsed_s},
+      {"corridor", q.corridor_share},
+      {"expected", point_json(e.expected)},
+      {"measured", q.measured ? point_json(*q.measured) : json()},
+      {"half_width_m", optional_json(e.half_width_m)},
+      {"deviation_m", optional_json(e.deviation_m)},
+      {"cross_track_m", optional_json(e.cross_track_m)},
+      {"inside_corridor", e.inside_corridor ? json(*e.inside_corridor) : json()},
+      {"remaining", timed_path_json(e.remaining)},
+      {"prediction", timed_path_json(o.prediction)}};
+}
+
+json simulated_maneuver_json(const app::SimulatedManeuver& s, kin::Point origin,
+                             std::optional<double> standoff_m, double path_step_s) {
+  kin::TimedPath track = s.track;
+  for (auto& p : track) {
+    p.x_m += origin.x_m;
+    p.y_m += origin.y_m;
+  }
+  json cpa = json::array();
+  for (const auto& a : s.cpa)
+    cpa.push_back(approach_json(a));
+  return {{"track", timed_path_json(track, path_step_s)},
+          {"cpa", std::move(cpa)},
+          {"min_cpa_m", s.min_cpa_m},
+          {"standoff_m", optional_json(standoff_m)},
+          {"violated", standoff_m ? json(s.min_cpa_m < *standoff_m) : json()}};
+}
+
 // --- models, the comparison ----------------------------------------------------------------
 
 json model_json(const store::StoredModel& m, bool with_coefficients) {

@@ -4,6 +4,8 @@
 
 #include "app/ckt_tables.hpp"
 #include "app/compare.hpp"
+#include "app/encounters.hpp"
+#include "app/maneuvers.hpp"
 #include "app/missions.hpp"
 #include "app/models.hpp"
 #include "app/predict.hpp"
@@ -12,8 +14,10 @@
 #include "kinematics/ckt_file.hpp"
 #include "server/api_errors.hpp"
 #include "server/api_params.hpp"
+#include "server/maneuver_requests.hpp"
 #include "server/serialize.hpp"
 #include "server/vocabulary_json.hpp"
+#include "sim/sim_config.hpp"
 
 namespace avk::server {
 
@@ -107,11 +111,7 @@ app::PredictQuery predict_query(const ApiRequest& r, const std::string& vid) {
   q.vehicle_id = vid;
   q.speed_mps = required_number(r, "speed", 0.0, 100.0);
   q.dheading_deg = required_number(r, "dheading", -180.0, 180.0);
-  if (const auto it = r.query.find("method"); it != r.query.end()) {
-    const auto m = app::prediction_method_from_string(it->second);
-    if (!m) throw bad_parameter("method", "must be avk, model or instantaneous");
-    q.method = *m;
-  }
+  q.method = method_param(r).value_or(q.method);
   q.model_id = id_param(r, "model");
   const auto x = number_param(r, "x", -1e7, 1e7);
   const auto y = number_param(r, "y", -1e7, 1e7);
@@ -154,6 +154,11 @@ void Station::add_routes() {
   const auto post = [this](std::string pattern, RouteHandler h,
                            std::optional<std::size_t> limit = std::nullopt) {
     add({"POST", std::move(pattern), Access::control, limit, std::move(h)});
+  };
+  // A question sent as a document that changes nothing and commands nothing: open on loopback,
+  // like the reads.
+  const auto post_question = [this](std::string pattern, RouteHandler h) {
+    add({"POST", std::move(pattern), Access::read, std::nullopt, std::move(h)});
   };
 
   // --- the station, vehicles ---------------------------------------------------------------
@@ -314,6 +319,49 @@ void Station::add_routes() {
   get("/api/v1/vehicles/{vid}/predict", [&ctx](const ApiRequest& r, const PathParams& p) {
     return answer(app::predict(ctx, predict_query(r, p.at("vid"))), false,
                   [](const app::Prediction& pr) { return json_response(prediction_json(pr)); });
+  });
+  // --- maneuvers: candidates scored by CPA, a maneuver in progress, one flown in the simulator --
+  post_question("/api/v1/vehicles/{vid}/maneuvers/evaluate", [&ctx](const ApiRequest& r,
+                                                                    const PathParams& p) {
+    const auto request = maneuver_request(body_object(r, "the encounter"), p.at("vid"));
+    if (!request) return problem_of(request.error(), true);
+    return answer(app::evaluate_maneuvers(ctx, request->query), true,
+                  [&](const app::ManeuverEvaluation& e) {
+                    return json_response(maneuver_evaluation_json(e, request->path_step_s));
+                  });
+  });
+  get("/api/v1/vehicles/{vid}/maneuvers/ongoing", [&ctx](const ApiRequest& r, const PathParams& p) {
+    return answer(
+        app::evaluate_ongoing(ctx, ongoing_query(r, p.at("vid"))), false,
+        [](const app::OngoingManeuver& o) { return json_response(ongoing_maneuver_json(o)); });
+  });
+  post_question("/api/v1/vehicles/{vid}/maneuvers/simulate", [this](const ApiRequest& r,
+                                                                    const PathParams& p) {
+    auto request = simulate_request(body_object(r, "the maneuver"));
+    if (!request) return problem_of(request.error(), true);
+    const std::string vid = p.at("vid");
+    // The station's simulated vehicle flies its own setup; anything else (a real
+    // boat, another vehicle's id) the calibrated M200's defaults.
+    const auto& v = options_.vehicle;
+    const bool own_setup = v && !v->m200 && v->setup.vehicle.id == vid;
+    request->query.setup = own_setup ? v->setup : sim::default_sim_setup(kDefaultManeuverSimKind);
+    return answer(
+        app::simulate_maneuver(request->query), true, [&](const app::SimulatedManeuver& m) {
+          json j = simulated_maneuver_json(m, request->own_position, request->standoff_m,
+                                           request->path_step_s);
+          j["vehicle_id"] = vid;
+          j["sim_vehicle"] = request->query.setup.vehicle.kind;
+          j["station_setup"] = own_setup;
+          if (!own_setup)
+            j["note"] =
+                "the vehicle is not the station's simulated one: "
+                "flown with the default " +
+                std::string(kDefaultManeuverSimKind) + " setup";
+          j["seed"] = request->query.seed;
+          j["dheading_deg"] = request->query.dheading_deg;
+          j["speed_mps"] = request->query.speed_mps.value_or(request->query.own_speed_mps);
+          return json_response(j);
+        });
   });
   get("/api/v1/vehicles/{vid}/compare", [&ctx](const ApiRequest& r, const PathParams& p) {
     const Format f = negotiate(r, true);

@@ -26,6 +26,10 @@ struct StationOptions {
 // A CKT file of a long campaign is larger than any other request body.
 inline constexpr std::size_t kCktImportBodyLimitBytes = std::size_t{64} << 20;
 
+// What POST /vehicles/{vid}/maneuvers/simulate flies when the vehicle is not the station's
+// simulated one.
+inline constexpr const char* kDefaultManeuverSimKind = "catamaran:m200";
+
 class Station final : public Router {
  public:
   Station(StationOptions options, StreamHub& hub);

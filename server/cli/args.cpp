@@ -66,23 +66,40 @@ std::optional<double> Args::number(const std::string& name) const {
   return d;
 }
 
+namespace {
+
+std::vector<double> parse_number_list(const std::string& name, const std::string& text,
+                                      std::size_t count, const std::string& shape) {
+  std::vector<double> out;
+  std::size_t pos = 0;
+  while (pos <= text.size()) {
+    std::size_t end = text.find(',', pos);
+    if (end == std::string::npos) end = text.size();
+    double v = 0.0;
+    const auto r = std::from_chars(text.data() + pos, text.data() + end, v);
+    if (r.ec != std::errc() || r.ptr != text.data() + end || !std::isfinite(v)) break;
+    out.push_back(v);
+    pos = end + 1;
+  }
+  if (out.size() != count || pos <= text.size())
+    throw UsageError("--" + name + " expects " + shape + ", got '" + text + "'");
+  return out;
+}
+
+}  // namespace
+
 std::optional<std::vector<double>> Args::number_list(const std::string& name, std::size_t count,
                                                      const std::string& shape) const {
   const auto text = get(name);
   if (!text) return std::nullopt;
-  std::vector<double> out;
-  std::size_t pos = 0;
-  while (pos <= text->size()) {
-    std::size_t end = text->find(',', pos);
-    if (end == std::string::npos) end = text->size();
-    double v = 0.0;
-    const auto r = std::from_chars(text->data() + pos, text->data() + end, v);
-    if (r.ec != std::errc() || r.ptr != text->data() + end || !std::isfinite(v)) break;
-    out.push_back(v);
-    pos = end + 1;
-  }
-  if (out.size() != count || pos <= text->size())
-    throw UsageError("--" + name + " expects " + shape + ", got '" + *text + "'");
+  return parse_number_list(name, *text, count, shape);
+}
+
+std::vector<std::vector<double>> Args::number_lists(const std::string& name, std::size_t count,
+                                                    const std::string& shape) const {
+  std::vector<std::vector<double>> out;
+  for (const std::string& text : all(name))
+    out.push_back(parse_number_list(name, text, count, shape));
   return out;
 }
 

@@ -31,6 +31,9 @@ class Args {
   // "a,b,c": exactly `count` finite numbers; the UsageError names the option and `shape`.
   std::optional<std::vector<double>> number_list(const std::string& name, std::size_t count,
                                                  const std::string& shape) const;
+  // The same for every value of a repeatable option, in order.
+  std::vector<std::vector<double>> number_lists(const std::string& name, std::size_t count,
+                                                const std::string& shape) const;
   std::vector<std::string> all(const std::string& name) const;  // every value given, in order
   const std::vector<std::string>& positional() const { return positional_; }
 

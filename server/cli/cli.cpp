@@ -52,6 +52,14 @@ void usage(std::ostream& out) {
          "  avk predict --db FILE --speed M/S --dheading DEG --method avk|model|instantaneous\n"
          "                  [--model ID] [--speed-model] [--x M --y M --heading DEG]\n"
          "                  [--corridor P]  (avk: the band holding P of the turns, default 0.9)\n"
+         "  avk maneuver evaluate --db FILE --own X,Y,HEADING,SPEED --contact X,Y,COURSE,SPEED\n"
+         "                  [--contact ...] [--vehicle ID] [--standoff 10] [--horizon 120]\n"
+         "                  [--method avk|model|instantaneous] [--model ID] [--step 5]\n"
+         "                  [--speed M/S] [--corridor 0.9] [--no-corridor] [--format table|json]\n"
+         "      every candidate heading change scored by its CPA to the contacts, and the choice\n"
+         "  avk maneuver ongoing --db FILE --start X,Y,HEADING --dheading DEG --speed M/S\n"
+         "                  --elapsed S [--measured X,Y] [--method ...] [--format table|json]\n"
+         "      where a maneuver in progress should be now, and how far the vehicle is from it\n"
          "  avk compare --db FILE [--model ID] [--format table|csv|json]\n"
          "              [--scoring predictive|in_sample] [--metric path|thesis_mse] [--corridor "
          "P]\n"
@@ -101,6 +109,7 @@ int run_cli(const std::vector<std::string>& args, std::istream& in, std::ostream
     if (args[0] == "model") return cmd_model(rest, io);
     if (args[0] == "compare") return cmd_compare(rest, io);
     if (args[0] == "predict") return cmd_predict(rest, io);
+    if (args[0] == "maneuver") return cmd_maneuver(rest, io);
     if (args[0] == "import") return cmd_import(rest, io);
     if (args[0] == "encounter") return cmd_encounter(rest, io);
     if (args[0] == "serve") return cmd_serve(rest, io);

@@ -132,13 +132,6 @@ int model_list(const std::vector<std::string>& rest, Io& io) {
   return 0;
 }
 
-std::optional<std::int64_t> model_option(const Args& a) {
-  const auto id = a.number("model");
-  if (!id) return std::nullopt;
-  if (*id < 1 || std::floor(*id) != *id) throw UsageError("--model needs a model id");
-  return static_cast<std::int64_t>(*id);
-}
-
 int model_show(const std::vector<std::string>& rest, Io& io) {
   const Args a(rest, {"db", "model"});
   app::Context ctx(a.require("db"));
@@ -307,10 +300,7 @@ int predict(const std::vector<std::string>& rest, Io& io) {
     throw UsageError("--dheading (deg, in [-180, 0) or (0, 180]) is required");
   q.speed_mps = *speed;
   q.dheading_deg = *dheading;
-  const std::string method = a.get("method").value_or("avk");
-  const auto m = app::prediction_method_from_string(method);
-  if (!m) throw UsageError("--method must be avk, model or instantaneous, got '" + method + "'");
-  q.method = *m;
+  q.method = method_option(a);
   const auto x = a.number("x"), y = a.number("y"), heading = a.number("heading");
   if ((x || y || heading) && !(x && y && heading))
     throw UsageError("a pose needs all of --x, --y and --heading");

@@ -22,6 +22,7 @@ int cmd_mission(const std::vector<std::string>& args, Io& io);
 int cmd_model(const std::vector<std::string>& args, Io& io);
 int cmd_compare(const std::vector<std::string>& args, Io& io);
 int cmd_predict(const std::vector<std::string>& args, Io& io);
+int cmd_maneuver(const std::vector<std::string>& args, Io& io);
 int cmd_import(const std::vector<std::string>& args, Io& io);
 int cmd_serve(const std::vector<std::string>& args, Io& io);
 int cmd_encounter(const std::vector<std::string>& args, Io& io);

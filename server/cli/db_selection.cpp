@@ -1,6 +1,7 @@
 #include "server/cli/db_selection.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <set>
 #include <stdexcept>
 
@@ -12,6 +13,20 @@ std::int64_t parse_id(const std::string& text, const std::string& what) {
   const auto id = record_id(text);
   if (!id) throw UsageError(what + " needs a positive whole number, got '" + text + "'");
   return *id;
+}
+
+std::optional<std::int64_t> model_option(const Args& a) {
+  const auto id = a.number("model");
+  if (!id) return std::nullopt;
+  if (*id < 1 || std::floor(*id) != *id) throw UsageError("--model needs a model id");
+  return static_cast<std::int64_t>(*id);
+}
+
+app::PredictionMethod method_option(const Args& a) {
+  const std::string method = a.get("method").value_or("avk");
+  const auto m = app::prediction_method_from_string(method);
+  if (!m) throw UsageError("--method must be avk, model or instantaneous, got '" + method + "'");
+  return *m;
 }
 
 std::vector<std::int64_t> mission_ids(const Args& a) {

@@ -1,10 +1,12 @@
 #pragma once
-// Which data of the store a command works on: --mission IDs and the vehicle.
+// Which data of the store a command works on: --mission IDs, the vehicle, the model.
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "app/predict.hpp"
 #include "server/cli/args.hpp"
 #include "store/store.hpp"
 
@@ -12,6 +14,12 @@ namespace avk::server {
 
 // A record id: a positive whole number, else a UsageError naming `what` (an option, "mission id").
 std::int64_t parse_id(const std::string& text, const std::string& what);
+
+// --model: a model id, else a UsageError; none when absent.
+std::optional<std::int64_t> model_option(const Args& a);
+
+// --method avk|model|instantaneous (default avk), else a UsageError.
+app::PredictionMethod method_option(const Args& a);
 
 // Every --mission, each a positive whole number (UsageError otherwise); empty: all missions.
 std::vector<std::int64_t> mission_ids(const Args& a);

@@ -12,6 +12,8 @@ import { initCkt, showCkt } from './ckt.js';
 import { initCompare, showCompare } from './compare.js';
 import { initModel, showModel } from './model.js';
 import { initExport, showExport } from './export.js';
+import { initEncounter, showEncounter } from './encounter.js';
+import { initDeviation } from './deviation.js';
 import { installTestHooks } from './testhooks.js';
 
 function renderBadge(link) {
@@ -48,11 +50,13 @@ function main() {
   initCompare();
   initModel();
   initExport();
+  initEncounter();
+  initDeviation();
   on('link', renderBadge);
   on('vehicle', renderVehicle);
   renderBadge(state.link);
 
-  initRouter({ live: showLive, mission: showMission, ckt: showCkt, compare: showCompare, model: showModel, export: showExport });
+  initRouter({ live: showLive, mission: showMission, ckt: showCkt, compare: showCompare, model: showModel, encounter: showEncounter, export: showExport });
 
   const stream = new Stream({
     onHello,

@@ -12,6 +12,7 @@ import { C, METHOD_STYLE, baseLayout, equalAxes, draw, showEmpty, corridorTrace 
 import { insetPolygon, ring, along } from './geometry.js';
 import { TrackDecimator } from './decimate.js';
 import { num, meanSd, headingDiff, el } from './format.js';
+import { deviationText } from './deviation.js';
 
 const RAY_M = 20; // length of the goal-heading and heading rays
 
@@ -43,6 +44,7 @@ export function initLive() {
   });
   on('turn', markPlot);
   on('predictions', markPlot);
+  on('ongoing', markPlot);
   on('recorded-turns', markPlot);
   on('restart', markPlot);
   on('nav-history', markPlot);
@@ -99,6 +101,9 @@ function frame() {
 
 // How long the plot updates took (ms), newest last: the test hook reports them.
 export const renderTimes = [];
+// The deviations shown while a turn ran ({text, expected: [x, y]}), newest last, bounded: the test
+// hook reports them (at a high real-time factor a turn is on screen for a moment only).
+export const deviationLog = [];
 
 /** Forces a synchronous redraw (the test hook measures what a real update costs). */
 export function renderNow() {
@@ -220,6 +225,7 @@ function renderPlot() {
     pred('instantaneous'),
     { type: 'scatter', mode: 'lines', name: 'commanded goal heading', x: goalRay.x, y: goalRay.y, opacity: faded, line: { color: C.vermillion, width: 2.5, dash: 'longdash' }, hoverinfo: 'name' },
     { type: 'scatter', mode: 'lines', name: 'measured heading', x: headingRay.x, y: headingRay.y, line: { color: C.green, width: 2.5 }, hoverinfo: 'name' },
+    expectedTrace(),
     {
       type: 'scatter',
       mode: 'markers',
@@ -238,6 +244,22 @@ function renderPlot() {
   };
   draw(plotEl, traces, layout, { scrollZoom: true });
   renderTurnPlot(turn, { turnX, turnY, goalRay, band, preds: [pred('avk'), pred('model'), pred('instantaneous')], nav, faded });
+}
+
+/** Where the prediction of the running turn puts the vehicle now (GET /maneuvers/ongoing). */
+function expectedTrace(extra = {}) {
+  const e = state.turn ? state.ongoing?.expected : null;
+  return {
+    type: 'scatter',
+    mode: 'markers',
+    name: `expected now (${state.ongoing?.method === 'avk' ? 'AVK' : 'instantaneous'})`,
+    x: e ? [e.x_m] : [],
+    y: e ? [e.y_m] : [],
+    marker: { symbol: 'circle-open', size: 14, color: C.black, line: { width: 2.5 } },
+    visible: e ? true : 'legendonly',
+    hovertemplate: 'expected x %{x:.1f} m, y %{y:.1f} m<extra></extra>',
+    ...extra,
+  };
 }
 
 /** The turn close-up: the turn and its predictions at a scale where they can be told apart (the
@@ -262,6 +284,7 @@ function renderTurnPlot(turn, { turnX, turnY, goalRay, band, preds, nav, faded }
     { type: 'scatter', mode: 'lines+markers', name: running ? 'turn so far' : `turn (${turn.outcome})`, x: turnX, y: turnY, line: { color: C.orange, width: 4 }, marker: { size: 4 }, opacity: faded },
     ...preds.map((t) => ({ ...t, showlegend: false, visible: t.visible === true })),
     { type: 'scatter', mode: 'lines', name: 'goal heading', showlegend: false, x: goalRay.x, y: goalRay.y, line: { color: C.vermillion, width: 2, dash: 'longdash' }, opacity: faded },
+    expectedTrace({ showlegend: false }),
     {
       type: 'scatter',
       mode: 'markers',
@@ -320,6 +343,13 @@ function renderTurnPanel() {
     text('turn-meas-dpsi', turn.start && nav ? num(headingDiff(nav.heading_deg, turn.start.heading), 1) : '–');
     text('turn-meas-heading', num(nav?.heading_deg, 1));
     text('turn-status', `Turn running (attempt ${turn.attempt ?? 1}) · predictions: ${preds.length ? preds.join(', ') : 'none yet'}`);
+    const deviation = deviationText(state.ongoing);
+    text('turn-deviation', deviation);
+    const e = state.ongoing?.expected;
+    if (e && deviation !== deviationLog.at(-1)?.text) {
+      deviationLog.push({ text: deviation, expected: [e.x_m, e.y_m] });
+      if (deviationLog.length > 200) deviationLog.shift();
+    }
   } else {
     // Between turns the commanded column shows the helm's desired values, the measured the nav.
     text('turn-cmd-speed', num(state.helm?.desired_speed_mps, 2));
@@ -328,6 +358,7 @@ function renderTurnPanel() {
     text('turn-meas-speed', num(nav?.speed_mps, 2));
     text('turn-meas-dpsi', '–');
     text('turn-meas-heading', num(nav?.heading_deg, 1));
+    text('turn-deviation', '–');
     text(
       'turn-status',
       last

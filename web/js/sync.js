@@ -435,16 +435,21 @@ function positionAt(t) {
   return { x: a.x + f * (b.x - a.x), y: a.y + f * (b.y - a.y) };
 }
 
+/** Whether the vehicle's CKT (as last read) answers at this speed: AVK is asked only then, so
+ *  nothing answers 4xx routinely. */
+export function cktCovers(speed) {
+  const r = state.ckt?.speed_range_mps;
+  return Boolean(r) && speed >= r[0] - 1e-9 && speed <= r[1] + 1e-9;
+}
+
 /** AVK, model and instantaneous predictions placed at the turn's start pose. Only asked where
  *  they exist (a CKT covering the speed, a stored model), so nothing answers 4xx routinely. */
 async function fetchPredictions(turn) {
   if (!turn.start || !state.vehicleId) return;
-  const covers = (ckt) =>
-    ckt?.speed_range_mps && turn.speed >= ckt.speed_range_mps[0] - 1e-9 && turn.speed <= ckt.speed_range_mps[1] + 1e-9;
   // Turns finished since the table was last read may cover this speed now: read it again first.
-  if (!covers(state.ckt) && state.okTurns > 0) await refreshCktSummary();
+  if (!cktCovers(turn.speed) && state.okTurns > 0) await refreshCktSummary();
   let methods = ['instantaneous'];
-  if (covers(state.ckt)) methods.push('avk');
+  if (cktCovers(turn.speed)) methods.push('avk');
   if (state.models.length > 0) methods.push('model');
   methods = methods.filter((m) => !turn.predictions[m]);
   await Promise.all(

@@ -3,8 +3,8 @@
 // what a real 2-hour mission at 10 Hz costs the page.
 
 import { state, on } from './state.js';
-import { applyNav } from './sync.js';
-import { renderNow, renderTimes } from './live.js';
+import { applyNav, onMessage } from './sync.js';
+import { renderNow, renderTimes, deviationLog } from './live.js';
 
 /** A lawn-mower survey at 1 m/s sampled at 10 Hz: long straight legs joined by half circles,
  *  which is what two hours of turn collection looks like to the renderer. */
@@ -44,6 +44,8 @@ function feed(i) {
   applyNav({ vehicle_id: state.vehicleId, link: 'LIVE', t_s: i * 0.1, x_m: p.x + jitter(), y_m: p.y + jitter(), heading_deg: ((p.heading % 360) + 360) % 360, speed_mps: 1.0 }, true);
 }
 
+let turnRun = null; // the synthetic turn of startTurn: {t0, speed, dheading, k}
+
 let navHistory = null; // the last stored-track read: {missionId, rows}
 
 export function installTestHooks() {
@@ -69,12 +71,39 @@ export function installTestHooks() {
       feed(next++);
       return state.track.length;
     },
+    /** A synthetic turn through the stream's path: steady north from (0, -72) to (0, -70), then
+     *  the turn's start event at t0 = 1000 s (sim time); stream nav is ignored from now on. */
+    startTurn(dheading = 90, speed = 1.0) {
+      state.testFeed = true;
+      state.track.clear();
+      const t0 = 1000;
+      for (let i = 0; i <= 20; i++) {
+        applyNav({ vehicle_id: state.vehicleId, link: 'LIVE', t_s: t0 - 2 + i * 0.1, x_m: 0, y_m: -72 + i * 0.1 * speed, heading_deg: 0, speed_mps: speed }, true);
+      }
+      const goal = ((dheading % 360) + 360) % 360;
+      onMessage({ topic: 'turn', seq: 0, t: t0, data: { event: 'started', mission_id: state.mission?.id ?? 1, speed_mps: speed, dheading_deg: Math.abs(dheading), goal_heading_deg: goal, attempt: 1 } });
+      turnRun = { t0, speed, dheading, k: 0 };
+      return state.turn !== null;
+    },
+    /** The vehicle 0.5 s further into the synthetic turn: on the new heading at once (the
+     *  instantaneous ray), 1 m to port of it. */
+    turnNav() {
+      const r = turnRun;
+      r.k++;
+      const t = r.k * 0.5;
+      const h = (r.dheading * Math.PI) / 180;
+      const along = r.speed * t;
+      applyNav({ vehicle_id: state.vehicleId, link: 'LIVE', t_s: r.t0 + t, x_m: along * Math.sin(h) - Math.cos(h), y_m: -70 + along * Math.cos(h) + Math.sin(h), heading_deg: r.dheading, speed_mps: r.speed }, true);
+      return t;
+    },
     trackLength: () => state.track.length,
     /** The last read of a mission's stored track ({missionId, rows, trackLength} right after it). */
     navHistory: () => navHistory,
     /** Durations (ms) of the Live plot updates so far; `reset` empties the list. */
     renderTimes: (reset = false) => (reset ? renderTimes.splice(0) : renderTimes.slice()),
     trackCapacity: () => state.track.capacity,
+    /** The deviations from the prediction the Live view showed while turns ran. */
+    deviations: () => deviationLog.slice(),
     state: () => ({ link: state.link, sessionId: state.sessionId, vehicleId: state.vehicleId, mission: state.mission?.id ?? null, okTurns: state.okTurns }),
     /** The event log as shown ({kind, level}) and the levels the hello gave each kind. */
     events: () => state.events.map((e) => ({ kind: e.kind, level: e.level })),

@@ -206,7 +206,7 @@ test('the page loads with no console errors, and every view opens', { timeout: s
   await page.waitForFunction(() => window.Plotly && document.querySelector('#live-plot .main-svg'), null, { timeout: slow(20000) });
   assert.ok(!page.url().includes('token='), `the token stays in the address bar: ${page.url()}`);
   assert.equal(await page.evaluate(() => sessionStorage.getItem('avk-token')), server.token);
-  for (const v of ['mission', 'ckt', 'compare', 'model', 'export', 'live']) {
+  for (const v of ['mission', 'ckt', 'compare', 'model', 'encounter', 'export', 'live']) {
     await goView(v);
     await sleep(700);
   }
@@ -310,6 +310,117 @@ test('starting a small mission from the Mission view makes the vehicle move in L
   }
   await sleep(500);
   await shot('live');
+});
+
+test('the Live view shows the deviation from the prediction while a turn runs', { timeout: slow(60000) }, async () => {
+  // The mission's own turns last a moment at a real-time factor of 50: what the page showed during
+  // them is reported, but the check is on a synthetic turn fed through the stream's path (a page
+  // of its own: its nav replaces the stream's), which runs until the test has seen the figure.
+  const real = await page.evaluate(() => window.avkTest?.deviations() ?? []);
+  console.log(`# deviations shown during the mission's turns: ${real.length}${real.length ? `, e.g. "${real.at(-1).text}"` : ''}`);
+  const p = await newPage();
+  try {
+    await p.goto(`${server.base}/?test=1#live`, { waitUntil: 'load', timeout: slow(20000) });
+    await p.waitForFunction(() => window.avkTest && window.avkTest.state().vehicleId && document.querySelector('#live-plot .main-svg'), null, { timeout: slow(20000) });
+    assert.ok(await p.evaluate(() => window.avkTest.startTurn(90, 1.0)), 'the turn started');
+    // Nav every 0.5 s of sim time until the page has asked GET /maneuvers/ongoing and shown it.
+    const shown = await until('the deviation in the turn panel', async () => {
+      await p.evaluate(() => window.avkTest.turnNav());
+      const text = await p.textContent('#turn-deviation');
+      return /^deviation /.test(text) ? text : null;
+    }, 20000, 300);
+    assert.match(shown, /^deviation \d+\.\d m \(((inside|outside) \d+ % corridor|(avk|instantaneous) prediction(, no corridor)?)\)$/);
+    const log = await p.evaluate(() => window.avkTest.deviations());
+    assert.ok(log.length > 0 && log.every((d) => d.expected.every(Number.isFinite)), JSON.stringify(log));
+    // The expected position is marked on the track plot.
+    const marker = await until('the expected-position marker', () =>
+      p.evaluate(() => {
+        const t = document.getElementById('live-plot').data?.find((d) => /^expected now/.test(d.name));
+        return t && t.visible === true && t.x.length === 1 ? [t.x[0], t.y[0]] : null;
+      }),
+    10000, 200);
+    assert.ok(marker.every(Number.isFinite), `marker at ${marker}`);
+    await shot('live-deviation', p);
+  } finally {
+    await p.close();
+  }
+});
+
+/** The page position (CSS px) of a point of the encounter plot's grid. */
+function encounterPixel(x, y) {
+  return page.evaluate(([x, y]) => {
+    const e = document.getElementById('enc-plot');
+    const fl = e._fullLayout;
+    const r = e.getBoundingClientRect();
+    return [r.left + fl.xaxis._offset + fl.xaxis.c2p(x), r.top + fl.yaxis._offset + fl.yaxis.c2p(y)];
+  }, [x, y]);
+}
+
+/** The choice shown once the evaluation count has passed `after`. */
+function encounterChoice(after = 0) {
+  return until('an encounter evaluation', () =>
+    page.evaluate((after) => {
+      const e = document.getElementById('enc-chosen');
+      const n = Number(e.dataset.evaluations ?? 0);
+      if (n <= after || !e.dataset.dheading || /Loading/.test(e.textContent)) return null;
+      return { n, dheading: e.dataset.dheading, text: e.textContent, method: document.getElementById('enc-chosen-method').textContent };
+    }, after),
+  20000, 100);
+}
+
+test('the Encounter view evaluates, flies the choice, and a dragged contact changes it', { timeout: slow(90000) }, async () => {
+  phase = 'encounter';
+  // The view was opened at load, before any turn: its answer then was the instantaneous one.
+  const before = Number((await page.getAttribute('#enc-chosen', 'data-evaluations')) ?? 0);
+  await goView('encounter');
+  // The default encounter: a contact 30 m ahead and 30 m to starboard crossing west at 1 m/s, as
+  // fast as the own vehicle: held straight, the two meet at (0, 30). The finished mission's table
+  // answers at 1 m/s.
+  const first = await until('an AVK evaluation', async () => {
+    const c = await encounterChoice(before);
+    return c.method === 'AVK (CKT):' ? c : null;
+  }, 20000, 200);
+  assert.notEqual(first.dheading, 'none', first.text);
+  assert.notEqual(Number(first.dheading), 0, 'straight on meets the contact');
+  assert.match(first.text, /^chosen: [+-]?\d+° \(CPA \d+\.\d m(, edge \d+\.\d m)?\)$/);
+  assert.match(await page.textContent('#enc-chosen-inst'), /^(chosen: [+-]?\d+°|no candidate clears)/, 'the instantaneous choice beside it');
+  const drawn = await page.evaluate(() => {
+    const d = document.getElementById('enc-plot').data;
+    return {
+      fan: d.filter((t) => t.name === 'candidates').reduce((n, t) => n + t.x.filter((v) => v !== null).length, 0),
+      chosen: d.find((t) => t.name === 'AVK (CKT) choice')?.x.length ?? 0,
+      ray: d.find((t) => t.name === 'instantaneous ray, same Δψ')?.x.length ?? 0,
+      colourBar: d.some((t) => t.marker?.showscale === true),
+    };
+  });
+  assert.ok(drawn.fan > 73 * 2, `the fan has ${drawn.fan} points`);
+  assert.ok(drawn.chosen >= 2 && drawn.ray >= 2, `chosen ${drawn.chosen} points, ray ${drawn.ray}`);
+  assert.ok(drawn.colourBar, 'a colour bar in metres');
+
+  await page.click('#enc-simulate');
+  await page.waitForFunction(() => /^Flown /.test(document.getElementById('enc-sim').textContent), null, { timeout: slow(20000) });
+  assert.match(await page.textContent('#enc-sim'), /actual CPA \d+\.\d m, standoff 10\.0 m (kept|violated)/);
+  const flown = await page.evaluate(() => document.getElementById('enc-plot').data.find((t) => t.name === 'flown (simulator)').x.length);
+  assert.ok(flown > 10, `the flown track has ${flown} points`);
+  await shot('encounter');
+
+  // Drag the contact to port (-30, 30): still crossing west, it now moves away from the own
+  // track, so holding course clears it and the choice becomes 0°.
+  const from = await encounterPixel(30, 30);
+  const to = await encounterPixel(-30, 30);
+  await page.mouse.move(from[0], from[1]);
+  await page.mouse.down();
+  await page.mouse.move(to[0], to[1], { steps: 15 });
+  await page.mouse.up();
+  const moved = Number(await page.inputValue('input[data-contact="0"][data-key="x"]'));
+  assert.ok(Math.abs(moved + 30) < 3, `the contact's x is ${moved} after the drag`);
+  const after = await until('the choice after the drag', async () => {
+    const c = await encounterChoice(first.n);
+    return c.dheading === '0' ? c : null;
+  }, 20000, 200);
+  assert.match(after.text, /^chosen: 0° /);
+  assert.equal(await page.textContent('#enc-sim'), '', 'the flight of the old choice is cleared');
+  await shot('encounter-dragged');
 });
 
 test('a finished turn appears in the CKT view', { timeout: slow(90000) }, async () => {
@@ -483,7 +594,7 @@ test('layout: 1280×800 and a tablet, no horizontal scrolling', { timeout: slow(
   phase = 'layout';
   for (const [name, vp] of [['desktop', { width: 1280, height: 800 }], ['tablet', { width: 820, height: 1180 }]]) {
     await page.setViewportSize(vp);
-    for (const v of ['live', 'mission', 'ckt', 'compare']) {
+    for (const v of ['live', 'mission', 'ckt', 'compare', 'encounter']) {
       await goView(v);
       await sleep(400);
       const overflow = await page.evaluate(() => document.documentElement.scrollWidth - window.innerWidth);

@@ -1,0 +1,174 @@
+// avk maneuver evaluate|ongoing: the maneuver evaluation guidance asks for (issue 16), from the
+// command line. `evaluate` writes its options as the body of POST .../maneuvers/evaluate and
+// reads it with the same reader, so the two front ends take the same questions and answer with
+// the same document (--format json).
+#include <cmath>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+#include <ostream>
+
+#include "app/context.hpp"
+#include "app/maneuvers.hpp"
+#include "server/cli/app_error.hpp"
+#include "server/cli/args.hpp"
+#include "server/cli/commands.hpp"
+#include "server/cli/db_selection.hpp"
+#include "server/maneuver_requests.hpp"
+#include "server/serialize.hpp"
+
+namespace avk::server {
+
+namespace {
+
+using nlohmann::json;
+
+std::string format_option(const Args& a) {
+  const std::string format = a.get("format").value_or("table");
+  if (format != "table" && format != "json") throw UsageError("--format must be table or json");
+  return format;
+}
+
+// "+35", "-10", "0".
+std::string signed_deg(double d) {
+  std::string text = d > 0.0 ? "+" : "";
+  text += fixed(d, 0);
+  return text;
+}
+
+// The options as the evaluate endpoint's body.
+json evaluate_body(const Args& a) {
+  const auto own = a.number_list("own", 4, "x,y,heading,speed");
+  if (!own) throw UsageError("--own x,y,heading,speed is required");
+  json body = {{"own",
+                {{"x_m", (*own)[0]},
+                 {"y_m", (*own)[1]},
+                 {"heading_deg", (*own)[2]},
+                 {"speed_mps", (*own)[3]}}},
+               {"contacts", json::array()}};
+  for (const auto& c : a.number_lists("contact", 4, "x,y,course,speed"))
+    body["contacts"].push_back(
+        {{"x_m", c[0]}, {"y_m", c[1]}, {"course_deg", c[2]}, {"speed_mps", c[3]}});
+  if (body["contacts"].empty()) throw UsageError("give at least one --contact x,y,course,speed");
+  const std::pair<const char*, const char*> numbers[] = {{"standoff", "standoff_m"},
+                                                         {"horizon", "horizon_s"},
+                                                         {"step", "candidate_step_deg"},
+                                                         {"speed", "candidate_speed_mps"},
+                                                         {"corridor", "corridor"}};
+  for (const auto& [option, field] : numbers)
+    if (const auto v = a.number(option)) body[field] = *v;
+  if (const auto m = a.get("method")) body["method"] = *m;
+  if (const auto id = model_option(a)) body["model_id"] = *id;
+  if (a.flag("no-corridor")) body["use_corridor"] = false;
+  return body;
+}
+
+void print_evaluation(const app::ManeuverEvaluation& e, std::ostream& out) {
+  const app::ManeuverQuery& q = e.query;
+  out << "vehicle " << q.vehicle_id << " · method " << app::to_string(q.method);
+  if (e.table_source)
+    out << " (table from " << *e.table_source << (e.timed_by_turns ? ", timed by its turns" : "")
+        << ")";
+  if (e.model_id) out << " (model " << *e.model_id << ")";
+  out << " · " << q.contacts.size() << " contact" << (q.contacts.size() == 1 ? "" : "s")
+      << " · standoff " << fixed(q.standoff_m, 1) << " m · horizon " << fixed(q.horizon_s, 0)
+      << " s\n";
+  // Plain ASCII in the columns: setw counts bytes.
+  out << std::setw(7) << "dpsi" << std::setw(13) << "min CPA (m)" << std::setw(14) << "edge CPA (m)"
+      << std::setw(8) << "clears"
+      << "\n";
+  for (std::size_t i = 0; i < e.candidates.size(); ++i) {
+    const auto& c = e.candidates[i];
+    out << std::setw(7) << signed_deg(c.dheading_deg) << std::setw(13) << fixed(c.min_cpa_m, 1)
+        << std::setw(14) << (c.min_edge_cpa_m ? fixed(*c.min_edge_cpa_m, 1) : std::string("–"))
+        << std::setw(8) << (c.clears ? "yes" : "no") << (e.chosen == i ? "   <- chosen" : "")
+        << "\n";
+  }
+  if (!e.chosen) {
+    out << "chosen: none (no candidate clears " << fixed(q.standoff_m, 1) << " m)\n";
+    return;
+  }
+  const auto& c = e.candidates[*e.chosen];
+  out << "chosen: " << signed_deg(c.dheading_deg) << "° (CPA " << fixed(c.min_cpa_m, 1) << " m";
+  if (c.min_edge_cpa_m) out << ", edge " << fixed(*c.min_edge_cpa_m, 1) << " m";
+  out << ")\n";
+}
+
+int evaluate(const std::vector<std::string>& rest, Io& io) {
+  const Args a(rest,
+               {"db", "vehicle", "own", "standoff", "horizon", "method", "model", "step", "speed",
+                "corridor", "format"},
+               {"no-corridor"}, {"contact"});
+  const std::string format = format_option(a);
+  const json body = evaluate_body(a);
+  app::Context ctx(a.require("db"));
+  const ManeuverRequest request =
+      value_or_fail(maneuver_request(body, vehicle_of(a, ctx.db(), {})));
+  const app::ManeuverEvaluation e = value_or_fail(app::evaluate_maneuvers(ctx, request.query));
+  if (format == "json")
+    io.out << maneuver_evaluation_json(e, request.path_step_s).dump() << "\n";
+  else
+    print_evaluation(e, io.out);
+  return 0;
+}
+
+void print_ongoing(const app::OngoingManeuver& o, std::ostream& out) {
+  const kinematics::OngoingEvaluation& e = o.evaluation;
+  out << "expected after " << fixed(e.elapsed_s, 1) << " s: x " << fixed(e.expected.x_m, 2)
+      << " m, y " << fixed(e.expected.y_m, 2) << " m";
+  if (e.half_width_m) out << " (corridor half width " << fixed(*e.half_width_m, 2) << " m)";
+  out << "\n";
+  if (e.deviation_m) {
+    out << "deviation " << fixed(*e.deviation_m, 2) << " m";
+    if (e.cross_track_m) out << ", cross-track " << fixed(*e.cross_track_m, 2) << " m";
+    if (e.inside_corridor)
+      out << " (" << (*e.inside_corridor ? "inside" : "outside") << " the "
+          << fixed(o.query.corridor_share * 100.0, 0) << " % corridor)";
+    out << "\n";
+  }
+  out << "remaining: " << e.remaining.size() << " points to t = "
+      << (e.remaining.empty() ? std::string("–") : fixed(e.remaining.back().t_s, 1)) << " s\n";
+}
+
+int ongoing(const std::vector<std::string>& rest, Io& io) {
+  const Args a(rest, {"db", "vehicle", "start", "dheading", "speed", "elapsed", "measured",
+                      "method", "model", "corridor", "horizon", "format"});
+  const std::string format = format_option(a);
+  app::OngoingQuery q;
+  const auto start = a.number_list("start", 3, "x,y,heading");
+  if (!start) throw UsageError("--start x,y,heading is required");
+  q.start = {(*start)[0], (*start)[1], (*start)[2]};
+  const auto required = [&a](const char* name, const char* what) {
+    const auto v = a.number(name);
+    if (!v) throw UsageError(std::string("--") + name + " (" + what + ") is required");
+    return *v;
+  };
+  q.dheading_deg = required("dheading", "deg, + starboard");
+  q.speed_mps = required("speed", "m/s");
+  q.elapsed_s = required("elapsed", "s since the maneuver was commanded");
+  if (const auto m = a.number_list("measured", 2, "x,y"))
+    q.measured = kinematics::Point{(*m)[0], (*m)[1]};
+  q.method = method_option(a);
+  q.model_id = model_option(a);
+  q.corridor_share = a.number("corridor").value_or(q.corridor_share);
+  q.horizon_s = a.number("horizon").value_or(q.horizon_s);
+  app::Context ctx(a.require("db"));
+  q.vehicle_id = vehicle_of(a, ctx.db(), {});
+  const app::OngoingManeuver o = value_or_fail(app::evaluate_ongoing(ctx, q));
+  if (format == "json")
+    io.out << ongoing_maneuver_json(o).dump() << "\n";
+  else
+    print_ongoing(o, io.out);
+  return 0;
+}
+
+}  // namespace
+
+int cmd_maneuver(const std::vector<std::string>& args, Io& io) {
+  if (args.empty()) throw UsageError("expected 'maneuver evaluate|ongoing'");
+  const std::vector<std::string> rest(args.begin() + 1, args.end());
+  if (args[0] == "evaluate") return evaluate(rest, io);
+  if (args[0] == "ongoing") return ongoing(rest, io);
+  throw UsageError("unknown subcommand 'maneuver " + args[0] + "'");
+}
+
+}  // namespace avk::server

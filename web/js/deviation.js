@@ -1,0 +1,66 @@
+// The running turn against its prediction (thesis §6.2, issue 16): about once a second while a
+// turn runs, GET /vehicles/{vid}/maneuvers/ongoing with the turn's start pose, heading change and
+// speed, the time since it started and the vehicle's position now. The answer (where the vehicle
+// should be, how far it is from there, whether it is inside the corridor) goes to
+// state.ongoing; the Live view draws it.
+
+import { state, on, emit } from './state.js';
+import { getJson } from './api.js';
+import { cktCovers } from './sync.js';
+import { num } from './format.js';
+
+const POLL_MS = 1000;
+
+let timer = null;
+let asking = false;
+
+export function initDeviation() {
+  on('turn', (turn) => {
+    clearInterval(timer);
+    timer = null;
+    state.ongoing = null;
+    emit('ongoing', null);
+    if (!turn?.start) return;
+    poll(turn);
+    timer = setInterval(() => poll(turn), POLL_MS);
+  });
+}
+
+async function poll(turn) {
+  const nav = state.nav;
+  if (asking || state.turn !== turn || !nav || !state.vehicleId) return;
+  // AVK where the table answers at this speed; else the instantaneous assumption, said so.
+  const method = cktCovers(turn.speed) ? 'avk' : 'instantaneous';
+  asking = true;
+  try {
+    const o = await getJson(`/vehicles/${encodeURIComponent(state.vehicleId)}/maneuvers/ongoing`, {
+      x: turn.start.x,
+      y: turn.start.y,
+      heading: turn.start.heading,
+      dheading: turn.dheading,
+      speed: turn.speed,
+      elapsed: Math.max(0, nav.t_s - turn.start.t),
+      mx: nav.x_m,
+      my: nav.y_m,
+      method,
+    });
+    if (state.turn !== turn) return; // the turn ended meanwhile
+    state.ongoing = o;
+    emit('ongoing', o);
+  } catch (e) {
+    console.warn('no ongoing evaluation', e.message);
+  } finally {
+    asking = false;
+  }
+}
+
+/** "deviation 0.8 m (inside 90 % corridor)"; otherwise the method that predicted, and whether it
+ *  had a corridor. */
+export function deviationText(o) {
+  if (!o || typeof o.deviation_m !== 'number') return '–';
+  const pct = Math.round((o.corridor ?? 0.9) * 100);
+  let where = `${o.method} prediction, no corridor`;
+  if (typeof o.inside_corridor === 'boolean') where = `${o.inside_corridor ? 'inside' : 'outside'} ${pct} % corridor`;
+  else if (typeof o.half_width_m === 'number') where = `${o.method} prediction`;
+  return `deviation ${num(o.deviation_m, 1)} m (${where})`;
+}

@@ -1,0 +1,443 @@
+// The Encounter view (issue 16): the own vehicle at the origin and contacts with their velocity
+// vectors, placed and dragged with the mouse; every candidate heading change as a trajectory
+// coloured by its predicted CPA (POST /vehicles/{vid}/maneuvers/evaluate), the chosen one with
+// its AVK corridor against the instantaneous ray of the same heading change, both methods'
+// choices side by side, and "Run in simulator" (POST .../maneuvers/simulate): what the vehicle
+// actually did, and its actual CPA.
+
+import { state, on } from './state.js';
+import { postJson } from './api.js';
+import { C, METHOD_STYLE, baseLayout, equalAxes, draw, corridorTrace } from './plots.js';
+import { along } from './geometry.js';
+import { el, num, setStatus } from './format.js';
+import { cktCovers } from './sync.js';
+
+const $ = (id) => document.getElementById(id);
+const VECTOR_S = 10; // velocity vectors show 10 s of travel
+const DEBOUNCE_MS = 150; // evaluations while a contact is dragged
+const PICK_PX = 16; // how near the pointer must be to a contact to pick it up
+const BINS = 12; // colour classes of the candidate fan
+const SIM_MAX_HORIZON_S = 300;
+
+/** The question: the own vehicle sits at the origin; contacts at their positions at t = 0. */
+export const encounter = {
+  own: { heading: 0, speed: 1.0 },
+  contacts: [{ x: 30, y: 30, course: 270, speed: 1.0 }],
+  standoff: 10,
+  horizon: 120,
+  step: 5,
+  method: 'avk',
+};
+
+let plotEl;
+let visible = false;
+let timer = null;
+let seq = 0;
+let drag = null; // {index} while a contact is dragged
+// The last answers: the chosen method's, the instantaneous one's, the simulator's.
+let result = { main: null, inst: null, method: null, note: '' };
+let flown = null;
+
+export function initEncounter() {
+  plotEl = $('enc-plot');
+  for (const [id, key, parse] of [
+    ['enc-heading', 'heading', Number],
+    ['enc-speed', 'speed', Number],
+    ['enc-standoff', 'standoff', Number],
+    ['enc-horizon', 'horizon', Number],
+    ['enc-step', 'step', Number],
+    ['enc-method', 'method', String],
+  ]) {
+    const input = $(id);
+    const target = key === 'heading' || key === 'speed' ? encounter.own : encounter;
+    input.value = target[key];
+    input.addEventListener('change', () => {
+      target[key] = parse(input.value);
+      changed(true);
+    });
+  }
+  $('enc-add').addEventListener('click', () => {
+    // A new contact crossing ahead from starboard, offset from the others so it can be picked.
+    const k = encounter.contacts.length;
+    encounter.contacts.push({ x: 25 + 8 * k, y: 35 + 6 * k, course: 270, speed: 1.0 });
+    changed(true);
+  });
+  $('enc-simulate').addEventListener('click', simulate);
+  plotEl.addEventListener('mousedown', pickUp, true);
+  window.addEventListener('mousemove', dragTo);
+  window.addEventListener('mouseup', drop);
+  on('ckt', () => {
+    if (visible) changed(true);
+  });
+  on('synced', () => {
+    if (visible && !result.main) changed(true);
+  });
+  renderContacts();
+}
+
+export function showEncounter(isVisible) {
+  visible = isVisible;
+  if (visible) changed(true);
+}
+
+/** Something in the question changed: redraw what is known, evaluate again (debounced). */
+function changed(now = false) {
+  flown = null;
+  if (plotEl) setStatus($('enc-sim'), '');
+  renderContacts();
+  render();
+  clearTimeout(timer);
+  timer = setTimeout(evaluate, now ? 0 : DEBOUNCE_MS);
+}
+
+// ---------------------------------------------------------------- the question and the answers
+
+/** The encounter as the endpoints take it: own vehicle at the origin, the contacts, the standoff. */
+function question() {
+  return {
+    own: { x_m: 0, y_m: 0, heading_deg: encounter.own.heading, speed_mps: encounter.own.speed },
+    contacts: encounter.contacts.map((c) => ({ x_m: c.x, y_m: c.y, course_deg: c.course, speed_mps: c.speed })),
+    standoff_m: encounter.standoff,
+  };
+}
+
+function body(method) {
+  return { ...question(), horizon_s: encounter.horizon, candidate_step_deg: encounter.step, method };
+}
+
+/** The method asked: the one chosen, unless the station cannot answer it (no table covering the
+ *  speed, no model), then the instantaneous assumption, said so. */
+function methodToAsk() {
+  const m = encounter.method;
+  if (m === 'avk' && !cktCovers(encounter.own.speed))
+    return { method: 'instantaneous', note: `No CKT covers ${encounter.own.speed} m/s yet: the instantaneous assumption only.` };
+  if (m === 'model' && state.models.length === 0) return { method: 'instantaneous', note: 'No stored model yet: the instantaneous assumption only.' };
+  return { method: m, note: '' };
+}
+
+async function evaluate() {
+  if (!visible) return;
+  const status = $('enc-status');
+  if (!state.vehicleId) {
+    setStatus(status, 'No vehicle.');
+    return;
+  }
+  if (encounter.contacts.length === 0) {
+    result = { main: null, inst: null, method: null, note: '' };
+    setStatus(status, 'Add a contact.');
+    render();
+    return;
+  }
+  const mine = ++seq;
+  const { method, note } = methodToAsk();
+  const path = `/vehicles/${encodeURIComponent(state.vehicleId)}/maneuvers/evaluate`;
+  try {
+    const [main, inst] = await Promise.all([
+      postJson(path, body(method)),
+      method === 'instantaneous' ? null : postJson(path, body('instantaneous')),
+    ]);
+    if (mine !== seq) return; // a newer question is on its way
+    result = { main, inst: inst ?? main, method, note };
+    setStatus(status, note || `${main.candidates.length} candidates, ${main.contacts.length} contact${main.contacts.length === 1 ? '' : 's'}.`);
+  } catch (e) {
+    if (mine !== seq) return;
+    result = { main: null, inst: null, method, note };
+    setStatus(status, e.message, 'error');
+  }
+  renderChoice();
+  render();
+}
+
+/** "chosen: +35° (CPA 12.3 m, edge 10.8 m)", or "no candidate clears". */
+export function choiceText(answer) {
+  const c = answer?.chosen;
+  if (!answer) return '–';
+  if (!c) return `no candidate clears ${num(answer.standoff_m, 1)} m`;
+  const d = c.dheading_deg;
+  const edge = typeof c.min_edge_cpa_m === 'number' ? `, edge ${num(c.min_edge_cpa_m, 1)} m` : '';
+  return `chosen: ${d > 0 ? '+' : ''}${num(d, 0)}° (CPA ${num(c.min_cpa_m, 1)} m${edge})`;
+}
+
+function renderChoice() {
+  const main = result.main;
+  const chosen = $('enc-chosen');
+  chosen.textContent = choiceText(main);
+  chosen.dataset.dheading = main?.chosen ? String(main.chosen.dheading_deg) : 'none';
+  chosen.dataset.evaluations = String(seq);
+  $('enc-chosen-method').textContent = `${METHOD_STYLE[result.method ?? 'avk'].name}:`;
+  const same = result.method === 'instantaneous';
+  $('enc-inst-row').hidden = same;
+  $('enc-chosen-inst').textContent = same ? '' : choiceText(result.inst);
+  $('enc-simulate').disabled = !main?.chosen;
+}
+
+async function simulate() {
+  const main = result.main;
+  if (!main?.chosen || !state.vehicleId) return;
+  const out = $('enc-sim');
+  setStatus(out, 'Flying…');
+  const d = main.chosen.dheading_deg;
+  const flight = { ...question(), dheading_deg: d, horizon_s: Math.min(encounter.horizon, SIM_MAX_HORIZON_S) };
+  try {
+    const s = await postJson(`/vehicles/${encodeURIComponent(state.vehicleId)}/maneuvers/simulate`, flight);
+    flown = { ...s, dheading_deg: d };
+    const kept = s.violated ? `standoff ${num(encounter.standoff, 1)} m violated` : `standoff ${num(encounter.standoff, 1)} m kept`;
+    setStatus(out, `Flown ${d > 0 ? '+' : ''}${num(d, 0)}°: actual CPA ${num(s.min_cpa_m, 1)} m, ${kept}${s.note ? ` (${s.note})` : ''}.`, s.violated ? 'error' : 'ok');
+    out.dataset.violated = String(s.violated);
+  } catch (e) {
+    flown = null;
+    setStatus(out, e.message, 'error');
+  }
+  render();
+}
+
+// ---------------------------------------------------------------- the contacts table
+
+function renderContacts() {
+  const tbody = $('enc-contacts').querySelector('tbody');
+  tbody.replaceChildren(
+    ...encounter.contacts.map((c, i) => {
+      const input = (key, label, step) => {
+        const inp = el('input', { type: 'number', step, value: String(c[key]), 'aria-label': `contact ${i + 1} ${label}`, class: 'num', 'data-contact': String(i), 'data-key': key });
+        inp.addEventListener('change', () => {
+          const v = Number(inp.value);
+          if (!Number.isFinite(v)) return;
+          c[key] = v;
+          changed(true);
+        });
+        return el('td', {}, inp);
+      };
+      const remove = el('button', { type: 'button', class: 'secondary', text: '✗', 'aria-label': `remove contact ${i + 1}` });
+      remove.addEventListener('click', () => {
+        encounter.contacts.splice(i, 1);
+        changed(true);
+      });
+      return el('tr', {}, el('th', { scope: 'row', text: String(i + 1) }), input('x', 'x east (m)', '1'), input('y', 'y north (m)', '1'), input('course', 'course (°)', '5'), input('speed', 'speed (m/s)', '0.1'), el('td', {}, remove));
+    }),
+  );
+}
+
+// ---------------------------------------------------------------- dragging
+
+function axes() {
+  const fl = plotEl._fullLayout;
+  return fl?.xaxis?.c2p ? fl : null;
+}
+
+function pointer(ev) {
+  const fl = axes();
+  if (!fl) return null;
+  // Pixels from the axes' own origin: with equal axes the x axis is narrowed inside the margins.
+  const r = plotEl.getBoundingClientRect();
+  const px = ev.clientX - r.left - fl.xaxis._offset;
+  const py = ev.clientY - r.top - fl.yaxis._offset;
+  return { px, py, x: fl.xaxis.p2c(px), y: fl.yaxis.p2c(py) };
+}
+
+function pickUp(ev) {
+  if (ev.button !== 0) return;
+  const p = pointer(ev);
+  const fl = axes();
+  if (!p || !fl) return;
+  let best = null;
+  encounter.contacts.forEach((c, i) => {
+    const d = Math.hypot(fl.xaxis.c2p(c.x) - p.px, fl.yaxis.c2p(c.y) - p.py);
+    if (d <= PICK_PX && (!best || d < best.d)) best = { i, d };
+  });
+  if (!best) return;
+  // The axes hold still while dragging: the pointer's grid position must not move under it.
+  drag = { index: best.i, range: viewRange() };
+  plotEl.classList.add('dragging');
+  ev.preventDefault();
+  ev.stopPropagation();
+}
+
+function dragTo(ev) {
+  if (!drag) return;
+  const p = pointer(ev);
+  if (!p) return;
+  const c = encounter.contacts[drag.index];
+  c.x = Math.round(p.x * 10) / 10;
+  c.y = Math.round(p.y * 10) / 10;
+  changed(false);
+}
+
+function drop() {
+  if (!drag) return;
+  drag = null;
+  plotEl.classList.remove('dragging');
+  changed(true);
+}
+
+// ---------------------------------------------------------------- the plot
+
+/** Predicted CPA -> colour: vermillion at 0, yellow at the standoff, blue at twice it and beyond. */
+const SCALE = [
+  [0, C.vermillion],
+  [0.5, C.yellow],
+  [1, C.blue],
+];
+
+function mix(a, b, f) {
+  const pa = parseInt(a.slice(1), 16);
+  const pb = parseInt(b.slice(1), 16);
+  const ch = (p, s) => (p >> s) & 255;
+  const c = [16, 8, 0].map((s) => Math.round(ch(pa, s) + f * (ch(pb, s) - ch(pa, s))));
+  return `rgb(${c.join(', ')})`;
+}
+
+export function cpaColour(cpa, standoff) {
+  const f = Math.max(0, Math.min(1, cpa / (2 * standoff)));
+  return f <= 0.5 ? mix(SCALE[0][1], SCALE[1][1], f / 0.5) : mix(SCALE[1][1], SCALE[2][1], (f - 0.5) / 0.5);
+}
+
+/** The judged figure of a candidate: the corridor's nearer edge when there is one. */
+const judged = (k) => (typeof k.min_edge_cpa_m === 'number' ? k.min_edge_cpa_m : k.min_cpa_m);
+
+/** The fan in BINS traces of one colour each (a gap between paths): 73 paths redraw fast. */
+function fanTraces(answer, standoff) {
+  const bins = Array.from({ length: BINS }, () => ({ x: [], y: [] }));
+  for (const k of answer?.candidates ?? []) {
+    const f = Math.max(0, Math.min(1, judged(k) / (2 * standoff)));
+    const b = bins[Math.min(BINS - 1, Math.floor(f * BINS))];
+    for (const p of k.path) {
+      b.x.push(p[1]);
+      b.y.push(p[2]);
+    }
+    b.x.push(null);
+    b.y.push(null);
+  }
+  return bins.map((b, i) => ({
+    type: 'scatter',
+    mode: 'lines',
+    name: 'candidates',
+    legendgroup: 'fan',
+    showlegend: i === 0,
+    x: b.x,
+    y: b.y,
+    line: { color: cpaColour(((i + 0.5) / BINS) * 2 * standoff, standoff), width: 1.2 },
+    opacity: 0.75,
+    hoverinfo: 'skip',
+  }));
+}
+
+/** The band of a timed path with its half widths: each point moved sideways both ways. */
+export function corridorOf(path, halfWidths, share) {
+  if (!Array.isArray(halfWidths) || halfWidths.length !== path.length || path.length < 2) return null;
+  const left = [];
+  const right = [];
+  for (let i = 0; i < path.length; i++) {
+    const a = path[Math.max(0, i - 1)];
+    const b = path[Math.min(path.length - 1, i + 1)];
+    const dx = b[1] - a[1];
+    const dy = b[2] - a[2];
+    const len = Math.hypot(dx, dy) || 1;
+    const nx = -dy / len; // left of the direction of travel
+    const ny = dx / len;
+    const w = halfWidths[i];
+    left.push([path[i][1] + nx * w, path[i][2] + ny * w]);
+    right.push([path[i][1] - nx * w, path[i][2] - ny * w]);
+  }
+  return { share, left, right };
+}
+
+function line(name, path, style, extra = {}) {
+  return { type: 'scatter', mode: 'lines', name, x: path.map((p) => p[1]), y: path.map((p) => p[2]), line: style, hoverinfo: 'name', ...extra };
+}
+
+function candidateAt(answer, dheading) {
+  return answer?.candidates?.find((k) => Math.abs(k.dheading_deg - dheading) < 1e-9) ?? null;
+}
+
+function viewRange() {
+  let r = 40;
+  for (const c of encounter.contacts) r = Math.max(r, Math.hypot(c.x, c.y) + c.speed * VECTOR_S + 10);
+  return Math.min(r * 1.15, 1000);
+}
+
+function render() {
+  if (!visible || !plotEl) return;
+  const standoff = encounter.standoff > 0 ? encounter.standoff : 10;
+  const main = result.main;
+  const inst = result.inst;
+  const chosen = main?.chosen ? main.candidates[main.chosen.index] : null;
+  const instChosen = inst?.chosen && inst !== main ? inst.candidates[inst.chosen.index] : null;
+  const sameRay = chosen && inst !== main ? candidateAt(inst, chosen.dheading_deg) : null;
+  const band = corridorTrace(chosen ? corridorOf(chosen.path, chosen.half_width_m, main.corridor) : null);
+  const [ox, oy] = along(0, 0, encounter.own.heading, encounter.own.speed * VECTOR_S);
+  const vectors = { x: [], y: [] };
+  const circles = { x: [], y: [] };
+  encounter.contacts.forEach((c, i) => {
+    const [vx, vy] = along(c.x, c.y, c.course, c.speed * VECTOR_S);
+    vectors.x.push(c.x, vx, null);
+    vectors.y.push(c.y, vy, null);
+    // The contact where the chosen maneuver passes it closest, with the standoff around it.
+    const t = chosen?.contacts?.[i]?.cpa?.time_s;
+    if (typeof t === 'number') {
+      const [cx, cy] = along(c.x, c.y, c.course, c.speed * t);
+      for (let k = 0; k <= 48; k++) {
+        const a = (k / 48) * 2 * Math.PI;
+        circles.x.push(cx + standoff * Math.cos(a));
+        circles.y.push(cy + standoff * Math.sin(a));
+      }
+      circles.x.push(null);
+      circles.y.push(null);
+    }
+  });
+  const m = result.method ?? 'avk';
+  const traces = [
+    ...fanTraces(main, standoff),
+    band,
+    line(`instantaneous ray, same Δψ`, sameRay?.path ?? [], { color: METHOD_STYLE.instantaneous.color, dash: 'dot', width: 2.5 }, { visible: sameRay ? true : 'legendonly' }),
+    line(`instantaneous choice`, instChosen?.path ?? [], { color: METHOD_STYLE.instantaneous.color, dash: 'dash', width: 3 }, { visible: instChosen ? true : 'legendonly' }),
+    line(`${METHOD_STYLE[m].name} choice`, chosen?.path ?? [], { color: METHOD_STYLE[m].color, width: 4 }, { visible: chosen ? true : 'legendonly' }),
+    line('flown (simulator)', flown?.track ?? [], { color: C.green, width: 3 }, { visible: flown ? true : 'legendonly' }),
+    { type: 'scatter', mode: 'lines', name: `standoff ${num(standoff, 0)} m at CPA`, x: circles.x, y: circles.y, line: { color: C.vermillion, dash: 'dash', width: 1 }, hoverinfo: 'skip', visible: circles.x.length ? true : 'legendonly' },
+    { type: 'scatter', mode: 'lines', name: 'velocity (10 s)', x: [0, ox, null, ...vectors.x], y: [0, oy, null, ...vectors.y], line: { color: C.black, width: 2 }, hoverinfo: 'skip' },
+    {
+      type: 'scatter',
+      mode: 'markers',
+      name: 'own vehicle',
+      x: [0],
+      y: [0],
+      marker: { symbol: 'triangle-up', size: 16, angle: encounter.own.heading, color: C.yellow, line: { color: C.black, width: 2 } },
+      hovertemplate: 'own vehicle<extra></extra>',
+    },
+    {
+      type: 'scatter',
+      mode: 'markers+text',
+      name: 'contacts (drag)',
+      x: encounter.contacts.map((c) => c.x),
+      y: encounter.contacts.map((c) => c.y),
+      text: encounter.contacts.map((_, i) => String(i + 1)),
+      textposition: 'top right',
+      marker: { symbol: 'diamond', size: 15, color: C.purple, line: { color: C.black, width: 1.5 } },
+      hovertemplate: 'contact %{text}: x %{x:.1f} m, y %{y:.1f} m<extra></extra>',
+    },
+    // The colour bar of the fan, carried by one point too small to see, under the own vehicle.
+    {
+      type: 'scatter',
+      mode: 'markers',
+      name: 'predicted CPA',
+      showlegend: false,
+      hoverinfo: 'skip',
+      x: [0],
+      y: [0],
+      marker: {
+        size: 1,
+        opacity: 0,
+        color: [0],
+        cmin: 0,
+        cmax: 2 * standoff,
+        colorscale: SCALE,
+        showscale: true,
+        colorbar: { title: { text: `predicted CPA (m)${main?.use_corridor && m === 'avk' ? ', corridor edge' : ''}`, side: 'right' }, thickness: 12, len: 0.8 },
+      },
+    },
+  ];
+  const r = drag?.range ?? viewRange();
+  const ax = equalAxes();
+  ax.xaxis.range = [-r, r];
+  ax.yaxis.range = [-r, r];
+  draw(plotEl, traces, { ...baseLayout({ margin: { l: 56, r: 10, t: 40, b: 40 } }), ...ax, dragmode: false, showlegend: true }, { scrollZoom: false });
+}
