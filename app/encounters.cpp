@@ -569,7 +569,10 @@ Result<EncounterFile> generate_encounters(std::uint64_t seed, int count) {
     std::snprintf(index, sizeof index, "%02d", i + 1);
     // Appended piece by piece: GCC 12's -Wrestrict misfires on "-" + std::string at -O3.
     s.name = kind_name(kind);
-    if (kind == EncounterKind::several) s.name += "-" + std::to_string(contacts);
+    if (kind == EncounterKind::several) {
+      s.name += '-';
+      s.name += std::to_string(contacts);
+    }
     s.name += "-";
     s.name += range_text(*nearest);
     s.name += "-";
