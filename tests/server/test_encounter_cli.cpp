@@ -119,7 +119,7 @@ TEST(ManeuverFly, HoldingCourseInCalmWaterGoesStraight) {
   const auto csv = run({"maneuver", "fly", "--vehicle", "usim", "--own", "90,1", "--dheading", "0",
                         "--contact", "50,10,270,1", "--horizon", "60", "--format", "csv"});
   ASSERT_EQ(csv.rc, 0) << csv.err;
-  EXPECT_EQ(csv.out.rfind("t_s,x_m,y_m\n0,0,0\n", 0), 0u) << csv.out.substr(0, 40);
+  EXPECT_EQ(csv.out.rfind("t_s,x_m,y_m\n0.0,0.0,0.0\n", 0), 0u) << csv.out.substr(0, 40);
   EXPECT_NE(csv.err.find("CPA 10.0 m"), std::string::npos) << csv.err;
 }
 
