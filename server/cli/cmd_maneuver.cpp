@@ -1,7 +1,8 @@
-// avk maneuver evaluate|ongoing: the maneuver evaluation guidance asks for (issue 16), from the
-// command line. `evaluate` writes its options as the body of POST .../maneuvers/evaluate and
-// reads it with the same reader, so the two front ends take the same questions and answer with
-// the same document (--format json).
+// avk maneuver evaluate|ongoing|fly: the maneuver evaluation guidance asks for (issue 16), from
+// the command line. `evaluate` and `fly` write their options as the body of POST
+// .../maneuvers/evaluate and .../maneuvers/simulate and read it with the same reader, so the two
+// front ends take the same questions and answer with the same document (--format json). `fly`
+// flies one candidate exactly as the encounter bench does (same setup, same seed).
 #include <cmath>
 #include <iomanip>
 #include <nlohmann/json.hpp>
@@ -13,6 +14,7 @@
 #include "server/cli/args.hpp"
 #include "server/cli/commands.hpp"
 #include "server/cli/db_selection.hpp"
+#include "server/cli/sim_options.hpp"
 #include "server/maneuver_requests.hpp"
 #include "server/serialize.hpp"
 
@@ -35,6 +37,15 @@ std::string signed_deg(double d) {
   return text;
 }
 
+// --contact x,y,course,speed (repeatable) as the body's contacts.
+json contacts_body(const Args& a) {
+  json contacts = json::array();
+  for (const auto& c : a.number_lists("contact", 4, "x,y,course,speed"))
+    contacts.push_back({{"x_m", c[0]}, {"y_m", c[1]}, {"course_deg", c[2]}, {"speed_mps", c[3]}});
+  if (contacts.empty()) throw UsageError("give at least one --contact x,y,course,speed");
+  return contacts;
+}
+
 // The options as the evaluate endpoint's body.
 json evaluate_body(const Args& a) {
   const auto own = a.number_list("own", 4, "x,y,heading,speed");
@@ -45,10 +56,7 @@ json evaluate_body(const Args& a) {
                  {"heading_deg", (*own)[2]},
                  {"speed_mps", (*own)[3]}}},
                {"contacts", json::array()}};
-  for (const auto& c : a.number_lists("contact", 4, "x,y,course,speed"))
-    body["contacts"].push_back(
-        {{"x_m", c[0]}, {"y_m", c[1]}, {"course_deg", c[2]}, {"speed_mps", c[3]}});
-  if (body["contacts"].empty()) throw UsageError("give at least one --contact x,y,course,speed");
+  body["contacts"] = contacts_body(a);
   const std::pair<const char*, const char*> numbers[] = {{"standoff", "standoff_m"},
                                                          {"horizon", "horizon_s"},
                                                          {"step", "candidate_step_deg"},
@@ -161,13 +169,67 @@ int ongoing(const std::vector<std::string>& rest, Io& io) {
   return 0;
 }
 
+// One candidate flown closed-loop, as `avk encounter run` flies it: own vehicle at the origin,
+// the simulator setup of --vehicle/--sim-config (default the M200's, the bench's default) and its
+// seed (--seed overrides; the bench flies every candidate with this one seed).
+int fly(const std::vector<std::string>& rest, Io& io) {
+  const Args a(rest,
+               {"vehicle", "sim-config", "seed", "ticks", "own", "dheading", "speed", "contact",
+                "horizon", "standoff", "path-step", "format"},
+               {"jitter"}, {"contact"});
+  const std::string format = a.get("format").value_or("json");
+  if (format != "json" && format != "csv") throw UsageError("--format must be json or csv");
+  const auto own = a.number_list("own", 2, "heading,speed");
+  if (!own) throw UsageError("--own heading,speed is required");
+  const auto dheading = a.number("dheading");
+  if (!dheading) throw UsageError("--dheading (deg, + starboard) is required");
+  const sim::SimSetup setup = sim_setup_from(a, io, "catamaran:m200");
+  json body = {
+      {"own", {{"x_m", 0.0}, {"y_m", 0.0}, {"heading_deg", (*own)[0]}, {"speed_mps", (*own)[1]}}},
+      {"contacts", contacts_body(a)},
+      {"dheading_deg", *dheading},
+      {"seed", setup.scheduler.seed}};
+  const std::pair<const char*, const char*> numbers[] = {{"speed", "speed_mps"},
+                                                         {"horizon", "horizon_s"},
+                                                         {"standoff", "standoff_m"},
+                                                         {"path-step", "path_step_s"}};
+  for (const auto& [option, field] : numbers)
+    if (const auto v = a.number(option)) body[field] = *v;
+  SimulateRequest request = value_or_fail(simulate_request(body));
+  request.query.setup = setup;
+  const app::SimulatedManeuver m = value_or_fail(app::simulate_maneuver(request.query));
+  if (format == "json") {
+    json j =
+        simulated_maneuver_json(m, request.own_position, request.standoff_m, request.path_step_s);
+    j["sim_vehicle"] = setup.vehicle.kind;
+    j["seed"] = request.query.seed;
+    j["dheading_deg"] = request.query.dheading_deg;
+    j["horizon_s"] = request.query.horizon_s;
+    j["settle_s"] = m.settle_s;
+    io.out << j.dump() << "\n";
+  } else {
+    io.out << "t_s,x_m,y_m\n";
+    for (const std::size_t i : thinned_indices(m.track, request.path_step_s))
+      io.out << num(m.track[i].t_s) << ',' << num(m.track[i].x_m) << ',' << num(m.track[i].y_m)
+             << '\n';
+  }
+  io.err << "maneuver fly: " << signed_deg(request.query.dheading_deg) << " deg on "
+         << setup.vehicle.kind << " (seed " << request.query.seed << ")";
+  for (std::size_t k = 0; k < m.cpa.size(); ++k)
+    io.err << "; contact " << k << " CPA " << fixed(m.cpa[k].distance_m, 1) << " m at "
+           << fixed(m.cpa[k].time_s, 1) << " s";
+  io.err << "\n";
+  return 0;
+}
+
 }  // namespace
 
 int cmd_maneuver(const std::vector<std::string>& args, Io& io) {
-  if (args.empty()) throw UsageError("expected 'maneuver evaluate|ongoing'");
+  if (args.empty()) throw UsageError("expected 'maneuver evaluate|ongoing|fly'");
   const std::vector<std::string> rest(args.begin() + 1, args.end());
   if (args[0] == "evaluate") return evaluate(rest, io);
   if (args[0] == "ongoing") return ongoing(rest, io);
+  if (args[0] == "fly") return fly(rest, io);
   throw UsageError("unknown subcommand 'maneuver " + args[0] + "'");
 }
 
