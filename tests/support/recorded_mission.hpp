@@ -23,9 +23,10 @@ inline constexpr const char* kSmallMission = R"({
                        "buffer_m": 25, "return_point_m": [0, -70]}})";
 
 inline std::int64_t run_recorded_mission(store::Store& db, const std::string& vehicle_id,
-                                         const std::string& mission_text = kSmallMission) {
+                                         const std::string& mission_text = kSmallMission,
+                                         sim::SimSetup setup = sim::default_sim_setup("usim")) {
   sim::SimMissionOptions so;
-  so.setup = sim::default_sim_setup("usim");
+  so.setup = std::move(setup);
   so.setup.vehicle.id = vehicle_id;
   const auto config = mission::parse_mission_config(mission_text, 2.0);
   so.start = app::start_pose(config);
