@@ -56,7 +56,12 @@ TEST_P(MissionCurrentTest, OneFigure41MissionFindsTheCurrentWithinTheAcceptance)
 }
 
 INSTANTIATE_TEST_SUITE_P(KnownCurrents, MissionCurrentTest,
-                         ::testing::Values(Case{0.1, 200.0}, Case{0.2, 60.0}, Case{0.3, 315.0}));
+                         ::testing::Values(Case{0.1, 200.0}, Case{0.2, 60.0}, Case{0.3, 315.0}),
+                         [](const ::testing::TestParamInfo<Case>& i) {
+                           return std::to_string(static_cast<int>(i.param.speed_mps * 100.0)) +
+                                  "cm_s_toward_" +
+                                  std::to_string(static_cast<int>(i.param.toward_deg)) + "deg";
+                         });
 
 TEST(MissionCurrent, AnUnknownMissionIsNotFound) {
   avk::testing::TempDb db("avk_app_current_none");
