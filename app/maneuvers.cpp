@@ -99,8 +99,9 @@ Result<kin::PredictedManeuver> predict_one(const Predictor& p, double speed_mps,
       return out;
     }
     case PredictionMethod::instantaneous: {
-      const kin::Point d = kin::rotate_by_heading({0.0, speed_mps * horizon_s}, dheading_deg);
-      return kin::timed_maneuver(dheading_deg, speed_mps, {{0.0, 0.0}, d}, std::nullopt);
+      return kin::timed_maneuver(dheading_deg, speed_mps,
+                                 instantaneous_turn_ray(speed_mps, dheading_deg, horizon_s),
+                                 std::nullopt);
     }
   }
   return internal_error("unknown prediction method");

@@ -30,10 +30,9 @@ std::optional<PredictionMethod> prediction_method_from_string(const std::string&
   return std::nullopt;
 }
 
-kin::Polyline instantaneous_turn_ray(double speed_mps, double dheading_deg) {
-  // Drawn for 20 s of travel on the new heading.
-  const kin::Point d = kin::rotate_by_heading({0.0, 1.0}, dheading_deg);
-  return {{0.0, 0.0}, {d.x_m * speed_mps * 20.0, d.y_m * speed_mps * 20.0}};
+kin::Polyline instantaneous_turn_ray(double speed_mps, double dheading_deg, double duration_s) {
+  const kin::Point d = kin::rotate_by_heading({0.0, speed_mps * duration_s}, dheading_deg);
+  return {{0.0, 0.0}, d};
 }
 
 namespace {

@@ -60,7 +60,8 @@ Result<Prediction> predict(Context& ctx, const PredictQuery& q);
 Result<Prediction> predict_with_table(const kinematics::Ckt& table, const PredictQuery& q);
 
 // The instantaneous-turn assumption in the CKT's frame (from the origin heading north): on the
-// new heading at once, drawn for 20 s of travel.
-kinematics::Polyline instantaneous_turn_ray(double speed_mps, double dheading_deg);
+// new heading at once, for duration_s of travel (20 s as drawn; a maneuver's horizon).
+kinematics::Polyline instantaneous_turn_ray(double speed_mps, double dheading_deg,
+                                            double duration_s = 20.0);
 
 }  // namespace avk::app
