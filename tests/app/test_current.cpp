@@ -3,25 +3,17 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
-#include <fstream>
-#include <sstream>
 
 #include "app/context.hpp"
 #include "app/current.hpp"
 #include "kinematics/angles.hpp"
+#include "support/example_file.hpp"
 #include "support/recorded_mission.hpp"
 #include "support/temp_db.hpp"
 
 namespace {
 
 using namespace avk;
-
-std::string example(const std::string& name) {
-  std::ifstream in(std::string(AVK_SOURCE_DIR) + "/examples/" + name);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 struct Case {
   double speed_mps;
@@ -36,8 +28,8 @@ TEST_P(MissionCurrentTest, OneFigure41MissionFindsTheCurrentWithinTheAcceptance)
   app::Context ctx(db.path());
   sim::SimSetup setup = sim::default_sim_setup("catamaran:m200");
   setup.vehicle.environment.current = {c.speed_mps, c.toward_deg};
-  const std::int64_t mission =
-      avk::testing::run_recorded_mission(ctx.db(), "m200", example("thesis-fig4-1.json"), setup);
+  const std::int64_t mission = avk::testing::run_recorded_mission(
+      ctx.db(), "m200", avk::testing::example_text("thesis-fig4-1.json"), setup);
   const auto r = app::estimate_mission_current(ctx, mission);
   ASSERT_TRUE(r) << r.error().message;
   EXPECT_GE(r->legs_used, 15u) << "of " << r->turns << " turns";
@@ -75,7 +67,8 @@ TEST(MissionCurrent, StillWaterIsNearlyNoCurrent) {
   avk::testing::TempDb db("avk_app_current_calm");
   app::Context ctx(db.path());
   const std::int64_t mission = avk::testing::run_recorded_mission(
-      ctx.db(), "m200", example("thesis-fig4-1.json"), sim::default_sim_setup("catamaran:m200"));
+      ctx.db(), "m200", avk::testing::example_text("thesis-fig4-1.json"),
+      sim::default_sim_setup("catamaran:m200"));
   const auto r = app::estimate_mission_current(ctx, mission);
   ASSERT_TRUE(r && r->result.estimate);
   EXPECT_LT(r->result.estimate->speed_mps(), 0.03);

@@ -1,27 +1,21 @@
 #include <gtest/gtest.h>
 
-#include <fstream>
 #include <functional>
 #include <nlohmann/json.hpp>
-#include <sstream>
 
 #include "mission/mission_config.hpp"
+#include "support/example_file.hpp"
 
 using namespace avk::mission;
 using nlohmann::json;
 
 namespace {
 
-std::string example(const std::string& name) {
-  std::ifstream f(std::string(AVK_SOURCE_DIR) + "/examples/" + name);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
+using avk::testing::example_text;
 
 // Fields named by the validation of a mutated copy of the Figure 4-1 mission.
 std::vector<std::string> fields_of(const std::function<void(json&)>& mutate, double vmax = 2.0) {
-  json doc = json::parse(example("thesis-fig4-1.json"));
+  json doc = json::parse(example_text("thesis-fig4-1.json"));
   mutate(doc);
   try {
     parse_mission_config(doc.dump(), vmax);
@@ -37,7 +31,7 @@ std::vector<std::string> fields_of(const std::function<void(json&)>& mutate, dou
 }  // namespace
 
 TEST(MissionConfig, ThesisFigure41Example) {
-  const MissionConfig c = parse_mission_config(example("thesis-fig4-1.json"), 1.7);
+  const MissionConfig c = parse_mission_config(example_text("thesis-fig4-1.json"), 1.7);
   EXPECT_EQ(c.name, "thesis-fig4-1");
   EXPECT_EQ(c.turn_array.speeds_mps, (std::vector<double>{0.5, 1.0, 1.5}));
   EXPECT_EQ(c.turn_array.dheadings_deg.size(), 6u);
@@ -51,14 +45,14 @@ TEST(MissionConfig, ThesisFigure41Example) {
 }
 
 TEST(MissionConfig, OffGridExampleFliesBetweenTheFigure41Cells) {
-  const MissionConfig c = parse_mission_config(example("off-grid-turns.json"), 1.7);
+  const MissionConfig c = parse_mission_config(example_text("off-grid-turns.json"), 1.7);
   EXPECT_EQ(c.turn_array.speeds_mps, (std::vector<double>{0.75, 1.25}));
   EXPECT_EQ(c.turn_array.dheadings_deg, (std::vector<double>{25, 55, 85, 115, 145}));
   EXPECT_EQ(c.condition_set.max_heading_error_deg, 2.0);
 }
 
 TEST(MissionConfig, PersistentExcitationExample) {
-  const MissionConfig c = parse_mission_config(example("persistent-excitation.json"), 1.7);
+  const MissionConfig c = parse_mission_config(example_text("persistent-excitation.json"), 1.7);
   EXPECT_EQ(c.kind, MissionKind::persistent_excitation);
   ASSERT_TRUE(c.excitation.has_value());
   EXPECT_EQ(c.excitation->seed, 7u);
@@ -137,14 +131,14 @@ TEST(Polygon, AreaSimplicityAndContainment) {
 }
 
 TEST(MissionConfig, RunnerFieldsHaveDefaultsAndRanges) {
-  const MissionConfig c = parse_mission_config(example("thesis-fig4-1.json"), 1.7);
+  const MissionConfig c = parse_mission_config(example_text("thesis-fig4-1.json"), 1.7);
   EXPECT_EQ(c.turn_array.max_attempts, 10);
   EXPECT_DOUBLE_EQ(c.turn_timeout_s, 120.0);
   EXPECT_FALSE(c.region.return_speed_mps.has_value());
   EXPECT_DOUBLE_EQ(return_speed_mps(c), 0.5);  // the first speed of the turn array
   EXPECT_DOUBLE_EQ(c.region.capture_radius_m, 3.0);
 
-  json doc = json::parse(example("thesis-fig4-1.json"));
+  json doc = json::parse(example_text("thesis-fig4-1.json"));
   doc["turn_array"]["max_attempts"] = 3;
   doc["constant_heading"]["timeout_s"] = 60;
   doc["operating_region"]["return_speed_mps"] = 1.2;
@@ -167,7 +161,7 @@ TEST(MissionConfig, RunnerFieldsHaveDefaultsAndRanges) {
 }
 
 TEST(MissionConfig, CompletionRuleFieldsAreReadAndChecked) {
-  json doc = json::parse(example("thesis-fig4-1.json"));
+  json doc = json::parse(example_text("thesis-fig4-1.json"));
   doc["constant_heading"]["completion_fraction"] = 0.2;
   doc["constant_heading"]["completion_floor_deg"] = 0.5;
   const MissionConfig set = parse_mission_config(doc.dump(), 1.7);
@@ -176,7 +170,7 @@ TEST(MissionConfig, CompletionRuleFieldsAreReadAndChecked) {
   EXPECT_DOUBLE_EQ(set.completion.floor_deg, 0.5);
 
   // A file from before the floor, with a threshold below the default floor, still loads.
-  json old = json::parse(example("thesis-fig4-1.json"));
+  json old = json::parse(example_text("thesis-fig4-1.json"));
   old["constant_heading"] = {{"completion_threshold_deg", 0.5}};
   EXPECT_DOUBLE_EQ(parse_mission_config(old.dump(), 1.7).completion.threshold_deg, 0.5);
   // Every problem of the section at once, each by its field.
