@@ -37,15 +37,21 @@ Result<VehicleTable> TableCache::get(Context& ctx, const std::string& vehicle_id
   e.checked = now;
   store::Store& db = ctx.db();
   const std::int64_t newest = db.newest_ok_turn_id(vehicle_id);
+  // A new estimate of a mission's current moves its turns into (or out of) the water frame.
+  const std::int64_t current_revision = newest > 0 ? db.current_revision(vehicle_id) : 0;
   // Only a vehicle without turns is answered by an imported table, so only then is it looked up;
   // its document is read only when the newest id changed.
   const std::int64_t snap_id = newest == 0 ? db.latest_ckt_snapshot_id(vehicle_id) : 0;
-  if (e.value && newest == e.turns_seen && snap_id == e.snapshot_seen) return *e.value;
+  if (e.value && newest == e.turns_seen && snap_id == e.snapshot_seen &&
+      current_revision == e.current_seen)
+    return *e.value;
   VehicleTable t;
   t.vehicle_id = vehicle_id;
   if (newest > 0) {
-    auto built =
-        std::make_shared<kin::Ckt>(kin::Ckt::build(db.load_normalized_turns({}, vehicle_id)));
+    // Turns in the water frame where their mission's current is known: the table then predicts
+    // through the water, and a query adds the drift of the current it is asked in.
+    auto built = std::make_shared<kin::Ckt>(kin::Ckt::build(
+        db.load_normalized_turns({}, vehicle_id, store::TurnFrameChoice::water_where_known)));
     built->vehicle_id = vehicle_id;
     t.table = std::move(built);
     t.source = TableSource::turns;
@@ -59,6 +65,7 @@ Result<VehicleTable> TableCache::get(Context& ctx, const std::string& vehicle_id
   if (t.table->speed_range_mps()) t.fine = std::make_shared<kin::MaterializedCkt>(*t.table);
   e.turns_seen = newest;
   e.snapshot_seen = snap_id;
+  e.current_seen = current_revision;
   e.value = t;
   return t;
 }
@@ -110,7 +117,8 @@ Result<BuiltTable> build_ckt(Context& ctx, const std::string& vehicle_id,
   store::Store& db = ctx.db();
   for (const auto id : missions)
     if (!db.get_mission(id)) return not_found("no mission " + std::to_string(id));
-  const auto turns = db.load_normalized_turns(missions, vehicle_id);
+  const auto turns =
+      db.load_normalized_turns(missions, vehicle_id, store::TurnFrameChoice::water_where_known);
   if (turns.empty()) return not_found("no ok turns of '" + vehicle_id + "' to build from");
   BuiltTable out;
   out.table = kin::Ckt::build(turns, options, std::nullopt, &out.report);

@@ -1,6 +1,7 @@
 #pragma once
 // A vehicle's Cached Kinematics Table as the station answers with it: built from the vehicle's
-// own ok turns, or, when it has none, its latest imported table. One rule for every front end.
+// own ok turns (in the water frame where their mission's current is known, app/current.hpp), or,
+// when it has none, its latest imported table. One rule for every front end.
 
 #include <chrono>
 #include <cstdint>
@@ -45,6 +46,7 @@ class TableCache {
     std::chrono::steady_clock::time_point checked{};
     std::int64_t turns_seen = -1;
     std::int64_t snapshot_seen = -1;
+    std::int64_t current_seen = -1;
     std::optional<VehicleTable> value;
   };
   Entry& entry(const std::string& vehicle_id);
@@ -72,7 +74,8 @@ struct ImportedTable {
 Result<ImportedTable> import_ckt(Context& ctx, const std::string& vehicle_id,
                                  const std::string& ckt_file_text);
 
-// Builds a table from the stored ok turns of the missions (empty: all) of one vehicle and keeps
+// Builds a table from the stored ok turns of the missions (empty: all) of one vehicle (in the water
+// frame where their mission's current is known) and keeps
 // it as a snapshot with the missions it came from: the record of which table guidance was given.
 struct BuiltTable {
   kinematics::Ckt table;

@@ -5,10 +5,30 @@
 
 #include "app/context.hpp"
 #include "kinematics/angles.hpp"
+#include "kinematics/ckt.hpp"
+#include "kinematics/maneuver.hpp"
+#include "kinematics/number_text.hpp"
+#include "kinematics/water_frame.hpp"
 
 namespace avk::app {
 
 namespace kin = avk::kinematics;
+
+void for_each_mission_turn(store::Store& db, std::int64_t mission_id,
+                           std::optional<kin::TurnStatus> status,
+                           const std::function<void(const store::TurnRow&)>& fn) {
+  store::TurnFilter f;
+  f.mission_id = mission_id;
+  f.status = status;
+  f.limit = 1000;
+  for (;;) {
+    const auto page = db.list_turns(f);
+    for (const auto& row : page)
+      fn(row);
+    if (page.size() < static_cast<std::size_t>(f.limit)) break;
+    f.after_id = page.back().id;
+  }
+}
 
 std::vector<kin::SteadyLeg> steady_legs_before(const std::vector<double>& turn_starts_s,
                                                const std::vector<store::NavRow>& nav,
@@ -56,22 +76,139 @@ Result<MissionCurrent> estimate_mission_current(Context& ctx, std::int64_t missi
   MissionCurrent out;
   out.mission_id = mission_id;
   std::vector<double> starts;
-  store::TurnFilter f;
-  f.mission_id = mission_id;
-  f.limit = 1000;
-  for (;;) {
-    const auto page = db.list_turns(f);
-    for (const auto& t : page)
-      starts.push_back(t.start_time_s);
-    if (page.size() < static_cast<std::size_t>(f.limit)) break;
-    f.after_id = page.back().id;
-  }
+  for_each_mission_turn(db, mission_id, std::nullopt,
+                        [&](const store::TurnRow& t) { starts.push_back(t.start_time_s); });
   out.turns = starts.size();
   std::sort(starts.begin(), starts.end());
   const auto legs = steady_legs_before(starts, db.nav_for_mission(mission_id), leg_s);
   out.legs_used = legs.size();
   out.result = kin::estimate_current(legs);
   return out;
+}
+
+Result<MissionCurrent> estimate_mission_current_from_turns(Context& ctx, std::int64_t mission_id) {
+  store::Store& db = ctx.db();
+  const auto mission = db.get_mission(mission_id);
+  if (!mission) return not_found("no mission " + std::to_string(mission_id));
+  std::vector<std::int64_t> others;
+  for (const auto& m : db.list_missions())
+    if (m.vehicle_id == mission->vehicle_id && m.id != mission_id) others.push_back(m.id);
+  const auto table_turns =
+      others.empty() ? std::vector<kin::TurnSequence>{}
+                     : db.load_normalized_turns(others, mission->vehicle_id,
+                                                store::TurnFrameChoice::water_where_known);
+  if (table_turns.empty())
+    return not_found("no other mission of '" + mission->vehicle_id +
+                     "' holds turns to predict this one's with");
+  const kin::Ckt table = kin::Ckt::build(table_turns);
+  MissionCurrent out;
+  out.mission_id = mission_id;
+  std::vector<kin::TurnResidual> residuals;
+  for_each_mission_turn(db, mission_id, kin::TurnStatus::ok, [&](const store::TurnRow& row) {
+    ++out.turns;
+    const auto stored = db.get_turn(row.id);
+    if (!stored || stored->raw.samples().size() < 2) return;
+    const kin::TurnSequence& raw = stored->raw;
+    const double speed = raw.meta().commanded_speed_mps;
+    const double goal = std::abs(raw.meta().goal_dheading_deg);
+    kin::TurnPrediction p;
+    try {
+      p = table.query(speed, goal);
+    } catch (const kin::CktRangeError&) {
+      return;
+    }
+    const auto& first = raw.samples().front();
+    const double duration = raw.samples().back().t_s - first.t_s;
+    if (!(duration > 0.0)) return;
+    kin::Polyline trajectory = std::move(p.trajectory);
+    if (raw.side() == kin::TurnSide::left) trajectory = kin::reflect_x(std::move(trajectory));
+    const kin::PredictedManeuver m = kin::extended_to_horizon(
+        kin::timed_maneuver(raw.meta().goal_dheading_deg, speed, trajectory, p.timing), duration);
+    const kin::TimedPath predicted =
+        kin::placed(m.path, {first.x_m, first.y_m, raw.meta().initial_heading_deg});
+    kin::TurnResidual r;
+    for (const auto& s : raw.samples()) {
+      const double t = s.t_s - first.t_s;
+      const kin::Point e = kin::evaluate_ongoing(predicted, {}, t, std::nullopt).expected;
+      r.t_s.push_back(t);
+      r.residual_m.push_back({s.x_m - e.x_m, s.y_m - e.y_m});
+    }
+    residuals.push_back(std::move(r));
+  });
+  out.legs_used = residuals.size();
+  out.result = kin::estimate_current_from_turns(residuals);
+  return out;
+}
+
+bool current_is_significant(const kin::CurrentEstimate& e) {
+  return e.speed_mps() >= kMinCurrentMps && e.speed_mps() >= 2.0 * e.speed_sd_mps();
+}
+
+kin::WaterCurrent water_current(const kin::CurrentEstimate& e) {
+  return {e.east_mps, e.north_mps};
+}
+
+std::vector<std::pair<std::int64_t, kin::TurnSequence>> water_frame_turns(
+    const std::vector<std::pair<std::int64_t, kin::TurnSequence>>& raw_turns, kin::WaterCurrent c) {
+  std::vector<std::pair<std::int64_t, kin::TurnSequence>> out;
+  out.reserve(raw_turns.size());
+  for (const auto& [id, raw] : raw_turns) {
+    if (raw.meta().normalized || raw.meta().removed_current) continue;
+    out.emplace_back(id, kin::in_water_frame(raw, c).normalized());
+  }
+  return out;
+}
+
+Result<AppliedCurrent> apply_mission_current(Context& ctx, std::int64_t mission_id, double leg_s) {
+  auto est = estimate_mission_current(ctx, mission_id, leg_s);
+  if (!est) return est.error();
+  AppliedCurrent out;
+  out.current = *est;
+  if (!est->result.estimate) return out;
+  store::Store& db = ctx.db();
+  std::vector<std::pair<std::int64_t, kin::TurnSequence>> raw;
+  if (current_is_significant(*est->result.estimate)) {
+    for_each_mission_turn(db, mission_id, kin::TurnStatus::ok, [&](const store::TurnRow& t) {
+      if (auto stored = db.get_turn(t.id)) raw.emplace_back(t.id, std::move(stored->raw));
+    });
+  }
+  const auto water = water_frame_turns(raw, water_current(*est->result.estimate));
+  store::StoredCurrent sc;
+  sc.mission_id = mission_id;
+  sc.t_s = db.mission_clock_end_s(mission_id).value_or(0.0);
+  sc.method = "legs";
+  sc.estimate = *est->result.estimate;
+  sc.revision = db.save_mission_current(sc, water);
+  out.stored = sc;
+  out.water_turns = water.size();
+  return out;
+}
+
+Result<QueryCurrent> query_current(Context& ctx, const std::string& vehicle_id,
+                                   const std::optional<kin::WaterCurrent>& given, bool live,
+                                   const std::string& field) {
+  QueryCurrent out;
+  if (given && live)
+    return invalid_argument(field, "either a current or the live estimate, not both");
+  if (given) {
+    if (!(std::isfinite(given->east_mps) && std::isfinite(given->north_mps) &&
+          std::hypot(given->east_mps, given->north_mps) <= kMaxCurrentMps))
+      return invalid_argument(field, "must be finite east and north components (m/s) of at most " +
+                                         kin::number_text(kMaxCurrentMps) + " m/s");
+    out.current = given;
+    out.source = "query";
+  } else if (live) {
+    auto c = vehicle_current(ctx, vehicle_id);
+    if (!c) return c.error();
+    out.current = water_current(c->estimate);
+    out.source = "live";
+  }
+  return out;
+}
+
+Result<store::StoredCurrent> vehicle_current(Context& ctx, const std::string& vehicle_id) {
+  if (auto c = ctx.db().latest_vehicle_current(vehicle_id)) return *c;
+  return not_found("no current has been estimated for vehicle '" + vehicle_id + "'");
 }
 
 }  // namespace avk::app

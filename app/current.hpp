@@ -4,15 +4,27 @@
 // velocity over ground on many headings (kinematics/current_estimate.hpp).
 
 #include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "app/result.hpp"
 #include "kinematics/current_estimate.hpp"
+#include "kinematics/turn_sequence.hpp"
+#include "kinematics/water_current.hpp"
 #include "store/store.hpp"
 
 namespace avk::app {
 
 class Context;
+
+// Calls fn for every stored turn row of a mission (of one status when given), oldest first, a
+// page at a time.
+void for_each_mission_turn(store::Store& db, std::int64_t mission_id,
+                           std::optional<kinematics::TurnStatus> status,
+                           const std::function<void(const store::TurnRow&)>& fn);
 
 // How much of the steady stretch before each turn is used: the last leg_s seconds before the
 // command during which the desired heading and speed stayed as they were at the command.
@@ -37,5 +49,58 @@ Result<MissionCurrent> estimate_mission_current(Context& ctx, std::int64_t missi
 std::vector<kinematics::SteadyLeg> steady_legs_before(const std::vector<double>& turn_starts_s,
                                                       const std::vector<store::NavRow>& nav,
                                                       double leg_s = kSteadyLegS);
+
+// The current from the mission's turns (thesis §6.3): each ok turn over ground against the
+// prediction through the water of a table built from the vehicle's OTHER missions (their turns in
+// the water frame where known), both from the command; under a uniform current the difference
+// grows as c·t (kinematics/current_estimate.hpp estimate_current_from_turns). A check on the
+// steady-leg estimate, independent of it; whatever the table gets wrong the same way on every
+// heading goes into it. not_found for an unknown mission or when the other missions hold no
+// turns; turns at speeds the table does not hold are left out (legs_used counts the turns used).
+Result<MissionCurrent> estimate_mission_current_from_turns(Context& ctx, std::int64_t mission_id);
+
+// An estimate is taken out of the turns only when it is told apart from still water: at least
+// kMinCurrentMps and twice its 1-sigma speed. Below that, removing a "current" that is noise
+// would only move the turns.
+inline constexpr double kMinCurrentMps = 0.03;
+// A current asked for in a query: far past any water a small surface vehicle works in.
+inline constexpr double kMaxCurrentMps = 5.0;
+bool current_is_significant(const kinematics::CurrentEstimate& e);
+
+kinematics::WaterCurrent water_current(const kinematics::CurrentEstimate& e);
+
+// Each turn (raw, over ground; by id) in the water frame under the current, normalised: the
+// form the table reads. Turns that cannot be moved (already normalised) are left out.
+std::vector<std::pair<std::int64_t, kinematics::TurnSequence>> water_frame_turns(
+    const std::vector<std::pair<std::int64_t, kinematics::TurnSequence>>& raw_turns,
+    kinematics::WaterCurrent c);
+
+struct AppliedCurrent {
+  MissionCurrent current;
+  std::optional<store::StoredCurrent> stored;  // none when there is no estimate
+  std::size_t water_turns = 0;  // ok turns given a water-frame form (0: not significant)
+};
+
+// Estimates the mission's current from its steady legs and stores it; when it is significant its
+// ok turns get their water-frame form, so the vehicle's table is built from them. Without an
+// estimate nothing is stored and the turns keep their ground form. not_found for an unknown
+// mission.
+Result<AppliedCurrent> apply_mission_current(Context& ctx, std::int64_t mission_id,
+                                             double leg_s = kSteadyLegS);
+
+// The current a query asks to be predicted in: the given one (validated: finite, at most
+// kMaxCurrentMps), the station's live estimate (live), or none. invalid_argument names `field`
+// for a bad or doubly given current; not_found when live is asked and there is no estimate.
+struct QueryCurrent {
+  std::optional<kinematics::WaterCurrent> current;
+  std::optional<std::string> source;  // "query" or "live"
+};
+Result<QueryCurrent> query_current(Context& ctx, const std::string& vehicle_id,
+                                   const std::optional<kinematics::WaterCurrent>& given, bool live,
+                                   const std::string& field);
+
+// The station's estimate for a vehicle: the newest stored estimate of any of its missions (the
+// running one's is updated at every turn). not_found when it has none.
+Result<store::StoredCurrent> vehicle_current(Context& ctx, const std::string& vehicle_id);
 
 }  // namespace avk::app

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "app/context.hpp"
+#include "app/current.hpp"
 #include "kinematics/angles.hpp"
 #include "kinematics/json_parse.hpp"
 #include "mission/document_reader.hpp"
@@ -351,13 +352,20 @@ Result<EncounterBench> run_encounter_bench(Context& ctx, const EncounterFile& fi
   const std::size_t held = static_cast<std::size_t>(zero - candidates.begin());
   if (zero == candidates.end()) flights_deg.push_back(0.0);
 
+  EncounterBench bench_current;  // only its current, found before the choices are made
+  if (q.use_estimated_current)
+    if (const auto c = ctx.db().latest_vehicle_current(q.vehicle_id);
+        c && current_is_significant(c->estimate))
+      bench_current.current = water_current(c->estimate);
   // The choices first, on this thread (the database and the table cache are the Context's).
   std::vector<MethodEvaluations> methods;
   for (const PredictionMethod m : q.methods) {
     MethodEvaluations me;
     me.summary.method = m;
     for (const auto& s : file.scenarios) {
-      auto r = evaluate_maneuvers(ctx, maneuver_query(file, s, q, m, candidates));
+      ManeuverQuery mq = maneuver_query(file, s, q, m, candidates);
+      mq.current = bench_current.current;
+      auto r = evaluate_maneuvers(ctx, mq);
       if (!r) {
         if (me.per_scenario.empty() &&
             (r.error().code == ErrorCode::not_found || r.error().code == ErrorCode::unsupported)) {
@@ -379,6 +387,7 @@ Result<EncounterBench> run_encounter_bench(Context& ctx, const EncounterFile& fi
   if (!flown) return flown.error();
 
   EncounterBench bench;
+  bench.current = bench_current.current;
   bench.flights = file.scenarios.size() * flights_deg.size();
   for (std::size_t i = 0; i < file.scenarios.size(); ++i) {
     const EncounterScenario& s = file.scenarios[i];

@@ -77,6 +77,11 @@ struct EncounterBenchQuery {
                                         PredictionMethod::instantaneous};
   double candidate_step_deg = 5.0;  // candidates -180..180 in this step
   int threads = 2;                  // scenarios flown in parallel; results do not depend on it
+  // Every method's candidates drift with the current the station estimated for the vehicle (its
+  // newest mission's, app/current.hpp) when it is told apart from still water: the knowledge a
+  // vehicle in that sea has. Off: predictions through the water (or over ground, from a table of
+  // ground turns) without drift.
+  bool use_estimated_current = true;
 };
 
 struct EncounterMethodResult {
@@ -119,6 +124,7 @@ struct EncounterMethodSummary {
 };
 
 struct EncounterBench {
+  std::optional<kinematics::WaterCurrent> current;  // the drift every method's candidates had
   std::vector<EncounterScenarioResult> scenarios;
   std::vector<EncounterMethodSummary> summary;  // one per method asked, in order
   std::size_t flights = 0;                      // maneuvers flown

@@ -11,6 +11,7 @@
 #include "mission/event_kind.hpp"
 #include "mission/mission_observer.hpp"
 #include "mission/mission_runner.hpp"
+#include "store/store.hpp"
 
 namespace avk::app {
 
@@ -24,6 +25,8 @@ class LiveFeed {
   // Follows a mission the loop starts: turns, progress, events. Kept by the loop while it runs.
   virtual std::unique_ptr<mission::MissionObserver> follow(
       std::int64_t mission_id, const mission::MissionRunner& runner) = 0;
+  // A new estimate of the current the running mission is in (app/current_tracker.hpp).
+  virtual void current(const std::string& /*vehicle_id*/, const store::StoredCurrent& /*c*/) {}
 };
 
 // Tells nobody: for the command line and for tests that do not watch the stream.

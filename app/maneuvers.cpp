@@ -5,8 +5,10 @@
 
 #include "app/ckt_tables.hpp"
 #include "app/context.hpp"
+#include "app/current.hpp"
 #include "kinematics/ckt.hpp"
 #include "kinematics/corridor.hpp"
+#include "kinematics/water_frame.hpp"
 #include "kinematics/yaw_model.hpp"
 
 namespace avk::app {
@@ -150,10 +152,14 @@ std::optional<Error> check(const ManeuverQuery& q) {
 
 Result<ManeuverEvaluation> evaluate_maneuvers(Context& ctx, const ManeuverQuery& q) {
   if (auto e = check(q)) return *e;
+  auto current = query_current(ctx, q.vehicle_id, q.current, q.live_current, "/current");
+  if (!current) return current.error();
   auto pred = predictor_for(ctx, q.vehicle_id, q.method, q.model_id, q.corridor_share);
   if (!pred) return pred.error();
   ManeuverEvaluation out;
   out.query = q;
+  out.current = current->current;
+  out.current_source = current->source;
   out.table_source = pred->table_source;
   if (pred->model) out.model_id = pred->model->id;
   const double speed = q.candidate_speed_mps.value_or(q.speed_mps);
@@ -161,7 +167,8 @@ Result<ManeuverEvaluation> evaluate_maneuvers(Context& ctx, const ManeuverQuery&
   const std::vector<double> candidates = q.candidates_deg.empty()
                                              ? kin::candidate_dheadings_deg(q.candidate_step_deg)
                                              : q.candidates_deg;
-  const kin::ManeuverProblem problem{q.own, q.contacts, q.standoff_m, q.horizon_s, q.use_corridor};
+  const kin::ManeuverProblem problem{q.own,       q.contacts,     q.standoff_m,
+                                     q.horizon_s, q.use_corridor, current->current};
   out.candidates.reserve(candidates.size());
   out.timed_by_turns = q.method == PredictionMethod::avk;
   for (const double d : candidates) {
@@ -189,6 +196,8 @@ Result<OngoingManeuver> evaluate_ongoing(Context& ctx, const OngoingQuery& q) {
     return invalid_argument("mx", "the measured position must be finite (m)");
   if (!(q.corridor_share > 0.0 && q.corridor_share < 1.0))
     return invalid_argument("corridor", "must be a share within (0, 1)");
+  auto current = query_current(ctx, q.vehicle_id, q.current, q.live_current, "current");
+  if (!current) return current.error();
   auto pred = predictor_for(ctx, q.vehicle_id, q.method, q.model_id, q.corridor_share);
   if (!pred) return pred.error();
   auto m = predict_one(*pred, q.speed_mps, q.dheading_deg, q.horizon_s, "speed");
@@ -196,7 +205,12 @@ Result<OngoingManeuver> evaluate_ongoing(Context& ctx, const OngoingQuery& q) {
   const kin::PredictedManeuver whole = kin::extended_to_horizon(std::move(*m), q.horizon_s);
   OngoingManeuver out;
   out.query = q;
+  out.current = current->current;
+  out.current_source = current->source;
   out.prediction = kin::placed(whole.path, q.start);
+  if (out.current)
+    out.prediction =
+        kin::drifted(std::move(out.prediction), {out.current->east_mps, out.current->north_mps});
   out.evaluation =
       kin::evaluate_ongoing(out.prediction, whole.half_width_m, q.elapsed_s, q.measured);
   out.half_width_m = whole.half_width_m;

@@ -33,6 +33,10 @@ struct ManeuverQuery {
   std::optional<std::int64_t> model_id;  // model: this one; none: the vehicle's newest
   double corridor_share = kinematics::kDefaultCorridorShare;
   bool use_corridor = true;  // avk: judge by the corridor's nearer edge
+  // The current (grid frame): every candidate drifts with it (app/predict.hpp's rule); or the
+  // station's live estimate.
+  std::optional<kinematics::WaterCurrent> current;
+  bool live_current = false;
 };
 
 struct ManeuverEvaluation {
@@ -44,11 +48,14 @@ struct ManeuverEvaluation {
   // avk: the times along the trajectories come from the recorded turns (else constant speed: an
   // imported table without timing).
   bool timed_by_turns = false;
+  std::optional<kinematics::WaterCurrent> current;  // the drift added, and where it came from
+  std::optional<std::string> current_source;
 };
 
 // invalid_argument names the field as a JSON pointer of the request document (/own/speed_mps,
 // /contacts/K/speed_mps, /standoff_m, /horizon_s, /candidates_deg/K, /candidate_step_deg,
-// /candidate_speed_mps, /corridor); not_found without a table (avk) or model (model).
+// /candidate_speed_mps, /corridor, /current); not_found without a table (avk) or model (model),
+// or without a live estimate of the current when it is asked for.
 Result<ManeuverEvaluation> evaluate_maneuvers(Context& ctx, const ManeuverQuery& q);
 
 struct OngoingQuery {
@@ -62,10 +69,14 @@ struct OngoingQuery {
   std::optional<std::int64_t> model_id;
   double corridor_share = kinematics::kDefaultCorridorShare;
   double horizon_s = 120.0;  // how far the prediction runs
+  std::optional<kinematics::WaterCurrent> current;
+  bool live_current = false;
 };
 
 struct OngoingManeuver {
   OngoingQuery query;
+  std::optional<kinematics::WaterCurrent> current;
+  std::optional<std::string> current_source;
   kinematics::OngoingEvaluation evaluation;
   kinematics::TimedPath prediction;  // the whole placed prediction, to the horizon
   std::vector<double> half_width_m;  // the corridor per prediction point; empty without one
@@ -73,7 +84,7 @@ struct OngoingManeuver {
 };
 
 // invalid_argument names the query parameter (x, dheading, speed, elapsed, horizon, mx,
-// corridor); not_found as evaluate_maneuvers.
+// corridor, current); not_found as evaluate_maneuvers.
 Result<OngoingManeuver> evaluate_ongoing(Context& ctx, const OngoingQuery& q);
 
 }  // namespace avk::app

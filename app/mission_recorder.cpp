@@ -2,6 +2,7 @@
 
 #include <exception>
 #include <string>
+#include <utility>
 
 namespace avk::app {
 
@@ -24,8 +25,11 @@ store::MissionStatus to_store_status(mission::MissionState s) {
 }
 
 MissionRecorder::MissionRecorder(store::Store& store, std::int64_t mission_id,
-                                 double flush_period_s)
-    : store_(store), mission_id_(mission_id), flush_period_s_(flush_period_s) {
+                                 double flush_period_s, CurrentTracker::Publish on_current)
+    : store_(store),
+      mission_id_(mission_id),
+      flush_period_s_(flush_period_s),
+      current_(store, mission_id, std::move(on_current)) {
   pending_.reserve(256);
 }
 
@@ -40,7 +44,12 @@ MissionRecorder::~MissionRecorder() {
 void MissionRecorder::on_nav(const mission::NavRecord& r) {
   pending_.push_back({r.nav.t_s, r.nav.x_m, r.nav.y_m, r.nav.heading_deg, r.nav.speed_mps,
                       r.desired_heading_deg, r.desired_speed_mps, mission::to_string(r.mode)});
+  current_.nav(pending_.back());
   if (pending_.back().t_s - pending_.front().t_s >= flush_period_s_) flush();
+}
+
+void MissionRecorder::on_turn_started(const mission::TurnTask&, double t_s, double) {
+  current_.turn_commanded(t_s);
 }
 
 void MissionRecorder::flush() {
@@ -53,6 +62,7 @@ void MissionRecorder::on_turn(mission::TurnOutcome& t) {
   t.stored_id =
       store_.store_turn(mission_id_, t.raw, t.status, t.reason,
                         {t.condition_set_time_s, t.start_heading_error_deg, t.start_yaw_rate_dps});
+  current_.turn_stored(*t.stored_id, t.raw, t.status);
 }
 
 void MissionRecorder::on_condition_set(const mission::ConditionSetEpisode& e) {

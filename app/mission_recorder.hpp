@@ -1,11 +1,13 @@
 #pragma once
 // Keeps everything a running mission records in the store: navigation in batches (a crash loses
 // at most the last second of it), each turn in one transaction the moment it ends, ConditionSet
-// episodes, events and status changes.
+// episodes, events and status changes; and the mission's current, estimated again at every turn
+// (app/current_tracker.hpp).
 
 #include <cstdint>
 #include <vector>
 
+#include "app/current_tracker.hpp"
 #include "mission/mission_observer.hpp"
 #include "store/store.hpp"
 
@@ -15,10 +17,13 @@ store::MissionStatus to_store_status(mission::MissionState s);
 
 class MissionRecorder final : public mission::MissionObserver {
  public:
-  MissionRecorder(store::Store& store, std::int64_t mission_id, double flush_period_s = 1.0);
+  // on_current hears every new estimate of the mission's current (the live stream's).
+  MissionRecorder(store::Store& store, std::int64_t mission_id, double flush_period_s = 1.0,
+                  CurrentTracker::Publish on_current = {});
   ~MissionRecorder() override;
 
   void on_nav(const mission::NavRecord& r) override;
+  void on_turn_started(const mission::TurnTask& task, double t_s, double goal_heading_deg) override;
   void on_turn(mission::TurnOutcome& t) override;
   void on_condition_set(const mission::ConditionSetEpisode& e) override;
   void on_event(const mission::MissionEventRecord& e) override;
@@ -31,6 +36,7 @@ class MissionRecorder final : public mission::MissionObserver {
   std::int64_t mission_id_;
   double flush_period_s_;
   std::vector<store::NavRow> pending_;
+  CurrentTracker current_;
 };
 
 }  // namespace avk::app

@@ -4,7 +4,10 @@
 
 #include "app/ckt_tables.hpp"
 #include "app/context.hpp"
+#include "app/current.hpp"
 #include "kinematics/ckt.hpp"
+#include "kinematics/number_text.hpp"
+#include "kinematics/water_frame.hpp"
 #include "kinematics/yaw_model.hpp"
 
 namespace avk::app {
@@ -50,7 +53,16 @@ std::optional<Error> check(const PredictQuery& q) {
   return std::nullopt;
 }
 
-Result<Prediction> finish(Prediction p, const std::optional<kin::Corridor>& corridor = {}) {
+Result<Prediction> finish(Prediction p, const std::optional<kin::Corridor>& corridor = {},
+                          const std::optional<kin::TurnTiming>& timing = {}) {
+  if (p.current) {
+    // The drift is added in the normalised frame, before placing, so a pose turns it with the
+    // trajectory; the normalised frame's north is the start heading.
+    const double heading = p.query.pose ? p.query.pose->heading_deg : 0.0;
+    p.trajectory = kin::drifted_trajectory(
+        p.trajectory, timing, p.query.speed_mps,
+        kin::current_in_normalized_frame(*p.current, heading, kin::TurnSide::right));
+  }
   if (p.query.pose)
     p.trajectory = kin::place_normalized(p.trajectory, *p.query.pose, kin::TurnSide::right);
   // The band is built about the trajectory as it is answered, so it is in the same frame.
@@ -66,15 +78,25 @@ Result<Prediction> from_table(Prediction p, kin::TurnPrediction t) {
   p.exact_cell = t.exact_cell;
   p.extrapolated = t.extrapolated;
   p.short_of_goal = t.short_of_goal;
-  return finish(std::move(p), t.corridor);
+  return finish(std::move(p), t.corridor, t.timing);
 }
 
 }  // namespace
 
 Result<Prediction> predict_with_table(const kin::Ckt& table, const PredictQuery& q) {
   if (auto e = check(q)) return *e;
+  if (q.live_current)
+    return invalid_argument("current", "a table file has no live estimate; give the current");
+  if (q.current && !(std::isfinite(q.current->east_mps) && std::isfinite(q.current->north_mps) &&
+                     std::hypot(q.current->east_mps, q.current->north_mps) <= kMaxCurrentMps))
+    return invalid_argument("current",
+                            "must be finite east and north components (m/s) of at most " +
+                                kin::number_text(kMaxCurrentMps) + " m/s");
   Prediction p;
   p.query = q;
+  p.table_frame = kin::to_string(table.frame);
+  p.current = q.current;
+  if (q.current) p.current_source = "query";
   try {
     return from_table(std::move(p), table.query(q.speed_mps, q.dheading_deg));
   } catch (const kin::CktRangeError& e) {
@@ -86,11 +108,16 @@ Result<Prediction> predict(Context& ctx, const PredictQuery& q) {
   if (auto e = check(q)) return *e;
   Prediction p;
   p.query = q;
+  auto current = query_current(ctx, q.vehicle_id, q.current, q.live_current, "current");
+  if (!current) return current.error();
+  p.current = current->current;
+  p.current_source = current->source;
   switch (q.method) {
     case PredictionMethod::avk: {
       auto t = vehicle_table(ctx, q.vehicle_id);
       if (!t) return t.error();
       p.table_source = to_string(t->source);
+      p.table_frame = kin::to_string(t->table->frame);
       p.snapshot_id = t->snapshot_id;
       if (!t->fine) return invalid_argument("speed", "the table holds no turn to predict from");
       try {

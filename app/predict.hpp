@@ -10,6 +10,7 @@
 #include "app/result.hpp"
 #include "kinematics/ckt.hpp"
 #include "kinematics/geometry.hpp"
+#include "kinematics/water_current.hpp"
 
 namespace avk::app {
 
@@ -30,6 +31,11 @@ struct PredictQuery {
   std::optional<kinematics::Pose> pose;   // where the turn starts; none: the normalised frame
   // avk: the share of the vehicle's turns the corridor holds.
   double corridor_share = kinematics::kDefaultCorridorShare;
+  // The current the turn is made in (grid frame, m/s toward east/north): the prediction through
+  // the water is carried by its drift over the prediction's time. In the normalised frame (no
+  // pose) the start heading is north, so the current is read as if the turn began heading north.
+  std::optional<kinematics::WaterCurrent> current;
+  bool live_current = false;  // the current: the station's latest estimate for the vehicle
 };
 
 struct Prediction {
@@ -50,9 +56,16 @@ struct Prediction {
   // cell of one turn, or an imported table without corridors).
   std::optional<kinematics::CorridorBand> corridor;
   bool short_of_goal = false;  // avk: a cell that answered holds turns that stopped short
+  // avk: the frame of the turns the table was built from (kinematics::TableFrame): a water-frame
+  // table predicts through the water, so the current belongs in the query.
+  std::optional<std::string> table_frame;
+  // The current whose drift was added, and where it came from ("query" or "live").
+  std::optional<kinematics::WaterCurrent> current;
+  std::optional<std::string> current_source;
 };
 
-// invalid_argument names the parameter (speed, dheading, model, speed_model); not_found when the
+// invalid_argument names the parameter (speed, dheading, model, speed_model, current); not_found
+// when there is no live estimate of the current (live_current); not_found when the
 // vehicle has no table (avk) or the model does not exist (model).
 Result<Prediction> predict(Context& ctx, const PredictQuery& q);
 

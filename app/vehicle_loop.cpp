@@ -136,7 +136,9 @@ struct VehicleLoop::Impl {
     r.id = plan.mission_id;
     r.runner = std::make_unique<mission::MissionRunner>(plan.config, vehicle(), plan.tasks, ro);
     r.runner->add_observer(helm_sync);  // first: see HelmSync
-    r.recorder = std::make_unique<MissionRecorder>(*store, plan.mission_id);
+    r.recorder = std::make_unique<MissionRecorder>(
+        *store, plan.mission_id, 1.0,
+        [this, vid = vehicle().info().id](const store::StoredCurrent& c) { feed.current(vid, c); });
     r.follower = feed.follow(plan.mission_id, *r.runner);
     r.runner->add_observer(*r.recorder);
     r.runner->add_observer(*r.follower);

@@ -167,6 +167,24 @@ std::optional<std::size_t> Ckt::dheading_index(double dheading_deg) const {
   return nearest_index(grid_.dheadings_deg, dheading_deg, kGridEps);
 }
 
+const char* to_string(TableFrame f) {
+  switch (f) {
+    case TableFrame::ground:
+      return "ground";
+    case TableFrame::water:
+      return "water";
+    case TableFrame::mixed:
+      return "mixed";
+  }
+  return "ground";
+}
+
+std::optional<TableFrame> table_frame_from_string(const std::string& s) {
+  for (TableFrame f : {TableFrame::ground, TableFrame::water, TableFrame::mixed})
+    if (s == to_string(f)) return f;
+  return std::nullopt;
+}
+
 Ckt Ckt::build(const std::vector<TurnSequence>& turns, const CktOptions& options,
                std::optional<CktGrid> grid, CktBuildReport* report) {
   CktBuildReport local;
@@ -211,7 +229,18 @@ Ckt Ckt::build(const std::vector<TurnSequence>& turns, const CktOptions& options
     }
     table.cells_[*si * nd + *di].turns.push_back(t.normalized());
     ++rep.turns_used;
+    if (t.meta().removed_current) ++rep.turns_water_frame;
   }
+  // Counted from this call's turns alone, so a report passed in twice does not mix two builds.
+  std::size_t used = 0, water = 0;
+  for (const CktCell& c : table.cells_) {
+    used += c.turns.size();
+    for (const auto& t : c.turns)
+      water += t.meta().removed_current ? 1 : 0;
+  }
+  table.frame = water == 0      ? TableFrame::ground
+                : water == used ? TableFrame::water
+                                : TableFrame::mixed;
   for (CktCell& c : table.cells_) {
     c.n_turns = c.turns.size();
     if (c.turns.empty()) continue;

@@ -120,8 +120,15 @@ class CktRangeError : public std::out_of_range {
   using std::out_of_range::out_of_range;
 };
 
+// Where the table's turns were recorded: over ground as navigated, or in the water frame (the
+// drift of an estimated current removed, water_frame.hpp); mixed when some turns had no estimate.
+enum class TableFrame { ground, water, mixed };
+const char* to_string(TableFrame f);
+std::optional<TableFrame> table_frame_from_string(const std::string& s);
+
 struct CktBuildReport {
   std::size_t turns_used = 0;
+  std::size_t turns_water_frame = 0;     // of turns_used
   std::size_t turns_skipped_status = 0;  // aborted or rejected
   std::size_t turns_unassigned = 0;      // no grid cell within the match tolerances
   std::vector<std::string> warnings;
@@ -149,6 +156,7 @@ class Ckt {
   std::string vehicle_id;
   std::optional<double> vehicle_length_m;
   std::string created_utc;  // ISO 8601
+  TableFrame frame = TableFrame::ground;
 
   // Speeds the table can answer: the range of speed rows that hold at least one turn.
   std::optional<std::pair<double, double>> speed_range_mps() const;

@@ -177,6 +177,7 @@ json ckt_to_json(const Ckt& table) {
   doc["vehicle"] = {{"id", table.vehicle_id}};
   if (table.vehicle_length_m) doc["vehicle"]["length_m"] = *table.vehicle_length_m;
   doc["created_utc"] = table.created_utc;
+  doc["frame"] = to_string(table.frame);
   const CktOptions& o = table.options();
   doc["options"] = {
       {"fit_kind", to_string(o.fit_kind)},    {"pwl_epsilon_m", o.pwl_epsilon_m},
@@ -240,7 +241,7 @@ Ckt ckt_from_json(const json& doc) {
   if (!doc.is_object()) Reader::fail("/", "the CKT document must be a JSON object");
   Reader::only_keys(
       doc, root,
-      {"format", "schema_version", "vehicle", "created_utc", "options", "grid", "cells"});
+      {"format", "schema_version", "vehicle", "created_utc", "frame", "options", "grid", "cells"});
   if (Reader::string(doc, root, "format") != kCktFormatName) {
     Reader::fail("/format", std::string("not a CKT file: format must be '") + kCktFormatName + "'");
   }
@@ -267,6 +268,16 @@ Ckt ckt_from_json(const json& doc) {
       Reader::fail("/vehicle/length_m", "vehicle length must be positive");
   }
   std::string created = Reader::string(doc, root, "created_utc");
+  // Tables before schema 4 were all built from turns over ground.
+  TableFrame frame = TableFrame::ground;
+  if (doc.contains("frame")) {
+    if (schema < 4)
+      Reader::fail("/frame", "not a field of schema_version " + std::to_string(schema));
+    const std::string name = Reader::string(doc, root, "frame");
+    const auto f = table_frame_from_string(name);
+    if (!f) Reader::fail("/frame", "unknown frame '" + name + "' (ground, water or mixed)");
+    frame = *f;
+  }
 
   const json& opts = Reader::member(doc, root, "options");
   Reader::only_keys(opts, "/options",
@@ -397,6 +408,7 @@ Ckt ckt_from_json(const json& doc) {
   table.vehicle_id = std::move(vehicle_id);
   table.vehicle_length_m = vehicle_length;
   table.created_utc = std::move(created);
+  table.frame = frame;
   return table;
 }
 

@@ -16,7 +16,7 @@ inline constexpr const char* kCktFormatName = "avk-ckt";
 // Version 2 adds the mean kind (options/mean_kind) and each cell's corridor and short_of_goal
 // flag, all optional; version 1 files still load (their mean kind is x_grid, they have no
 // corridors).
-inline constexpr int kCktSchemaVersion = 3;
+inline constexpr int kCktSchemaVersion = 4;
 inline constexpr int kCktOldestSchemaVersion = 1;
 
 // Bounds of an imported table (docs/ckt-format.md). A CKT file comes from outside: an unbounded

@@ -117,4 +117,42 @@ CurrentEstimateResult estimate_current(const std::vector<SteadyLeg>& legs) {
   return r;
 }
 
+CurrentEstimateResult estimate_current_from_turns(const std::vector<TurnResidual>& turns) {
+  CurrentEstimateResult r;
+  std::vector<Eigen::Vector2d> per_turn;
+  for (const TurnResidual& t : turns) {
+    if (t.t_s.size() != t.residual_m.size())
+      throw std::invalid_argument("a turn residual needs one time per point");
+    double tt = 0.0;
+    Eigen::Vector2d tr = Eigen::Vector2d::Zero();
+    for (std::size_t i = 0; i < t.t_s.size(); ++i) {
+      tt += t.t_s[i] * t.t_s[i];
+      tr += t.t_s[i] * Eigen::Vector2d(t.residual_m[i].x_m, t.residual_m[i].y_m);
+    }
+    if (tt > 0.0) per_turn.push_back(tr / tt);
+  }
+  if (per_turn.size() < 2) {
+    r.why_not = "a current from turns needs at least 2 turns with a time span; " +
+                std::to_string(per_turn.size()) + " given";
+    return r;
+  }
+  const auto n = static_cast<double>(per_turn.size());
+  Eigen::Vector2d mean = Eigen::Vector2d::Zero();
+  for (const auto& c : per_turn)
+    mean += c;
+  mean /= n;
+  Eigen::Matrix2d spread = Eigen::Matrix2d::Zero();
+  for (const auto& c : per_turn)
+    spread += (c - mean) * (c - mean).transpose();
+  const Eigen::Matrix2d cov = spread / (n - 1.0) / n;
+  CurrentEstimate e;
+  e.east_mps = mean.x();
+  e.north_mps = mean.y();
+  e.covariance = {cov(0, 0), cov(0, 1), cov(1, 1)};
+  e.residual_rms_mps = std::sqrt(spread.trace() / n);
+  e.legs = per_turn.size();
+  r.estimate = e;
+  return r;
+}
+
 }  // namespace avk::kinematics

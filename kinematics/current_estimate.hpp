@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+#include "kinematics/geometry.hpp"
+
 namespace avk::kinematics {
 
 inline constexpr double kMinHeadingSpreadDeg = 30.0;
@@ -62,5 +64,22 @@ struct CurrentEstimateResult {
 };
 
 CurrentEstimateResult estimate_current(const std::vector<SteadyLeg>& legs);
+
+// A turn over ground against its prediction through the water (the CKT's trajectory timed by its
+// turns, placed at the turn's start): under a uniform current c their difference grows as c·t
+// from the command (thesis §6.3: "compare actual trajectories to AVK predictions and use the
+// differences to estimate external forces").
+struct TurnResidual {
+  std::vector<double> t_s;        // from the command
+  std::vector<Point> residual_m;  // observed minus predicted, grid frame
+};
+
+// Each turn's c from least squares through the origin (r = c·t); the estimate is their mean and
+// its covariance the turns' spread over their number: samples within a turn are far from
+// independent (the prediction's error is smooth), turns are closer to it. `legs` counts the turns.
+// Needs 2 turns with some time span; what the turns cannot tell apart from the current (a table
+// that is wrong the same way on every heading) goes into it, which is why the steady legs are the
+// primary estimate and this one its check.
+CurrentEstimateResult estimate_current_from_turns(const std::vector<TurnResidual>& turns);
 
 }  // namespace avk::kinematics

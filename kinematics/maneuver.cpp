@@ -7,6 +7,8 @@
 #include <tuple>
 #include <utility>
 
+#include "kinematics/water_frame.hpp"
+
 namespace avk::kinematics {
 
 Point contact_position(const Contact& c, double t_s) {
@@ -166,6 +168,8 @@ CandidateEvaluation evaluate_candidate(const ManeuverProblem& problem,
   e.dheading_deg = m.dheading_deg;
   e.speed_mps = m.speed_mps;
   e.path = placed(m.path, problem.own);
+  if (problem.current)
+    e.path = drifted(std::move(e.path), {problem.current->east_mps, problem.current->north_mps});
   e.half_width_m = m.half_width_m;
   e.min_cpa_m = std::numeric_limits<double>::infinity();
   const bool corridor = !e.half_width_m.empty();

@@ -12,6 +12,7 @@
 
 #include "kinematics/geometry.hpp"
 #include "kinematics/turn_timing.hpp"
+#include "kinematics/water_current.hpp"
 
 namespace avk::kinematics {
 
@@ -87,6 +88,9 @@ struct ManeuverProblem {
   double horizon_s = 120.0;
   // Judge a candidate by its corridor's nearer edge when it has a corridor.
   bool use_corridor = true;
+  // The current the own vehicle turns in (grid frame): each candidate, predicted through the
+  // water, drifts with it; the contacts' courses and speeds are over ground already.
+  std::optional<WaterCurrent> current;
 };
 
 struct CandidateEvaluation {

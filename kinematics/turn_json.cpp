@@ -52,6 +52,13 @@ constexpr std::array<const char*, 17> kKeys = {
     "samples",
 };
 
+// Keys a document may leave out: an absent key is an empty field, so documents written before
+// the field existed still load.
+constexpr std::array<const char*, 2> kOptionalKeys = {
+    "removed_current_east_mps",
+    "removed_current_north_mps",
+};
+
 // A turn document is an object of arrays of arrays; anything deeper is not a turn, and refusing
 // it while parsing keeps a hostile "[[[[..." from building a huge tree first.
 constexpr JsonLimits kTurnLimits{
@@ -114,6 +121,10 @@ json to_json(const TurnSequence& turn) {
   j["normalized"] = m.normalized;
   for (const auto& [name, ptr] : kMetaDoubles)
     j[name] = m.*ptr;
+  if (m.removed_current) {
+    j["removed_current_east_mps"] = m.removed_current->east_mps;
+    j["removed_current_north_mps"] = m.removed_current->north_mps;
+  }
   j["warnings"] = turn.warnings();
   json fields = json::array();
   for (const char* f : kSampleFields)
@@ -145,6 +156,8 @@ TurnSequence turn_from_json(const json& j) {
     bool known = false;
     for (const char* k : kKeys)
       known = known || item.key() == k;
+    for (const char* k : kOptionalKeys)
+      known = known || item.key() == k;
     if (!known) throw ParseError(json_member_pointer(item.key()), 0, "unknown key");
   }
   for (const char* k : kKeys)
@@ -162,6 +175,16 @@ TurnSequence turn_from_json(const json& j) {
   m.normalized = normalized.get<bool>();
   for (const auto& [name, ptr] : kMetaDoubles)
     m.*ptr = read_double(member(j, name), json_member_pointer(name), 0);
+  const bool has_east = j.contains("removed_current_east_mps");
+  if (has_east != j.contains("removed_current_north_mps")) {
+    throw ParseError(has_east ? "/removed_current_north_mps" : "/removed_current_east_mps", 0,
+                     "the removed current needs both its east and north components");
+  }
+  if (has_east) {
+    m.removed_current = WaterCurrent{
+        read_double(j.at("removed_current_east_mps"), "/removed_current_east_mps", 0),
+        read_double(j.at("removed_current_north_mps"), "/removed_current_north_mps", 0)};
+  }
 
   const json& warnings = member(j, "warnings");
   if (!warnings.is_array()) throw ParseError("/warnings", 0, "expected an array of strings");

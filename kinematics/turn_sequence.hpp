@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "kinematics/geometry.hpp"
+#include "kinematics/water_current.hpp"
 
 namespace avk::kinematics {
 
@@ -38,6 +39,9 @@ struct TurnMeta {
   TurnStatus status = TurnStatus::ok;
   std::string status_reason;  // why aborted/rejected; empty for ok
   bool normalized = false;
+  // Set on a turn in the water frame (water_frame.hpp): the current whose drift was taken out of
+  // its positions. Empty: the positions are over ground, as navigated.
+  std::optional<WaterCurrent> removed_current;
   friend bool operator==(const TurnMeta&, const TurnMeta&) = default;
 };
 

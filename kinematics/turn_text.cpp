@@ -345,6 +345,9 @@ void check_turn_serialisable(const TurnSequence& turn) {
       fail(std::string(kKeyNames[k_commanded_speed_mps + k]) + " is NaN or infinite");
     }
   }
+  if (m.removed_current &&
+      !(std::isfinite(m.removed_current->east_mps) && std::isfinite(m.removed_current->north_mps)))
+    fail("the removed current is NaN or infinite");
   for (std::size_t i = 0; i < turn.samples().size(); ++i) {
     for (std::size_t c = 0; c < kSampleArity; ++c) {
       if (!std::isfinite(turn.samples()[i].*kSampleMembers[c])) {

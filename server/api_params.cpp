@@ -3,6 +3,7 @@
 #include <cctype>
 #include <cmath>
 #include <sstream>
+#include <string_view>
 
 #include "server/serialize.hpp"
 
@@ -56,6 +57,31 @@ std::optional<app::PredictionMethod> method_param(const ApiRequest& r) {
   const auto m = app::prediction_method_from_string(it->second);
   if (!m) throw bad_parameter("method", "must be avk, model or instantaneous");
   return m;
+}
+
+CurrentParam current_param(const ApiRequest& r) {
+  CurrentParam out;
+  const auto it = r.query.find("current");
+  if (it == r.query.end()) return out;
+  if (it->second == "live") {
+    out.live = true;
+    return out;
+  }
+  const auto comma = it->second.find(',');
+  const auto part = [&](std::string_view text) -> std::optional<double> {
+    const nlohmann::json v = nlohmann::json::parse(text, nullptr, false);
+    if (!v.is_number()) return std::nullopt;
+    return v.get<double>();
+  };
+  if (comma != std::string::npos) {
+    const auto east = part(std::string_view(it->second).substr(0, comma));
+    const auto north = part(std::string_view(it->second).substr(comma + 1));
+    if (east && north) {
+      out.current = kinematics::WaterCurrent{*east, *north};
+      return out;
+    }
+  }
+  throw bad_parameter("current", "must be live or EAST,NORTH in m/s (e.g. 0.1,-0.2)");
 }
 
 std::int64_t path_id(const PathParams& p, const std::string& key, const std::string& what) {

@@ -26,6 +26,14 @@ std::int64_t path_id(const PathParams& p, const std::string& key, const std::str
 // ?method=avk|model|instantaneous; none when absent.
 std::optional<app::PredictionMethod> method_param(const ApiRequest& r);
 
+// ?current=live (the station's estimate) or ?current=EAST,NORTH (m/s toward east and north);
+// none when absent. 400 naming `current` for anything else.
+struct CurrentParam {
+  std::optional<kinematics::WaterCurrent> current;
+  bool live = false;
+};
+CurrentParam current_param(const ApiRequest& r);
+
 enum class Format { json, csv };
 // ?format= wins; otherwise Accept. Anything the resource cannot produce is 406 (400 for a bad
 // ?format=).

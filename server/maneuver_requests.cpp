@@ -163,6 +163,19 @@ app::Result<ManeuverRequest> maneuver_request(const json& body, const std::strin
   q.model_id = id(r, "model_id");
   q.corridor_share = number(r, "corridor", 0.5, 0.999, false).value_or(q.corridor_share);
   q.use_corridor = boolean(r, "use_corridor").value_or(q.use_corridor);
+  // "current": "live" (the station's estimate) or {"east_mps": E, "north_mps": N}.
+  if (const json* c = present(r, "current", false)) {
+    if (c->is_string() && c->get<std::string>() == "live") {
+      q.live_current = true;
+    } else if (c->is_object() && c->size() == 2 && c->contains("east_mps") &&
+               c->contains("north_mps") && (*c)["east_mps"].is_number() &&
+               (*c)["north_mps"].is_number()) {
+      q.current =
+          kinematics::WaterCurrent{(*c)["east_mps"].get<double>(), (*c)["north_mps"].get<double>()};
+    } else {
+      r.error("/current", R"(expected "live" or {"east_mps": E, "north_mps": N} (m/s))");
+    }
+  }
   out.path_step_s = number(r, "path_step_s", 0.0, 60.0, false).value_or(out.path_step_s);
   r.finish();
   return checked(std::move(out), errors);
@@ -217,6 +230,9 @@ app::OngoingQuery ongoing_query(const ApiRequest& r, const std::string& vehicle_
   q.model_id = id_param(r, "model");
   q.corridor_share = number_param(r, "corridor", 0.5, 0.999).value_or(q.corridor_share);
   q.horizon_s = number_param(r, "horizon", 1.0, kMaxManeuverHorizonS).value_or(q.horizon_s);
+  const CurrentParam current = current_param(r);
+  q.current = current.current;
+  q.live_current = current.live;
   return q;
 }
 

@@ -10,6 +10,7 @@
 
 #include "app/ckt_tables.hpp"
 #include "app/compare.hpp"
+#include "app/current.hpp"
 #include "app/encounters.hpp"
 #include "app/maneuvers.hpp"
 #include "app/missions.hpp"
@@ -68,6 +69,15 @@ std::string turns_csv(const std::vector<store::TurnRow>& rows);
 nlohmann::json ckt_summary_json(const app::VehicleTable& t);
 nlohmann::json ckt_cell_json(const kinematics::CktCell& c);
 nlohmann::json prediction_json(const app::Prediction& p);
+// {east_mps, north_mps, speed_mps, toward_deg, source}; null without a current.
+nlohmann::json water_current_json(const std::optional<kinematics::WaterCurrent>& c,
+                                  const std::optional<std::string>& source);
+nlohmann::json current_estimate_json(const kinematics::CurrentEstimate& e);
+// The stream's `current` topic and GET .../current: an estimate with its mission and revision.
+nlohmann::json current_json(const std::string& vehicle_id, const store::StoredCurrent& c);
+// An estimate from a mission's navigation, with the stored one (null when none).
+nlohmann::json mission_current_json(const app::MissionCurrent& c,
+                                    const std::optional<store::StoredCurrent>& stored);
 std::string trajectory_csv(const kinematics::Polyline& line);
 
 // --- maneuvers ------------------------------------------------------------------------------

@@ -1,5 +1,7 @@
 #include <algorithm>
+#include <cmath>
 
+#include "kinematics/angles.hpp"
 #include "kinematics/number_text.hpp"
 #include "kinematics/turn_json.hpp"
 #include "kinematics/yaw_model_json.hpp"
@@ -300,7 +302,57 @@ json prediction_json(const app::Prediction& p) {
     j["model_id"] = optional_json(p.model_id);
     j["speed_model"] = q.use_speed_model;
   }
+  if (p.table_frame) j["table_frame"] = *p.table_frame;
+  j["current"] = water_current_json(p.current, p.current_source);
   j["trajectory"] = points_json(p.trajectory);
+  return j;
+}
+
+json water_current_json(const std::optional<kin::WaterCurrent>& c,
+                        const std::optional<std::string>& source) {
+  if (!c) return nullptr;
+  return {{"east_mps", c->east_mps},
+          {"north_mps", c->north_mps},
+          {"speed_mps", std::hypot(c->east_mps, c->north_mps)},
+          {"toward_deg", kin::heading_of_deg(c->east_mps, c->north_mps)},
+          {"source", source ? json(*source) : json()}};
+}
+
+json current_estimate_json(const kin::CurrentEstimate& e) {
+  return {
+      {"east_mps", e.east_mps},
+      {"north_mps", e.north_mps},
+      {"speed_mps", e.speed_mps()},
+      {"toward_deg", e.toward_deg()},
+      {"speed_sd_mps", e.speed_sd_mps()},
+      {"toward_sd_deg", e.toward_sd_deg()},
+      {"covariance", {{"ee", e.covariance[0]}, {"en", e.covariance[1]}, {"nn", e.covariance[2]}}},
+      {"residual_rms_mps", e.residual_rms_mps},
+      {"speed_scale", e.speed_scale},
+      {"evidence", e.legs}};
+}
+
+json mission_current_json(const app::MissionCurrent& c,
+                          const std::optional<store::StoredCurrent>& stored) {
+  const auto& e = c.result.estimate;
+  return {{"mission_id", c.mission_id},
+          {"turns", c.turns},
+          {"legs_used", c.legs_used},
+          {"estimate", e ? current_estimate_json(*e) : json()},
+          {"significant", e ? json(app::current_is_significant(*e)) : json()},
+          {"why_not", e ? json() : json(c.result.why_not)},
+          {"stored", stored ? current_estimate_json(stored->estimate) : json()},
+          {"stored_revision", stored ? json(stored->revision) : json()}};
+}
+
+json current_json(const std::string& vehicle_id, const store::StoredCurrent& c) {
+  json j = current_estimate_json(c.estimate);
+  j["vehicle_id"] = vehicle_id;
+  j["mission_id"] = c.mission_id;
+  j["t_s"] = c.t_s;
+  j["method"] = c.method;
+  j["revision"] = c.revision;
+  j["significant"] = app::current_is_significant(c.estimate);
   return j;
 }
 
@@ -388,6 +440,7 @@ json maneuver_evaluation_json(const app::ManeuverEvaluation& e, double path_step
           {"model_id", optional_json(e.model_id)},
           {"table_source", e.table_source ? json(*e.table_source) : json()},
           {"timed_by_turns", e.timed_by_turns},
+          {"current", water_current_json(e.current, e.current_source)},
           {"own",
            {{"x_m", q.own.x_m},
             {"y_m", q.own.y_m},
@@ -421,6 +474,7 @@ json ongoing_maneuver_json(const app::OngoingManeuver& o) {
       {"deviation_m", optional_json(e.deviation_m)},
       {"cross_track_m", optional_json(e.cross_track_m)},
       {"inside_corridor", e.inside_corridor ? json(*e.inside_corridor) : json()},
+      {"current", water_current_json(o.current, o.current_source)},
       {"remaining", timed_path_json(e.remaining)},
       {"prediction", timed_path_json(o.prediction)}};
 }

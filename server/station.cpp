@@ -4,6 +4,7 @@
 
 #include "app/ckt_tables.hpp"
 #include "app/compare.hpp"
+#include "app/current.hpp"
 #include "app/encounters.hpp"
 #include "app/maneuvers.hpp"
 #include "app/missions.hpp"
@@ -120,6 +121,9 @@ app::PredictQuery predict_query(const ApiRequest& r, const std::string& vid) {
     throw bad_parameter(x ? (y ? "heading" : "y") : "x", "a pose needs x, y and heading");
   if (x) q.pose = kinematics::Pose{*x, *y, *heading};
   q.corridor_share = number_param(r, "corridor", 0.5, 0.999).value_or(q.corridor_share);
+  const CurrentParam current = current_param(r);
+  q.current = current.current;
+  q.live_current = current.live;
   return q;
 }
 
@@ -212,6 +216,28 @@ void Station::add_routes() {
   };
   get("/api/v1/missions/{id}", [&ctx, report](const ApiRequest&, const PathParams& p) {
     return answer(app::mission_report(ctx, path_id(p, "id", "mission")), false, report);
+  });
+  // The current the mission flew in: estimated from its stored navigation now, with what is
+  // stored (the estimate its turns' water frame was made with); POST stores a new estimate.
+  get("/api/v1/missions/{id}/current", [&ctx](const ApiRequest& r, const PathParams& p) {
+    const auto id = path_id(p, "id", "mission");
+    const auto from = r.query.find("from");
+    const bool turns = from != r.query.end() && from->second == "turns";
+    if (from != r.query.end() && !turns && from->second != "legs")
+      throw bad_parameter("from", "must be legs or turns");
+    return answer(turns ? app::estimate_mission_current_from_turns(ctx, id)
+                        : app::estimate_mission_current(ctx, id),
+                  false, [&ctx, id](const app::MissionCurrent& c) {
+                    return json_response(mission_current_json(c, ctx.db().mission_current(id)));
+                  });
+  });
+  post("/api/v1/missions/{id}/current", [&ctx](const ApiRequest&, const PathParams& p) {
+    return answer(app::apply_mission_current(ctx, path_id(p, "id", "mission")), true,
+                  [](const app::AppliedCurrent& a) {
+                    json j = mission_current_json(a.current, a.stored);
+                    j["water_frame_turns"] = a.water_turns;
+                    return json_response(j);
+                  });
   });
   get("/api/v1/missions/{id}/events", [&ctx](const ApiRequest& r, const PathParams& p) {
     const auto id = path_id(p, "id", "mission");
@@ -316,6 +342,14 @@ void Station::add_routes() {
       kCktImportBodyLimitBytes);
 
   // --- predictions, models, the comparison ---------------------------------------------------
+  // The station's estimate of the current the vehicle is in (the running mission's, updated at
+  // every turn; else its newest mission's).
+  get("/api/v1/vehicles/{vid}/current", [&ctx](const ApiRequest&, const PathParams& p) {
+    const std::string vid = p.at("vid");
+    return answer(app::vehicle_current(ctx, vid), false, [&vid](const store::StoredCurrent& c) {
+      return json_response(current_json(vid, c));
+    });
+  });
   get("/api/v1/vehicles/{vid}/predict", [&ctx](const ApiRequest& r, const PathParams& p) {
     return answer(app::predict(ctx, predict_query(r, p.at("vid"))), false,
                   [](const app::Prediction& pr) { return json_response(prediction_json(pr)); });

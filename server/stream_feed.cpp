@@ -14,6 +14,10 @@ void StreamFeed::station_event(double t_s, mission::EventKind kind, const std::s
   hub_.status(t_s, kind, message);
 }
 
+void StreamFeed::current(const std::string& vehicle_id, const store::StoredCurrent& c) {
+  hub_.publish("current", c.t_s, current_json(vehicle_id, c).dump());
+}
+
 std::unique_ptr<mission::MissionObserver> StreamFeed::follow(std::int64_t mission_id,
                                                              const mission::MissionRunner& runner) {
   return std::make_unique<StreamPublisher>(hub_, mission_id, runner);

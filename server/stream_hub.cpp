@@ -9,7 +9,7 @@
 namespace avk::server {
 
 namespace {
-const std::vector<std::string> kTopics = {"nav", "helm", "mission", "turn", "status"};
+const std::vector<std::string> kTopics = {"nav", "helm", "mission", "turn", "status", "current"};
 
 std::string random_id() {
   std::random_device rd;
@@ -72,7 +72,7 @@ void StreamHub::publish(const std::string& topic, double t_s, const std::string&
     std::lock_guard lock(mutex_);
     message->topic = topic;
     message->seq = ++seq_[topic];
-    message->latest_value_wins = topic == "nav" || topic == "helm";
+    message->latest_value_wins = topic == "nav" || topic == "helm" || topic == "current";
     auto& list = subscribers_[topic];
     std::erase_if(list, [](const std::weak_ptr<StreamSink>& w) { return w.expired(); });
     for (const auto& w : list)

@@ -21,7 +21,7 @@ namespace {
 
 // Each step moves the schema from version i to i + 1. Steps are append-only: a released step is
 // never edited, because databases in the field have already run it.
-constexpr std::array<const char*, 7> kMigrations = {
+constexpr std::array<const char*, 8> kMigrations = {
     R"sql(
 CREATE TABLE vehicles (
   id            TEXT PRIMARY KEY,
@@ -149,6 +149,28 @@ CREATE INDEX ckt_snapshots_by_vehicle ON ckt_snapshots (vehicle_id, id);
     R"sql(
 ALTER TABLE turns ADD COLUMN start_heading_error_deg REAL;
 ALTER TABLE turns ADD COLUMN start_yaw_rate_dps REAL;
+)sql",
+    // The current each mission flew in (app/current.hpp) and its turns in the water frame, the
+    // drift of that current removed (kinematics/water_frame.hpp), packed like the normalised
+    // form: a table learned in one current then predicts turns in another.
+    R"sql(
+CREATE TABLE mission_currents (
+  mission_id       INTEGER PRIMARY KEY REFERENCES missions(id),
+  t_s              REAL NOT NULL,
+  method           TEXT NOT NULL CHECK (method IN ('legs', 'turns')),
+  east_mps         REAL NOT NULL,
+  north_mps        REAL NOT NULL,
+  cov_ee           REAL NOT NULL,
+  cov_en           REAL NOT NULL,
+  cov_nn           REAL NOT NULL,
+  speed_scale      REAL NOT NULL,
+  residual_rms_mps REAL NOT NULL,
+  evidence         INTEGER NOT NULL,
+  revision         INTEGER NOT NULL,
+  estimated_utc    TEXT NOT NULL DEFAULT (strftime('%Y-%m-%dT%H:%M:%fZ', 'now'))
+);
+ALTER TABLE turns ADD COLUMN water_samples BLOB;
+ALTER TABLE turns ADD COLUMN water_meta_json TEXT;
 )sql",
 };
 
@@ -638,18 +660,22 @@ std::vector<CellStats> Store::mission_cell_stats(std::int64_t mission_id) {
 }
 
 std::vector<kinematics::TurnSequence> Store::load_normalized_turns(
-    const std::vector<std::int64_t>& mission_ids, const std::optional<std::string>& vehicle_id) {
+    const std::vector<std::int64_t>& mission_ids, const std::optional<std::string>& vehicle_id,
+    TurnFrameChoice frame) {
   // The mission list travels as one bound JSON array, so the statement text stays fixed
-  // whatever the number of missions.
-  constexpr const char* kColumns =
-      "SELECT id, normalized_meta_json, normalized_samples, normalized_json FROM turns ";
-  auto s =
-      db_.prepare(mission_ids.empty()
-                      ? std::string(kColumns) +
-                            "WHERE status = 'ok' AND (?1 IS NULL OR vehicle_id = ?1) ORDER BY id"
-                      : std::string(kColumns) +
-                            "WHERE status = 'ok' AND (?1 IS NULL OR vehicle_id = ?1) "
-                            "AND mission_id IN (SELECT value FROM json_each(?2)) ORDER BY id");
+  // whatever the number of missions. The water form, when asked for, replaces the normalised
+  // form column for column.
+  const std::string columns =
+      frame == TurnFrameChoice::water_where_known
+          ? "SELECT id, coalesce(water_meta_json, normalized_meta_json), CASE WHEN water_meta_json "
+            "IS NULL THEN normalized_samples ELSE water_samples END, normalized_json FROM turns "
+          : "SELECT id, normalized_meta_json, normalized_samples, normalized_json FROM turns ";
+  auto s = db_.prepare(
+      mission_ids.empty()
+          ? columns + "WHERE status = 'ok' AND (?1 IS NULL OR vehicle_id = ?1) ORDER BY id"
+          : columns +
+                "WHERE status = 'ok' AND (?1 IS NULL OR vehicle_id = ?1) "
+                "AND mission_id IN (SELECT value FROM json_each(?2)) ORDER BY id");
   if (vehicle_id) s.bind(1, *vehicle_id);
   if (!mission_ids.empty()) s.bind(2, nlohmann::json(mission_ids).dump());
   std::vector<kinematics::TurnSequence> out;
@@ -670,6 +696,94 @@ std::vector<kinematics::TurnSequence> Store::load_normalized_turns(
     }
   }
   return out;
+}
+
+std::int64_t Store::save_mission_current(
+    const StoredCurrent& current,
+    const std::vector<std::pair<std::int64_t, kinematics::TurnSequence>>& water_turns) {
+  // Serialised before the write lock, as store_turn does.
+  std::vector<std::tuple<std::int64_t, std::string, std::vector<unsigned char>>> packed;
+  packed.reserve(water_turns.size());
+  for (const auto& [id, turn] : water_turns)
+    packed.emplace_back(id, meta_json(turn), pack_samples(turn.samples()));
+  const kinematics::CurrentEstimate& e = current.estimate;
+  Transaction tx(db_);
+  auto rev = db_.prepare("SELECT coalesce(max(revision), 0) + 1 FROM mission_currents");
+  rev.step();
+  const std::int64_t revision = rev.column_int64(0);
+  auto s = db_.prepare(
+      "INSERT OR REPLACE INTO mission_currents (mission_id, t_s, method, east_mps, north_mps, "
+      "cov_ee, cov_en, cov_nn, speed_scale, residual_rms_mps, evidence, revision) "
+      "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  s.bind(1, current.mission_id).bind(2, current.t_s).bind(3, current.method);
+  s.bind(4, e.east_mps).bind(5, e.north_mps).bind(6, e.covariance[0]).bind(7, e.covariance[1]);
+  s.bind(8, e.covariance[2]).bind(9, e.speed_scale).bind(10, e.residual_rms_mps);
+  s.bind(11, static_cast<std::int64_t>(e.legs)).bind(12, revision);
+  s.run();
+  auto clear = db_.prepare(
+      "UPDATE turns SET water_samples = NULL, water_meta_json = NULL WHERE mission_id = ?");
+  clear.bind(1, current.mission_id);
+  clear.run();
+  auto put = db_.prepare(
+      "UPDATE turns SET water_meta_json = ?, water_samples = ? WHERE id = ? AND mission_id = ?");
+  for (const auto& [id, meta, samples] : packed) {
+    put.bind(1, meta).bind_blob(2, samples).bind(3, id).bind(4, current.mission_id);
+    put.run();
+    if (db_.changes() != 1)
+      throw StoreError("turn " + std::to_string(id) + " is not a turn of mission " +
+                       std::to_string(current.mission_id));
+    put.reset();
+  }
+  tx.commit();
+  return revision;
+}
+
+namespace {
+
+constexpr const char* kCurrentColumns =
+    "SELECT c.mission_id, c.t_s, c.method, c.east_mps, c.north_mps, c.cov_ee, c.cov_en, c.cov_nn, "
+    "c.speed_scale, c.residual_rms_mps, c.evidence, c.revision FROM mission_currents c ";
+
+StoredCurrent current_from_row(Statement& s) {
+  StoredCurrent c;
+  c.mission_id = s.column_int64(0);
+  c.t_s = s.column_double(1);
+  c.method = s.column_text(2);
+  c.estimate.east_mps = s.column_double(3);
+  c.estimate.north_mps = s.column_double(4);
+  c.estimate.covariance = {s.column_double(5), s.column_double(6), s.column_double(7)};
+  c.estimate.speed_scale = s.column_double(8);
+  c.estimate.residual_rms_mps = s.column_double(9);
+  c.estimate.legs = static_cast<std::size_t>(s.column_int64(10));
+  c.revision = s.column_int64(11);
+  return c;
+}
+
+}  // namespace
+
+std::optional<StoredCurrent> Store::mission_current(std::int64_t mission_id) {
+  auto s = db_.prepare(std::string(kCurrentColumns) + "WHERE c.mission_id = ?");
+  s.bind(1, mission_id);
+  if (!s.step()) return std::nullopt;
+  return current_from_row(s);
+}
+
+std::optional<StoredCurrent> Store::latest_vehicle_current(const std::string& vehicle_id) {
+  auto s = db_.prepare(std::string(kCurrentColumns) +
+                       "JOIN missions m ON m.id = c.mission_id WHERE m.vehicle_id = ? "
+                       "ORDER BY c.revision DESC LIMIT 1");
+  s.bind(1, vehicle_id);
+  if (!s.step()) return std::nullopt;
+  return current_from_row(s);
+}
+
+std::int64_t Store::current_revision(const std::string& vehicle_id) {
+  auto s = db_.prepare(
+      "SELECT coalesce(max(c.revision), 0) FROM mission_currents c JOIN missions m ON "
+      "m.id = c.mission_id WHERE m.vehicle_id = ?");
+  s.bind(1, vehicle_id);
+  s.step();
+  return s.column_int64(0);
 }
 
 void Store::append_nav(std::int64_t mission_id, std::span<const NavRow> rows) {

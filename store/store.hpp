@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "kinematics/ckt.hpp"
+#include "kinematics/current_estimate.hpp"
 #include "kinematics/turn_sequence.hpp"
 #include "kinematics/yaw_model.hpp"
 #include "store/sqlite.hpp"
@@ -176,6 +177,21 @@ struct CktSnapshot {
   kinematics::Ckt table;
 };
 
+// The current a mission flew in, as last estimated (app/current.hpp), and how.
+struct StoredCurrent {
+  std::int64_t mission_id = 0;
+  double t_s = 0.0;             // station clock: the end of the newest evidence used
+  std::string method = "legs";  // legs (steady legs before turns) or turns (turn residuals)
+  kinematics::CurrentEstimate estimate;
+  std::int64_t revision = 0;  // grows with every save in the database: tells a cache it changed
+};
+
+// Which form of a turn the table reads.
+enum class TurnFrameChoice {
+  ground,             // as navigated
+  water_where_known,  // the water-frame form where the mission has a current estimate
+};
+
 class Store {
  public:
   // Opens (creating if needed) and migrates the database. ":memory:" gives a private in-memory
@@ -238,9 +254,26 @@ class Store {
   // Normalised turns of status ok for the CKT, oldest first, from the given missions (empty: all
   // missions), optionally of one vehicle. Each equals get_turn(id)->normalized. Reads the packed
   // samples; turns stored before schema 2 have none and are parsed from their JSON instead.
+  // With water_where_known, a turn that has a water-frame form (save_mission_current) is read
+  // in it.
   std::vector<kinematics::TurnSequence> load_normalized_turns(
       const std::vector<std::int64_t>& mission_ids,
-      const std::optional<std::string>& vehicle_id = std::nullopt);
+      const std::optional<std::string>& vehicle_id = std::nullopt,
+      TurnFrameChoice frame = TurnFrameChoice::ground);
+
+  // Replaces the mission's current estimate and the water-frame form of its turns (normalised,
+  // each by turn id; turns not listed lose theirs) in one transaction, so a reader sees either the
+  // old estimate with the old turns or the new with the new. Returns the new revision. Throws
+  // StoreError for a turn that is not the mission's.
+  std::int64_t save_mission_current(
+      const StoredCurrent& current,
+      const std::vector<std::pair<std::int64_t, kinematics::TurnSequence>>& water_turns);
+  std::optional<StoredCurrent> mission_current(std::int64_t mission_id);
+  // The newest estimate (by revision) of any of the vehicle's missions.
+  std::optional<StoredCurrent> latest_vehicle_current(const std::string& vehicle_id);
+  // The newest revision among the vehicle's missions (0: none): tells a cache whether the water
+  // frame of its turns changed.
+  std::int64_t current_revision(const std::string& vehicle_id);
 
   // One transaction, one prepared statement for the whole batch.
   void append_nav(std::int64_t mission_id, std::span<const NavRow> rows);

@@ -23,7 +23,7 @@ void usage(std::ostream& out) {
          "  avk ckt import FILE [--out FILE] [--format json|csv]\n"
          "      check a CKT file and summarise it; nothing partial is ever loaded\n"
          "  avk ckt query --ckt FILE --speed M/S --dheading DEG [--x M --y M --heading DEG]\n"
-         "                [--format json|csv]\n"
+         "                [--format json|csv] [--current EAST,NORTH]\n"
          "      predicted trajectory of one turn (placed at a pose when one is given)\n"
          "  avk sim turn --speed M/S --dheading DEG\n"
          "               [--vehicle usim|catamaran[:m200|:heron|:otter]]\n"
@@ -52,10 +52,12 @@ void usage(std::ostream& out) {
          "  avk predict --db FILE --speed M/S --dheading DEG --method avk|model|instantaneous\n"
          "                  [--model ID] [--speed-model] [--x M --y M --heading DEG]\n"
          "                  [--corridor P]  (avk: the band holding P of the turns, default 0.9)\n"
+         "                  [--current live|EAST,NORTH]  (add the drift of a current, m/s)\n"
          "  avk maneuver evaluate --db FILE --own X,Y,HEADING,SPEED --contact X,Y,COURSE,SPEED\n"
          "                  [--contact ...] [--vehicle ID] [--standoff 10] [--horizon 120]\n"
          "                  [--method avk|model|instantaneous] [--model ID] [--step 5]\n"
          "                  [--speed M/S] [--corridor 0.9] [--no-corridor] [--format table|json]\n"
+         "                  [--current live|EAST,NORTH]\n"
          "      every candidate heading change scored by its CPA to the contacts, and the choice\n"
          "  avk maneuver ongoing --db FILE --start X,Y,HEADING --dheading DEG --speed M/S\n"
          "                  --elapsed S [--measured X,Y] [--method ...] [--format table|json]\n"
@@ -74,9 +76,20 @@ void usage(std::ostream& out) {
          "  avk encounter run --scenarios FILE --db FILE [--vehicle-id ID]\n"
          "                  [--vehicle KIND (catamaran:m200)] [--sim-config FILE] [--seed N]\n"
          "                  [--method avk|model|instantaneous|all] [--step DEG] [--threads 2]\n"
-         "                  [--format table|json|csv]\n"
+         "                  [--format table|json|csv] [--current estimated|none]\n"
          "      the encounter bench: each method's maneuver choice flown in the simulator, and\n"
          "      every candidate flown to know whether a safe one existed\n"
+         "  avk current estimate --db FILE --mission ID [--store] [--leg S] [--from legs|turns]\n"
+         "                  [--format text|json]\n"
+         "      the current a mission flew in, from its steady legs (or from its turns against\n"
+         "      the table of the other missions); --store keeps it and puts the mission's turns\n"
+         "      in the water frame (the table is then built from them)\n"
+         "  avk current show --db FILE [--vehicle ID] [--format text|json]\n"
+         "      the station's latest estimate for the vehicle\n"
+         "  avk current compare --db FILE --mission ID... --test-mission ID... [--format "
+         "text|json]\n"
+         "      the table of some missions predicting the turns of others flown in another\n"
+         "      current: path error with the current compensated and without\n"
          "  avk encounter generate [--seed N] [--count 60]\n"
          "      a reproducible scenario file (head-on, crossing, overtaking, several contacts)\n"
          "  avk serve [--db FILE] [--sim [--vehicle KIND] [--sim-config FILE]\n"
@@ -118,6 +131,7 @@ int run_cli(const std::vector<std::string>& args, std::istream& in, std::ostream
     if (args[0] == "maneuver") return cmd_maneuver(rest, io);
     if (args[0] == "import") return cmd_import(rest, io);
     if (args[0] == "encounter") return cmd_encounter(rest, io);
+    if (args[0] == "current") return cmd_current(rest, io);
     if (args[0] == "serve") return cmd_serve(rest, io);
     if (args[0] == "frontseat-emulator") return cmd_frontseat_emulator(rest, io);
   } catch (const UsageError& e) {

@@ -134,6 +134,7 @@ int query(const Args& a, Io& io) {
   q.speed_mps = *speed;
   q.dheading_deg = *dheading;
   if (placed) q.pose = kin::Pose{*x, *y, *heading};
+  q.current = current_option(a, false).current;
   const app::Prediction p = value_or_fail(app::predict_with_table(table, q));
   emit(a, io,
        format == OutFormat::csv ? trajectory_csv(p.trajectory) : prediction_json(p).dump() + "\n");
@@ -180,8 +181,9 @@ int cmd_ckt(const std::vector<std::string>& args, Io& io) {
     return summarise(t, io);
   }
   if (sub == "query") {
-    return query(Args(rest, {"ckt", "speed", "dheading", "x", "y", "heading", "format", "out"}),
-                 io);
+    return query(
+        Args(rest, {"ckt", "speed", "dheading", "x", "y", "heading", "format", "out", "current"}),
+        io);
   }
   throw UsageError("unknown subcommand 'ckt " + sub + "'");
 }

@@ -101,6 +101,7 @@ json bench_json(const app::EncounterBench& b, const app::EncounterBenchQuery& q)
           {"plant", q.setup.vehicle.kind},
           {"seed", q.seed},
           {"candidate_step_deg", q.candidate_step_deg},
+          {"current", water_current_json(b.current, "estimated")},
           {"flights", b.flights},
           {"scenarios", scenarios},
           {"summary", summary}};
@@ -179,7 +180,7 @@ void print_table(const app::EncounterBench& b, Io& io) {
 int encounter_run(const std::vector<std::string>& rest, Io& io) {
   const Args a(rest,
                {"scenarios", "db", "vehicle-id", "vehicle", "sim-config", "method", "seed", "ticks",
-                "format", "step", "threads"},
+                "format", "step", "threads", "current"},
                {"jitter"});
   const std::string format = a.get("format").value_or("table");
   if (format != "table" && format != "json" && format != "csv")
@@ -194,6 +195,10 @@ int encounter_run(const std::vector<std::string>& rest, Io& io) {
   if (!(q.candidate_step_deg > 0.0 && q.candidate_step_deg <= 180.0))
     throw UsageError("--step must be in (0, 180] degrees");
   q.threads = whole_option(a, "threads", 2, 1, 64);
+  const std::string current = a.get("current").value_or("estimated");
+  if (current != "estimated" && current != "none")
+    throw UsageError("--current must be estimated or none");
+  q.use_estimated_current = current == "estimated";
   q.vehicle_id = vehicle_of(a, ctx.db(), {}, "vehicle-id");
   const app::EncounterFile file =
       value_or_fail(app::parse_encounter_file(read_file(scenarios_path, io.in)));
@@ -216,7 +221,9 @@ int encounter_run(const std::vector<std::string>& rest, Io& io) {
   io.err << "encounter run: " << file.scenarios.size() << " scenarios, " << bench.flights
          << " maneuvers flown on " << q.threads << " thread(s) in " << fixed(took.count(), 1)
          << " s (vehicle " << q.vehicle_id << ", plant " << q.setup.vehicle.kind << ", seed "
-         << q.seed << ")\n";
+         << q.seed << ", current "
+         << (bench.current ? water_current_json(bench.current, "estimated").dump() : "none")
+         << ")\n";
   return 0;
 }
 

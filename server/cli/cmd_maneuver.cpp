@@ -67,6 +67,11 @@ json evaluate_body(const Args& a) {
   if (const auto m = a.get("method")) body["method"] = *m;
   if (const auto id = model_option(a)) body["model_id"] = *id;
   if (a.flag("no-corridor")) body["use_corridor"] = false;
+  const CurrentOption current = current_option(a);
+  if (current.live) body["current"] = "live";
+  if (current.current)
+    body["current"] = {{"east_mps", current.current->east_mps},
+                       {"north_mps", current.current->north_mps}};
   return body;
 }
 
@@ -104,7 +109,7 @@ void print_evaluation(const app::ManeuverEvaluation& e, std::ostream& out) {
 int evaluate(const std::vector<std::string>& rest, Io& io) {
   const Args a(rest,
                {"db", "vehicle", "own", "standoff", "horizon", "method", "model", "step", "speed",
-                "corridor", "format"},
+                "corridor", "format", "current"},
                {"no-corridor"}, {"contact"});
   const std::string format = format_option(a);
   const json body = evaluate_body(a);
@@ -139,7 +144,7 @@ void print_ongoing(const app::OngoingManeuver& o, std::ostream& out) {
 
 int ongoing(const std::vector<std::string>& rest, Io& io) {
   const Args a(rest, {"db", "vehicle", "start", "dheading", "speed", "elapsed", "measured",
-                      "method", "model", "corridor", "horizon", "format"});
+                      "method", "model", "corridor", "horizon", "format", "current"});
   const std::string format = format_option(a);
   app::OngoingQuery q;
   const auto start = a.number_list("start", 3, "x,y,heading");
@@ -159,6 +164,9 @@ int ongoing(const std::vector<std::string>& rest, Io& io) {
   q.model_id = model_option(a);
   q.corridor_share = a.number("corridor").value_or(q.corridor_share);
   q.horizon_s = a.number("horizon").value_or(q.horizon_s);
+  const CurrentOption current = current_option(a);
+  q.current = current.current;
+  q.live_current = current.live;
   app::Context ctx(a.require("db"));
   q.vehicle_id = vehicle_of(a, ctx.db(), {});
   const app::OngoingManeuver o = value_or_fail(app::evaluate_ongoing(ctx, q));

@@ -26,6 +26,7 @@ int cmd_maneuver(const std::vector<std::string>& args, Io& io);
 int cmd_import(const std::vector<std::string>& args, Io& io);
 int cmd_serve(const std::vector<std::string>& args, Io& io);
 int cmd_encounter(const std::vector<std::string>& args, Io& io);
+int cmd_current(const std::vector<std::string>& args, Io& io);
 int cmd_frontseat_emulator(const std::vector<std::string>& args, Io& io);
 
 }  // namespace avk::server

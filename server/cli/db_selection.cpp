@@ -29,6 +29,20 @@ app::PredictionMethod method_option(const Args& a) {
   return *m;
 }
 
+CurrentOption current_option(const Args& a, bool allow_live) {
+  CurrentOption out;
+  const auto text = a.get("current");
+  if (!text) return out;
+  if (*text == "live") {
+    if (!allow_live) throw UsageError("--current live needs a station database; give EAST,NORTH");
+    out.live = true;
+    return out;
+  }
+  const auto v = a.number_list("current", 2, "EAST,NORTH (m/s) or live");
+  out.current = kinematics::WaterCurrent{(*v)[0], (*v)[1]};
+  return out;
+}
+
 std::vector<std::int64_t> mission_ids(const Args& a) {
   std::vector<std::int64_t> ids;
   for (const std::string& s : a.all("mission"))

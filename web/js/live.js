@@ -45,6 +45,10 @@ export function initLive() {
   on('turn', markPlot);
   on('predictions', markPlot);
   on('ongoing', markPlot);
+  on('current', () => {
+    markPlot();
+    markText();
+  });
   on('recorded-turns', markPlot);
   on('restart', markPlot);
   on('nav-history', markPlot);
@@ -226,6 +230,7 @@ function renderPlot() {
     { type: 'scatter', mode: 'lines', name: 'commanded goal heading', x: goalRay.x, y: goalRay.y, opacity: faded, line: { color: C.vermillion, width: 2.5, dash: 'longdash' }, hoverinfo: 'name' },
     { type: 'scatter', mode: 'lines', name: 'measured heading', x: headingRay.x, y: headingRay.y, line: { color: C.green, width: 2.5 }, hoverinfo: 'name' },
     expectedTrace(),
+    currentTrace(nav),
     {
       type: 'scatter',
       mode: 'markers',
@@ -244,6 +249,38 @@ function renderPlot() {
   };
   draw(plotEl, traces, layout, { scrollZoom: true });
   renderTurnPlot(turn, { turnX, turnY, goalRay, band, preds: [pred('avk'), pred('model'), pred('instantaneous')], nav, faded });
+}
+
+/** "0.20 ± 0.01 m/s toward 182 ± 3°": the station's estimate of the current (issue 17). */
+export function currentText(c) {
+  if (!c) return 'not estimated yet';
+  const still = c.significant ? '' : ' (not told apart from still water)';
+  return `${num(c.speed_mps, 2)} ± ${num(c.speed_sd_mps, 2)} m/s toward ${num(c.toward_deg, 0)} ± ${num(c.toward_sd_deg, 0)}°${still}`;
+}
+
+/** The current as an arrow from the vehicle: where the water carries it in CURRENT_ARROW_S. */
+const CURRENT_ARROW_S = 60;
+function currentTrace(nav) {
+  const c = state.current;
+  const show = Boolean(c && nav);
+  let x = [];
+  let y = [];
+  if (show) {
+    const [ex, ey] = along(nav.x_m, nav.y_m, c.toward_deg, c.speed_mps * CURRENT_ARROW_S);
+    x = [nav.x_m, ex];
+    y = [nav.y_m, ey];
+  }
+  return {
+    type: 'scatter',
+    mode: 'lines+markers',
+    name: `current (drift in ${CURRENT_ARROW_S} s)`,
+    x,
+    y,
+    line: { color: C.purple, width: 2.5, dash: 'dot' },
+    marker: { symbol: ['circle', 'arrow'], size: [4, 14], angleref: 'previous', color: C.purple },
+    visible: show ? true : 'legendonly',
+    hovertemplate: `${show ? currentText(c) : ''}<extra>current</extra>`,
+  };
 }
 
 /** Where the prediction of the running turn puts the vehicle now (GET /maneuvers/ongoing). */
@@ -320,6 +357,7 @@ function renderReadout() {
   text('live-dspeed', num(helm?.desired_speed_mps, 2));
   text('live-dheading', num(helm?.desired_heading_deg, 1));
   text('live-t', num(nav?.t_s, 1));
+  text('live-current', currentText(state.current));
   // Only a real vehicle (the M200 driver) reports a battery and a frontseat link.
   const fs = nav?.frontseat;
   for (const e of document.querySelectorAll('.frontseat')) e.hidden = !fs;

@@ -84,6 +84,7 @@ export const state = {
   models: [],            // GET /vehicles/{vid}/models
   turn: null,            // the turn in progress: {speed, dheading, goalHeading, start:{t,x,y,heading}, predictions}
   ongoing: null,         // GET /maneuvers/ongoing of the running turn (deviation.js), null between turns
+  current: null,         // the station's estimate of the current (stream `current`, GET /vehicles/{vid}/current)
   shownTurn: null,       // the turn drawn in Live: the one in progress, else the last one (ended: true)
   lastTurn: null,        // the last finished / aborted turn event
   recordedTurns: [],     // raw paths of the current mission's stored turns (history from REST)

@@ -6,7 +6,7 @@
 
 import { getToken } from './auth.js';
 
-const TOPICS = ['nav', 'helm', 'mission', 'turn', 'status'];
+const TOPICS = ['nav', 'helm', 'mission', 'turn', 'status', 'current'];
 const MIN_DELAY_MS = 500;
 const MAX_DELAY_MS = 10000;
 
@@ -83,7 +83,7 @@ export class Stream {
       if (msg.type) return; // subscribed / error acknowledgements
       if (typeof msg.seq === 'number') {
         const prev = this.lastSeq[msg.topic];
-        if (prev !== undefined && msg.seq > prev + 1 && msg.topic !== 'nav' && msg.topic !== 'helm') {
+        if (prev !== undefined && msg.seq > prev + 1 && msg.topic !== 'nav' && msg.topic !== 'helm' && msg.topic !== 'current') {
           // Telemetry is latest-value-wins, so nav/helm gaps are expected; event gaps are not.
           this.gaps++;
           this.handlers.onGap?.(msg.topic);

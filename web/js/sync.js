@@ -51,7 +51,7 @@ async function doCatchUp() {
   }
   emit('vehicle', state.vehicle);
   emit('helm', state.helm);
-  await Promise.all([refreshMissions(), refreshTurnCount(), refreshModels()]);
+  await Promise.all([refreshMissions(), refreshTurnCount(), refreshModels(), vid ? refreshCurrent(vid) : null]);
   const mine = state.missions.filter((m) => !vid || m.vehicle_id === vid);
   const currentId = state.helm?.mission_id ?? (mine.length ? Math.max(...mine.map((m) => m.id)) : null);
   if (currentId) await loadMission(currentId, { force: true });
@@ -307,6 +307,9 @@ export function onMessage(msg) {
     case 'turn':
       applyTurn(d, msg.t);
       break;
+    case 'current':
+      applyCurrent(d);
+      break;
     case 'status':
       addEvent({ t: msg.t, kind: d.kind, level: d.level, message: d.message, suppressed: d.suppressed_before });
       break;
@@ -326,6 +329,27 @@ export function applyNav(d, live) {
     if (!still) state.track.push(d.t_s, d.x_m, d.y_m);
   }
   emit('nav', d);
+}
+
+/** The current the vehicle is in (issue 17): drawn as an arrow in Live; when it is told apart from
+ *  still water the turn's predictions are asked with its drift (current=live). */
+function applyCurrent(d) {
+  if (state.vehicleId && d?.vehicle_id && d.vehicle_id !== state.vehicleId) return;
+  state.current = d;
+  emit('current', d);
+}
+
+/** The query parameters that add the live current's drift to a prediction, when there is one. */
+export function currentParams() {
+  return state.current?.significant ? { current: 'live' } : {};
+}
+
+async function refreshCurrent(vid) {
+  try {
+    applyCurrent(await getJson(`/vehicles/${encodeURIComponent(vid)}/current`));
+  } catch {
+    applyCurrent(null); // 404: no estimate yet
+  }
 }
 
 function applyHelm(d) {
@@ -462,6 +486,7 @@ async function fetchPredictions(turn) {
           x: turn.start.x,
           y: turn.start.y,
           heading: turn.start.heading,
+          ...currentParams(),
         });
         if (state.shownTurn !== turn) return; // a newer turn is drawn now
         turn.predictions[method] = p;

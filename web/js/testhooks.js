@@ -73,6 +73,10 @@ export function installTestHooks() {
     },
     /** A synthetic turn through the stream's path: steady north from (0, -72) to (0, -70), then
      *  the turn's start event at t0 = 1000 s (sim time); stream nav is ignored from now on. */
+    /** A stream message as the server sends it (topic, data), through the page's own handler. */
+    streamMessage(topic, data) {
+      onMessage({ topic, seq: 0, t: state.nav?.t_s ?? 0, data });
+    },
     startTurn(dheading = 90, speed = 1.0) {
       state.testFeed = true;
       state.track.clear();

@@ -346,6 +346,36 @@ test('the Live view shows the deviation from the prediction while a turn runs', 
   }
 });
 
+test('Live shows the estimated current: its value and uncertainty, and an arrow along it', { timeout: slow(60000) }, async () => {
+  // The small mission that ran before gave the station an estimate (GET /vehicles/{vid}/current);
+  // the simulator has no current, so it is not told apart from still water.
+  const vid = (await api('/health')).vehicle_id;
+  const est = await api(`/vehicles/${vid}/current`);
+  assert.ok(Number.isFinite(est.speed_mps) && est.evidence >= 2, JSON.stringify(est));
+  const p = await newPage();
+  try {
+    await p.goto(`${server.base}/?test=1#live`, { waitUntil: 'load', timeout: slow(20000) });
+    await p.waitForFunction(() => window.avkTest && window.avkTest.state().vehicleId && document.querySelector('#live-plot .main-svg'), null, { timeout: slow(20000) });
+    const shown = await until('the current in the readout', async () => {
+      const text = await p.textContent('#live-current');
+      return /m\/s toward/.test(text) ? text : null;
+    }, 10000, 200);
+    assert.match(shown, /^\d+\.\d\d ± \d+\.\d\d m\/s toward \d+ ± \d+°/);
+    // A current from the stream: 0.3 m/s toward the east, drawn from the vehicle eastwards.
+    await p.evaluate(() => window.avkTest.streamMessage('current', { vehicle_id: window.avkTest.state().vehicleId, east_mps: 0.3, north_mps: 0, speed_mps: 0.3, toward_deg: 90, speed_sd_mps: 0.01, toward_sd_deg: 2, significant: true }));
+    assert.equal(await p.textContent('#live-current'), '0.30 ± 0.01 m/s toward 90 ± 2°');
+    const arrow = await until('the current arrow', () =>
+      p.evaluate(() => {
+        const t = document.getElementById('live-plot').data?.find((d) => /^current/.test(d.name));
+        return t && t.visible === true && t.x.length === 2 ? { x: t.x, y: t.y } : null;
+      }),
+    10000, 200);
+    assert.ok(Math.abs(arrow.x[1] - arrow.x[0] - 18) < 1e-6 && Math.abs(arrow.y[1] - arrow.y[0]) < 1e-6, JSON.stringify(arrow));
+  } finally {
+    await p.close();
+  }
+});
+
 /** The page position (CSS px) of a point of the encounter plot's grid. */
 function encounterPixel(x, y) {
   return page.evaluate(([x, y]) => {

@@ -1,0 +1,131 @@
+// The current a mission flew in and its turns in the water frame (issue 17 §3): stored in one
+// transaction, read back as the table reads them, and a database of the schema before them
+// upgrades with everything it held.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "kinematics/water_frame.hpp"
+#include "store/sqlite.hpp"
+#include "store/store.hpp"
+#include "support/synthetic_turns.hpp"
+#include "support/temp_db.hpp"
+
+namespace {
+
+using avk::kinematics::TurnSequence;
+using avk::kinematics::TurnStatus;
+using avk::kinematics::WaterCurrent;
+using namespace avk::store;
+
+TurnSequence arc(double dheading_deg, unsigned seed) {
+  avk::testing::ArcTurnSpec spec;
+  spec.dheading_deg = dheading_deg;
+  spec.seed = seed;
+  spec.position_noise_m = 0.05;
+  spec.start = {3.0, 4.0, 20.0 * seed};
+  spec.vehicle_id = "usim-1";
+  return avk::testing::make_arc_turn(spec);
+}
+
+StoredCurrent current_of(std::int64_t mission, double east, double north) {
+  StoredCurrent c;
+  c.mission_id = mission;
+  c.t_s = 12.5;
+  c.estimate.east_mps = east;
+  c.estimate.north_mps = north;
+  c.estimate.covariance = {1e-4, 2e-5, 3e-4};
+  c.estimate.legs = 9;
+  c.estimate.speed_scale = 1.02;
+  c.estimate.residual_rms_mps = 0.01;
+  return c;
+}
+
+TEST(CurrentStore, EstimateAndWaterTurnsRoundTripAndTheGroundFormStays) {
+  Store s(":memory:");
+  s.upsert_vehicle({"usim-1", "usim", 2.0, 1.2});
+  const auto m = s.create_mission("usim-1", "collection", "{}");
+  const TurnSequence raw = arc(90.0, 1);
+  const auto id = s.store_turn(m, raw, TurnStatus::ok, "");
+  EXPECT_FALSE(s.mission_current(m));
+  EXPECT_EQ(s.current_revision("usim-1"), 0);
+
+  const WaterCurrent c{0.1, -0.2};
+  const TurnSequence water = avk::kinematics::in_water_frame(raw, c).normalized();
+  const auto rev = s.save_mission_current(current_of(m, c.east_mps, c.north_mps), {{id, water}});
+  EXPECT_GT(rev, 0);
+  EXPECT_EQ(s.current_revision("usim-1"), rev);
+  const auto got = s.mission_current(m);
+  ASSERT_TRUE(got);
+  EXPECT_EQ(got->estimate.east_mps, 0.1);
+  EXPECT_EQ(got->estimate.covariance[1], 2e-5);
+  EXPECT_EQ(got->estimate.legs, 9u);
+  EXPECT_EQ(got->method, "legs");
+  EXPECT_EQ(got->revision, rev);
+  EXPECT_EQ(s.latest_vehicle_current("usim-1")->mission_id, m);
+  EXPECT_FALSE(s.latest_vehicle_current("other"));
+
+  const auto as_water = s.load_normalized_turns({m}, "usim-1", TurnFrameChoice::water_where_known);
+  ASSERT_EQ(as_water.size(), 1u);
+  EXPECT_EQ(as_water[0], water);
+  const auto as_ground = s.load_normalized_turns({m}, "usim-1");
+  ASSERT_EQ(as_ground.size(), 1u);
+  EXPECT_EQ(as_ground[0], raw.normalized());
+
+  // A new estimate without water turns (no longer significant) takes the water form away.
+  const auto rev2 = s.save_mission_current(current_of(m, 0.01, 0.0), {});
+  EXPECT_GT(rev2, rev);
+  EXPECT_EQ(s.load_normalized_turns({m}, "usim-1", TurnFrameChoice::water_where_known)[0],
+            raw.normalized());
+}
+
+TEST(CurrentStore, AnotherMissionsTurnIsRefusedAndNothingChanges) {
+  Store s(":memory:");
+  s.upsert_vehicle({"usim-1", "usim", 2.0, 1.2});
+  const auto m = s.create_mission("usim-1", "a", "{}");
+  const auto other = s.create_mission("usim-1", "b", "{}");
+  const TurnSequence raw = arc(45.0, 2);
+  const auto mine = s.store_turn(m, raw, TurnStatus::ok, "");
+  const auto theirs = s.store_turn(other, raw, TurnStatus::ok, "");
+  const TurnSequence water = avk::kinematics::in_water_frame(raw, {0.2, 0.0}).normalized();
+  s.save_mission_current(current_of(m, 0.2, 0.0), {{mine, water}});
+  EXPECT_THROW(s.save_mission_current(current_of(m, 0.3, 0.0), {{mine, water}, {theirs, water}}),
+               StoreError);
+  EXPECT_EQ(s.mission_current(m)->estimate.east_mps, 0.2);
+  EXPECT_EQ(s.load_normalized_turns({m}, "usim-1", TurnFrameChoice::water_where_known)[0], water);
+  EXPECT_EQ(s.load_normalized_turns({other}, "usim-1", TurnFrameChoice::water_where_known)[0],
+            raw.normalized());
+}
+
+// A file exactly as schema 7 left it: every released step, a turn stored then.
+TEST(CurrentStore, MigratesASchemaSevenDatabase) {
+  avk::testing::TempDb db("avk_store_current_migration");
+  const TurnSequence raw = arc(120.0, 3);
+  std::int64_t id = 0;
+  {
+    Store s(db.path());
+    s.upsert_vehicle({"usim-1", "usim", 2.0, 1.2});
+    const auto m = s.create_mission("usim-1", "old", "{}");
+    id = s.store_turn(m, raw, TurnStatus::ok, "");
+  }
+  {
+    // Undo the newest step by hand, as if the file had been written before it existed.
+    Connection c(db.path());
+    c.exec("DROP TABLE mission_currents");
+    c.exec("ALTER TABLE turns DROP COLUMN water_samples");
+    c.exec("ALTER TABLE turns DROP COLUMN water_meta_json");
+    c.exec("PRAGMA user_version = 7");
+  }
+  Store s(db.path());
+  EXPECT_EQ(s.user_version(), schema_version());
+  EXPECT_TRUE(s.integrity_check());
+  const auto turn = s.get_turn(id);
+  ASSERT_TRUE(turn);
+  EXPECT_EQ(turn->raw.meta().goal_dheading_deg, raw.meta().goal_dheading_deg);
+  const auto loaded = s.load_normalized_turns({}, "usim-1", TurnFrameChoice::water_where_known);
+  ASSERT_EQ(loaded.size(), 1u);
+  EXPECT_FALSE(loaded[0].meta().removed_current);
+  EXPECT_FALSE(s.latest_vehicle_current("usim-1"));
+}
+
+}  // namespace
