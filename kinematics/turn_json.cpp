@@ -52,6 +52,10 @@ constexpr std::array<const char*, 17> kKeys = {
     "samples",
 };
 
+// Keys a document may leave out: absent means the default (source collection, no quality), so
+// documents written before they existed load unchanged.
+constexpr std::array<const char*, 2> kOptionalKeys = {"source", "quality"};
+
 // A turn document is an object of arrays of arrays; anything deeper is not a turn, and refusing
 // it while parsing keeps a hostile "[[[[..." from building a huge tree first.
 constexpr JsonLimits kTurnLimits{
@@ -114,6 +118,8 @@ json to_json(const TurnSequence& turn) {
   j["normalized"] = m.normalized;
   for (const auto& [name, ptr] : kMetaDoubles)
     j[name] = m.*ptr;
+  if (m.source != TurnSource::collection) j["source"] = to_string(m.source);
+  if (m.quality) j["quality"] = *m.quality;
   j["warnings"] = turn.warnings();
   json fields = json::array();
   for (const char* f : kSampleFields)
@@ -145,6 +151,8 @@ TurnSequence turn_from_json(const json& j) {
     bool known = false;
     for (const char* k : kKeys)
       known = known || item.key() == k;
+    for (const char* k : kOptionalKeys)
+      known = known || item.key() == k;
     if (!known) throw ParseError(json_member_pointer(item.key()), 0, "unknown key");
   }
   for (const char* k : kKeys)
@@ -162,6 +170,17 @@ TurnSequence turn_from_json(const json& j) {
   m.normalized = normalized.get<bool>();
   for (const auto& [name, ptr] : kMetaDoubles)
     m.*ptr = read_double(member(j, name), json_member_pointer(name), 0);
+  if (const auto it = j.find("source"); it != j.end()) {
+    const auto source =
+        it->is_string() ? turn_source_from_string(it->get<std::string>()) : std::nullopt;
+    if (!source) throw ParseError("/source", 0, "source must be collection|harvested");
+    m.source = *source;
+  }
+  if (const auto it = j.find("quality"); it != j.end()) {
+    m.quality = read_double(*it, "/quality", 0);
+    if (*m.quality < 0.0 || *m.quality > 1.0)
+      throw ParseError("/quality", 0, "quality must be within 0..1");
+  }
 
   const json& warnings = member(j, "warnings");
   if (!warnings.is_array()) throw ParseError("/warnings", 0, "expected an array of strings");
