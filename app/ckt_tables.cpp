@@ -1,5 +1,6 @@
 #include "app/ckt_tables.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <string>
 
@@ -16,36 +17,40 @@ const char* to_string(TableSource s) {
   return s == TableSource::turns ? "turns" : "imported";
 }
 
-TableCache::Entry& TableCache::entry(const std::string& vehicle_id) {
+TableCache::Entry& TableCache::entry(const std::string& vehicle_id, bool include_harvested) {
   std::lock_guard lock(mutex_);
-  auto& e = entries_[vehicle_id];
+  auto& e = entries_[{vehicle_id, include_harvested}];
   if (!e) e = std::make_unique<Entry>();
   return *e;
 }
 
 void TableCache::forget(const std::string& vehicle_id) {
-  Entry& e = entry(vehicle_id);
-  std::lock_guard lock(e.mutex);
-  e.value.reset();
+  for (const bool harvested : {false, true}) {
+    Entry& e = entry(vehicle_id, harvested);
+    std::lock_guard lock(e.mutex);
+    e.value.reset();
+  }
 }
 
-Result<VehicleTable> TableCache::get(Context& ctx, const std::string& vehicle_id) {
-  Entry& e = entry(vehicle_id);
+Result<VehicleTable> TableCache::get(Context& ctx, const std::string& vehicle_id,
+                                     bool include_harvested) {
+  Entry& e = entry(vehicle_id, include_harvested);
   std::lock_guard lock(e.mutex);
   const auto now = std::chrono::steady_clock::now();
   if (e.value && now - e.checked < recheck_) return *e.value;
   e.checked = now;
   store::Store& db = ctx.db();
-  const std::int64_t newest = db.newest_ok_turn_id(vehicle_id);
+  const std::int64_t newest = db.newest_ok_turn_id(vehicle_id, include_harvested);
   // Only a vehicle without turns is answered by an imported table, so only then is it looked up;
   // its document is read only when the newest id changed.
   const std::int64_t snap_id = newest == 0 ? db.latest_ckt_snapshot_id(vehicle_id) : 0;
   if (e.value && newest == e.turns_seen && snap_id == e.snapshot_seen) return *e.value;
   VehicleTable t;
   t.vehicle_id = vehicle_id;
+  t.include_harvested = include_harvested;
   if (newest > 0) {
-    auto built =
-        std::make_shared<kin::Ckt>(kin::Ckt::build(db.load_normalized_turns({}, vehicle_id)));
+    auto built = std::make_shared<kin::Ckt>(
+        kin::Ckt::build(db.load_normalized_turns({}, vehicle_id, include_harvested)));
     built->vehicle_id = vehicle_id;
     t.table = std::move(built);
     t.source = TableSource::turns;
@@ -63,13 +68,14 @@ Result<VehicleTable> TableCache::get(Context& ctx, const std::string& vehicle_id
   return t;
 }
 
-Result<VehicleTable> vehicle_table(Context& ctx, const std::string& vehicle_id) {
-  return ctx.tables().get(ctx, vehicle_id);
+Result<VehicleTable> vehicle_table(Context& ctx, const std::string& vehicle_id,
+                                   bool include_harvested) {
+  return ctx.tables().get(ctx, vehicle_id, include_harvested);
 }
 
 Result<kin::CktCell> ckt_cell(Context& ctx, const std::string& vehicle_id, double speed_mps,
-                              double dheading_deg) {
-  auto t = vehicle_table(ctx, vehicle_id);
+                              double dheading_deg, bool include_harvested) {
+  auto t = vehicle_table(ctx, vehicle_id, include_harvested);
   if (!t) return t.error();
   const auto si = t->table->speed_index(speed_mps);
   const auto di = t->table->dheading_index(dheading_deg);
@@ -79,8 +85,9 @@ Result<kin::CktCell> ckt_cell(Context& ctx, const std::string& vehicle_id, doubl
   return t->table->cell(*si, *di);
 }
 
-Result<kin::Ckt> ckt_for_export(Context& ctx, const std::string& vehicle_id) {
-  auto t = vehicle_table(ctx, vehicle_id);
+Result<kin::Ckt> ckt_for_export(Context& ctx, const std::string& vehicle_id,
+                                bool include_harvested) {
+  auto t = vehicle_table(ctx, vehicle_id, include_harvested);
   if (!t) return t.error();
   kin::Ckt out = *t->table;
   out.vehicle_id = vehicle_id;
@@ -105,14 +112,17 @@ Result<ImportedTable> import_ckt(Context& ctx, const std::string& vehicle_id,
 
 Result<BuiltTable> build_ckt(Context& ctx, const std::string& vehicle_id,
                              const std::vector<std::int64_t>& missions,
-                             const kin::CktOptions& options,
-                             std::optional<double> vehicle_length_m) {
+                             const kin::CktOptions& options, std::optional<double> vehicle_length_m,
+                             bool include_harvested) {
   store::Store& db = ctx.db();
   for (const auto id : missions)
     if (!db.get_mission(id)) return not_found("no mission " + std::to_string(id));
-  const auto turns = db.load_normalized_turns(missions, vehicle_id);
+  const auto turns = db.load_normalized_turns(missions, vehicle_id, include_harvested);
   if (turns.empty()) return not_found("no ok turns of '" + vehicle_id + "' to build from");
   BuiltTable out;
+  out.harvested_turns = static_cast<std::size_t>(std::count_if(
+      turns.begin(), turns.end(),
+      [](const kin::TurnSequence& t) { return t.meta().source == kin::TurnSource::harvested; }));
   out.table = kin::Ckt::build(turns, options, std::nullopt, &out.report);
   out.table.vehicle_id = vehicle_id;
   out.table.vehicle_length_m = vehicle_length_m;

@@ -88,7 +88,7 @@ Result<Prediction> predict(Context& ctx, const PredictQuery& q) {
   p.query = q;
   switch (q.method) {
     case PredictionMethod::avk: {
-      auto t = vehicle_table(ctx, q.vehicle_id);
+      auto t = vehicle_table(ctx, q.vehicle_id, q.include_harvested);
       if (!t) return t.error();
       p.table_source = to_string(t->source);
       p.snapshot_id = t->snapshot_id;

@@ -30,6 +30,8 @@ struct PredictQuery {
   std::optional<kinematics::Pose> pose;   // where the turn starts; none: the normalised frame
   // avk: the share of the vehicle's turns the corridor holds.
   double corridor_share = kinematics::kDefaultCorridorShare;
+  // avk: the vehicle's table of collection and harvested turns, not collection turns alone.
+  bool include_harvested = false;
 };
 
 struct Prediction {

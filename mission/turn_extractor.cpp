@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "kinematics/angles.hpp"
 #include "mission/turn_checks.hpp"
@@ -66,9 +67,14 @@ std::optional<kinematics::TurnSequence> TurnExtractor::feed(const vehicle::Guide
   // The mission starts a turn at the helm tick that finds conditions set, from the last sample;
   // the new desired heading is first in force at the sample after it. So a step seen here
   // starts at the previous sample, whose steadiness is what the monitor says now.
-  if (previous_ && has_guidance(s) && has_guidance(*previous_) &&
+  const bool changed =
+      previous_ && has_guidance(s) && has_guidance(*previous_) &&
       std::abs(kinematics::angle180_deg(*s.desired_heading_deg - *previous_->desired_heading_deg)) >
-          kNoChange_deg) {
+          kNoChange_deg;
+  // A desired heading recomputed every tick (a bearing to a point) is one step, the first
+  // change of its run: counting every tick would bury the real steps.
+  const bool continues_run = std::exchange(previous_was_change_, changed);
+  if (changed) {
     // The step is the heading change commanded from the course the vehicle is on: the turn's
     // goal, as the mission's goal heading is start heading + goal. It is not measured from the
     // old desired heading, because a vehicle in wind or current holds a steady course several
@@ -77,7 +83,7 @@ std::optional<kinematics::TurnSequence> TurnExtractor::feed(const vehicle::Guide
     const double goal =
         kinematics::angle180_deg(*s.desired_heading_deg - previous_->nav.heading_deg);
     if (const auto why = step_rejection(s, goal, gap, out.has_value())) {
-      skipped_.push_back({previous_->nav.t_s, goal, *why});
+      if (!continues_run) skipped_.push_back({previous_->nav.t_s, goal, *why});
     } else {
       const auto rate = steady_.yaw_rate_dps();
       turn_start_ = {rate.value_or(0.0), previous_->nav.speed_mps - *s.desired_speed_mps};
@@ -86,6 +92,7 @@ std::optional<kinematics::TurnSequence> TurnExtractor::feed(const vehicle::Guide
       turn_desired_heading_deg_ = *s.desired_heading_deg;
       turn_desired_speed_mps_ = *s.desired_speed_mps;
       steady_active_ = false;
+      previous_was_change_ = false;  // the desired heading is held while the turn lasts
       previous_ = s;
       if (const Completion c = turn_->update(s.nav); c != Completion::none) return finish_turn(c);
       return std::nullopt;

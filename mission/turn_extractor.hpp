@@ -91,6 +91,7 @@ class TurnExtractor {
   StepStart turn_start_;
   std::optional<StepRejection> last_rejection_;
   std::vector<SkippedStep> skipped_;
+  bool previous_was_change_ = false;  // the last sample changed the desired heading
 };
 
 }  // namespace avk::mission

@@ -112,12 +112,14 @@ TEST(TurnHarvester, GapsSpeedCommandsAndBearingsAreRefused) {
   log.run(40, 180.0);
   for (int i = 0; i < 20; ++i)  // a bearing, recomputed every tick
     log.run(1, 180.0 + 0.5 * i);
+  log.run(2, 189.5);  // held for two samples: less than the window
   log.run(40, 270.0);
   const HarvestResult r = log.harvest();
   EXPECT_EQ(count(r, StepRejection::log_gap), 1u);
   EXPECT_EQ(count(r, StepRejection::speed_command_changed), 1u);
   EXPECT_EQ(count(r, StepRejection::course_not_held), 1u);
-  EXPECT_EQ(count(r, StepRejection::too_small), 19u);  // each tick of the bearing
+  // The bearing is one step (its first change), not one per tick.
+  EXPECT_EQ(count(r, StepRejection::too_small), 1u);
   EXPECT_TRUE(r.turns.empty());
 }
 
