@@ -26,6 +26,10 @@ std::int64_t path_id(const PathParams& p, const std::string& key, const std::str
 // ?method=avk|model|instantaneous; none when absent.
 std::optional<app::PredictionMethod> method_param(const ApiRequest& r);
 
+// ?include=harvested: the vehicle's table of collection and harvested turns; absent or
+// ?include=collection: collection turns only. Anything else is 400.
+bool include_harvested_param(const ApiRequest& r);
+
 enum class Format { json, csv };
 // ?format= wins; otherwise Accept. Anything the resource cannot produce is 406 (400 for a bad
 // ?format=).

@@ -5,6 +5,7 @@
 #include "app/ckt_tables.hpp"
 #include "app/compare.hpp"
 #include "app/encounters.hpp"
+#include "app/harvest.hpp"
 #include "app/maneuvers.hpp"
 #include "app/missions.hpp"
 #include "app/models.hpp"
@@ -120,6 +121,7 @@ app::PredictQuery predict_query(const ApiRequest& r, const std::string& vid) {
     throw bad_parameter(x ? (y ? "heading" : "y") : "x", "a pose needs x, y and heading");
   if (x) q.pose = kinematics::Pose{*x, *y, *heading};
   q.corridor_share = number_param(r, "corridor", 0.5, 0.999).value_or(q.corridor_share);
+  q.include_harvested = include_harvested_param(r);
   return q;
 }
 
@@ -245,6 +247,13 @@ void Station::add_routes() {
          });
   }
 
+  // Harvesting stores turns: a control endpoint like the other writes.
+  post("/api/v1/missions/{id}/harvest", [&ctx](const ApiRequest&, const PathParams& p) {
+    return answer(
+        app::harvest_mission(ctx, path_id(p, "id", "mission")), true,
+        [](const app::HarvestReport& h) { return json_response(harvest_report_json(h)); });
+  });
+
   // --- turns -------------------------------------------------------------------------------
   get("/api/v1/turns", [&ctx](const ApiRequest& r, const PathParams&) {
     const Format f = negotiate(r, true);
@@ -279,15 +288,17 @@ void Station::add_routes() {
   // --- the CKT -----------------------------------------------------------------------------
   get("/api/v1/vehicles/{vid}/ckt", [&ctx](const ApiRequest& r, const PathParams& p) {
     const Format f = negotiate(r, true);
-    return answer(app::vehicle_table(ctx, p.at("vid")), false, [f](const app::VehicleTable& t) {
-      if (f == Format::csv) return csv_response(kinematics::ckt_to_csv(*t.table));
-      return json_response(ckt_summary_json(t));
-    });
+    return answer(app::vehicle_table(ctx, p.at("vid"), include_harvested_param(r)), false,
+                  [f](const app::VehicleTable& t) {
+                    if (f == Format::csv) return csv_response(kinematics::ckt_to_csv(*t.table));
+                    return json_response(ckt_summary_json(t));
+                  });
   });
   get("/api/v1/vehicles/{vid}/ckt/cells", [&ctx](const ApiRequest& r, const PathParams& p) {
     const double speed = required_number(r, "speed", 0.0, 100.0);
     const double dheading = required_number(r, "dheading", 0.0, 180.0);
-    return answer(app::ckt_cell(ctx, p.at("vid"), speed, dheading), false,
+    return answer(app::ckt_cell(ctx, p.at("vid"), speed, dheading, include_harvested_param(r)),
+                  false,
                   [](const kinematics::CktCell& c) { return json_response(ckt_cell_json(c)); });
   });
   get("/api/v1/vehicles/{vid}/ckt/export", [&ctx](const ApiRequest& r, const PathParams& p) {
@@ -295,13 +306,16 @@ void Station::add_routes() {
     const std::string format = it == r.query.end() ? "json" : it->second;
     if (format != "json" && format != "csv") throw bad_parameter("format", "must be json or csv");
     const std::string vid = p.at("vid");
-    return answer(app::ckt_for_export(ctx, vid), false, [&](const kinematics::Ckt& t) {
-      if (format == "csv") return csv_response(kinematics::ckt_to_csv(t), "ckt-" + vid + ".csv");
-      ApiResponse resp{200, "application/json", kinematics::ckt_to_json_string(t), {}};
-      resp.headers.push_back(
-          {"Content-Disposition", "attachment; filename=\"ckt-" + vid + ".json\""});
-      return resp;
-    });
+    return answer(
+        app::ckt_for_export(ctx, vid, include_harvested_param(r)), false,
+        [&](const kinematics::Ckt& t) {
+          if (format == "csv")
+            return csv_response(kinematics::ckt_to_csv(t), "ckt-" + vid + ".csv");
+          ApiResponse resp{200, "application/json", kinematics::ckt_to_json_string(t), {}};
+          resp.headers.push_back(
+              {"Content-Disposition", "attachment; filename=\"ckt-" + vid + ".json\""});
+          return resp;
+        });
   });
   post(
       "/api/v1/vehicles/{vid}/ckt/import",
