@@ -13,6 +13,7 @@
 #include "kinematics/angles.hpp"
 #include "mission/turn_harvester.hpp"
 #include "support/example_file.hpp"
+#include "support/guided_boat.hpp"
 #include "support/recorded_mission.hpp"
 #include "support/temp_db.hpp"
 
@@ -154,6 +155,42 @@ TEST(Harvest, ExcitationStepsMidSwingAreRejectedAndTheSteadyOnesHarvested) {
     EXPECT_EQ(built->harvested_turns, r->harvested);
     EXPECT_FALSE(app::build_ckt(ctx, "m200", {}, {}));
   }
+}
+
+// A log with known steady steps, stored as a mission without turns: its turns are harvested,
+// and only the table asked to include them uses them.
+TEST(Harvest, HarvestedTurnsEnterTheTableOnlyWhenAskedFor) {
+  avk::testing::TempDb db("avk_app_harvest_table");
+  app::Context ctx(db.path());
+  store::Store& s = ctx.db();
+  s.upsert_vehicle({"boat", "usim", 2.0, 1.0});
+  const auto mission = s.create_mission("boat", "log", "{}");
+  avk::testing::Boat boat(0.0, 1.0);
+  std::vector<store::NavRow> rows;
+  double desired = 0.0;
+  for (int step = 0; step < 4; ++step) {
+    for (int i = 0; i < 60; ++i) {
+      const auto g = boat.step(desired, 1.0, 10.0);
+      rows.push_back({g.nav.t_s, g.nav.x_m, g.nav.y_m, g.nav.heading_deg, g.nav.speed_mps,
+                      g.desired_heading_deg, g.desired_speed_mps, "IMPORTED"});
+    }
+    desired = kinematics::wrap360_deg(desired + 90.0);
+  }
+  s.append_nav(mission, rows);
+  const auto r = app::harvest_mission(ctx, mission);
+  ASSERT_TRUE(r) << r.error().message;
+  EXPECT_EQ(r->steps, 3u);
+  EXPECT_EQ(r->harvested, 3u);
+  EXPECT_FALSE(app::vehicle_table(ctx, "boat"));  // no collection turns: no table
+  const auto table = app::vehicle_table(ctx, "boat", true);
+  ASSERT_TRUE(table) << table.error().message;
+  EXPECT_TRUE(table->include_harvested);
+  EXPECT_FALSE(app::build_ckt(ctx, "boat", {}, {}));
+  const auto built = app::build_ckt(ctx, "boat", {}, {}, std::nullopt, true);
+  ASSERT_TRUE(built) << built.error().message;
+  EXPECT_EQ(built->harvested_turns, 3u);
+  EXPECT_EQ(built->report.turns_used, 3u);
+  EXPECT_FALSE(app::harvest_mission(ctx, mission + 1));
 }
 
 }  // namespace
