@@ -23,8 +23,10 @@ constexpr std::size_t kNavBatchRows = 5000;
 class AlogImport {
  public:
   AlogImport(store::Store& db, std::int64_t mission_id, vehicle::AlogNames names,
-             mission::TurnExtractorOptions options, const std::string& vehicle_id)
-      : db_(db),
+             mission::TurnExtractorOptions options, const std::string& vehicle_id,
+             bool store_extracted)
+      : store_extracted_(store_extracted),
+        db_(db),
         mission_id_(mission_id),
         builder_(std::move(names)),
         extractor_(options, vehicle_id, std::to_string(mission_id)) {
@@ -44,7 +46,7 @@ class AlogImport {
     flush_nav();
     // Turn records, when the log has any, are what the mission recorded; extraction is only
     // for logs without them.
-    if (!records_seen_) {
+    if (!records_seen_ && store_extracted_) {
       for (const auto& t : extracted_) {
         db_.store_turn(mission_id_, t, t.meta().status, t.meta().status_reason);
         from_extraction_.add(t.meta().status);
@@ -113,6 +115,7 @@ class AlogImport {
     }
   }
 
+  bool store_extracted_;
   store::Store& db_;
   std::int64_t mission_id_;
   vehicle::AlogNavBuilder builder_;
@@ -175,7 +178,8 @@ Result<AlogImportReport> import_alog(Context& ctx, std::istream& log,
   db.set_mission_status(mission_id, store::MissionStatus::running, "importing " + request.source,
                         0.0);
 
-  AlogImport import(db, mission_id, request.names, request.extraction, request.vehicle_id);
+  AlogImport import(db, mission_id, request.names, request.extraction, request.vehicle_id,
+                    !request.harvest);
   import.run(log);
 
   if (const auto top = import.nav_stats().max_speed_mps)
@@ -191,6 +195,11 @@ Result<AlogImportReport> import_alog(Context& ctx, std::istream& log,
   r.nav_stored = import.nav_stored();
   r.from_records = import.from_records();
   r.from_extraction = import.from_extraction();
+  if (request.harvest) {
+    auto h = harvest_mission(ctx, mission_id);
+    if (!h) return h.error();
+    r.harvest = std::move(*h);
+  }
   return r;
 }
 

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "app/harvest.hpp"
 #include "app/result.hpp"
 #include "kinematics/turn_sequence.hpp"
 #include "mission/turn_extractor.hpp"
@@ -24,6 +25,9 @@ struct AlogImportRequest {
   std::string vehicle_id;
   vehicle::AlogNames names;
   mission::TurnExtractorOptions extraction;
+  // Harvest the log's navigation (app/harvest.hpp) instead of storing the extracted turns as
+  // collection turns: its turns are stored as harvested, with their quality and the counts.
+  bool harvest = false;
 };
 
 struct AlogImportReport {
@@ -33,6 +37,7 @@ struct AlogImportReport {
   vehicle::AlogProblems malformed;
   std::size_t nav_stored = 0;
   store::TurnCounts from_records, from_extraction;
+  std::optional<HarvestReport> harvest;  // with request.harvest
 };
 
 // Stores the log as a mission of the vehicle (running while it imports, so an import that dies

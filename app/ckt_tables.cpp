@@ -1,5 +1,6 @@
 #include "app/ckt_tables.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <string>
 
@@ -16,27 +17,30 @@ const char* to_string(TableSource s) {
   return s == TableSource::turns ? "turns" : "imported";
 }
 
-TableCache::Entry& TableCache::entry(const std::string& vehicle_id) {
+TableCache::Entry& TableCache::entry(const std::string& vehicle_id, bool include_harvested) {
   std::lock_guard lock(mutex_);
-  auto& e = entries_[vehicle_id];
+  auto& e = entries_[{vehicle_id, include_harvested}];
   if (!e) e = std::make_unique<Entry>();
   return *e;
 }
 
 void TableCache::forget(const std::string& vehicle_id) {
-  Entry& e = entry(vehicle_id);
-  std::lock_guard lock(e.mutex);
-  e.value.reset();
+  for (const bool harvested : {false, true}) {
+    Entry& e = entry(vehicle_id, harvested);
+    std::lock_guard lock(e.mutex);
+    e.value.reset();
+  }
 }
 
-Result<VehicleTable> TableCache::get(Context& ctx, const std::string& vehicle_id) {
-  Entry& e = entry(vehicle_id);
+Result<VehicleTable> TableCache::get(Context& ctx, const std::string& vehicle_id,
+                                     bool include_harvested) {
+  Entry& e = entry(vehicle_id, include_harvested);
   std::lock_guard lock(e.mutex);
   const auto now = std::chrono::steady_clock::now();
   if (e.value && now - e.checked < recheck_) return *e.value;
   e.checked = now;
   store::Store& db = ctx.db();
-  const std::int64_t newest = db.newest_ok_turn_id(vehicle_id);
+  const std::int64_t newest = db.newest_ok_turn_id(vehicle_id, include_harvested);
   // A new estimate of a mission's current moves its turns into (or out of) the water frame.
   const std::int64_t current_revision = newest > 0 ? db.current_revision(vehicle_id) : 0;
   // Only a vehicle without turns is answered by an imported table, so only then is it looked up;
@@ -47,11 +51,12 @@ Result<VehicleTable> TableCache::get(Context& ctx, const std::string& vehicle_id
     return *e.value;
   VehicleTable t;
   t.vehicle_id = vehicle_id;
+  t.include_harvested = include_harvested;
   if (newest > 0) {
     // Turns in the water frame where their mission's current is known: the table then predicts
     // through the water, and a query adds the drift of the current it is asked in.
-    auto built = std::make_shared<kin::Ckt>(kin::Ckt::build(
-        db.load_normalized_turns({}, vehicle_id, store::TurnFrameChoice::water_where_known)));
+    auto built = std::make_shared<kin::Ckt>(kin::Ckt::build(db.load_normalized_turns(
+        {}, vehicle_id, include_harvested, store::TurnFrameChoice::water_where_known)));
     built->vehicle_id = vehicle_id;
     t.table = std::move(built);
     t.source = TableSource::turns;
@@ -70,13 +75,14 @@ Result<VehicleTable> TableCache::get(Context& ctx, const std::string& vehicle_id
   return t;
 }
 
-Result<VehicleTable> vehicle_table(Context& ctx, const std::string& vehicle_id) {
-  return ctx.tables().get(ctx, vehicle_id);
+Result<VehicleTable> vehicle_table(Context& ctx, const std::string& vehicle_id,
+                                   bool include_harvested) {
+  return ctx.tables().get(ctx, vehicle_id, include_harvested);
 }
 
 Result<kin::CktCell> ckt_cell(Context& ctx, const std::string& vehicle_id, double speed_mps,
-                              double dheading_deg) {
-  auto t = vehicle_table(ctx, vehicle_id);
+                              double dheading_deg, bool include_harvested) {
+  auto t = vehicle_table(ctx, vehicle_id, include_harvested);
   if (!t) return t.error();
   const auto si = t->table->speed_index(speed_mps);
   const auto di = t->table->dheading_index(dheading_deg);
@@ -86,8 +92,9 @@ Result<kin::CktCell> ckt_cell(Context& ctx, const std::string& vehicle_id, doubl
   return t->table->cell(*si, *di);
 }
 
-Result<kin::Ckt> ckt_for_export(Context& ctx, const std::string& vehicle_id) {
-  auto t = vehicle_table(ctx, vehicle_id);
+Result<kin::Ckt> ckt_for_export(Context& ctx, const std::string& vehicle_id,
+                                bool include_harvested) {
+  auto t = vehicle_table(ctx, vehicle_id, include_harvested);
   if (!t) return t.error();
   kin::Ckt out = *t->table;
   out.vehicle_id = vehicle_id;
@@ -112,15 +119,18 @@ Result<ImportedTable> import_ckt(Context& ctx, const std::string& vehicle_id,
 
 Result<BuiltTable> build_ckt(Context& ctx, const std::string& vehicle_id,
                              const std::vector<std::int64_t>& missions,
-                             const kin::CktOptions& options,
-                             std::optional<double> vehicle_length_m) {
+                             const kin::CktOptions& options, std::optional<double> vehicle_length_m,
+                             bool include_harvested) {
   store::Store& db = ctx.db();
   for (const auto id : missions)
     if (!db.get_mission(id)) return not_found("no mission " + std::to_string(id));
-  const auto turns =
-      db.load_normalized_turns(missions, vehicle_id, store::TurnFrameChoice::water_where_known);
+  const auto turns = db.load_normalized_turns(missions, vehicle_id, include_harvested,
+                                              store::TurnFrameChoice::water_where_known);
   if (turns.empty()) return not_found("no ok turns of '" + vehicle_id + "' to build from");
   BuiltTable out;
+  out.harvested_turns = static_cast<std::size_t>(std::count_if(
+      turns.begin(), turns.end(),
+      [](const kin::TurnSequence& t) { return t.meta().source == kin::TurnSource::harvested; }));
   out.table = kin::Ckt::build(turns, options, std::nullopt, &out.report);
   out.table.vehicle_id = vehicle_id;
   out.table.vehicle_length_m = vehicle_length_m;

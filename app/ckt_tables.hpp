@@ -24,6 +24,7 @@ const char* to_string(TableSource s);
 
 struct VehicleTable {
   std::string vehicle_id;
+  bool include_harvested = false;  // built from collection and harvested turns
   TableSource source = TableSource::turns;
   std::optional<std::int64_t> snapshot_id;  // the imported table answering
   std::shared_ptr<const kinematics::Ckt> table;
@@ -37,7 +38,10 @@ class TableCache {
  public:
   explicit TableCache(std::chrono::milliseconds recheck = std::chrono::seconds(1))
       : recheck_(recheck) {}
-  Result<VehicleTable> get(Context& ctx, const std::string& vehicle_id);
+  // include_harvested: the table of collection and harvested turns, cached apart from the
+  // table of collection turns alone (the default), so the two never mix.
+  Result<VehicleTable> get(Context& ctx, const std::string& vehicle_id,
+                           bool include_harvested = false);
   void forget(const std::string& vehicle_id);
 
  private:
@@ -49,21 +53,24 @@ class TableCache {
     std::int64_t current_seen = -1;
     std::optional<VehicleTable> value;
   };
-  Entry& entry(const std::string& vehicle_id);
+  Entry& entry(const std::string& vehicle_id, bool include_harvested);
   std::chrono::milliseconds recheck_;
   std::mutex mutex_;
-  std::map<std::string, std::unique_ptr<Entry>> entries_;
+  std::map<std::pair<std::string, bool>, std::unique_ptr<Entry>> entries_;
 };
 
-// The vehicle's table (not_found when it has no turns and no imported table).
-Result<VehicleTable> vehicle_table(Context& ctx, const std::string& vehicle_id);
+// The vehicle's table (not_found when it has no turns and no imported table). Built from its
+// collection turns, and its harvested turns too when include_harvested.
+Result<VehicleTable> vehicle_table(Context& ctx, const std::string& vehicle_id,
+                                   bool include_harvested = false);
 
 // One cell of the vehicle's table at a grid speed and |heading change| (not_found off the grid).
 Result<kinematics::CktCell> ckt_cell(Context& ctx, const std::string& vehicle_id, double speed_mps,
-                                     double dheading_deg);
+                                     double dheading_deg, bool include_harvested = false);
 
 // The table to hand out as a CKT file: the vehicle's table, named after it.
-Result<kinematics::Ckt> ckt_for_export(Context& ctx, const std::string& vehicle_id);
+Result<kinematics::Ckt> ckt_for_export(Context& ctx, const std::string& vehicle_id,
+                                       bool include_harvested = false);
 
 // Parses a CKT file and stores it as the vehicle's imported table. invalid_argument naming
 // "body" when the file is not a CKT file or is another vehicle's; nothing is stored then.
@@ -77,14 +84,17 @@ Result<ImportedTable> import_ckt(Context& ctx, const std::string& vehicle_id,
 // Builds a table from the stored ok turns of the missions (empty: all) of one vehicle (in the water
 // frame where their mission's current is known) and keeps
 // it as a snapshot with the missions it came from: the record of which table guidance was given.
+// Harvested turns are left out unless include_harvested; harvested_turns counts those used.
 struct BuiltTable {
   kinematics::Ckt table;
   kinematics::CktBuildReport report;
   std::int64_t snapshot_id = 0;
+  std::size_t harvested_turns = 0;  // harvested turns among the ok turns the table was built from
 };
 Result<BuiltTable> build_ckt(Context& ctx, const std::string& vehicle_id,
                              const std::vector<std::int64_t>& missions,
                              const kinematics::CktOptions& options,
-                             std::optional<double> vehicle_length_m = std::nullopt);
+                             std::optional<double> vehicle_length_m = std::nullopt,
+                             bool include_harvested = false);
 
 }  // namespace avk::app

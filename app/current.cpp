@@ -95,7 +95,7 @@ Result<MissionCurrent> estimate_mission_current_from_turns(Context& ctx, std::in
     if (m.vehicle_id == mission->vehicle_id && m.id != mission_id) others.push_back(m.id);
   const auto table_turns =
       others.empty() ? std::vector<kin::TurnSequence>{}
-                     : db.load_normalized_turns(others, mission->vehicle_id,
+                     : db.load_normalized_turns(others, mission->vehicle_id, false,
                                                 store::TurnFrameChoice::water_where_known);
   if (table_turns.empty())
     return not_found("no other mission of '" + mission->vehicle_id +

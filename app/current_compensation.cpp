@@ -51,7 +51,7 @@ Result<CompensationComparison> compare_current_compensation(
   out.test_missions = test_missions;
   const auto ground_turns = db.load_normalized_turns(table_missions, vehicle_id);
   if (ground_turns.empty()) return not_found("the table's missions hold no ok turns");
-  const auto water_turns = db.load_normalized_turns(table_missions, vehicle_id,
+  const auto water_turns = db.load_normalized_turns(table_missions, vehicle_id, false,
                                                     store::TurnFrameChoice::water_where_known);
   out.table_turns = water_turns.size();
   for (const auto& t : water_turns)

@@ -114,7 +114,7 @@ Result<Prediction> predict(Context& ctx, const PredictQuery& q) {
   p.current_source = current->source;
   switch (q.method) {
     case PredictionMethod::avk: {
-      auto t = vehicle_table(ctx, q.vehicle_id);
+      auto t = vehicle_table(ctx, q.vehicle_id, q.include_harvested);
       if (!t) return t.error();
       p.table_source = to_string(t->source);
       p.table_frame = kin::to_string(t->table->frame);

@@ -36,6 +36,8 @@ struct PredictQuery {
   // pose) the start heading is north, so the current is read as if the turn began heading north.
   std::optional<kinematics::WaterCurrent> current;
   bool live_current = false;  // the current: the station's latest estimate for the vehicle
+  // avk: the vehicle's table of collection and harvested turns, not collection turns alone.
+  bool include_harvested = false;
 };
 
 struct Prediction {

@@ -52,11 +52,13 @@ constexpr std::array<const char*, 17> kKeys = {
     "samples",
 };
 
-// Keys a document may leave out: an absent key is an empty field, so documents written before
-// the field existed still load.
-constexpr std::array<const char*, 2> kOptionalKeys = {
+// Keys a document may leave out: an absent key is the field's default (no removed current: over
+// ground; source collection; no quality), so documents written before the field existed load.
+constexpr std::array<const char*, 4> kOptionalKeys = {
     "removed_current_east_mps",
     "removed_current_north_mps",
+    "source",
+    "quality",
 };
 
 // A turn document is an object of arrays of arrays; anything deeper is not a turn, and refusing
@@ -125,6 +127,8 @@ json to_json(const TurnSequence& turn) {
     j["removed_current_east_mps"] = m.removed_current->east_mps;
     j["removed_current_north_mps"] = m.removed_current->north_mps;
   }
+  if (m.source != TurnSource::collection) j["source"] = to_string(m.source);
+  if (m.quality) j["quality"] = *m.quality;
   j["warnings"] = turn.warnings();
   json fields = json::array();
   for (const char* f : kSampleFields)
@@ -184,6 +188,17 @@ TurnSequence turn_from_json(const json& j) {
     m.removed_current = WaterCurrent{
         read_double(j.at("removed_current_east_mps"), "/removed_current_east_mps", 0),
         read_double(j.at("removed_current_north_mps"), "/removed_current_north_mps", 0)};
+  }
+  if (const auto it = j.find("source"); it != j.end()) {
+    const auto source =
+        it->is_string() ? turn_source_from_string(it->get<std::string>()) : std::nullopt;
+    if (!source) throw ParseError("/source", 0, "source must be collection|harvested");
+    m.source = *source;
+  }
+  if (const auto it = j.find("quality"); it != j.end()) {
+    m.quality = read_double(*it, "/quality", 0);
+    if (*m.quality < 0.0 || *m.quality > 1.0)
+      throw ParseError("/quality", 0, "quality must be within 0..1");
   }
 
   const json& warnings = member(j, "warnings");

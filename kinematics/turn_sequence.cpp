@@ -26,6 +26,16 @@ std::optional<TurnStatus> turn_status_from_string(const std::string& s) {
   return std::nullopt;
 }
 
+const char* to_string(TurnSource s) {
+  return s == TurnSource::harvested ? "harvested" : "collection";
+}
+
+std::optional<TurnSource> turn_source_from_string(const std::string& s) {
+  if (s == "collection") return TurnSource::collection;
+  if (s == "harvested") return TurnSource::harvested;
+  return std::nullopt;
+}
+
 const char* to_string(TurnErrorCode c) {
   switch (c) {
     case TurnErrorCode::too_few_samples:

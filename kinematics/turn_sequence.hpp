@@ -26,6 +26,12 @@ enum class TurnStatus { ok, aborted, rejected };
 const char* to_string(TurnStatus s);
 std::optional<TurnStatus> turn_status_from_string(const std::string& s);
 
+// Where a turn came from: a collection mission's turn (recorded by the mission, or a log's turn
+// record), or harvested from an ordinary navigation log (mission/turn_harvester.hpp).
+enum class TurnSource { collection, harvested };
+const char* to_string(TurnSource s);
+std::optional<TurnSource> turn_source_from_string(const std::string& s);
+
 struct TurnMeta {
   std::string vehicle_id;
   std::string mission_id;
@@ -42,6 +48,10 @@ struct TurnMeta {
   // Set on a turn in the water frame (water_frame.hpp): the current whose drift was taken out of
   // its positions. Empty: the positions are over ground, as navigated.
   std::optional<WaterCurrent> removed_current;
+  TurnSource source = TurnSource::collection;
+  // Harvested turns only: 0..1, how steady the vehicle was before the step times how cleanly
+  // the turn completed (mission/turn_harvester.hpp, turn_quality).
+  std::optional<double> quality;
   friend bool operator==(const TurnMeta&, const TurnMeta&) = default;
 };
 

@@ -7,6 +7,7 @@
 
 #include "kinematics/turn_sequence.hpp"
 #include "mission/mission_config.hpp"
+#include "mission/step_rejection.hpp"
 
 namespace avk::mission {
 
@@ -15,7 +16,16 @@ struct TurnCheckOptions {
   double max_sample_gap_s = 2.0;  // a longer gap in navigation leaves the trajectory unknown
 };
 
-// The reason the turn must be rejected, or empty when it is usable.
+struct TurnAnomaly {
+  StepRejection kind;  // the class of the reason, for counting
+  std::string reason;  // what the mission stores as the turn's status reason
+};
+
+// Why the turn must be rejected, or empty when it is usable.
+std::optional<TurnAnomaly> find_turn_anomaly(const kinematics::TurnSequence& raw,
+                                             const TurnCheckOptions& options);
+
+// find_turn_anomaly's reason alone.
 std::optional<std::string> turn_anomaly(const kinematics::TurnSequence& raw,
                                         const TurnCheckOptions& options);
 

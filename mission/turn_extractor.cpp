@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "kinematics/angles.hpp"
 #include "mission/turn_checks.hpp"
@@ -38,18 +39,22 @@ std::optional<kinematics::TurnSequence> TurnExtractor::feed(const vehicle::Guide
   std::optional<kinematics::TurnSequence> out;
   if (turn_) {
     if (gap) {
-      out = abort_turn("navigation gap of " + num(s.nav.t_s - previous_->nav.t_s, 2) + " s");
+      out = abort_turn(StepRejection::log_gap,
+                       "navigation gap of " + num(s.nav.t_s - previous_->nav.t_s, 2) + " s");
     } else if (!s.desired_heading_deg || *s.desired_heading_deg != turn_desired_heading_deg_) {
-      out = abort_turn("the desired heading changed before completion");
+      out = abort_turn(StepRejection::goal_changed_during_turn,
+                       "the desired heading changed before completion");
     } else if (!s.desired_speed_mps || *s.desired_speed_mps != turn_desired_speed_mps_) {
-      out = abort_turn("the desired speed changed before completion");
+      out = abort_turn(StepRejection::speed_command_changed,
+                       "the desired speed changed before completion");
     } else {
       const Completion c = turn_->update(s.nav);
       if (c != Completion::none) {
         out = finish_turn(c);
       } else if (s.nav.t_s - turn_start_s_ > options_.turn_timeout_s) {
-        out = abort_turn("the turn did not complete within " + num(options_.turn_timeout_s, 0) +
-                         " s");
+        out =
+            abort_turn(StepRejection::never_completed, "the turn did not complete within " +
+                                                           num(options_.turn_timeout_s, 0) + " s");
       }
       // Like the mission, the next ConditionSet starts after the sample that ended the turn.
       previous_ = s;
@@ -62,24 +67,32 @@ std::optional<kinematics::TurnSequence> TurnExtractor::feed(const vehicle::Guide
   // The mission starts a turn at the helm tick that finds conditions set, from the last sample;
   // the new desired heading is first in force at the sample after it. So a step seen here
   // starts at the previous sample, whose steadiness is what the monitor says now.
-  if (previous_ && !gap && !out && has_guidance(s) && has_guidance(*previous_) &&
-      *s.desired_speed_mps == *previous_->desired_speed_mps && steady_active_ &&
-      steady_.conditions_set() && course_held()) {
+  const bool changed =
+      previous_ && has_guidance(s) && has_guidance(*previous_) &&
+      std::abs(kinematics::angle180_deg(*s.desired_heading_deg - *previous_->desired_heading_deg)) >
+          kNoChange_deg;
+  // A desired heading recomputed every tick (a bearing to a point) is one step, the first
+  // change of its run: counting every tick would bury the real steps.
+  const bool continues_run = std::exchange(previous_was_change_, changed);
+  if (changed) {
     // The step is the heading change commanded from the course the vehicle is on: the turn's
     // goal, as the mission's goal heading is start heading + goal. It is not measured from the
     // old desired heading, because a vehicle in wind or current holds a steady course several
     // degrees off it: the M200 in sim-choppy.json was told to turn 10 deg by a change of 0.7 deg
     // of desired heading. Any change of a held desired heading is a new command.
-    const double change =
-        kinematics::angle180_deg(*s.desired_heading_deg - *previous_->desired_heading_deg);
     const double goal =
         kinematics::angle180_deg(*s.desired_heading_deg - previous_->nav.heading_deg);
-    if (std::abs(change) > kNoChange_deg && std::abs(goal) >= options_.min_step_deg) {
+    if (const auto why = step_rejection(s, goal, gap, out.has_value())) {
+      if (!continues_run) skipped_.push_back({previous_->nav.t_s, goal, *why});
+    } else {
+      const auto rate = steady_.yaw_rate_dps();
+      turn_start_ = {rate.value_or(0.0), previous_->nav.speed_mps - *s.desired_speed_mps};
       turn_.emplace(previous_->nav, *s.desired_speed_mps, goal, options_.completion);
       turn_start_s_ = previous_->nav.t_s;
       turn_desired_heading_deg_ = *s.desired_heading_deg;
       turn_desired_speed_mps_ = *s.desired_speed_mps;
       steady_active_ = false;
+      previous_was_change_ = false;  // the desired heading is held while the turn lasts
       previous_ = s;
       if (const Completion c = turn_->update(s.nav); c != Completion::none) return finish_turn(c);
       return std::nullopt;
@@ -88,6 +101,28 @@ std::optional<kinematics::TurnSequence> TurnExtractor::feed(const vehicle::Guide
   track_steady(s);
   previous_ = s;
   return out;
+}
+
+std::optional<StepRejection> TurnExtractor::step_rejection(const vehicle::GuidedNav& s,
+                                                           double goal_deg, bool gap,
+                                                           bool turn_just_ended) const {
+  if (gap) return StepRejection::log_gap;
+  if (std::abs(goal_deg) < options_.min_step_deg) return StepRejection::too_small;
+  if (*s.desired_speed_mps != *previous_->desired_speed_mps)
+    return StepRejection::speed_command_changed;
+  // A step on the sample that ended a turn, or before the window has filled again after a turn,
+  // a gap or a new speed, starts mid-swing.
+  if (turn_just_ended || !steady_active_ ||
+      held_desired_deg_.size() <= static_cast<std::size_t>(options_.condition_set.window))
+    return StepRejection::not_steady_before;
+  if (!course_held()) return StepRejection::course_not_held;
+  if (!steady_.conditions_set()) {
+    return std::abs(previous_->nav.speed_mps - steady_.target_speed_mps()) >
+                   options_.condition_set.speed_tolerance_mps
+               ? StepRejection::speed_not_steady
+               : StepRejection::not_steady_before;
+  }
+  return std::nullopt;
 }
 
 void TurnExtractor::track_steady(const vehicle::GuidedNav& s) {
@@ -119,7 +154,7 @@ bool TurnExtractor::course_held() const {
 
 std::optional<kinematics::TurnSequence> TurnExtractor::finish() {
   if (!turn_) return std::nullopt;
-  return abort_turn("the log ended during the turn");
+  return abort_turn(StepRejection::never_completed, "the log ended during the turn");
 }
 
 kinematics::TurnSequence TurnExtractor::finish_turn(Completion how) {
@@ -127,14 +162,16 @@ kinematics::TurnSequence TurnExtractor::finish_turn(Completion how) {
   turn_.reset();
   if (how == Completion::passed_goal)
     raw.add_warning("completed by passing the goal heading between two samples");
-  const auto anomaly = turn_anomaly(raw, {options_.completion, options_.max_gap_s});
+  const auto anomaly = find_turn_anomaly(raw, {options_.completion, options_.max_gap_s});
   raw.meta().status = anomaly ? kinematics::TurnStatus::rejected : kinematics::TurnStatus::ok;
-  raw.meta().status_reason = anomaly.value_or("");
+  raw.meta().status_reason = anomaly ? anomaly->reason : "";
+  last_rejection_ = anomaly ? std::optional(anomaly->kind) : std::nullopt;
   return raw;
 }
 
-kinematics::TurnSequence TurnExtractor::abort_turn(const std::string& reason) {
+kinematics::TurnSequence TurnExtractor::abort_turn(StepRejection kind, const std::string& reason) {
   kinematics::TurnSequence raw = turn_->build(vehicle_id_, mission_id_);
+  last_rejection_ = kind;
   turn_.reset();
   raw.meta().status = kinematics::TurnStatus::aborted;
   raw.meta().status_reason = reason;

@@ -10,10 +10,13 @@
 #include <deque>
 #include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "kinematics/turn_sequence.hpp"
 #include "mission/condition_set.hpp"
 #include "mission/mission_config.hpp"
+#include "mission/step_rejection.hpp"
 #include "mission/turn_monitor.hpp"
 #include "vehicle/alog.hpp"
 
@@ -33,6 +36,19 @@ struct TurnExtractorOptions {
   double turn_timeout_s = 120.0;  // as the mission's turn timeout; also bounds a turn's memory
 };
 
+// A step of the desired heading that started no turn, and why (the harvester counts them).
+struct SkippedStep {
+  double t_s = 0.0;  // the sample before the step, where the turn would have started
+  double goal_dheading_deg = 0.0;
+  StepRejection reason = StepRejection::not_steady_before;
+};
+
+// How steady the vehicle was at the step that started a turn, as the ConditionSet saw it.
+struct StepStart {
+  double yaw_rate_dps = 0.0;     // the moving average
+  double speed_error_mps = 0.0;  // speed minus the desired speed
+};
+
 class TurnExtractor {
  public:
   TurnExtractor(TurnExtractorOptions options, std::string vehicle_id, std::string mission_id);
@@ -45,9 +61,19 @@ class TurnExtractor {
 
   bool turning() const { return turn_.has_value(); }
 
+  // The steps seen since the last call that started no turn, oldest first.
+  std::vector<SkippedStep> take_skipped_steps() { return std::exchange(skipped_, {}); }
+  // For the turn feed() or finish() returned last: why it is not ok (empty when it is), and how
+  // steady its start was.
+  std::optional<StepRejection> last_turn_rejection() const { return last_rejection_; }
+  const StepStart& last_turn_start() const { return turn_start_; }
+
  private:
   kinematics::TurnSequence finish_turn(Completion how);
-  kinematics::TurnSequence abort_turn(const std::string& reason);
+  kinematics::TurnSequence abort_turn(StepRejection kind, const std::string& reason);
+  // Why the step at `s` starts no turn (empty: it starts one).
+  std::optional<StepRejection> step_rejection(const vehicle::GuidedNav& s, double goal_deg,
+                                              bool gap, bool turn_just_ended) const;
   void track_steady(const vehicle::GuidedNav& s);
   bool course_held() const;
 
@@ -62,6 +88,10 @@ class TurnExtractor {
   double turn_start_s_ = 0.0;
   double turn_desired_heading_deg_ = 0.0;
   double turn_desired_speed_mps_ = 0.0;
+  StepStart turn_start_;
+  std::optional<StepRejection> last_rejection_;
+  std::vector<SkippedStep> skipped_;
+  bool previous_was_change_ = false;  // the last sample changed the desired heading
 };
 
 }  // namespace avk::mission

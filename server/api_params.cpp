@@ -84,6 +84,13 @@ CurrentParam current_param(const ApiRequest& r) {
   throw bad_parameter("current", "must be live or EAST,NORTH in m/s (e.g. 0.1,-0.2)");
 }
 
+bool include_harvested_param(const ApiRequest& r) {
+  const auto it = r.query.find("include");
+  if (it == r.query.end() || it->second == "collection") return false;
+  if (it->second == "harvested") return true;
+  throw bad_parameter("include", "must be collection or harvested");
+}
+
 std::int64_t path_id(const PathParams& p, const std::string& key, const std::string& what) {
   const std::string& segment = p.at(key);
   const auto id = record_id(segment);

@@ -34,6 +34,10 @@ struct CurrentParam {
 };
 CurrentParam current_param(const ApiRequest& r);
 
+// ?include=harvested: the vehicle's table of collection and harvested turns; absent or
+// ?include=collection: collection turns only. Anything else is 400.
+bool include_harvested_param(const ApiRequest& r);
+
 enum class Format { json, csv };
 // ?format= wins; otherwise Accept. Anything the resource cannot produce is 406 (400 for a bad
 // ?format=).

@@ -12,6 +12,7 @@
 #include "app/compare.hpp"
 #include "app/current.hpp"
 #include "app/encounters.hpp"
+#include "app/harvest.hpp"
 #include "app/maneuvers.hpp"
 #include "app/missions.hpp"
 #include "app/models.hpp"
@@ -61,6 +62,7 @@ std::string report_cells_csv(const app::MissionReport& r);
 // --- turns ---------------------------------------------------------------------------------
 
 nlohmann::json turn_row_json(const store::TurnRow& t);
+nlohmann::json harvest_report_json(const app::HarvestReport& r);
 nlohmann::json turn_json(const store::StoredTurn& t);  // with raw and normalised trajectories
 std::string turns_csv(const std::vector<store::TurnRow>& rows);
 

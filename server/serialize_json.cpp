@@ -218,7 +218,23 @@ json turn_row_json(const store::TurnRow& t) {
           {"transfer_m", optional_json(t.transfer_m)},
           {"condition_set_time_s", optional_json(t.condition_set_time_s)},
           {"start_heading_error_deg", optional_json(t.start_heading_error_deg)},
-          {"start_yaw_rate_dps", optional_json(t.start_yaw_rate_dps)}};
+          {"start_yaw_rate_dps", optional_json(t.start_yaw_rate_dps)},
+          {"source", kin::to_string(t.source)},
+          {"quality", optional_json(t.quality)}};
+}
+
+json harvest_report_json(const app::HarvestReport& r) {
+  return {{"mission_id", r.mission_id},
+          {"vehicle_id", r.vehicle_id},
+          {"harvest_id", r.harvest_id},
+          {"nav_rows", r.nav_rows},
+          {"steps", r.steps},
+          {"harvested", r.harvested},
+          {"already_recorded", r.already_recorded},
+          {"rejected", r.rejected},
+          {"rejected_by_reason", r.rejected_by_reason},
+          {"turn_ids", r.turn_ids},
+          {"mean_quality", r.harvested > 0 ? json(r.mean_quality) : json()}};
 }
 
 json turn_json(const store::StoredTurn& t) {
@@ -250,6 +266,7 @@ json ckt_summary_json(const app::VehicleTable& t) {
   const auto range = t.table->speed_range_mps();
   return {{"vehicle_id", t.vehicle_id},
           {"source", app::to_string(t.source)},
+          {"include", t.include_harvested ? "harvested" : "collection"},
           {"snapshot_id", optional_json(t.snapshot_id)},
           {"speeds_mps", t.table->grid().speeds_mps},
           {"dheadings_deg", t.table->grid().dheadings_deg},

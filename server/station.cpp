@@ -6,6 +6,7 @@
 #include "app/compare.hpp"
 #include "app/current.hpp"
 #include "app/encounters.hpp"
+#include "app/harvest.hpp"
 #include "app/maneuvers.hpp"
 #include "app/missions.hpp"
 #include "app/models.hpp"
@@ -124,6 +125,7 @@ app::PredictQuery predict_query(const ApiRequest& r, const std::string& vid) {
   const CurrentParam current = current_param(r);
   q.current = current.current;
   q.live_current = current.live;
+  q.include_harvested = include_harvested_param(r);
   return q;
 }
 
@@ -271,6 +273,13 @@ void Station::add_routes() {
          });
   }
 
+  // Harvesting stores turns: a control endpoint like the other writes.
+  post("/api/v1/missions/{id}/harvest", [&ctx](const ApiRequest&, const PathParams& p) {
+    return answer(
+        app::harvest_mission(ctx, path_id(p, "id", "mission")), true,
+        [](const app::HarvestReport& h) { return json_response(harvest_report_json(h)); });
+  });
+
   // --- turns -------------------------------------------------------------------------------
   get("/api/v1/turns", [&ctx](const ApiRequest& r, const PathParams&) {
     const Format f = negotiate(r, true);
@@ -305,15 +314,17 @@ void Station::add_routes() {
   // --- the CKT -----------------------------------------------------------------------------
   get("/api/v1/vehicles/{vid}/ckt", [&ctx](const ApiRequest& r, const PathParams& p) {
     const Format f = negotiate(r, true);
-    return answer(app::vehicle_table(ctx, p.at("vid")), false, [f](const app::VehicleTable& t) {
-      if (f == Format::csv) return csv_response(kinematics::ckt_to_csv(*t.table));
-      return json_response(ckt_summary_json(t));
-    });
+    return answer(app::vehicle_table(ctx, p.at("vid"), include_harvested_param(r)), false,
+                  [f](const app::VehicleTable& t) {
+                    if (f == Format::csv) return csv_response(kinematics::ckt_to_csv(*t.table));
+                    return json_response(ckt_summary_json(t));
+                  });
   });
   get("/api/v1/vehicles/{vid}/ckt/cells", [&ctx](const ApiRequest& r, const PathParams& p) {
     const double speed = required_number(r, "speed", 0.0, 100.0);
     const double dheading = required_number(r, "dheading", 0.0, 180.0);
-    return answer(app::ckt_cell(ctx, p.at("vid"), speed, dheading), false,
+    return answer(app::ckt_cell(ctx, p.at("vid"), speed, dheading, include_harvested_param(r)),
+                  false,
                   [](const kinematics::CktCell& c) { return json_response(ckt_cell_json(c)); });
   });
   get("/api/v1/vehicles/{vid}/ckt/export", [&ctx](const ApiRequest& r, const PathParams& p) {
@@ -321,13 +332,16 @@ void Station::add_routes() {
     const std::string format = it == r.query.end() ? "json" : it->second;
     if (format != "json" && format != "csv") throw bad_parameter("format", "must be json or csv");
     const std::string vid = p.at("vid");
-    return answer(app::ckt_for_export(ctx, vid), false, [&](const kinematics::Ckt& t) {
-      if (format == "csv") return csv_response(kinematics::ckt_to_csv(t), "ckt-" + vid + ".csv");
-      ApiResponse resp{200, "application/json", kinematics::ckt_to_json_string(t), {}};
-      resp.headers.push_back(
-          {"Content-Disposition", "attachment; filename=\"ckt-" + vid + ".json\""});
-      return resp;
-    });
+    return answer(
+        app::ckt_for_export(ctx, vid, include_harvested_param(r)), false,
+        [&](const kinematics::Ckt& t) {
+          if (format == "csv")
+            return csv_response(kinematics::ckt_to_csv(t), "ckt-" + vid + ".csv");
+          ApiResponse resp{200, "application/json", kinematics::ckt_to_json_string(t), {}};
+          resp.headers.push_back(
+              {"Content-Disposition", "attachment; filename=\"ckt-" + vid + ".json\""});
+          return resp;
+        });
   });
   post(
       "/api/v1/vehicles/{vid}/ckt/import",

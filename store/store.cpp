@@ -21,7 +21,7 @@ namespace {
 
 // Each step moves the schema from version i to i + 1. Steps are append-only: a released step is
 // never edited, because databases in the field have already run it.
-constexpr std::array<const char*, 8> kMigrations = {
+constexpr std::array<const char*, 9> kMigrations = {
     R"sql(
 CREATE TABLE vehicles (
   id            TEXT PRIMARY KEY,
@@ -150,6 +150,23 @@ CREATE INDEX ckt_snapshots_by_vehicle ON ckt_snapshots (vehicle_id, id);
 ALTER TABLE turns ADD COLUMN start_heading_error_deg REAL;
 ALTER TABLE turns ADD COLUMN start_yaw_rate_dps REAL;
 )sql",
+    // Turns harvested from ordinary navigation logs (issue 17 part 4): each turn's source and
+    // quality, and a record of every harvest run with its counts. Older turns are collection.
+    R"sql(
+ALTER TABLE turns ADD COLUMN source TEXT NOT NULL DEFAULT 'collection'
+  CHECK (source IN ('collection', 'harvested'));
+ALTER TABLE turns ADD COLUMN quality REAL;
+CREATE TABLE harvests (
+  id               INTEGER PRIMARY KEY,
+  mission_id       INTEGER NOT NULL REFERENCES missions(id),
+  created_utc      TEXT NOT NULL DEFAULT (strftime('%Y-%m-%dT%H:%M:%fZ', 'now')),
+  steps            INTEGER NOT NULL,
+  harvested        INTEGER NOT NULL,
+  already_recorded INTEGER NOT NULL,
+  rejected_json    TEXT NOT NULL
+);
+CREATE INDEX harvests_by_mission ON harvests (mission_id, id);
+)sql",
     // The current each mission flew in (app/current.hpp) and its turns in the water frame, the
     // drift of that current removed (kinematics/water_frame.hpp), packed like the normalised
     // form: a table learned in one current then predicts turns in another.
@@ -180,8 +197,9 @@ constexpr const char* kMissionStatusNames[] = {"created", "running", "paused", "
 constexpr const char* kTurnColumns =
     "id, mission_id, vehicle_id, cell_speed_mps, cell_dheading_deg, status, reason, "
     "commanded_speed_mps, goal_dheading_deg, observed_dheading_deg, start_time_s, end_time_s, "
-    "advance_m, transfer_m, condition_set_time_s, start_heading_error_deg, start_yaw_rate_dps";
-constexpr int kTurnRowColumns = 17;
+    "advance_m, transfer_m, condition_set_time_s, start_heading_error_deg, start_yaw_rate_dps, "
+    "source, quality";
+constexpr int kTurnRowColumns = 19;
 
 TurnRow read_turn_row(const Statement& s) {
   TurnRow r;
@@ -206,6 +224,12 @@ TurnRow read_turn_row(const Statement& s) {
   r.condition_set_time_s = s.column_optional_double(14);
   r.start_heading_error_deg = s.column_optional_double(15);
   r.start_yaw_rate_dps = s.column_optional_double(16);
+  const std::string source = s.column_text(17);
+  const auto parsed_source = kinematics::turn_source_from_string(source);
+  if (!parsed_source)
+    throw StoreError("turn " + std::to_string(r.id) + " has unknown source '" + source + "'");
+  r.source = *parsed_source;
+  r.quality = s.column_optional_double(18);
   return r;
 }
 
@@ -459,14 +483,15 @@ std::int64_t Store::store_turn(std::int64_t mission_id, const kinematics::TurnSe
       "INSERT INTO turns (mission_id, vehicle_id, cell_speed_mps, cell_dheading_deg, status, "
       "reason, commanded_speed_mps, goal_dheading_deg, observed_dheading_deg, start_time_s, "
       "end_time_s, advance_m, transfer_m, condition_set_time_s, raw_json, normalized_json, "
-      "normalized_meta_json, normalized_samples, start_heading_error_deg, start_yaw_rate_dps) "
-      "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+      "normalized_meta_json, normalized_samples, start_heading_error_deg, start_yaw_rate_dps, "
+      "source, quality) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   s.bind(1, mission_id).bind(2, m.vehicle_id).bind(3, m.commanded_speed_mps);
   s.bind(4, std::abs(m.goal_dheading_deg)).bind(5, kinematics::to_string(status)).bind(6, reason);
   s.bind(7, m.commanded_speed_mps).bind(8, m.goal_dheading_deg).bind(9, m.observed_dheading_deg);
   s.bind(10, m.start_time_s).bind(11, m.end_time_s).bind(12, advance_m).bind(13, transfer_m);
   s.bind(14, start.condition_set_time_s).bind(15, raw_json);
   s.bind(19, start.heading_error_deg).bind(20, start.yaw_rate_dps);
+  s.bind(21, kinematics::to_string(m.source)).bind(22, m.quality);
   if (normalized_json) {
     s.bind(16, *normalized_json).bind(17, *normalized_meta).bind_blob(18, normalized_samples);
   } else {
@@ -479,10 +504,11 @@ std::int64_t Store::store_turn(std::int64_t mission_id, const kinematics::TurnSe
   return id;
 }
 
-std::int64_t Store::newest_ok_turn_id(const std::string& vehicle_id) {
-  auto s =
-      db_.prepare("SELECT coalesce(max(id), 0) FROM turns WHERE vehicle_id = ? AND status = 'ok'");
-  s.bind(1, vehicle_id);
+std::int64_t Store::newest_ok_turn_id(const std::string& vehicle_id, bool include_harvested) {
+  auto s = db_.prepare(
+      "SELECT coalesce(max(id), 0) FROM turns WHERE vehicle_id = ?1 AND status = 'ok' "
+      "AND (?2 OR source = 'collection')");
+  s.bind(1, vehicle_id).bind(2, static_cast<std::int64_t>(include_harvested));
   s.step();
   return s.column_int64(0);
 }
@@ -661,7 +687,7 @@ std::vector<CellStats> Store::mission_cell_stats(std::int64_t mission_id) {
 
 std::vector<kinematics::TurnSequence> Store::load_normalized_turns(
     const std::vector<std::int64_t>& mission_ids, const std::optional<std::string>& vehicle_id,
-    TurnFrameChoice frame) {
+    bool include_harvested, TurnFrameChoice frame) {
   // The mission list travels as one bound JSON array, so the statement text stays fixed
   // whatever the number of missions. The water form, when asked for, replaces the normalised
   // form column for column.
@@ -670,13 +696,16 @@ std::vector<kinematics::TurnSequence> Store::load_normalized_turns(
           ? "SELECT id, coalesce(water_meta_json, normalized_meta_json), CASE WHEN water_meta_json "
             "IS NULL THEN normalized_samples ELSE water_samples END, normalized_json FROM turns "
           : "SELECT id, normalized_meta_json, normalized_samples, normalized_json FROM turns ";
-  auto s = db_.prepare(
-      mission_ids.empty()
-          ? columns + "WHERE status = 'ok' AND (?1 IS NULL OR vehicle_id = ?1) ORDER BY id"
-          : columns +
-                "WHERE status = 'ok' AND (?1 IS NULL OR vehicle_id = ?1) "
-                "AND mission_id IN (SELECT value FROM json_each(?2)) ORDER BY id");
+  auto s = db_.prepare(mission_ids.empty()
+                           ? columns +
+                                 "WHERE status = 'ok' AND (?1 IS NULL OR vehicle_id = ?1) "
+                                 "AND (?3 OR source = 'collection') ORDER BY id"
+                           : columns +
+                                 "WHERE status = 'ok' AND (?1 IS NULL OR vehicle_id = ?1) "
+                                 "AND (?3 OR source = 'collection') "
+                                 "AND mission_id IN (SELECT value FROM json_each(?2)) ORDER BY id");
   if (vehicle_id) s.bind(1, *vehicle_id);
+  s.bind(3, static_cast<std::int64_t>(include_harvested));
   if (!mission_ids.empty()) s.bind(2, nlohmann::json(mission_ids).dump());
   std::vector<kinematics::TurnSequence> out;
   while (s.step()) {
@@ -784,6 +813,51 @@ std::int64_t Store::current_revision(const std::string& vehicle_id) {
   s.bind(1, vehicle_id);
   s.step();
   return s.column_int64(0);
+}
+
+std::vector<double> Store::turn_start_times(std::int64_t mission_id) {
+  auto s = db_.prepare("SELECT start_time_s FROM turns WHERE mission_id = ? ORDER BY start_time_s");
+  s.bind(1, mission_id);
+  std::vector<double> out;
+  while (s.step())
+    out.push_back(s.column_double(0));
+  return out;
+}
+
+std::int64_t Store::save_harvest(const HarvestRecord& h) {
+  auto s = db_.prepare(
+      "INSERT INTO harvests (mission_id, steps, harvested, already_recorded, rejected_json) "
+      "VALUES (?, ?, ?, ?, ?)");
+  s.bind(1, h.mission_id).bind(2, h.steps).bind(3, h.harvested).bind(4, h.already_recorded);
+  s.bind(5, nlohmann::json(h.rejected).dump());
+  s.run();
+  return db_.last_insert_rowid();
+}
+
+std::vector<HarvestRecord> Store::list_harvests(std::int64_t mission_id) {
+  auto s = db_.prepare(
+      "SELECT id, mission_id, created_utc, steps, harvested, already_recorded, rejected_json "
+      "FROM harvests WHERE mission_id = ? ORDER BY id");
+  s.bind(1, mission_id);
+  std::vector<HarvestRecord> out;
+  while (s.step()) {
+    HarvestRecord h;
+    h.id = s.column_int64(0);
+    h.mission_id = s.column_int64(1);
+    h.created_utc = s.column_text(2);
+    h.steps = s.column_int64(3);
+    h.harvested = s.column_int64(4);
+    h.already_recorded = s.column_int64(5);
+    try {
+      h.rejected =
+          nlohmann::json::parse(s.column_text(6)).get<std::map<std::string, std::int64_t>>();
+    } catch (const std::exception& e) {
+      throw StoreError("harvest " + std::to_string(h.id) +
+                       ": stored rejected_json is corrupt: " + e.what());
+    }
+    out.push_back(std::move(h));
+  }
+  return out;
 }
 
 void Store::append_nav(std::int64_t mission_id, std::span<const NavRow> rows) {

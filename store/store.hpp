@@ -68,6 +68,8 @@ struct TurnRow {
   std::optional<double> condition_set_time_s;
   std::optional<double> start_heading_error_deg;
   std::optional<double> start_yaw_rate_dps;
+  kinematics::TurnSource source = kinematics::TurnSource::collection;
+  std::optional<double> quality;  // harvested turns
 };
 
 // How steady the vehicle was when its turn was commanded, as the ConditionSet saw it.
@@ -192,6 +194,18 @@ enum class TurnFrameChoice {
   water_where_known,  // the water-frame form where the mission has a current estimate
 };
 
+// One harvest run over a mission's navigation (mission/turn_harvester.hpp): how many steps of
+// the desired heading it judged, how many turns it stored, and the others by reason.
+struct HarvestRecord {
+  std::int64_t id = 0;
+  std::int64_t mission_id = 0;
+  std::string created_utc;
+  std::int64_t steps = 0;
+  std::int64_t harvested = 0;
+  std::int64_t already_recorded = 0;
+  std::map<std::string, std::int64_t> rejected;  // reason -> count (reasons with a count only)
+};
+
 class Store {
  public:
   // Opens (creating if needed) and migrates the database. ":memory:" gives a private in-memory
@@ -245,8 +259,8 @@ class Store {
                           kinematics::TurnStatus status, const std::string& reason,
                           const TurnStart& start = {});
   // The id of the vehicle's newest ok turn (0 without any): tells a cache whether the vehicle's
-  // table changed.
-  std::int64_t newest_ok_turn_id(const std::string& vehicle_id);
+  // table changed. Collection turns only unless include_harvested.
+  std::int64_t newest_ok_turn_id(const std::string& vehicle_id, bool include_harvested = false);
   // Oldest first, at most filter.limit rows with id > filter.after_id.
   std::vector<TurnRow> list_turns(const TurnFilter& filter);
   // Throws StoreError naming the turn when its stored JSON is corrupt.
@@ -254,12 +268,18 @@ class Store {
   // Normalised turns of status ok for the CKT, oldest first, from the given missions (empty: all
   // missions), optionally of one vehicle. Each equals get_turn(id)->normalized. Reads the packed
   // samples; turns stored before schema 2 have none and are parsed from their JSON instead.
-  // With water_where_known, a turn that has a water-frame form (save_mission_current) is read
-  // in it.
+  // Collection turns only, unless include_harvested. With water_where_known, a turn that has a
+  // water-frame form (save_mission_current) is read in it.
   std::vector<kinematics::TurnSequence> load_normalized_turns(
       const std::vector<std::int64_t>& mission_ids,
-      const std::optional<std::string>& vehicle_id = std::nullopt,
+      const std::optional<std::string>& vehicle_id = std::nullopt, bool include_harvested = false,
       TurnFrameChoice frame = TurnFrameChoice::ground);
+  // Start times of every turn stored for the mission (any status or source), ascending.
+  std::vector<double> turn_start_times(std::int64_t mission_id);
+
+  // Harvest runs of a mission, oldest first. save_harvest ignores h.id and h.created_utc.
+  std::int64_t save_harvest(const HarvestRecord& h);
+  std::vector<HarvestRecord> list_harvests(std::int64_t mission_id);
 
   // Replaces the mission's current estimate and the water-frame form of its turns (normalised,
   // each by turn id; turns not listed lose theirs) in one transaction, so a reader sees either the

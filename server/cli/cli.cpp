@@ -46,6 +46,12 @@ void usage(std::ostream& out) {
          "  avk mission resume ID --db FILE (--sim | --m200 HOST:PORT) | list --db FILE\n"
          "  avk mission report ID --db FILE\n"
          "  avk ckt build|export --db FILE [--mission ID]... [--vehicle ID] [--out FILE]\n"
+         "                  [--include-harvested]  (collection turns only without it)\n"
+         "  avk turns harvest --db FILE (--mission ID | --all [--vehicle ID])\n"
+         "                  [--format table|json]\n"
+         "      turns harvested from a mission's navigation wherever the conditions of a\n"
+         "      measured turn held before a step of the desired heading; the others counted\n"
+         "      by reason (docs/harvest.md)\n"
          "  avk model fit|sweep --db FILE --mission ID... [--form thesis|invariant]\n"
          "                  [--history S] [--refine] [--ridge auto|L]\n"
          "  avk model list --db FILE | show --db FILE --model ID\n"
@@ -106,9 +112,10 @@ void usage(std::ostream& out) {
          "      catamaran, for trying a backseat without a boat; runs until SIGINT/SIGTERM\n"
          "  avk import alog FILE --db FILE [--vehicle NAME] [--names NAV_X=X,NAV_Y=Y,...]\n"
          "                  [--turn-record VAR] [--threshold DEG] [--speed-tolerance M/S]\n"
-         "                  [--max-yaw-rate DEG/S]\n"
+         "                  [--max-yaw-rate DEG/S] [--harvest]\n"
          "      a MOOS-IvP .alog as a mission: navigation, and turns from its turn records or\n"
-         "      from steps in DESIRED_HEADING; malformed lines are counted, not fatal\n";
+         "      from steps in DESIRED_HEADING; malformed lines are counted, not fatal;\n"
+         "      --harvest stores those steps' turns as harvested (avk turns harvest)\n";
 }
 }  // namespace
 
@@ -122,6 +129,10 @@ int run_cli(const std::vector<std::string>& args, std::istream& in, std::ostream
   const std::vector<std::string> rest(args.begin() + 1, args.end());
   try {
     if (args[0] == "turn") return cmd_turn(rest, io);
+    if (args[0] == "turns") {
+      if (rest.empty() || rest[0] != "harvest") throw UsageError("expected 'turns harvest'");
+      return cmd_harvest(std::vector<std::string>(rest.begin() + 1, rest.end()), io);
+    }
     if (args[0] == "ckt") return cmd_ckt(rest, io);
     if (args[0] == "sim") return cmd_sim(rest, io);
     if (args[0] == "mission") return cmd_mission(rest, io);

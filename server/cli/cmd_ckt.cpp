@@ -63,6 +63,7 @@ app::BuiltTable build_table(const Args& a, Io& io) {
   app::BuiltTable out;
   if (const auto path = a.get("turns")) {
     if (!a.all("mission").empty()) throw UsageError("--mission goes with --db");
+    if (a.flag("include-harvested")) throw UsageError("--include-harvested goes with --db");
     const auto records = parse_turn_file(read_file(*path, io.in), *path == "-" ? "stdin" : *path);
     std::vector<kin::TurnSequence> turns;
     turns.reserve(records.size());
@@ -77,12 +78,14 @@ app::BuiltTable build_table(const Args& a, Io& io) {
     app::Context ctx(*a.get("db"));
     const auto missions = mission_ids(a);
     const std::string vehicle = vehicle_of(a, ctx.db(), missions);
-    out = value_or_fail(
-        app::build_ckt(ctx, vehicle, missions, build_options(a), a.number("vehicle-length")));
+    out = value_or_fail(app::build_ckt(ctx, vehicle, missions, build_options(a),
+                                       a.number("vehicle-length"), a.flag("include-harvested")));
   }
   const auto& report = out.report;
   io.err << "ckt: " << report.turns_used << " turns used, " << report.turns_skipped_status
          << " aborted/rejected skipped, " << report.turns_unassigned << " off the grid\n";
+  if (a.flag("include-harvested"))
+    io.err << "ckt: " << out.harvested_turns << " of the turns harvested from navigation logs\n";
   return out;
 }
 
@@ -150,7 +153,7 @@ int cmd_ckt(const std::vector<std::string>& args, Io& io) {
   const std::set<std::string> build_values = {
       "turns", "db", "out", "format", "vehicle", "vehicle-length", "fit", "epsilon"};
   if (sub == "build") {
-    const Args a(rest, build_values, {}, {"mission"});
+    const Args a(rest, build_values, {"include-harvested"}, {"mission"});
     const OutFormat format = out_format(a);
     const app::BuiltTable t = build_table(a, io);
     emit(a, io, serialise(t.table, format));
@@ -160,7 +163,7 @@ int cmd_ckt(const std::vector<std::string>& args, Io& io) {
   if (sub == "export") {
     std::set<std::string> values = build_values;
     values.insert("ckt");
-    const Args a(rest, values, {}, {"mission"});
+    const Args a(rest, values, {"include-harvested"}, {"mission"});
     const OutFormat format = out_format(a);
     kin::Ckt t;
     if (const auto ckt = a.get("ckt")) {

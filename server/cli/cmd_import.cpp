@@ -34,7 +34,7 @@ double positive(const Args& a, const std::string& name, double fallback) {
 }
 
 int import_alog(const std::vector<std::string>& rest, Io& io) {
-  const Args a(rest, kAlogValues);
+  const Args a(rest, kAlogValues, {"harvest"});
   if (a.positional().size() != 1) throw UsageError("expected one .alog file");
   const std::string path = a.positional()[0];
   const std::string db_path = a.require("db");
@@ -75,6 +75,7 @@ int import_alog(const std::vector<std::string>& rest, Io& io) {
   request.vehicle_id = vehicle_id;
   request.names = names;
   request.extraction = options;
+  request.harvest = a.flag("harvest");
   app::Context ctx(db_path);
   const app::AlogImportReport import = value_or_fail(app::import_alog(ctx, in, request));
   const std::int64_t mission_id = import.mission_id;
@@ -102,6 +103,7 @@ int import_alog(const std::vector<std::string>& rest, Io& io) {
          << counts_text(rec) << ")\n";
   io.out << "  extracted from desired heading steps: " << ext.total() << " (" << counts_text(ext)
          << ")" << (ns.turn_records ? "; not used: the log has turn records" : "") << "\n";
+  if (import.harvest) print_harvest(*import.harvest, io.out);
   io.out << "mission " << mission_id << " done\n";
   return 0;
 }

@@ -7,6 +7,10 @@
 #include <string>
 #include <vector>
 
+namespace avk::app {
+struct HarvestReport;
+}
+
 namespace avk::server {
 
 struct Io {
@@ -16,6 +20,9 @@ struct Io {
 };
 
 int cmd_turn(const std::vector<std::string>& args, Io& io);
+int cmd_harvest(const std::vector<std::string>& args, Io& io);  // avk turns harvest
+// A harvest's counts as the CLI prints them (avk turns harvest, avk import alog --harvest).
+void print_harvest(const app::HarvestReport& r, std::ostream& out);
 int cmd_ckt(const std::vector<std::string>& args, Io& io);
 int cmd_sim(const std::vector<std::string>& args, Io& io);
 int cmd_mission(const std::vector<std::string>& args, Io& io);

@@ -91,8 +91,8 @@ TEST(MissionCurrent, TheRecorderStoresTheEstimateAndTheWaterFrameAsTheMissionRun
   EXPECT_NEAR(stored->estimate.speed_mps(), 0.2, 0.05);
   EXPECT_LT(std::abs(kinematics::angle180_deg(stored->estimate.toward_deg() - 180.0)), 15.0);
   // Every ok turn is read in the water frame, with the stored estimate removed.
-  const auto water =
-      ctx.db().load_normalized_turns({mission}, "m200", store::TurnFrameChoice::water_where_known);
+  const auto water = ctx.db().load_normalized_turns({mission}, "m200", false,
+                                                    store::TurnFrameChoice::water_where_known);
   ASSERT_FALSE(water.empty());
   for (const auto& t : water) {
     ASSERT_TRUE(t.meta().removed_current);
@@ -124,8 +124,8 @@ TEST(MissionCurrent, TheRecorderStoresTheEstimateAndTheWaterFrameAsTheMissionRun
   app::Context calm(calm_db.path());
   const std::int64_t still = avk::testing::run_recorded_mission(
       calm.db(), "m200", avk::testing::kSmallMission, sim::default_sim_setup("catamaran:m200"));
-  for (const auto& t :
-       calm.db().load_normalized_turns({still}, "m200", store::TurnFrameChoice::water_where_known))
+  for (const auto& t : calm.db().load_normalized_turns({still}, "m200", false,
+                                                       store::TurnFrameChoice::water_where_known))
     EXPECT_FALSE(t.meta().removed_current);
 }
 

@@ -298,5 +298,27 @@ TEST(TurnJsonMutation, MutatedDocumentsParseOrThrowParseErrorOnly) {
   EXPECT_GT(outcome.rejected, 10000);
 }
 
+// Issue 17 part 4: a harvested turn carries its source and quality; a document without them
+// (every document written before) is a collection turn without quality.
+TEST(TurnJson, SourceAndQualityAreOptionalKeys) {
+  EXPECT_EQ(example_json().count("source"), 0u);
+  EXPECT_EQ(example_json().count("quality"), 0u);
+  EXPECT_EQ(parse_turn_json(kExampleJson).meta().source, TurnSource::collection);
+  EXPECT_FALSE(parse_turn_json(kExampleJson).meta().quality);
+  TurnSequence harvested = example_turn();
+  harvested.meta().source = TurnSource::harvested;
+  harvested.meta().quality = 0.8125;
+  const json j = to_json(harvested);
+  EXPECT_EQ(j["source"], "harvested");
+  EXPECT_EQ(j["quality"], 0.8125);
+  expect_round_trip(harvested);
+  json bad = j;
+  bad["source"] = "guessed";
+  expect_document_error(bad, "/source", 0);
+  bad = j;
+  bad["quality"] = 1.5;
+  expect_document_error(bad, "/quality", 0);
+}
+
 }  // namespace
 }  // namespace avk::kinematics

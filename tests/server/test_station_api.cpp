@@ -468,4 +468,32 @@ TEST_F(StationApi, ModelHeadingsOneStepAndSimulated) {
   EXPECT_EQ(none.status, 422) << none.body;
 }
 
+// Issue 17 part 4: harvesting is a write (the token always), and its counts come back; the CKT
+// endpoints take include=collection|harvested.
+TEST_F(StationApi, HarvestIsAControlEndpointAndTheTableSaysWhatItIncludes) {
+  const std::int64_t id = start_mission();
+  wait_for(id, {"done"});
+  const std::string path = "/api/v1/missions/" + std::to_string(id) + "/harvest";
+  EXPECT_EQ(call(post(path, "", "")).status, 401);
+  const ApiResponse r = call(post(path, ""));
+  ASSERT_EQ(r.status, 200) << r.body;
+  const json h = body(r);
+  EXPECT_EQ(h["mission_id"], id);
+  EXPECT_GE(h["already_recorded"].get<int>(), 4);  // the mission's own turns, not twice
+  EXPECT_EQ(h["steps"].get<int>(), h["harvested"].get<int>() + h["already_recorded"].get<int>() +
+                                       h["rejected"].get<int>());
+  EXPECT_EQ(h["rejected_by_reason"].size(), 13u);
+  EXPECT_EQ(call(post("/api/v1/missions/999/harvest", "")).status, 404);
+  EXPECT_EQ(body(call(get("/api/v1/vehicles/sim-usim/ckt")))["include"], "collection");
+  EXPECT_EQ(body(call(get("/api/v1/vehicles/sim-usim/ckt", {{"include", "harvested"}})))["include"],
+            "harvested");
+  const ApiResponse bad = call(get("/api/v1/vehicles/sim-usim/ckt", {{"include", "all"}}));
+  EXPECT_EQ(bad.status, 400);
+  EXPECT_NE(bad.body.find("include"), std::string::npos);
+  EXPECT_EQ(call(get("/api/v1/vehicles/sim-usim/predict",
+                     {{"speed", "0.5"}, {"dheading", "40"}, {"include", "harvested"}}))
+                .status,
+            200);
+}
+
 }  // namespace

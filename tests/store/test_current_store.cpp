@@ -65,7 +65,8 @@ TEST(CurrentStore, EstimateAndWaterTurnsRoundTripAndTheGroundFormStays) {
   EXPECT_EQ(s.latest_vehicle_current("usim-1")->mission_id, m);
   EXPECT_FALSE(s.latest_vehicle_current("other"));
 
-  const auto as_water = s.load_normalized_turns({m}, "usim-1", TurnFrameChoice::water_where_known);
+  const auto as_water =
+      s.load_normalized_turns({m}, "usim-1", false, TurnFrameChoice::water_where_known);
   ASSERT_EQ(as_water.size(), 1u);
   EXPECT_EQ(as_water[0], water);
   const auto as_ground = s.load_normalized_turns({m}, "usim-1");
@@ -75,7 +76,7 @@ TEST(CurrentStore, EstimateAndWaterTurnsRoundTripAndTheGroundFormStays) {
   // A new estimate without water turns (no longer significant) takes the water form away.
   const auto rev2 = s.save_mission_current(current_of(m, 0.01, 0.0), {});
   EXPECT_GT(rev2, rev);
-  EXPECT_EQ(s.load_normalized_turns({m}, "usim-1", TurnFrameChoice::water_where_known)[0],
+  EXPECT_EQ(s.load_normalized_turns({m}, "usim-1", false, TurnFrameChoice::water_where_known)[0],
             raw.normalized());
 }
 
@@ -92,13 +93,15 @@ TEST(CurrentStore, AnotherMissionsTurnIsRefusedAndNothingChanges) {
   EXPECT_THROW(s.save_mission_current(current_of(m, 0.3, 0.0), {{mine, water}, {theirs, water}}),
                StoreError);
   EXPECT_EQ(s.mission_current(m)->estimate.east_mps, 0.2);
-  EXPECT_EQ(s.load_normalized_turns({m}, "usim-1", TurnFrameChoice::water_where_known)[0], water);
-  EXPECT_EQ(s.load_normalized_turns({other}, "usim-1", TurnFrameChoice::water_where_known)[0],
-            raw.normalized());
+  EXPECT_EQ(s.load_normalized_turns({m}, "usim-1", false, TurnFrameChoice::water_where_known)[0],
+            water);
+  EXPECT_EQ(
+      s.load_normalized_turns({other}, "usim-1", false, TurnFrameChoice::water_where_known)[0],
+      raw.normalized());
 }
 
-// A file exactly as schema 7 left it: every released step, a turn stored then.
-TEST(CurrentStore, MigratesASchemaSevenDatabase) {
+// A file exactly as schema 8 left it (every step before the currents), a turn stored then.
+TEST(CurrentStore, MigratesASchemaEightDatabase) {
   avk::testing::TempDb db("avk_store_current_migration");
   const TurnSequence raw = arc(120.0, 3);
   std::int64_t id = 0;
@@ -114,7 +117,7 @@ TEST(CurrentStore, MigratesASchemaSevenDatabase) {
     c.exec("DROP TABLE mission_currents");
     c.exec("ALTER TABLE turns DROP COLUMN water_samples");
     c.exec("ALTER TABLE turns DROP COLUMN water_meta_json");
-    c.exec("PRAGMA user_version = 7");
+    c.exec("PRAGMA user_version = 8");
   }
   Store s(db.path());
   EXPECT_EQ(s.user_version(), schema_version());
@@ -122,7 +125,8 @@ TEST(CurrentStore, MigratesASchemaSevenDatabase) {
   const auto turn = s.get_turn(id);
   ASSERT_TRUE(turn);
   EXPECT_EQ(turn->raw.meta().goal_dheading_deg, raw.meta().goal_dheading_deg);
-  const auto loaded = s.load_normalized_turns({}, "usim-1", TurnFrameChoice::water_where_known);
+  const auto loaded =
+      s.load_normalized_turns({}, "usim-1", false, TurnFrameChoice::water_where_known);
   ASSERT_EQ(loaded.size(), 1u);
   EXPECT_FALSE(loaded[0].meta().removed_current);
   EXPECT_FALSE(s.latest_vehicle_current("usim-1"));

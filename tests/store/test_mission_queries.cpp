@@ -73,10 +73,10 @@ void expect_mean_sd(const std::optional<avk::kinematics::MeanSd>& got, double me
 
 }  // namespace
 
-TEST(MissionQueries, SchemaIsVersionEight) {
+TEST(MissionQueries, SchemaIsVersionNine) {
   Store s(":memory:");
-  EXPECT_EQ(schema_version(), 8);
-  EXPECT_EQ(s.user_version(), 8);
+  EXPECT_EQ(schema_version(), 9);
+  EXPECT_EQ(s.user_version(), 9);
   EXPECT_FALSE(migration_step_sql(0).empty());
   EXPECT_NE(migration_step_sql(1).find("normalized_samples"), std::string_view::npos);
   EXPECT_NE(migration_step_sql(2).find("yaw_models"), std::string_view::npos);
@@ -84,8 +84,9 @@ TEST(MissionQueries, SchemaIsVersionEight) {
   EXPECT_NE(migration_step_sql(4).find("nav_by_mission"), std::string_view::npos);
   EXPECT_NE(migration_step_sql(5).find("ckt_snapshots_by_vehicle"), std::string_view::npos);
   EXPECT_NE(migration_step_sql(6).find("start_heading_error_deg"), std::string_view::npos);
-  EXPECT_NE(migration_step_sql(7).find("mission_currents"), std::string_view::npos);
-  EXPECT_THROW(migration_step_sql(8), std::out_of_range);
+  EXPECT_NE(migration_step_sql(7).find("harvests"), std::string_view::npos);
+  EXPECT_NE(migration_step_sql(8).find("mission_currents"), std::string_view::npos);
+  EXPECT_THROW(migration_step_sql(9), std::out_of_range);
   EXPECT_THROW(migration_step_sql(-1), std::out_of_range);
 }
 
