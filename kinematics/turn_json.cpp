@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -51,6 +52,12 @@ constexpr std::array<const char*, 17> kKeys = {
     "sample_fields",
     "samples",
 };
+
+// Optional meta doubles: absent when the turn has none, so older documents load unchanged.
+constexpr std::array<std::pair<const char*, std::optional<double> TurnMeta::*>, 1>
+    kOptionalMetaDoubles = {{
+        {"initial_yaw_rate_dps", &TurnMeta::initial_yaw_rate_dps},
+    }};
 
 // A turn document is an object of arrays of arrays; anything deeper is not a turn, and refusing
 // it while parsing keeps a hostile "[[[[..." from building a huge tree first.
@@ -114,6 +121,8 @@ json to_json(const TurnSequence& turn) {
   j["normalized"] = m.normalized;
   for (const auto& [name, ptr] : kMetaDoubles)
     j[name] = m.*ptr;
+  for (const auto& [name, ptr] : kOptionalMetaDoubles)
+    if (m.*ptr) j[name] = *(m.*ptr);
   j["warnings"] = turn.warnings();
   json fields = json::array();
   for (const char* f : kSampleFields)
@@ -145,6 +154,8 @@ TurnSequence turn_from_json(const json& j) {
     bool known = false;
     for (const char* k : kKeys)
       known = known || item.key() == k;
+    for (const auto& [k, ptr] : kOptionalMetaDoubles)
+      known = known || item.key() == k;
     if (!known) throw ParseError(json_member_pointer(item.key()), 0, "unknown key");
   }
   for (const char* k : kKeys)
@@ -162,6 +173,10 @@ TurnSequence turn_from_json(const json& j) {
   m.normalized = normalized.get<bool>();
   for (const auto& [name, ptr] : kMetaDoubles)
     m.*ptr = read_double(member(j, name), json_member_pointer(name), 0);
+  for (const auto& [name, ptr] : kOptionalMetaDoubles) {
+    if (const auto it = j.find(name); it != j.end())
+      m.*ptr = read_double(*it, json_member_pointer(name), 0);
+  }
 
   const json& warnings = member(j, "warnings");
   if (!warnings.is_array()) throw ParseError("/warnings", 0, "expected an array of strings");

@@ -38,6 +38,10 @@ struct TurnMeta {
   TurnStatus status = TurnStatus::ok;
   std::string status_reason;  // why aborted/rejected; empty for ok
   bool normalized = false;
+  // Smoothed yaw rate (ConditionSet moving average) when the turn's heading was commanded, deg/s.
+  // Raw turn: + clockwise. Normalised turn: reflected with the turn, + into the turn (towards
+  // its side), - against it. Empty for turns recorded before it was measured (read as 0).
+  std::optional<double> initial_yaw_rate_dps;
   friend bool operator==(const TurnMeta&, const TurnMeta&) = default;
 };
 
