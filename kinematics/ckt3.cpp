@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 #include <stdexcept>
 
 #include "kinematics/corridor.hpp"
 #include "kinematics/geometry.hpp"
+#include "kinematics/number_text.hpp"
 #include "kinematics/turn_timing.hpp"
 
 namespace avk::kinematics {
@@ -14,12 +14,6 @@ namespace avk::kinematics {
 namespace {
 
 constexpr double kRateEps = 1e-9;
-
-std::string fmt(double v) {
-  std::ostringstream o;
-  o << v;
-  return o.str();
-}
 
 std::vector<CellSource> sources_of(const Ckt& table) {
   std::vector<CellSource> out;
@@ -136,16 +130,16 @@ YawRateCkt YawRateCkt::from_slices(std::vector<YawRateSlice> slices) {
     if (!std::isfinite(s.initial_yaw_rate_dps))
       throw std::invalid_argument("a slice's initial yaw rate must be a finite number");
     if (s.sources.size() != s.table.cells().size()) {
-      throw std::invalid_argument("slice " + fmt(s.initial_yaw_rate_dps) + " deg/s has " +
+      throw std::invalid_argument("slice " + number_text(s.initial_yaw_rate_dps) + " deg/s has " +
                                   std::to_string(s.sources.size()) + " cell sources for " +
                                   std::to_string(s.table.cells().size()) + " cells");
     }
     if (k > 0 && !(s.table.grid() == slices[0].table.grid())) {
-      throw std::invalid_argument("slice " + fmt(s.initial_yaw_rate_dps) +
+      throw std::invalid_argument("slice " + number_text(s.initial_yaw_rate_dps) +
                                   " deg/s is not on the grid of the other slices");
     }
     if (k > 0 && s.initial_yaw_rate_dps - slices[k - 1].initial_yaw_rate_dps < kRateEps) {
-      throw std::invalid_argument("two slices at initial yaw rate " + fmt(s.initial_yaw_rate_dps) +
+      throw std::invalid_argument("two slices at initial yaw rate " + number_text(s.initial_yaw_rate_dps) +
                                   " deg/s");
     }
   }
@@ -212,7 +206,7 @@ YawRatePrediction YawRateCkt::query(double speed_mps, double dheading_deg,
   if (usable.empty()) {
     // Let the steady (or first) slice say why.
     (steady() ? steady() : &slices_.front())->table.query(speed_mps, dheading_deg);
-    throw CktRangeError("speed " + fmt(speed_mps) + " m/s is outside every slice's range");
+    throw CktRangeError("speed " + number_text(speed_mps) + " m/s is outside every slice's range");
   }
   YawRatePrediction out;
   out.initial_yaw_rate_dps = initial_yaw_rate_dps;

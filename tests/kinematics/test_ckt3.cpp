@@ -55,6 +55,17 @@ std::vector<TurnSequence> three_slices() {
   return turns;
 }
 
+// The three slices without the +10 deg/s slice's 45 deg turns: a cell for the model to fill.
+std::vector<TurnSequence> without_slice_10_at_45() {
+  std::vector<TurnSequence> turns;
+  for (const auto& turn : three_slices()) {
+    if (normalized_initial_yaw_rate_dps(turn) > 5.0 && std::abs(turn.meta().goal_dheading_deg) < 60)
+      continue;
+    turns.push_back(turn);
+  }
+  return turns;
+}
+
 double end_heading_deg(const Polyline& p) {
   const Point& a = p[p.size() - 2];
   const Point& b = p.back();
@@ -161,12 +172,7 @@ TEST(YawRateCkt, TheTwoDimensionalTableIsTheSteadySlice) {
 
 TEST(YawRateCkt, ModelFillMarksItsCells) {
   // Slice +10 has only 90 deg turns: its 45 deg cell is filled by the "model" (an arc of 2 m).
-  std::vector<TurnSequence> turns;
-  for (const auto& turn : three_slices()) {
-    if (normalized_initial_yaw_rate_dps(turn) > 5.0 && std::abs(turn.meta().goal_dheading_deg) < 60)
-      continue;
-    turns.push_back(turn);
-  }
+  const std::vector<TurnSequence> turns = without_slice_10_at_45();
   YawRateCkt t = YawRateCkt::build(turns);
   EXPECT_EQ(t.coverage()[2].empty, 1u);
   EXPECT_EQ(t.query(1.0, 45.0, 10.0).source, CellSource::interpolated);
@@ -232,12 +238,7 @@ TEST(TurningHistory, TheModelKeepsTurningAtTheRate) {
 }
 
 TEST(YawRateCktFile, RoundTripsSlicesAndSources) {
-  std::vector<TurnSequence> turns;
-  for (const auto& turn : three_slices()) {
-    if (normalized_initial_yaw_rate_dps(turn) > 5.0 && std::abs(turn.meta().goal_dheading_deg) < 60)
-      continue;
-    turns.push_back(turn);
-  }
+  const std::vector<TurnSequence> turns = without_slice_10_at_45();
   YawRateCkt t = YawRateCkt::build(turns);
   t.fill([&](double, double d, double rate) -> std::optional<TurnSequence> {
     return arc(d, 2.0, rate);
