@@ -33,6 +33,10 @@ struct ManeuverQuery {
   std::optional<std::int64_t> model_id;  // model: this one; none: the vehicle's newest
   double corridor_share = kinematics::kDefaultCorridorShare;
   bool use_corridor = true;  // avk: judge by the corridor's nearer edge
+  // The yaw rate now (deg/s, + clockwise): each candidate starts turning at it (into a starboard
+  // candidate when +, against it when -). avk: the table over initial yaw rate
+  // (yaw_rate_table.hpp); model: the model started at that rate. None: from a steady course.
+  std::optional<double> initial_yaw_rate_dps;
 };
 
 struct ManeuverEvaluation {

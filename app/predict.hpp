@@ -30,6 +30,11 @@ struct PredictQuery {
   std::optional<kinematics::Pose> pose;   // where the turn starts; none: the normalised frame
   // avk: the share of the vehicle's turns the corridor holds.
   double corridor_share = kinematics::kDefaultCorridorShare;
+  // The yaw rate when the turn is commanded (deg/s, + clockwise, as headings turn; for a right
+  // turn + is into the turn, for a left turn -). None: from a steady course (the 2-D table).
+  // avk: the vehicle's table over initial yaw rate (yaw_rate_table.hpp); model: the model started
+  // turning at that rate.
+  std::optional<double> initial_yaw_rate_dps;
 };
 
 struct Prediction {
@@ -50,6 +55,10 @@ struct Prediction {
   // cell of one turn, or an imported table without corridors).
   std::optional<kinematics::CorridorBand> corridor;
   bool short_of_goal = false;  // avk: a cell that answered holds turns that stopped short
+  // avk with an initial yaw rate: where the answer came from (measured, model or interpolated)
+  // and whether the rate lay outside the table's yaw-rate range (answered by the nearest slice).
+  std::optional<std::string> cell_source;
+  std::optional<bool> yaw_rate_clamped;
 };
 
 // invalid_argument names the parameter (speed, dheading, model, speed_model); not_found when the
