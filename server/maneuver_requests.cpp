@@ -163,6 +163,7 @@ app::Result<ManeuverRequest> maneuver_request(const json& body, const std::strin
   q.model_id = id(r, "model_id");
   q.corridor_share = number(r, "corridor", 0.5, 0.999, false).value_or(q.corridor_share);
   q.use_corridor = boolean(r, "use_corridor").value_or(q.use_corridor);
+  q.initial_yaw_rate_dps = number(r, "initial_yaw_rate_dps", -90.0, 90.0, false);
   out.path_step_s = number(r, "path_step_s", 0.0, 60.0, false).value_or(out.path_step_s);
   r.finish();
   return checked(std::move(out), errors);

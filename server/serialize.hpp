@@ -16,6 +16,7 @@
 #include "app/models.hpp"
 #include "app/predict.hpp"
 #include "app/vehicles.hpp"
+#include "app/yaw_rate_table.hpp"
 #include "kinematics/yaw_identification.hpp"
 #include "store/store.hpp"
 #include "vehicle/m200.hpp"
@@ -68,6 +69,9 @@ std::string turns_csv(const std::vector<store::TurnRow>& rows);
 nlohmann::json ckt_summary_json(const app::VehicleTable& t);
 nlohmann::json ckt_cell_json(const kinematics::CktCell& c);
 nlohmann::json prediction_json(const app::Prediction& p);
+// The table over initial yaw rate: its coverage per slice, the model's scores where cells were
+// measured, and the schema-4 CKT document (`ckt`).
+nlohmann::json yaw_rate_table_json(const app::YawRateTable& t);
 std::string trajectory_csv(const kinematics::Polyline& line);
 
 // --- maneuvers ------------------------------------------------------------------------------

@@ -120,6 +120,7 @@ app::PredictQuery predict_query(const ApiRequest& r, const std::string& vid) {
     throw bad_parameter(x ? (y ? "heading" : "y") : "x", "a pose needs x, y and heading");
   if (x) q.pose = kinematics::Pose{*x, *y, *heading};
   q.corridor_share = number_param(r, "corridor", 0.5, 0.999).value_or(q.corridor_share);
+  q.initial_yaw_rate_dps = number_param(r, "initial_yaw_rate", -90.0, 90.0);
   return q;
 }
 
@@ -289,6 +290,13 @@ void Station::add_routes() {
     const double dheading = required_number(r, "dheading", 0.0, 180.0);
     return answer(app::ckt_cell(ctx, p.at("vid"), speed, dheading), false,
                   [](const kinematics::CktCell& c) { return json_response(ckt_cell_json(c)); });
+  });
+  get("/api/v1/vehicles/{vid}/ckt/yaw-rate", [&ctx](const ApiRequest& r, const PathParams& p) {
+    app::YawRateTableOptions o;
+    o.model_id = id_param(r, "model");
+    o.check_model = true;
+    return answer(app::vehicle_yaw_rate_table(ctx, p.at("vid"), o), false,
+                  [](const app::YawRateTable& t) { return json_response(yaw_rate_table_json(t)); });
   });
   get("/api/v1/vehicles/{vid}/ckt/export", [&ctx](const ApiRequest& r, const PathParams& p) {
     const auto it = r.query.find("format");

@@ -289,7 +289,7 @@ int compare(const std::vector<std::string>& rest, Io& io) {
 int predict(const std::vector<std::string>& rest, Io& io) {
   const Args a(rest,
                {"db", "speed", "dheading", "method", "model", "x", "y", "heading", "format",
-                "vehicle", "threshold", "corridor"},
+                "vehicle", "threshold", "corridor", "initial-yaw-rate"},
                {"speed-model"});
   app::Context ctx(a.require("db"));
   app::PredictQuery q;
@@ -314,6 +314,7 @@ int predict(const std::vector<std::string>& rest, Io& io) {
     if (!(*share > 0.0 && *share < 1.0)) throw UsageError("--corridor must be within (0, 1)");
     q.corridor_share = *share;
   }
+  q.initial_yaw_rate_dps = a.number("initial-yaw-rate");
   q.vehicle_id = vehicle_of(a, ctx.db(), {});
   const app::Prediction p = value_or_fail(app::predict(ctx, q));
   io.out << (format == "csv" ? trajectory_csv(p.trajectory) : prediction_json(p).dump() + "\n");
