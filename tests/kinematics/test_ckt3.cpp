@@ -66,10 +66,9 @@ std::vector<TurnSequence> without_slice_10_at_45() {
   return turns;
 }
 
-double end_heading_deg(const Polyline& p) {
-  const Point& a = p[p.size() - 2];
-  const Point& b = p.back();
-  return heading_of_deg(b.x_m - a.x_m, b.y_m - a.y_m);
+// The heading of a trajectory's last segment, from its heading profile.
+double end_heading_deg(const Polyline& p, double dheading_deg) {
+  return heading_profile(p, dheading_deg).fraction.back() * dheading_deg;
 }
 
 }  // namespace
@@ -114,14 +113,14 @@ TEST(YawRateCkt, HalfwayBetweenSlicesBlendsThem) {
   EXPECT_NEAR(p.prediction.advance_m, 4.5, 0.05);
   EXPECT_NEAR(p.prediction.transfer_m, 3.5, 0.05);
   // The blend ends on the asked heading and its path lies between the two slices' paths.
-  EXPECT_NEAR(angle180_deg(end_heading_deg(p.prediction.trajectory) - 90.0), 0.0, 1e-6);
+  EXPECT_NEAR(angle180_deg(end_heading_deg(p.prediction.trajectory, 90.0) - 90.0), 0.0, 1e-6);
   const double lo = t.query(1.0, 90.0, 0.0).prediction.trajectory.back().x_m;
   const double hi = t.query(1.0, 90.0, 10.0).prediction.trajectory.back().x_m;
   EXPECT_GT(p.prediction.trajectory.back().x_m, std::min(lo, hi) - 1e-6);
   EXPECT_LT(p.prediction.trajectory.back().x_m, std::max(lo, hi) + 1e-6);
   // Between slices as the 2-D table is between heading changes: a 67.5 deg turn also ends on 67.5.
   const YawRatePrediction q = t.query(1.0, 67.5, -5.0);
-  EXPECT_NEAR(angle180_deg(end_heading_deg(q.prediction.trajectory) - 67.5), 0.0, 1e-6);
+  EXPECT_NEAR(angle180_deg(end_heading_deg(q.prediction.trajectory, 67.5) - 67.5), 0.0, 1e-6);
 }
 
 TEST(YawRateCkt, LeftTurnIntoTheTurnIsTheMirroredRightTurn) {
