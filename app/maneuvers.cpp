@@ -6,7 +6,9 @@
 #include "app/ckt_tables.hpp"
 #include "app/context.hpp"
 #include "app/current.hpp"
+#include "app/yaw_rate_table.hpp"
 #include "kinematics/ckt.hpp"
+#include "kinematics/ckt3.hpp"
 #include "kinematics/corridor.hpp"
 #include "kinematics/water_frame.hpp"
 #include "kinematics/yaw_model.hpp"
@@ -33,14 +35,30 @@ struct Predictor {
   std::optional<store::StoredModel> model;
   std::optional<std::string> table_source;
   double corridor_share = kin::kDefaultCorridorShare;
+  std::optional<double> initial_yaw_rate_dps;        // + clockwise
+  std::shared_ptr<const kin::YawRateCkt> yaw_table;  // avk with an initial yaw rate
 };
+
+// The yaw rate relative to a candidate: + into it, - against it.
+double into_turn_dps(double yaw_rate_dps, double dheading_deg) {
+  return dheading_deg < 0.0 ? -yaw_rate_dps : yaw_rate_dps;
+}
 
 Result<Predictor> predictor_for(Context& ctx, const std::string& vehicle_id,
                                 PredictionMethod method, std::optional<std::int64_t> model_id,
-                                double corridor_share) {
+                                double corridor_share,
+                                std::optional<double> initial_yaw_rate_dps = std::nullopt) {
   Predictor p;
   p.method = method;
   p.corridor_share = corridor_share;
+  p.initial_yaw_rate_dps = initial_yaw_rate_dps;
+  if (method == PredictionMethod::avk && initial_yaw_rate_dps) {
+    if (auto built = vehicle_yaw_rate_table(ctx, vehicle_id)) {
+      p.yaw_table = std::make_shared<const kin::YawRateCkt>(std::move(built->table));
+      p.table_source = "turns";
+      return p;
+    }
+  }
   if (method == PredictionMethod::avk) {
     auto t = vehicle_table(ctx, vehicle_id);
     if (!t) return t.error();
@@ -66,7 +84,11 @@ Result<kin::PredictedManeuver> predict_one(const Predictor& p, double speed_mps,
     case PredictionMethod::avk: {
       kin::TurnPrediction t;
       try {
-        t = p.fine->query(speed_mps, dheading_deg);
+        t = p.yaw_table ? p.yaw_table
+                              ->query(speed_mps, dheading_deg,
+                                      into_turn_dps(*p.initial_yaw_rate_dps, dheading_deg))
+                              .prediction
+                        : p.fine->query(speed_mps, dheading_deg);
       } catch (const kin::CktRangeError& e) {
         return invalid_argument(speed_field, e.what());
       }
@@ -85,7 +107,11 @@ Result<kin::PredictedManeuver> predict_one(const Predictor& p, double speed_mps,
       const double d = std::abs(dheading_deg);
       std::vector<kin::PredictedStep> steps;
       try {
-        steps = kin::predict(m, kin::steady_history(m, 0.0), d, {0.0, 0.0, 0.0}, speed_mps, o);
+        const double rate =
+            p.initial_yaw_rate_dps ? into_turn_dps(*p.initial_yaw_rate_dps, dheading_deg) : 0.0;
+        const kin::YawHistory h =
+            rate == 0.0 ? kin::steady_history(m, 0.0) : kin::turning_history(m, 0.0, rate);
+        steps = kin::predict(m, h, d, {0.0, 0.0, 0.0}, speed_mps, o);
       } catch (const std::invalid_argument& e) {
         return internal_error("model " + std::to_string(p.model->id) + ": " + e.what());
       }
@@ -154,7 +180,11 @@ Result<ManeuverEvaluation> evaluate_maneuvers(Context& ctx, const ManeuverQuery&
   if (auto e = check(q)) return *e;
   auto current = query_current(ctx, q.vehicle_id, q.current, q.live_current, "/current");
   if (!current) return current.error();
-  auto pred = predictor_for(ctx, q.vehicle_id, q.method, q.model_id, q.corridor_share);
+  if (q.initial_yaw_rate_dps &&
+      (!finite(*q.initial_yaw_rate_dps) || std::abs(*q.initial_yaw_rate_dps) > 90.0))
+    return invalid_argument("/initial_yaw_rate_dps", "must be a yaw rate within [-90, 90] deg/s");
+  auto pred = predictor_for(ctx, q.vehicle_id, q.method, q.model_id, q.corridor_share,
+                            q.initial_yaw_rate_dps);
   if (!pred) return pred.error();
   ManeuverEvaluation out;
   out.query = q;

@@ -37,6 +37,10 @@ struct ManeuverQuery {
   // station's live estimate.
   std::optional<kinematics::WaterCurrent> current;
   bool live_current = false;
+  // The yaw rate now (deg/s, + clockwise): each candidate starts turning at it (into a starboard
+  // candidate when +, against it when -). avk: the table over initial yaw rate
+  // (yaw_rate_table.hpp); model: the model started at that rate. None: from a steady course.
+  std::optional<double> initial_yaw_rate_dps;
 };
 
 struct ManeuverEvaluation {

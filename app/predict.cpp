@@ -5,6 +5,7 @@
 #include "app/ckt_tables.hpp"
 #include "app/context.hpp"
 #include "app/current.hpp"
+#include "app/yaw_rate_table.hpp"
 #include "kinematics/ckt.hpp"
 #include "kinematics/number_text.hpp"
 #include "kinematics/water_frame.hpp"
@@ -40,6 +41,10 @@ kin::Polyline instantaneous_turn_ray(double speed_mps, double dheading_deg, doub
 
 namespace {
 
+Result<Prediction> from_table(Prediction p, kin::TurnPrediction t);
+
+constexpr double kMaxInitialYawRateDps = 90.0;
+
 std::optional<Error> check(const PredictQuery& q) {
   if (!std::isfinite(q.speed_mps) || !(q.speed_mps > 0.0))
     return invalid_argument("speed", "must be a positive speed (m/s)");
@@ -50,7 +55,42 @@ std::optional<Error> check(const PredictQuery& q) {
     return invalid_argument("x", "a pose needs finite x, y and heading");
   if (!(q.corridor_share > 0.0 && q.corridor_share < 1.0))
     return invalid_argument("corridor", "must be a share within (0, 1)");
+  if (q.initial_yaw_rate_dps && (!std::isfinite(*q.initial_yaw_rate_dps) ||
+                                 std::abs(*q.initial_yaw_rate_dps) > kMaxInitialYawRateDps))
+    return invalid_argument("initial_yaw_rate", "must be a yaw rate within [-90, 90] deg/s");
   return std::nullopt;
+}
+
+// The yaw rate relative to the turn: + into it (towards its side), - against it.
+double into_turn_dps(double yaw_rate_dps, double dheading_deg) {
+  return dheading_deg < 0.0 ? -yaw_rate_dps : yaw_rate_dps;
+}
+
+// avk with an initial yaw rate: the vehicle's table over the initial yaw rate (its turns, the
+// empty cells filled by its latest model), or its imported table as the steady slice.
+Result<Prediction> from_yaw_rate_table(Context& ctx, Prediction p) {
+  const PredictQuery& q = p.query;
+  kin::YawRateCkt table;
+  auto built = vehicle_yaw_rate_table(ctx, q.vehicle_id);
+  if (built) {
+    table = std::move(built->table);
+    p.table_source = "turns";
+  } else {
+    auto t = vehicle_table(ctx, q.vehicle_id);
+    if (!t) return t.error();
+    table = kin::YawRateCkt::from_table(*t->table);
+    p.table_source = to_string(t->source);
+    p.snapshot_id = t->snapshot_id;
+  }
+  try {
+    kin::YawRatePrediction a = table.query(q.speed_mps, q.dheading_deg,
+                                           into_turn_dps(*q.initial_yaw_rate_dps, q.dheading_deg));
+    p.cell_source = kin::to_string(a.source);
+    p.yaw_rate_clamped = a.yaw_rate_clamped;
+    return from_table(std::move(p), std::move(a.prediction));
+  } catch (const kin::CktRangeError& e) {
+    return invalid_argument("speed", e.what());
+  }
 }
 
 Result<Prediction> finish(Prediction p, const std::optional<kin::Corridor>& corridor = {},
@@ -114,6 +154,7 @@ Result<Prediction> predict(Context& ctx, const PredictQuery& q) {
   p.current_source = current->source;
   switch (q.method) {
     case PredictionMethod::avk: {
+      if (q.initial_yaw_rate_dps) return from_yaw_rate_table(ctx, std::move(p));
       auto t = vehicle_table(ctx, q.vehicle_id, q.include_harvested);
       if (!t) return t.error();
       p.table_source = to_string(t->source);
@@ -137,9 +178,15 @@ Result<Prediction> predict(Context& ctx, const PredictQuery& q) {
         return invalid_argument("speed_model",
                                 "model " + std::to_string(m->id) + " has no speed model");
       p.model_id = m->id;
-      p.trajectory =
-          kin::predict_normalized_turn(m->model, q.speed_mps, std::abs(q.dheading_deg),
-                                       q.completion_threshold_deg, 0.0, 400, q.use_speed_model);
+      const double rate =
+          q.initial_yaw_rate_dps ? into_turn_dps(*q.initial_yaw_rate_dps, q.dheading_deg) : 0.0;
+      try {
+        p.trajectory = kin::predict_normalized_turn(m->model, q.speed_mps, std::abs(q.dheading_deg),
+                                                    q.completion_threshold_deg, 0.0, 400,
+                                                    q.use_speed_model, rate);
+      } catch (const std::invalid_argument& e) {
+        return invalid_argument("initial_yaw_rate", e.what());
+      }
       if (q.dheading_deg < 0.0) p.trajectory = kin::reflect_x(std::move(p.trajectory));
       return finish(std::move(p));
     }

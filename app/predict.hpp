@@ -38,6 +38,11 @@ struct PredictQuery {
   bool live_current = false;  // the current: the station's latest estimate for the vehicle
   // avk: the vehicle's table of collection and harvested turns, not collection turns alone.
   bool include_harvested = false;
+  // The yaw rate when the turn is commanded (deg/s, + clockwise, as headings turn; for a right
+  // turn + is into the turn, for a left turn -). None: from a steady course (the 2-D table).
+  // avk: the vehicle's table over initial yaw rate (yaw_rate_table.hpp); model: the model started
+  // turning at that rate.
+  std::optional<double> initial_yaw_rate_dps;
 };
 
 struct Prediction {
@@ -64,6 +69,10 @@ struct Prediction {
   // The current whose drift was added, and where it came from ("query" or "live").
   std::optional<kinematics::WaterCurrent> current;
   std::optional<std::string> current_source;
+  // avk with an initial yaw rate: where the answer came from (measured, model or interpolated)
+  // and whether the rate lay outside the table's yaw-rate range (answered by the nearest slice).
+  std::optional<std::string> cell_source;
+  std::optional<bool> yaw_rate_clamped;
 };
 
 // invalid_argument names the parameter (speed, dheading, model, speed_model, current); not_found

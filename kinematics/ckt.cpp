@@ -48,10 +48,6 @@ std::optional<std::size_t> nearest_index(const std::vector<double>& values, doub
 // A profile blended from several cells with weights; reconstructs the trajectory of a turn of
 // `dheading_deg` from it. Breakpoints are the union of the sources' breakpoints so one source
 // with weight 1 reproduces its trajectory exactly.
-struct WeightedProfile {
-  const HeadingProfile* profile;
-  double weight;
-};
 
 Polyline reconstruct(const std::vector<WeightedProfile>& sources, double length_m,
                      double dheading_deg) {
@@ -82,19 +78,6 @@ Polyline reconstruct(const std::vector<WeightedProfile>& sources, double length_
   return out;
 }
 
-// A blend's trajectory as a query answers it: reconstructed, then thinned to the table's
-// tolerance (the blend has the union of its sources' vertices) keeping the final segment, which
-// carries the goal heading. Ckt::query and MaterializedCkt::query both answer with it.
-Polyline blended_trajectory(const std::vector<WeightedProfile>& sources, double length_m,
-                            double dheading_deg, double pwl_epsilon_m) {
-  Polyline full = reconstruct(sources, length_m, dheading_deg);
-  const Point last = full.back();
-  full.pop_back();
-  Polyline out = full.size() > 2 ? simplify_polyline(full, pwl_epsilon_m) : full;
-  out.push_back(last);
-  return out;
-}
-
 // Lead-in plus constant-radius arc fitted to one cell's advance and transfer, used to carry a
 // cell's statistics to heading changes outside the table.
 AdvanceTransfer arc_model_extrapolate(const CktCell& c, double dheading_deg) {
@@ -106,6 +89,19 @@ AdvanceTransfer arc_model_extrapolate(const CktCell& c, double dheading_deg) {
 }
 
 }  // namespace
+
+// A blend's trajectory as a query answers it: reconstructed, then thinned to the table's
+// tolerance (the blend has the union of its sources' vertices) keeping the final segment, which
+// carries the goal heading.
+Polyline blended_trajectory(const std::vector<WeightedProfile>& sources, double length_m,
+                            double dheading_deg, double pwl_epsilon_m) {
+  Polyline full = reconstruct(sources, length_m, dheading_deg);
+  const Point last = full.back();
+  full.pop_back();
+  Polyline out = full.size() > 2 ? simplify_polyline(full, pwl_epsilon_m) : full;
+  out.push_back(last);
+  return out;
+}
 
 const char* to_string(MeanKind k) {
   return k == MeanKind::arc_length ? "arc_length" : "x_grid";
@@ -185,19 +181,21 @@ std::optional<TableFrame> table_frame_from_string(const std::string& s) {
   return std::nullopt;
 }
 
+CktGrid grid_of(const std::vector<TurnSequence>& turns) {
+  std::vector<double> speeds, dheadings;
+  for (const auto& t : turns) {
+    if (t.meta().status != TurnStatus::ok) continue;
+    speeds.push_back(t.meta().commanded_speed_mps);
+    dheadings.push_back(std::abs(t.meta().goal_dheading_deg));
+  }
+  return CktGrid{distinct_sorted(speeds, 0.01), distinct_sorted(dheadings, 0.1)};
+}
+
 Ckt Ckt::build(const std::vector<TurnSequence>& turns, const CktOptions& options,
                std::optional<CktGrid> grid, CktBuildReport* report) {
   CktBuildReport local;
   CktBuildReport& rep = report ? *report : local;
-  if (!grid) {
-    std::vector<double> speeds, dheadings;
-    for (const auto& t : turns) {
-      if (t.meta().status != TurnStatus::ok) continue;
-      speeds.push_back(t.meta().commanded_speed_mps);
-      dheadings.push_back(std::abs(t.meta().goal_dheading_deg));
-    }
-    grid = CktGrid{distinct_sorted(speeds, 0.01), distinct_sorted(dheadings, 0.1)};
-  }
+  if (!grid) grid = grid_of(turns);
   for (double d : grid->dheadings_deg) {
     if (!(d > 0.0 && d <= 180.0)) {
       throw std::invalid_argument("CKT heading change " + fmt(d) + " deg is outside (0, 180]");

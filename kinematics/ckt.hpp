@@ -171,8 +171,24 @@ class Ckt {
   std::vector<CktCell> cells_;
 };
 
+// The grid Ckt::build uses without one: the distinct commanded speeds (0.01 m/s) and |goal|
+// heading changes (0.1 deg) of the ok turns.
+CktGrid grid_of(const std::vector<TurnSequence>& turns);
+
 // Derives the step-function heading profile of a normalised trajectory.
 HeadingProfile heading_profile(const Polyline& trajectory, double goal_dheading_deg);
+
+// A heading profile with its weight in a blend.
+struct WeightedProfile {
+  const HeadingProfile* profile;
+  double weight;
+};
+// The trajectory of a turn of dheading_deg (>= 0) whose heading profile is the weighted blend of
+// the sources' (over fraction of arc length) and whose length is length_m, thinned to
+// pwl_epsilon_m keeping the final segment on the goal heading. Ckt::query, MaterializedCkt::query
+// and the initial-yaw-rate table (ckt3.hpp) all blend with it.
+Polyline blended_trajectory(const std::vector<WeightedProfile>& sources, double length_m,
+                            double dheading_deg, double pwl_epsilon_m);
 
 // The fine table guidance uses (default 0.1 m/s x 1 deg), computed once so that a lookup is an
 // index computation. Between its rows and columns a query blends the neighbouring fine cells the

@@ -239,9 +239,14 @@ std::string ckt_to_json_string(const Ckt& table) {
 Ckt ckt_from_json(const json& doc) {
   const std::string root;
   if (!doc.is_object()) Reader::fail("/", "the CKT document must be a JSON object");
-  Reader::only_keys(
-      doc, root,
-      {"format", "schema_version", "vehicle", "created_utc", "frame", "options", "grid", "cells"});
+  Reader::only_keys(doc, root,
+                    {"format", "schema_version", "vehicle", "created_utc", "frame", "options",
+                     "grid", "cells", "yaw_rate_slices"});
+  // The slices are read by yaw_rate_ckt_from_json (ckt3_file.hpp); a 2-D reader skips them.
+  if (doc.contains("yaw_rate_slices") && doc["schema_version"].is_number_integer() &&
+      doc["schema_version"].get<long long>() < 4)
+    Reader::fail("/yaw_rate_slices",
+                 "not a field of schema_version " + doc["schema_version"].dump() + " (needs 4)");
   if (Reader::string(doc, root, "format") != kCktFormatName) {
     Reader::fail("/format", std::string("not a CKT file: format must be '") + kCktFormatName + "'");
   }
@@ -413,6 +418,10 @@ Ckt ckt_from_json(const json& doc) {
 }
 
 Ckt parse_ckt_json(std::string_view text) {
+  return ckt_from_json(parse_ckt_document(text));
+}
+
+json parse_ckt_document(std::string_view text) {
   json doc;
   try {
     doc = parse_json_bounded(text);
@@ -424,7 +433,7 @@ Ckt parse_ckt_json(std::string_view text) {
                      "CKT file is not valid JSON at line " + std::to_string(e.line()) + " column " +
                          std::to_string(e.column()) + ": " + e.reason());
   }
-  return ckt_from_json(doc);
+  return doc;
 }
 
 std::string ckt_to_csv(const Ckt& table) {

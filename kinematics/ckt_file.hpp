@@ -16,6 +16,7 @@ inline constexpr const char* kCktFormatName = "avk-ckt";
 // Version 2 adds the mean kind (options/mean_kind) and each cell's corridor and short_of_goal
 // flag, all optional; version 1 files still load (their mean kind is x_grid, they have no
 // corridors).
+// Version 4 adds the optional yaw_rate_slices (the table over initial yaw rate, ckt3_file.hpp).
 inline constexpr int kCktSchemaVersion = 4;
 inline constexpr int kCktOldestSchemaVersion = 1;
 
@@ -35,6 +36,8 @@ std::string ckt_to_json_string(const Ckt& table);  // pretty-printed, trailing n
 // error) for a corrupt, incomplete or wrong-version document.
 Ckt ckt_from_json(const nlohmann::json& doc);
 Ckt parse_ckt_json(std::string_view text);
+// The JSON of a CKT file's text, with its syntax errors reported as parse_ckt_json reports them.
+nlohmann::json parse_ckt_document(std::string_view text);
 
 // One row per trajectory vertex: speed_mps,dheading_deg,vertex_index,x_m,y_m.
 std::string ckt_to_csv(const Ckt& table);

@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -60,6 +61,11 @@ constexpr std::array<const char*, 4> kOptionalKeys = {
     "source",
     "quality",
 };
+// Optional meta doubles: absent when the turn has none, so older documents load unchanged.
+constexpr std::array<std::pair<const char*, std::optional<double> TurnMeta::*>, 1>
+    kOptionalMetaDoubles = {{
+        {"initial_yaw_rate_dps", &TurnMeta::initial_yaw_rate_dps},
+    }};
 
 // A turn document is an object of arrays of arrays; anything deeper is not a turn, and refusing
 // it while parsing keeps a hostile "[[[[..." from building a huge tree first.
@@ -129,6 +135,8 @@ json to_json(const TurnSequence& turn) {
   }
   if (m.source != TurnSource::collection) j["source"] = to_string(m.source);
   if (m.quality) j["quality"] = *m.quality;
+  for (const auto& [name, ptr] : kOptionalMetaDoubles)
+    if (m.*ptr) j[name] = *(m.*ptr);
   j["warnings"] = turn.warnings();
   json fields = json::array();
   for (const char* f : kSampleFields)
@@ -161,6 +169,8 @@ TurnSequence turn_from_json(const json& j) {
     for (const char* k : kKeys)
       known = known || item.key() == k;
     for (const char* k : kOptionalKeys)
+      known = known || item.key() == k;
+    for (const auto& [k, ptr] : kOptionalMetaDoubles)
       known = known || item.key() == k;
     if (!known) throw ParseError(json_member_pointer(item.key()), 0, "unknown key");
   }
@@ -199,6 +209,10 @@ TurnSequence turn_from_json(const json& j) {
     m.quality = read_double(*it, "/quality", 0);
     if (*m.quality < 0.0 || *m.quality > 1.0)
       throw ParseError("/quality", 0, "quality must be within 0..1");
+  }
+  for (const auto& [name, ptr] : kOptionalMetaDoubles) {
+    if (const auto it = j.find(name); it != j.end())
+      m.*ptr = read_double(*it, json_member_pointer(name), 0);
   }
 
   const json& warnings = member(j, "warnings");

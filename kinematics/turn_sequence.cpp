@@ -146,6 +146,7 @@ TurnSequence TurnSequence::normalized() const {
   const Pose start{samples_.front().x_m, samples_.front().y_m, meta_.initial_heading_deg};
   const TurnSide s = side();
   const double mirror = s == TurnSide::left ? -1.0 : 1.0;
+  if (out.meta_.initial_yaw_rate_dps) *out.meta_.initial_yaw_rate_dps *= mirror;
   double unwrapped = angle180_deg(samples_.front().heading_deg - meta_.initial_heading_deg);
   for (std::size_t i = 0; i < samples_.size(); ++i) {
     if (i > 0) unwrapped += angle180_deg(samples_[i].heading_deg - samples_[i - 1].heading_deg);

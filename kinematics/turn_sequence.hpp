@@ -52,6 +52,10 @@ struct TurnMeta {
   // Harvested turns only: 0..1, how steady the vehicle was before the step times how cleanly
   // the turn completed (mission/turn_harvester.hpp, turn_quality).
   std::optional<double> quality;
+  // Smoothed yaw rate (ConditionSet moving average) when the turn's heading was commanded, deg/s.
+  // Raw turn: + clockwise. Normalised turn: reflected with the turn, + into the turn (towards
+  // its side), - against it. Empty for turns recorded before it was measured (read as 0).
+  std::optional<double> initial_yaw_rate_dps;
   friend bool operator==(const TurnMeta&, const TurnMeta&) = default;
 };
 

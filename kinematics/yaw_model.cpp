@@ -63,6 +63,35 @@ YawHistory steady_history(const YawModel& m, double course_deg) {
   return {std::vector<double>(m.warmup(), course_deg), std::vector<double>(m.warmup(), course_deg)};
 }
 
+YawHistory turning_history(const YawModel& m, double course_deg, double yaw_rate_dps) {
+  check_model(m);
+  const std::size_t n = m.warmup();
+  const double step = yaw_rate_dps * m.dt_s();
+  YawHistory h{std::vector<double>(n), std::vector<double>(n)};
+  for (std::size_t j = 0; j < n; ++j)
+    h.heading_deg[j] = course_deg - step * static_cast<double>(n - 1 - j);
+  double a_sum = 0.0;
+  for (double a : m.error_coeffs)
+    a_sum += a;
+  // With a constant error e the next heading is linear in e: psi(k+1) = rest + a_sum e. Choose e
+  // so that psi(k+1) - psi(k) = step.
+  double rest = 0.0;
+  const std::size_t k = n - 1;
+  for (std::size_t i = 0; i < m.heading_coeffs.size(); ++i) {
+    rest += m.form == YawModelForm::thesis
+                ? m.heading_coeffs[i] * h.heading_deg[k - i]
+                : m.heading_coeffs[i] * (h.heading_deg[k - i] - h.heading_deg[k - i - 1]);
+  }
+  const double wanted = m.form == YawModelForm::thesis ? course_deg + step : step;
+  if (std::abs(a_sum) < 1e-12) {
+    throw std::invalid_argument("turning_history: the model's error coefficients sum to zero");
+  }
+  const double e = (wanted - rest) / a_sum;
+  for (std::size_t j = 0; j < n; ++j)
+    h.desired_heading_deg[j] = h.heading_deg[j] + e;
+  return h;
+}
+
 YawHistory history_at(const YawModel& m, const IdentSegment& s, std::size_t k) {
   if (k + 1 < m.warmup() || k >= s.size())
     throw std::invalid_argument("history_at: sample " + std::to_string(k) + " has no full history");
@@ -122,8 +151,12 @@ std::vector<PredictedStep> predict(const YawModel& m, const YawHistory& history,
 
 Polyline predict_normalized_turn(const YawModel& m, double speed_mps, double dheading_deg,
                                  double completion_threshold_deg, double course_deg,
-                                 std::size_t max_steps, bool use_speed_model) {
-  const YawHistory h = steady_history(m, course_deg);
+                                 std::size_t max_steps, bool use_speed_model,
+                                 double initial_yaw_rate_dps) {
+  // Into the turn is clockwise for a right turn, anticlockwise for a left one.
+  const double raw_rate_dps = dheading_deg < 0.0 ? -initial_yaw_rate_dps : initial_yaw_rate_dps;
+  const YawHistory h = initial_yaw_rate_dps == 0.0 ? steady_history(m, course_deg)
+                                                   : turning_history(m, course_deg, raw_rate_dps);
   PredictOptions o;
   o.steps = max_steps;
   o.completion_threshold_deg = completion_threshold_deg;

@@ -56,6 +56,11 @@ struct YawHistory {
 
 // A steady course: heading and desired heading equal to course for the whole history.
 YawHistory steady_history(const YawModel& m, double course_deg);
+// A steady turn at yaw_rate_dps (+ clockwise) ending on course_deg: the headings step by
+// yaw_rate x dt and the desired heading leads them by the constant error under which the model
+// holds that rate, so a prediction from it starts turning at yaw_rate_dps. Throws
+// std::invalid_argument for a model whose error coefficients sum to zero (it cannot hold a rate).
+YawHistory turning_history(const YawModel& m, double course_deg, double yaw_rate_dps);
 // The history ending at sample k of a segment (k >= warmup() - 1).
 YawHistory history_at(const YawModel& m, const IdentSegment& s, std::size_t k);
 
@@ -87,10 +92,13 @@ std::vector<PredictedStep> predict(const YawModel& m, const YawHistory& history,
 // for the invariant form; the thesis form starts on `course_deg` and is rotated back to north,
 // which is where its lack of invariance shows).
 // With use_speed_model (and a model that has one) the speed follows the speed model towards
-// speed_mps instead of staying constant.
+// speed_mps instead of staying constant. A nonzero initial_yaw_rate_dps (+ into the turn, -
+// against it) starts the model turning at that rate (turning_history) instead of on a steady
+// course.
 Polyline predict_normalized_turn(const YawModel& m, double speed_mps, double dheading_deg,
                                  double completion_threshold_deg, double course_deg = 0.0,
-                                 std::size_t max_steps = 400, bool use_speed_model = false);
+                                 std::size_t max_steps = 400, bool use_speed_model = false,
+                                 double initial_yaw_rate_dps = 0.0);
 
 // --- identification ---------------------------------------------------------------------
 

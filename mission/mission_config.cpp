@@ -149,14 +149,27 @@ MissionConfig parse_mission_config(std::string_view json_text, double max_speed_
       }
       r.integer("repeats", c.turn_array.repeats, 1, kMaxMissionRepeats);
       r.integer("max_attempts", c.turn_array.max_attempts, 1, 1000);
+      if (ta->is_object() && ta->contains("initial_yaw_rates_dps")) {
+        c.turn_array.initial_yaw_rates_dps =
+            number_list(r, "initial_yaw_rates_dps", -kMaxInitialYawRateDps, kMaxInitialYawRateDps,
+                        false, "deg/s", kMaxMissionYawRates, kMinYawRateSpacingDps);
+      }
+      r.number("initial_yaw_rate_band_dps", c.turn_array.initial_yaw_rate_band_dps, 0.0, 20.0,
+               false, true);
+      r.number("pre_turn_dheading_deg", c.turn_array.pre_turn_dheading_deg, 0.0, 180.0, false,
+               true);
+      r.number("initial_yaw_rate_timeout_s", c.turn_array.initial_yaw_rate_timeout_s, 0.0, 3600.0,
+               false, true);
       r.finish();
       // Each axis is bounded above, so this product cannot overflow.
-      const std::size_t planned = c.turn_array.speeds_mps.size() *
-                                  c.turn_array.dheadings_deg.size() *
-                                  static_cast<std::size_t>(c.turn_array.repeats);
+      const std::size_t planned =
+          c.turn_array.speeds_mps.size() * c.turn_array.dheadings_deg.size() *
+          std::max<std::size_t>(1, c.turn_array.initial_yaw_rates_dps.size()) *
+          static_cast<std::size_t>(c.turn_array.repeats);
       if (planned > kMaxPlannedTurns) {
         r.error("/turn_array", "plans " + std::to_string(planned) +
-                                   " turns (speeds x heading changes x repeats); at most " +
+                                   " turns (speeds x heading changes x initial yaw rates x "
+                                   "repeats); at most " +
                                    std::to_string(kMaxPlannedTurns));
       }
     }

@@ -27,12 +27,15 @@ enum class MissionKind { turns, persistent_excitation };
 inline constexpr std::size_t kMaxMissionSpeeds = 20;
 inline constexpr std::size_t kMaxMissionDheadings = 36;
 inline constexpr int kMaxMissionRepeats = 100;
-inline constexpr std::size_t kMaxPlannedTurns = 2000;  // speeds x heading changes x repeats
+inline constexpr std::size_t kMaxMissionYawRates = 9;
+inline constexpr std::size_t kMaxPlannedTurns = 2000;  // speeds x dheadings x yaw rates x repeats
 inline constexpr std::size_t kMaxRegionVertices = 256;
 inline constexpr double kMaxRegionExtentM = 10000.0;  // each side of the bounding box
 // Two speeds (heading changes) closer than this would fill the same table cell: a duplicate.
 inline constexpr double kMinSpeedSpacingMps = 0.05;
 inline constexpr double kMinDheadingSpacingDeg = 0.5;
+inline constexpr double kMinYawRateSpacingDps = 0.5;
+inline constexpr double kMaxInitialYawRateDps = 60.0;
 
 struct TurnArray {
   std::vector<double> speeds_mps;
@@ -42,6 +45,13 @@ struct TurnArray {
   // A turn aborted by containment or a link loss is re-queued; after this many attempts it is
   // given up (and reported) so that a region too small for a turn cannot loop forever.
   int max_attempts = 10;
+  // Turns that start while the vehicle is already turning (issue 17, thesis §6.2): signed target
+  // yaw rates at the moment the turn is commanded, + into the coming turn, - against it, 0 the
+  // ordinary steady start. Empty: only steady starts.
+  std::vector<double> initial_yaw_rates_dps;
+  double initial_yaw_rate_band_dps = 1.5;    // the turn starts when |rate - target| <= this
+  double pre_turn_dheading_deg = 45.0;       // the heading change that builds up the yaw rate
+  double initial_yaw_rate_timeout_s = 30.0;  // the band not entered in this long: aborted
 };
 
 struct ConditionSetConfig {

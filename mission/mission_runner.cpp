@@ -184,8 +184,33 @@ void MissionRunner::tick(double now_s) {
   if (holding_ || !last_nav_) return;
 
   // The helm acts on the latest navigation, as pHelmIvP does at its AppTick.
-  if (mode_ == HelmMode::conditioning && condition_set_->conditions_set()) start_turn(*last_nav_);
-  if (mode_ == HelmMode::conditioning &&
+  if (mode_ == HelmMode::conditioning && !pre_turn_side_ && condition_set_->conditions_set()) {
+    if (queue_.front().initial_yaw_rate_dps != 0.0) {
+      start_pre_turn(*last_nav_);
+    } else {
+      start_turn(*last_nav_);
+    }
+  }
+  if (mode_ == HelmMode::conditioning && pre_turn_side_) {
+    if (pre_turn_in_band()) {
+      start_turn(*last_nav_);
+    } else if (last_nav_->t_s - pre_turn_start_s_ > config_.turn_array.initial_yaw_rate_timeout_s) {
+      const std::optional<double> rate = condition_set_->yaw_rate_dps();
+      end_condition_set(last_nav_->t_s, ConditionSetEpisode::Outcome::timeout);
+      TurnTask& task = queue_.front();
+      ++task.attempts;
+      event(now_s, EventKind::condition_set_timeout,
+            cell_name(task) + ": initial yaw rate " + num(task.initial_yaw_rate_dps, 1) +
+                " deg/s not reached within " +
+                num(config_.turn_array.initial_yaw_rate_timeout_s, 0) + " s (last " +
+                (rate ? num(*rate, 1) : std::string("none")) + " deg/s; attempt " +
+                std::to_string(task.attempts) + ")");
+      TurnOutcome no_turn;  // the turn was never commanded: nothing was recorded
+      give_up_or_requeue(now_s, no_turn);
+      start_conditioning(*last_nav_);
+    }
+  }
+  if (mode_ == HelmMode::conditioning && !pre_turn_side_ &&
       last_nav_->t_s - condition_set_start_s_ > config_.condition_set.timeout_s) {
     end_condition_set(last_nav_->t_s, ConditionSetEpisode::Outcome::timeout);
     TurnTask& task = queue_.front();
@@ -325,6 +350,7 @@ void MissionRunner::end_condition_set(double t_s, ConditionSetEpisode::Outcome o
   const ConditionSetEpisode e{condition_set_start_s_, t_s, condition_set_->target_speed_mps(),
                               outcome};
   condition_set_.reset();
+  pre_turn_side_.reset();
   for (auto* o : observers_)
     o->on_condition_set(e);
 }
@@ -344,20 +370,41 @@ const kinematics::Ckt* MissionRunner::table_for_auto() {
   return nullptr;
 }
 
+TurnSide MissionRunner::side_for(const TurnTask& task, const vehicle::NavSample& s) {
+  if (task.side) return *task.side;
+  const SideChoice c =
+      choose_side(container_, {s.x_m, s.y_m, s.heading_deg}, task.speed_mps, task.dheading_deg,
+                  table_for_auto(), next_auto_preference_, options_.direction);
+  next_auto_preference_ = c.side == TurnSide::right ? TurnSide::left : TurnSide::right;
+  return c.side;
+}
+
+void MissionRunner::start_pre_turn(const vehicle::NavSample& s) {
+  const TurnTask& task = queue_.front();
+  pre_turn_side_ = side_for(task, s);
+  pre_turn_start_s_ = s.t_s;
+  // Into the coming turn: the pre-turn turns to the turn's side; against it: to the other side.
+  const double turn_sign = *pre_turn_side_ == TurnSide::right ? 1.0 : -1.0;
+  const double sign = task.initial_yaw_rate_dps > 0.0 ? turn_sign : -turn_sign;
+  desired_heading_deg_ =
+      kinematics::wrap360_deg(s.heading_deg + sign * config_.turn_array.pre_turn_dheading_deg);
+}
+
+bool MissionRunner::pre_turn_in_band() const {
+  const std::optional<double> rate = condition_set_->yaw_rate_dps();
+  if (!rate) return false;
+  const double into_turn = *pre_turn_side_ == TurnSide::right ? *rate : -*rate;
+  return std::abs(into_turn - queue_.front().initial_yaw_rate_dps) <=
+         config_.turn_array.initial_yaw_rate_band_dps;
+}
+
 void MissionRunner::start_turn(const vehicle::NavSample& s) {
   const double cs_time = s.t_s - condition_set_start_s_;
   turn_start_heading_error_deg_ = condition_set_->heading_error_deg();
   turn_start_yaw_rate_dps_ = condition_set_->yaw_rate_dps();
-  end_condition_set(s.t_s, ConditionSetEpisode::Outcome::set);
   TurnTask& task = queue_.front();
-  TurnSide side = task.side.value_or(TurnSide::right);
-  if (!task.side) {
-    const SideChoice c =
-        choose_side(container_, {s.x_m, s.y_m, s.heading_deg}, task.speed_mps, task.dheading_deg,
-                    table_for_auto(), next_auto_preference_, options_.direction);
-    side = c.side;
-    next_auto_preference_ = side == TurnSide::right ? TurnSide::left : TurnSide::right;
-  }
+  const TurnSide side = pre_turn_side_ ? *pre_turn_side_ : side_for(task, s);
+  end_condition_set(s.t_s, ConditionSetEpisode::Outcome::set);
   const double signed_dheading = side == TurnSide::left ? -task.dheading_deg : task.dheading_deg;
   turn_.emplace(s, task.speed_mps, signed_dheading, config_.completion);
   turn_start_s_ = s.t_s;
@@ -379,6 +426,7 @@ void MissionRunner::finish_turn(const vehicle::NavSample& s, Completion how) {
   out.condition_set_time_s = turn_condition_set_time_s_;
   out.start_heading_error_deg = turn_start_heading_error_deg_;
   out.start_yaw_rate_dps = turn_start_yaw_rate_dps_;
+  out.raw.meta().initial_yaw_rate_dps = turn_start_yaw_rate_dps_;
   turn_.reset();
   const auto anomaly = turn_anomaly(out.raw, {config_.completion, options_.max_sample_gap_s});
   CellProgress* cell = cell_of(out.task);
@@ -435,6 +483,7 @@ void MissionRunner::abort_turn(double t_s, const std::string& reason, bool count
   out.condition_set_time_s = turn_condition_set_time_s_;
   out.start_heading_error_deg = turn_start_heading_error_deg_;
   out.start_yaw_rate_dps = turn_start_yaw_rate_dps_;
+  out.raw.meta().initial_yaw_rate_dps = turn_start_yaw_rate_dps_;
   turn_.reset();
   CellProgress* cell = cell_of(task);
   if (cell) {

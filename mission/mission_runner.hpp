@@ -85,6 +85,11 @@ class MissionRunner {
   void leave_containment(const vehicle::NavSample& s);
   void start_conditioning(const vehicle::NavSample& s);
   void end_condition_set(double t_s, ConditionSetEpisode::Outcome outcome);
+  // A turn with a nonzero target yaw rate: once the conditions are set, a heading change that
+  // builds up the yaw rate; the turn starts when it enters the target band.
+  void start_pre_turn(const vehicle::NavSample& s);
+  bool pre_turn_in_band() const;
+  kinematics::TurnSide side_for(const TurnTask& task, const vehicle::NavSample& s);
   void start_turn(const vehicle::NavSample& s);
   void finish_turn(const vehicle::NavSample& s, Completion how);
   // count_attempt: containment, timeouts and link loss count towards max_attempts; an
@@ -125,6 +130,8 @@ class MissionRunner {
   std::optional<double> turn_condition_set_time_s_;
   std::optional<double> turn_start_heading_error_deg_;
   std::optional<double> turn_start_yaw_rate_dps_;
+  std::optional<kinematics::TurnSide> pre_turn_side_;  // set while a pre-turn is under way
+  double pre_turn_start_s_ = 0.0;
   std::size_t given_up_ = 0;
   kinematics::TurnSide next_auto_preference_ = kinematics::TurnSide::right;
 

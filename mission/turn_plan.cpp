@@ -10,13 +10,16 @@ std::vector<TurnTask> plan_turns(const MissionConfig& config) {
   std::vector<TurnTask> plan;
   if (config.kind != MissionKind::turns) return plan;
   const auto& ta = config.turn_array;
+  const std::vector<double> rates =
+      ta.initial_yaw_rates_dps.empty() ? std::vector<double>{0.0} : ta.initial_yaw_rates_dps;
   for (double u : ta.speeds_mps) {
     for (double d : ta.dheadings_deg) {
-      for (int r = 0; r < ta.repeats; ++r) {
+      for (std::size_t k = 0; k < rates.size() * static_cast<std::size_t>(ta.repeats); ++k) {
         TurnTask t;
         t.index = plan.size();
         t.speed_mps = u;
         t.dheading_deg = d;
+        t.initial_yaw_rate_dps = rates[k / static_cast<std::size_t>(ta.repeats)];
         switch (ta.direction) {
           case DirectionPolicy::right:
             t.side = kinematics::TurnSide::right;

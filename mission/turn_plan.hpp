@@ -17,11 +17,15 @@ struct TurnTask {
   double dheading_deg = 0.0;                 // magnitude, as the cell
   std::optional<kinematics::TurnSide> side;  // empty: chosen at the turn (direction auto)
   int attempts = 0;                          // aborted tries so far
+  // Target yaw rate when the turn is commanded, deg/s, + into the turn, - against it; 0: from a
+  // steady course (TurnArray::initial_yaw_rates_dps).
+  double initial_yaw_rate_dps = 0.0;
 };
 
-// Speed-major, then heading change, then repeats: at each speed the vehicle settles once and
-// runs every heading change, as in the thesis' Figure 4-1. `alternate` alternates by plan index,
-// so a resumed mission gives each remaining turn the side it had in the original plan.
+// Speed-major, then heading change, then initial yaw rate, then repeats: at each speed the vehicle
+// settles once and runs every heading change, as in the thesis' Figure 4-1. `alternate` alternates
+// by plan index, so a resumed mission gives each remaining turn the side it had in the original
+// plan.
 std::vector<TurnTask> plan_turns(const MissionConfig& config);
 
 struct CellCount {

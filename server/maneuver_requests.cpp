@@ -176,6 +176,7 @@ app::Result<ManeuverRequest> maneuver_request(const json& body, const std::strin
       r.error("/current", R"(expected "live" or {"east_mps": E, "north_mps": N} (m/s))");
     }
   }
+  q.initial_yaw_rate_dps = number(r, "initial_yaw_rate_dps", -90.0, 90.0, false);
   out.path_step_s = number(r, "path_step_s", 0.0, 60.0, false).value_or(out.path_step_s);
   r.finish();
   return checked(std::move(out), errors);

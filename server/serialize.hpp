@@ -18,6 +18,7 @@
 #include "app/models.hpp"
 #include "app/predict.hpp"
 #include "app/vehicles.hpp"
+#include "app/yaw_rate_table.hpp"
 #include "kinematics/yaw_identification.hpp"
 #include "store/store.hpp"
 #include "vehicle/m200.hpp"
@@ -80,6 +81,9 @@ nlohmann::json current_json(const std::string& vehicle_id, const store::StoredCu
 // An estimate from a mission's navigation, with the stored one (null when none).
 nlohmann::json mission_current_json(const app::MissionCurrent& c,
                                     const std::optional<store::StoredCurrent>& stored);
+// The table over initial yaw rate: its coverage per slice, the model's scores where cells were
+// measured, and the schema-4 CKT document (`ckt`).
+nlohmann::json yaw_rate_table_json(const app::YawRateTable& t);
 std::string trajectory_csv(const kinematics::Polyline& line);
 
 // --- maneuvers ------------------------------------------------------------------------------

@@ -2,6 +2,7 @@
 #include <cmath>
 
 #include "kinematics/angles.hpp"
+#include "kinematics/ckt3_file.hpp"
 #include "kinematics/number_text.hpp"
 #include "kinematics/turn_json.hpp"
 #include "kinematics/yaw_model_json.hpp"
@@ -303,6 +304,10 @@ json prediction_json(const app::Prediction& p) {
     j["table_source"] = p.table_source ? json(*p.table_source) : json();
     j["snapshot_id"] = optional_json(p.snapshot_id);
     j["short_of_goal"] = p.short_of_goal;
+    if (q.initial_yaw_rate_dps) {
+      j["cell_source"] = p.cell_source ? json(*p.cell_source) : json();
+      j["yaw_rate_clamped"] = p.yaw_rate_clamped ? json(*p.yaw_rate_clamped) : json();
+    }
     if (p.corridor) {
       const auto& c = *p.corridor;
       j["corridor"] = {{"share", c.share},
@@ -321,6 +326,7 @@ json prediction_json(const app::Prediction& p) {
   }
   if (p.table_frame) j["table_frame"] = *p.table_frame;
   j["current"] = water_current_json(p.current, p.current_source);
+  if (q.initial_yaw_rate_dps) j["initial_yaw_rate_dps"] = *q.initial_yaw_rate_dps;
   j["trajectory"] = points_json(p.trajectory);
   return j;
 }
@@ -371,6 +377,29 @@ json current_json(const std::string& vehicle_id, const store::StoredCurrent& c) 
   j["revision"] = c.revision;
   j["significant"] = app::current_is_significant(c.estimate);
   return j;
+}
+
+json yaw_rate_table_json(const app::YawRateTable& t) {
+  json coverage = json::array();
+  for (const auto& c : t.coverage) {
+    coverage.push_back({{"initial_yaw_rate_dps", c.initial_yaw_rate_dps},
+                        {"measured", c.measured},
+                        {"model", c.model},
+                        {"empty", c.empty}});
+  }
+  json checks = json::array();
+  for (const auto& c : t.model_checks) {
+    checks.push_back({{"speed_mps", c.speed_mps},
+                      {"dheading_deg", c.dheading_deg},
+                      {"initial_yaw_rate_dps", c.initial_yaw_rate_dps},
+                      {"n_turns", c.n_turns},
+                      {"model_path_m", c.model_error_m},
+                      {"table_path_m", c.table_error_m}});
+  }
+  return {{"model_id", optional_json(t.model_id)},
+          {"coverage", std::move(coverage)},
+          {"model_checks", std::move(checks)},
+          {"ckt", kin::yaw_rate_ckt_to_json(t.table)}};
 }
 
 // --- maneuvers ------------------------------------------------------------------------------

@@ -126,6 +126,7 @@ app::PredictQuery predict_query(const ApiRequest& r, const std::string& vid) {
   q.current = current.current;
   q.live_current = current.live;
   q.include_harvested = include_harvested_param(r);
+  q.initial_yaw_rate_dps = number_param(r, "initial_yaw_rate", -90.0, 90.0);
   return q;
 }
 
@@ -326,6 +327,13 @@ void Station::add_routes() {
     return answer(app::ckt_cell(ctx, p.at("vid"), speed, dheading, include_harvested_param(r)),
                   false,
                   [](const kinematics::CktCell& c) { return json_response(ckt_cell_json(c)); });
+  });
+  get("/api/v1/vehicles/{vid}/ckt/yaw-rate", [&ctx](const ApiRequest& r, const PathParams& p) {
+    app::YawRateTableOptions o;
+    o.model_id = id_param(r, "model");
+    o.check_model = true;
+    return answer(app::vehicle_yaw_rate_table(ctx, p.at("vid"), o), false,
+                  [](const app::YawRateTable& t) { return json_response(yaw_rate_table_json(t)); });
   });
   get("/api/v1/vehicles/{vid}/ckt/export", [&ctx](const ApiRequest& r, const PathParams& p) {
     const auto it = r.query.find("format");

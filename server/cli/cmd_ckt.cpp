@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <ctime>
 #include <nlohmann/json.hpp>
 #include <ostream>
@@ -9,7 +10,9 @@
 #include "app/context.hpp"
 #include "app/predict.hpp"
 #include "app/utc_time.hpp"
+#include "app/yaw_rate_table.hpp"
 #include "kinematics/ckt.hpp"
+#include "kinematics/ckt3_file.hpp"
 #include "kinematics/ckt_file.hpp"
 #include "server/cli/app_error.hpp"
 #include "server/cli/args.hpp"
@@ -144,12 +147,53 @@ int query(const Args& a, Io& io) {
   return 0;
 }
 
+// `avk ckt yaw-rate`: the vehicle's table over initial yaw rate as a schema-4 CKT file, with its
+// coverage and (with a model) the model's path error where cells were measured, on stderr.
+int yaw_rate(const std::vector<std::string>& rest, Io& io) {
+  const Args a(rest, {"db", "vehicle", "model", "out"}, {"no-model"}, {"yaw-rate"});
+  app::Context ctx(a.require("db"));
+  app::YawRateTableOptions o;
+  for (const std::string& v : a.all("yaw-rate")) {
+    try {
+      std::size_t used = 0;
+      const double r = std::stod(v, &used);
+      if (used != v.size() || !std::isfinite(r)) throw std::invalid_argument(v);
+      if (!o.yaw_rates_dps) o.yaw_rates_dps.emplace();
+      o.yaw_rates_dps->push_back(r);
+    } catch (const std::exception&) {
+      throw UsageError("--yaw-rate expects a number (deg/s, + into the turn), got '" + v + "'");
+    }
+  }
+  o.fill_with_model = !a.flag("no-model");
+  o.model_id = model_option(a);
+  o.check_model = o.fill_with_model;
+  const std::string vehicle = vehicle_of(a, ctx.db(), {});
+  const app::YawRateTable t = value_or_fail(app::vehicle_yaw_rate_table(ctx, vehicle, o));
+  kin::YawRateCkt table = t.table;
+  emit(a, io, kin::yaw_rate_ckt_to_json_string(table));
+  io.err << "ckt: vehicle '" << vehicle << "', " << table.slices().size()
+         << " initial yaw rate slices";
+  if (t.model_id) io.err << ", empty cells filled by model " << *t.model_id;
+  io.err << "\n";
+  for (const auto& c : t.coverage) {
+    io.err << "  slice " << c.initial_yaw_rate_dps << " deg/s: " << c.measured << " measured, "
+           << c.model << " model, " << c.empty << " empty\n";
+  }
+  for (const auto& c : t.model_checks) {
+    io.err << "  cell " << c.speed_mps << " m/s " << c.dheading_deg << " deg "
+           << c.initial_yaw_rate_dps << " deg/s (" << c.n_turns << " turns): model path error "
+           << c.model_error_m << " m, table " << c.table_error_m << " m\n";
+  }
+  return 0;
+}
+
 }  // namespace
 
 int cmd_ckt(const std::vector<std::string>& args, Io& io) {
-  if (args.empty()) throw UsageError("expected 'ckt build|export|import|query'");
+  if (args.empty()) throw UsageError("expected 'ckt build|export|import|query|yaw-rate'");
   const std::string sub = args[0];
   const std::vector<std::string> rest(args.begin() + 1, args.end());
+  if (sub == "yaw-rate") return yaw_rate(rest, io);
   const std::set<std::string> build_values = {
       "turns", "db", "out", "format", "vehicle", "vehicle-length", "fit", "epsilon"};
   if (sub == "build") {

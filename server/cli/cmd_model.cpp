@@ -289,7 +289,7 @@ int compare(const std::vector<std::string>& rest, Io& io) {
 int predict(const std::vector<std::string>& rest, Io& io) {
   const Args a(rest,
                {"db", "speed", "dheading", "method", "model", "x", "y", "heading", "format",
-                "vehicle", "threshold", "corridor", "current"},
+                "vehicle", "threshold", "corridor", "current", "initial-yaw-rate"},
                {"speed-model"});
   app::Context ctx(a.require("db"));
   app::PredictQuery q;
@@ -317,6 +317,7 @@ int predict(const std::vector<std::string>& rest, Io& io) {
   const CurrentOption current = current_option(a);
   q.current = current.current;
   q.live_current = current.live;
+  q.initial_yaw_rate_dps = a.number("initial-yaw-rate");
   q.vehicle_id = vehicle_of(a, ctx.db(), {});
   const app::Prediction p = value_or_fail(app::predict(ctx, q));
   io.out << (format == "csv" ? trajectory_csv(p.trajectory) : prediction_json(p).dump() + "\n");

@@ -182,3 +182,40 @@ TEST(MissionConfig, CompletionRuleFieldsAreReadAndChecked) {
             (std::vector<std::string>{"/constant_heading/completion_fraction",
                                       "/constant_heading/completion_floor_deg"}));
 }
+
+TEST(MissionConfig, InitialYawRateAxis) {
+  json doc = json::parse(example_text("thesis-fig4-1.json"));
+  doc["turn_array"]["initial_yaw_rates_dps"] = {-10, 0, 10};
+  doc["turn_array"]["initial_yaw_rate_band_dps"] = 2.0;
+  doc["turn_array"]["pre_turn_dheading_deg"] = 60;
+  const MissionConfig c = parse_mission_config(doc.dump(), 2.0);
+  EXPECT_EQ(c.turn_array.initial_yaw_rates_dps, (std::vector<double>{-10, 0, 10}));
+  EXPECT_DOUBLE_EQ(c.turn_array.initial_yaw_rate_band_dps, 2.0);
+  EXPECT_DOUBLE_EQ(c.turn_array.pre_turn_dheading_deg, 60.0);
+  EXPECT_DOUBLE_EQ(c.turn_array.initial_yaw_rate_timeout_s, 30.0);
+  const MissionConfig plain = parse_mission_config(example_text("thesis-fig4-1.json"), 2.0);
+  EXPECT_TRUE(plain.turn_array.initial_yaw_rates_dps.empty());
+  EXPECT_DOUBLE_EQ(plain.turn_array.initial_yaw_rate_band_dps, 1.5);
+
+  using V = std::vector<std::string>;
+  EXPECT_EQ(fields_of([](json& d) {
+              d["turn_array"]["initial_yaw_rates_dps"] = {5, 70};
+            }),
+            V{"/turn_array/initial_yaw_rates_dps/1"});
+  EXPECT_EQ(fields_of([](json& d) {
+              d["turn_array"]["initial_yaw_rates_dps"] = {5, 5.2};
+            }),
+            V{"/turn_array/initial_yaw_rates_dps/1"});
+  EXPECT_EQ(fields_of([](json& d) { d["turn_array"]["initial_yaw_rates_dps"] = "fast"; }),
+            V{"/turn_array/initial_yaw_rates_dps"});
+  EXPECT_EQ(fields_of([](json& d) { d["turn_array"]["initial_yaw_rate_band_dps"] = 0; }),
+            V{"/turn_array/initial_yaw_rate_band_dps"});
+  EXPECT_EQ(fields_of([](json& d) { d["turn_array"]["pre_turn_dheading_deg"] = 200; }),
+            V{"/turn_array/pre_turn_dheading_deg"});
+  // The new axis counts towards the planned turns: 3 x 6 x 9 x 13 repeats > 2000.
+  EXPECT_EQ(fields_of([](json& d) {
+              d["turn_array"]["initial_yaw_rates_dps"] = {-8, -6, -4, -2, 0, 2, 4, 6, 8};
+              d["turn_array"]["repeats"] = 13;
+            }),
+            V{"/turn_array"});
+}

@@ -789,3 +789,55 @@ TEST(MissionRunner, ConditionsNeverSetTimeOutAndTheTaskIsGivenUp) {
   const auto path = r.rec.mode_path();
   EXPECT_EQ(path[path.size() - 2], HelmMode::returning);
 }
+
+// ---- Turns that start while turning (issue 17) ------------------------------------------------
+
+TEST(TurnPlan, InitialYawRatesAreAnAxisBetweenHeadingChangeAndRepeats) {
+  MissionConfig c = turns_config({1.0}, {30, 90}, DirectionPolicy::right, square_region(100, 10));
+  c.turn_array.repeats = 2;
+  c.turn_array.initial_yaw_rates_dps = {-8.0, 0.0, 8.0};
+  const auto plan = plan_turns(c);
+  ASSERT_EQ(plan.size(), 12u);
+  const double rates[] = {-8, -8, 0, 0, 8, 8};
+  for (std::size_t i = 0; i < plan.size(); ++i) {
+    EXPECT_EQ(plan[i].dheading_deg, i < 6 ? 30.0 : 90.0);
+    EXPECT_EQ(plan[i].initial_yaw_rate_dps, rates[i % 6]) << i;
+  }
+  c.turn_array.initial_yaw_rates_dps.clear();
+  for (const auto& t : plan_turns(c))
+    EXPECT_EQ(t.initial_yaw_rate_dps, 0.0);
+}
+
+TEST(MissionRunner, TurnStartsWhenTheYawRateEntersTheBand) {
+  MissionConfig c = turns_config({1.0}, {90}, DirectionPolicy::alternate, square_region(300, 20));
+  c.turn_array.initial_yaw_rates_dps = {-8.0, 8.0};
+  c.turn_array.repeats = 2;
+  Sim r(c, FakeVehicle(0, 0, 0));
+  ASSERT_TRUE(r.finish(1200.0));
+  ASSERT_EQ(r.rec.count(TurnStatus::ok), 4);
+  for (const auto& t : r.rec.turns) {
+    if (t.status != TurnStatus::ok) continue;
+    const double target = t.task.initial_yaw_rate_dps;
+    const double side = t.raw.side() == TurnSide::right ? 1.0 : -1.0;
+    ASSERT_TRUE(t.raw.meta().initial_yaw_rate_dps);
+    const double raw = *t.raw.meta().initial_yaw_rate_dps;
+    EXPECT_EQ(raw, *t.start_yaw_rate_dps);
+    // Within the band of the target, signed relative to the turn.
+    EXPECT_NEAR(side * raw, target, c.turn_array.initial_yaw_rate_band_dps) << target;
+    EXPECT_NEAR(*t.raw.normalized().meta().initial_yaw_rate_dps, target,
+                c.turn_array.initial_yaw_rate_band_dps);
+  }
+}
+
+TEST(MissionRunner, YawRateBandNeverEnteredAbortsTheAttempt) {
+  MissionConfig c = turns_config({1.0}, {90}, DirectionPolicy::right, square_region(300, 20));
+  c.turn_array.initial_yaw_rates_dps = {15.0};  // the fake vehicle turns at 10 deg/s at most
+  c.turn_array.initial_yaw_rate_timeout_s = 5.0;
+  c.turn_array.max_attempts = 2;
+  Sim r(c, FakeVehicle(0, 0, 0));
+  ASSERT_TRUE(r.finish());
+  EXPECT_TRUE(r.rec.started.empty());
+  EXPECT_NE(r.rec.event(EventKind::condition_set_timeout, "initial yaw rate 15.0 deg/s"), nullptr);
+  EXPECT_NE(r.rec.event(EventKind::condition_set_timeout, "attempt 2"), nullptr);
+  EXPECT_EQ(r.runner.turns_given_up(), 1u);
+}

@@ -144,7 +144,7 @@ TEST_F(CliFiles, CorruptCktIsRefusedAndExistingOutputKept) {
   ASSERT_EQ(run({"ckt", "build", "--turns", path("turns.txt"), "--out", path("ckt.json")}).rc, 0);
   const std::string good = slurp(path("ckt.json"));
   std::string bad = good;
-  bad.replace(bad.find("\"schema_version\": 3"), 19, "\"schema_version\": 9");
+  bad.replace(bad.find("\"schema_version\": 4"), 19, "\"schema_version\": 9");
   std::ofstream(path("bad.json")) << bad;
   Result r = run({"ckt", "import", path("bad.json"), "--out", path("ckt.json")});
   EXPECT_EQ(r.rc, 1);
