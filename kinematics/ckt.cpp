@@ -174,7 +174,7 @@ Ckt Ckt::build(const std::vector<TurnSequence>& turns, const CktOptions& options
   if (!grid) {
     std::vector<double> speeds, dheadings;
     for (const auto& t : turns) {
-      if (t.meta().status != TurnStatus::ok) continue;
+      if (t.meta().status != TurnStatus::ok || t.meta().speed_after_mps) continue;
       speeds.push_back(t.meta().commanded_speed_mps);
       dheadings.push_back(std::abs(t.meta().goal_dheading_deg));
     }
@@ -199,6 +199,10 @@ Ckt Ckt::build(const std::vector<TurnSequence>& turns, const CktOptions& options
   for (const auto& t : turns) {
     if (t.meta().status != TurnStatus::ok) {
       ++rep.turns_skipped_status;
+      continue;
+    }
+    if (t.meta().speed_after_mps) {
+      ++rep.turns_speed_change;
       continue;
     }
     const auto si =

@@ -51,6 +51,8 @@ constexpr std::array<const char*, 17> kKeys = {
     "sample_fields",
     "samples",
 };
+// Keys a document may leave out (absent when empty), so documents written before them load.
+constexpr const char* kSpeedAfterKey = "speed_after_mps";
 
 // A turn document is an object of arrays of arrays; anything deeper is not a turn, and refusing
 // it while parsing keeps a hostile "[[[[..." from building a huge tree first.
@@ -114,6 +116,7 @@ json to_json(const TurnSequence& turn) {
   j["normalized"] = m.normalized;
   for (const auto& [name, ptr] : kMetaDoubles)
     j[name] = m.*ptr;
+  if (m.speed_after_mps) j[kSpeedAfterKey] = *m.speed_after_mps;
   j["warnings"] = turn.warnings();
   json fields = json::array();
   for (const char* f : kSampleFields)
@@ -145,6 +148,7 @@ TurnSequence turn_from_json(const json& j) {
     bool known = false;
     for (const char* k : kKeys)
       known = known || item.key() == k;
+    known = known || item.key() == kSpeedAfterKey;
     if (!known) throw ParseError(json_member_pointer(item.key()), 0, "unknown key");
   }
   for (const char* k : kKeys)
@@ -162,6 +166,11 @@ TurnSequence turn_from_json(const json& j) {
   m.normalized = normalized.get<bool>();
   for (const auto& [name, ptr] : kMetaDoubles)
     m.*ptr = read_double(member(j, name), json_member_pointer(name), 0);
+  if (const auto it = j.find(kSpeedAfterKey); it != j.end()) {
+    m.speed_after_mps = read_double(*it, json_member_pointer(kSpeedAfterKey), 0);
+    if (!(*m.speed_after_mps > 0.0))
+      throw ParseError(json_member_pointer(kSpeedAfterKey), 0, "must be > 0");
+  }
 
   const json& warnings = member(j, "warnings");
   if (!warnings.is_array()) throw ParseError("/warnings", 0, "expected an array of strings");

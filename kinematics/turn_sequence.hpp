@@ -38,6 +38,10 @@ struct TurnMeta {
   TurnStatus status = TurnStatus::ok;
   std::string status_reason;  // why aborted/rejected; empty for ok
   bool normalized = false;
+  // Issue 17 part 2: u1, the speed commanded with the new heading when it differs from
+  // commanded_speed_mps (u0, the speed the ConditionSet established before the turn). Empty for
+  // a constant-speed turn.
+  std::optional<double> speed_after_mps;
   friend bool operator==(const TurnMeta&, const TurnMeta&) = default;
 };
 

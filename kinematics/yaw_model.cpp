@@ -122,13 +122,14 @@ std::vector<PredictedStep> predict(const YawModel& m, const YawHistory& history,
 
 Polyline predict_normalized_turn(const YawModel& m, double speed_mps, double dheading_deg,
                                  double completion_threshold_deg, double course_deg,
-                                 std::size_t max_steps, bool use_speed_model) {
+                                 std::size_t max_steps, bool use_speed_model,
+                                 std::optional<double> speed_after_mps) {
   const YawHistory h = steady_history(m, course_deg);
   PredictOptions o;
   o.steps = max_steps;
   o.completion_threshold_deg = completion_threshold_deg;
   o.use_speed_model = use_speed_model;
-  o.desired_speed_mps = speed_mps;
+  o.desired_speed_mps = speed_after_mps.value_or(speed_mps);
   const Pose start{0.0, 0.0, course_deg};
   const auto steps = predict(m, h, course_deg + dheading_deg, start, speed_mps, o);
   Polyline out;

@@ -87,10 +87,13 @@ std::vector<PredictedStep> predict(const YawModel& m, const YawHistory& history,
 // for the invariant form; the thesis form starts on `course_deg` and is rotated back to north,
 // which is where its lack of invariance shows).
 // With use_speed_model (and a model that has one) the speed follows the speed model towards
-// speed_mps instead of staying constant.
+// speed_mps instead of staying constant. speed_after_mps (issue 17 part 2): the turn starts at
+// speed_mps and the speed model follows the commanded speed stepping to this with the new heading
+// (it needs use_speed_model; without it the speed stays at speed_mps).
 Polyline predict_normalized_turn(const YawModel& m, double speed_mps, double dheading_deg,
                                  double completion_threshold_deg, double course_deg = 0.0,
-                                 std::size_t max_steps = 400, bool use_speed_model = false);
+                                 std::size_t max_steps = 400, bool use_speed_model = false,
+                                 std::optional<double> speed_after_mps = std::nullopt);
 
 // --- identification ---------------------------------------------------------------------
 

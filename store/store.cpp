@@ -21,7 +21,7 @@ namespace {
 
 // Each step moves the schema from version i to i + 1. Steps are append-only: a released step is
 // never edited, because databases in the field have already run it.
-constexpr std::array<const char*, 7> kMigrations = {
+constexpr std::array<const char*, 8> kMigrations = {
     R"sql(
 CREATE TABLE vehicles (
   id            TEXT PRIMARY KEY,
@@ -150,6 +150,11 @@ CREATE INDEX ckt_snapshots_by_vehicle ON ckt_snapshots (vehicle_id, id);
 ALTER TABLE turns ADD COLUMN start_heading_error_deg REAL;
 ALTER TABLE turns ADD COLUMN start_yaw_rate_dps REAL;
 )sql",
+    // Issue 17 part 2: the speed commanded with the new heading when a turn changes speed (u1;
+    // commanded_speed_mps stays u0). NULL for a constant-speed turn and every older turn.
+    R"sql(
+ALTER TABLE turns ADD COLUMN speed_after_mps REAL;
+)sql",
 };
 
 constexpr const char* kMissionStatusNames[] = {"created", "running", "paused", "interrupted",
@@ -158,8 +163,9 @@ constexpr const char* kMissionStatusNames[] = {"created", "running", "paused", "
 constexpr const char* kTurnColumns =
     "id, mission_id, vehicle_id, cell_speed_mps, cell_dheading_deg, status, reason, "
     "commanded_speed_mps, goal_dheading_deg, observed_dheading_deg, start_time_s, end_time_s, "
-    "advance_m, transfer_m, condition_set_time_s, start_heading_error_deg, start_yaw_rate_dps";
-constexpr int kTurnRowColumns = 17;
+    "advance_m, transfer_m, condition_set_time_s, start_heading_error_deg, start_yaw_rate_dps, "
+    "speed_after_mps";
+constexpr int kTurnRowColumns = 18;
 
 TurnRow read_turn_row(const Statement& s) {
   TurnRow r;
@@ -184,6 +190,7 @@ TurnRow read_turn_row(const Statement& s) {
   r.condition_set_time_s = s.column_optional_double(14);
   r.start_heading_error_deg = s.column_optional_double(15);
   r.start_yaw_rate_dps = s.column_optional_double(16);
+  r.speed_after_mps = s.column_optional_double(17);
   return r;
 }
 
@@ -437,14 +444,15 @@ std::int64_t Store::store_turn(std::int64_t mission_id, const kinematics::TurnSe
       "INSERT INTO turns (mission_id, vehicle_id, cell_speed_mps, cell_dheading_deg, status, "
       "reason, commanded_speed_mps, goal_dheading_deg, observed_dheading_deg, start_time_s, "
       "end_time_s, advance_m, transfer_m, condition_set_time_s, raw_json, normalized_json, "
-      "normalized_meta_json, normalized_samples, start_heading_error_deg, start_yaw_rate_dps) "
-      "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+      "normalized_meta_json, normalized_samples, start_heading_error_deg, start_yaw_rate_dps, "
+      "speed_after_mps) "
+      "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   s.bind(1, mission_id).bind(2, m.vehicle_id).bind(3, m.commanded_speed_mps);
   s.bind(4, std::abs(m.goal_dheading_deg)).bind(5, kinematics::to_string(status)).bind(6, reason);
   s.bind(7, m.commanded_speed_mps).bind(8, m.goal_dheading_deg).bind(9, m.observed_dheading_deg);
   s.bind(10, m.start_time_s).bind(11, m.end_time_s).bind(12, advance_m).bind(13, transfer_m);
   s.bind(14, start.condition_set_time_s).bind(15, raw_json);
-  s.bind(19, start.heading_error_deg).bind(20, start.yaw_rate_dps);
+  s.bind(19, start.heading_error_deg).bind(20, start.yaw_rate_dps).bind(21, m.speed_after_mps);
   if (normalized_json) {
     s.bind(16, *normalized_json).bind(17, *normalized_meta).bind_blob(18, normalized_samples);
   } else {
@@ -593,8 +601,8 @@ std::map<std::int64_t, TurnCounts> Store::turn_counts_by_mission() {
 std::vector<CellStats> Store::mission_cell_stats(std::int64_t mission_id) {
   auto s = db_.prepare(
       "SELECT cell_speed_mps, cell_dheading_deg, status, advance_m, transfer_m, "
-      "condition_set_time_s FROM turns WHERE mission_id = ? "
-      "ORDER BY cell_speed_mps, cell_dheading_deg, id");
+      "condition_set_time_s, speed_after_mps FROM turns WHERE mission_id = ? "
+      "ORDER BY cell_speed_mps, coalesce(speed_after_mps, -1), cell_dheading_deg, id");
   s.bind(1, mission_id);
   std::vector<CellStats> out;
   std::vector<double> advances, transfers, condition_set_times;
@@ -614,11 +622,14 @@ std::vector<CellStats> Store::mission_cell_stats(std::int64_t mission_id) {
   while (s.step()) {
     const double speed = s.column_double(0);
     const double dheading = s.column_double(1);
-    if (out.empty() || out.back().speed_mps != speed || out.back().dheading_deg != dheading) {
+    const std::optional<double> speed_after = s.column_optional_double(6);
+    if (out.empty() || out.back().speed_mps != speed || out.back().dheading_deg != dheading ||
+        out.back().speed_after_mps != speed_after) {
       close_cell();
       out.push_back({});
       out.back().speed_mps = speed;
       out.back().dheading_deg = dheading;
+      out.back().speed_after_mps = speed_after;
     }
     CellStats& c = out.back();
     const std::string status = s.column_text(2);
