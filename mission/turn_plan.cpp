@@ -10,12 +10,19 @@ std::vector<TurnTask> plan_turns(const MissionConfig& config) {
   std::vector<TurnTask> plan;
   if (config.kind != MissionKind::turns) return plan;
   const auto& ta = config.turn_array;
-  for (double u : ta.speeds_mps) {
+  // Constant-speed rows first, then the speed changes, each over every heading change.
+  std::vector<std::pair<double, std::optional<double>>> rows;
+  for (double u : ta.speeds_mps)
+    rows.push_back({u, std::nullopt});
+  for (const SpeedChange& c : ta.speed_changes)
+    rows.push_back({c.from_mps, c.to_mps});
+  for (const auto& [u, u1] : rows) {
     for (double d : ta.dheadings_deg) {
       for (int r = 0; r < ta.repeats; ++r) {
         TurnTask t;
         t.index = plan.size();
         t.speed_mps = u;
+        t.speed_after_mps = u1;
         t.dheading_deg = d;
         switch (ta.direction) {
           case DirectionPolicy::right:
@@ -45,6 +52,15 @@ bool same_cell(double speed_a_mps, double dheading_a_deg, double speed_b_mps,
              tolerances.dheading_match_deg;
 }
 
+bool same_cell(double speed_a_mps, std::optional<double> speed_after_a_mps, double dheading_a_deg,
+               double speed_b_mps, std::optional<double> speed_after_b_mps, double dheading_b_deg) {
+  if (speed_after_a_mps.has_value() != speed_after_b_mps.has_value()) return false;
+  if (speed_after_a_mps &&
+      std::abs(*speed_after_a_mps - *speed_after_b_mps) > kinematics::CktOptions{}.speed_match_mps)
+    return false;
+  return same_cell(speed_a_mps, dheading_a_deg, speed_b_mps, dheading_b_deg);
+}
+
 std::vector<TurnTask> remaining_turns(const std::vector<TurnTask>& plan,
                                       const std::vector<CellCount>& done) {
   std::vector<int> left_to_skip;
@@ -55,7 +71,8 @@ std::vector<TurnTask> remaining_turns(const std::vector<TurnTask>& plan,
     bool skipped = false;
     for (std::size_t i = 0; i < done.size() && !skipped; ++i) {
       if (left_to_skip[i] > 0 &&
-          same_cell(t.speed_mps, t.dheading_deg, done[i].speed_mps, done[i].dheading_deg)) {
+          same_cell(t.speed_mps, t.speed_after_mps, t.dheading_deg, done[i].speed_mps,
+                    done[i].speed_after_mps, done[i].dheading_deg)) {
         --left_to_skip[i];
         skipped = true;
       }

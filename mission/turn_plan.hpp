@@ -17,6 +17,9 @@ struct TurnTask {
   double dheading_deg = 0.0;                 // magnitude, as the cell
   std::optional<kinematics::TurnSide> side;  // empty: chosen at the turn (direction auto)
   int attempts = 0;                          // aborted tries so far
+  // A speed-change turn (turn_array.speed_changes): speed_mps is u0, held before the turn, and
+  // this is u1, commanded with the new heading. Empty: a constant-speed turn.
+  std::optional<double> speed_after_mps;
 };
 
 // Speed-major, then heading change, then repeats: at each speed the vehicle settles once and
@@ -28,6 +31,7 @@ struct CellCount {
   double speed_mps = 0.0;
   double dheading_deg = 0.0;
   int done = 0;
+  std::optional<double> speed_after_mps;  // a speed-change cell
 };
 
 // The plan without the turns already done: per cell, the first `done` tasks are dropped.
@@ -37,5 +41,8 @@ std::vector<TurnTask> remaining_turns(const std::vector<TurnTask>& plan,
 // Cells are matched with the same tolerances the CKT uses.
 bool same_cell(double speed_a_mps, double dheading_a_deg, double speed_b_mps,
                double dheading_b_deg);
+// Also the speed after: a speed-change cell is never a constant-speed one.
+bool same_cell(double speed_a_mps, std::optional<double> speed_after_a_mps, double dheading_a_deg,
+               double speed_b_mps, std::optional<double> speed_after_b_mps, double dheading_b_deg);
 
 }  // namespace avk::mission
