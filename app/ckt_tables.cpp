@@ -44,9 +44,11 @@ Result<VehicleTable> TableCache::get(Context& ctx, const std::string& vehicle_id
   VehicleTable t;
   t.vehicle_id = vehicle_id;
   if (newest > 0) {
-    auto built =
-        std::make_shared<kin::Ckt>(kin::Ckt::build(db.load_normalized_turns({}, vehicle_id)));
+    const auto turns = db.load_normalized_turns({}, vehicle_id);
+    auto built = std::make_shared<kin::Ckt>(kin::Ckt::build(turns));
     built->vehicle_id = vehicle_id;
+    t.speed_changes = std::make_shared<kin::SpeedChangeTable>(kin::SpeedChangeTable::build(turns));
+    t.measured_speed_response = kin::measured_speed_response(turns);
     t.table = std::move(built);
     t.source = TableSource::turns;
   } else if (auto snap = snap_id ? db.latest_ckt_snapshot(vehicle_id) : std::nullopt) {

@@ -30,7 +30,15 @@ struct PredictQuery {
   std::optional<kinematics::Pose> pose;   // where the turn starts; none: the normalised frame
   // avk: the share of the vehicle's turns the corridor holds.
   double corridor_share = kinematics::kDefaultCorridorShare;
+  // Issue 17 part 2: the speed commanded with the new heading (u1); speed_mps is the speed held
+  // before the turn (u0). Empty (or equal to speed_mps): a constant-speed turn.
+  std::optional<double> speed_after_mps;
 };
+
+// How a turn with a speed change was answered: measured cells of that (u0, u1) pair, the
+// constant-speed turn at u0 re-timed by a speed response, or the yaw model's speed model.
+enum class SpeedChangeSource { measured, retimed, model };
+const char* to_string(SpeedChangeSource s);
 
 struct Prediction {
   PredictQuery query;
@@ -50,6 +58,11 @@ struct Prediction {
   // cell of one turn, or an imported table without corridors).
   std::optional<kinematics::CorridorBand> corridor;
   bool short_of_goal = false;  // avk: a cell that answered holds turns that stopped short
+  // With a speed change: how it was answered, and for a re-timed answer which speed response
+  // re-timed it ("measured": the vehicle's stored speed-change turns; "model": its yaw model's
+  // speed model).
+  std::optional<SpeedChangeSource> speed_change_source;
+  std::optional<std::string> speed_response;
 };
 
 // invalid_argument names the parameter (speed, dheading, model, speed_model); not_found when the

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "kinematics/turn_measures.hpp"
@@ -82,7 +83,33 @@ RetimedTurn retime_turn(const Polyline& trajectory, const std::optional<TurnTimi
 
 RetimedTurn retime_turn(const TurnPrediction& constant_speed, double u0_mps, double u1_mps,
                         const SpeedResponse& response) {
-  return retime_turn(constant_speed.trajectory, constant_speed.timing, u0_mps, u1_mps, response);
+  RetimedTurn out =
+      retime_turn(constant_speed.trajectory, constant_speed.timing, u0_mps, u1_mps, response);
+  // The table's advance and transfer are where its turns ended, short of its trajectory's run-on
+  // along the goal heading: the same point of the turn, re-timed (the nearest point of the
+  // constant-speed trajectory to it, carried to the re-timed one segment by segment).
+  const Polyline& base = constant_speed.trajectory;
+  const double side = constant_speed.dheading_deg < 0.0 ? -1.0 : 1.0;
+  const Point end{side * constant_speed.transfer_m, constant_speed.advance_m};
+  double best = std::numeric_limits<double>::infinity();
+  Point carried = out.trajectory.back();
+  for (std::size_t i = 0; i + 1 < base.size(); ++i) {
+    const Point a = base[i], b = base[i + 1];
+    const double dx = b.x_m - a.x_m, dy = b.y_m - a.y_m, len2 = dx * dx + dy * dy;
+    const double w =
+        len2 > 0.0 ? std::clamp(((end.x_m - a.x_m) * dx + (end.y_m - a.y_m) * dy) / len2, 0.0, 1.0)
+                   : 0.0;
+    const double d = std::hypot(a.x_m + w * dx - end.x_m, a.y_m + w * dy - end.y_m);
+    if (d < best) {
+      best = d;
+      const Point p = out.trajectory[i], q = out.trajectory[i + 1];
+      carried = {p.x_m + w * (q.x_m - p.x_m), p.y_m + w * (q.y_m - p.y_m)};
+    }
+  }
+  const Point origin = out.trajectory.front();
+  out.advance_m = carried.y_m - origin.y_m;
+  out.transfer_m = side * (carried.x_m - origin.x_m);
+  return out;
 }
 
 }  // namespace avk::kinematics

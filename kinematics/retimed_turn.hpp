@@ -21,8 +21,10 @@ struct RetimedTurn {
   Polyline trajectory;         // one vertex per vertex of the constant-speed turn
   std::vector<double> time_s;  // when each vertex is passed (the constant-speed turn's times)
   TurnTiming timing;           // the same at equal fractions of the new length
-  double advance_m = 0.0;      // of the re-timed trajectory (advance_transfer, turn_measures)
-  double transfer_m = 0.0;
+  // Where the re-timed turn ends: the end of its trajectory, or for a CKT answer the point of the
+  // table's advance and transfer (where its turns ended) carried to the re-timed trajectory.
+  double advance_m = 0.0;
+  double transfer_m = 0.0;  // + towards the turn side
 };
 
 // trajectory: the constant-speed turn, from the origin (either side); timing: when it passes its
@@ -31,7 +33,7 @@ struct RetimedTurn {
 RetimedTurn retime_turn(const Polyline& trajectory, const std::optional<TurnTiming>& timing,
                         double u0_mps, double u1_mps, const SpeedResponse& response);
 
-// The same for a CKT answer (its trajectory and timing).
+// The same for a CKT answer (its trajectory and timing; advance and transfer as above).
 RetimedTurn retime_turn(const TurnPrediction& constant_speed, double u0_mps, double u1_mps,
                         const SpeedResponse& response);
 

@@ -37,6 +37,8 @@ const char* to_string(SpeedChangeMethod m) {
       return "retimed_model";
     case SpeedChangeMethod::model:
       return "model";
+    case SpeedChangeMethod::constant_speed:
+      return "constant_speed";
     case SpeedChangeMethod::instantaneous:
       return "instantaneous";
   }
@@ -54,6 +56,8 @@ const HeldOutScores* scores_of(const SpeedChangeCellScores& c, SpeedChangeMethod
       return opt(c.retimed_model);
     case SpeedChangeMethod::model:
       return opt(c.model);
+    case SpeedChangeMethod::constant_speed:
+      return opt(c.constant_speed);
     case SpeedChangeMethod::instantaneous:
       return &c.instantaneous;
   }
@@ -138,6 +142,7 @@ std::vector<SpeedChangeCellScores> compare_speed_changes(
           score(c.retimed_measured, retime_turn(*base, c.from_mps, c.to_mps, *r).trajectory, j);
       }
       if (retimed_model) score(c.retimed_model, *retimed_model, j);
+      if (base) score(c.constant_speed, base->trajectory, j);
       if (model_path) score(c.model, *model_path, j);
     }
   }

@@ -11,6 +11,8 @@
 //   from the other speed-change turns;
 // - retimed_model: the same re-timed by the yaw model's speed model (with a model);
 // - model: the yaw model flown with its speed model and the command stepping to u1;
+// - constant_speed: the constant-speed CKT turn at u0 as it is, the speed change ignored (what
+//   the table answered before issue 17), for scale;
 // - instantaneous: the ray along the goal heading.
 // The constant-speed CKT holds none of these turns (Ckt::build leaves them out). The observed
 // turn is stationed by its recorded speed (s = integral of speed dt), not by u0 x t as a
@@ -37,7 +39,7 @@ struct SpeedChangeCellScores {
   std::size_t n_turns = 0;
   double span_m = 0.0;  // the longest turn of the cell
   HeldOutScores instantaneous;
-  std::optional<HeldOutScores> measured, retimed_measured, retimed_model, model;
+  std::optional<HeldOutScores> measured, retimed_measured, retimed_model, model, constant_speed;
 };
 
 // A turn's path stationed by its recorded speed. Throws as stationed_by_time.
@@ -52,7 +54,18 @@ std::vector<SpeedChangeCellScores> compare_speed_changes(
     const CktOptions& options = {});
 
 // Median over cells of a method's cell means (path distance); empty when no cell has it.
-enum class SpeedChangeMethod { measured, retimed_measured, retimed_model, model, instantaneous };
+enum class SpeedChangeMethod {
+  measured,
+  retimed_measured,
+  retimed_model,
+  model,
+  constant_speed,
+  instantaneous
+};
+inline constexpr SpeedChangeMethod kSpeedChangeMethods[] = {
+    SpeedChangeMethod::measured,       SpeedChangeMethod::retimed_measured,
+    SpeedChangeMethod::retimed_model,  SpeedChangeMethod::model,
+    SpeedChangeMethod::constant_speed, SpeedChangeMethod::instantaneous};
 const char* to_string(SpeedChangeMethod m);
 std::optional<double> median_speed_change_path_m(const std::vector<SpeedChangeCellScores>& cells,
                                                  SpeedChangeMethod method);

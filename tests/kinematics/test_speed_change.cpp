@@ -214,3 +214,29 @@ TEST(SpeedChangeYawModel, TheSpeedModelFollowsTheSteppedCommand) {
   EXPECT_NEAR(step(same, same.size() - 2), 1.5 * 0.25, 1e-6);
   EXPECT_LT(arc_length_m(slower), arc_length_m(same) - 10.0);
 }
+
+TEST(RetimedTurn, ACktAnswerKeepsItsEndOfTurnPointReTimed) {
+  // A 90 deg arc of radius 4 at 1 m/s that runs on 3 m along the goal heading; the turn ended at
+  // the end of the arc (advance 4, transfer 4).
+  const double radius = 4.0;
+  Polyline arc = circular_arc(radius, 90.0, 0.01);
+  arc.push_back({arc.back().x_m + 3.0, arc.back().y_m});
+  TurnPrediction p;
+  p.dheading_deg = 90.0;
+  p.trajectory = arc;
+  p.advance_m = radius;
+  p.transfer_m = radius;
+  const RetimedTurn same = retime_turn(p, 1.0, 1.0, step_at(1.0));
+  EXPECT_NEAR(same.advance_m, radius, 1e-6);
+  EXPECT_NEAR(same.transfer_m, radius, 1e-6);
+  // Halving the speed at t = 0 halves every length: the end of the turn at (2, 2).
+  const RetimedTurn half = retime_turn(p, 1.0, 0.5, step_at(0.0));
+  EXPECT_NEAR(half.advance_m, 2.0, 0.01);
+  EXPECT_NEAR(half.transfer_m, 2.0, 0.01);
+  // A left turn likewise, transfer positive towards the turn.
+  p.dheading_deg = -90.0;
+  p.trajectory = reflect_x(arc);
+  const RetimedTurn left = retime_turn(p, 1.0, 0.5, step_at(0.0));
+  EXPECT_NEAR(left.transfer_m, 2.0, 0.01);
+  EXPECT_LT(left.trajectory.back().x_m, 0.0);
+}

@@ -8,6 +8,7 @@
 #include "mission/mission_config.hpp"
 #include "mission/turn_plan.hpp"
 #include "support/example_file.hpp"
+#include "support/mission_field_errors.hpp"
 
 using namespace avk::mission;
 using nlohmann::json;
@@ -19,15 +20,7 @@ json fig41() {
 }
 
 std::vector<std::string> fields_of(const json& doc, double vmax = 2.0) {
-  try {
-    parse_mission_config(doc.dump(), vmax);
-  } catch (const MissionConfigError& e) {
-    std::vector<std::string> f;
-    for (const auto& err : e.errors())
-      f.push_back(err.field);
-    return f;
-  }
-  return {};
+  return avk::testing::mission_field_errors([&](json& d) { d = doc; }, vmax);
 }
 
 bool has(const std::vector<std::string>& v, const std::string& s) {

@@ -73,7 +73,7 @@ void expect_mean_sd(const std::optional<avk::kinematics::MeanSd>& got, double me
 
 }  // namespace
 
-TEST(MissionQueries, SchemaIsVersionSeven) {
+TEST(MissionQueries, SchemaIsVersionEight) {
   Store s(":memory:");
   EXPECT_EQ(schema_version(), 8);
   EXPECT_EQ(s.user_version(), 8);
