@@ -55,9 +55,12 @@ Result<VehicleTable> TableCache::get(Context& ctx, const std::string& vehicle_id
   if (newest > 0) {
     // Turns in the water frame where their mission's current is known: the table then predicts
     // through the water, and a query adds the drift of the current it is asked in.
-    auto built = std::make_shared<kin::Ckt>(kin::Ckt::build(db.load_normalized_turns(
-        {}, vehicle_id, include_harvested, store::TurnFrameChoice::water_where_known)));
+    const auto turns = db.load_normalized_turns({}, vehicle_id, include_harvested,
+                                                store::TurnFrameChoice::water_where_known);
+    auto built = std::make_shared<kin::Ckt>(kin::Ckt::build(turns));
     built->vehicle_id = vehicle_id;
+    t.speed_changes = std::make_shared<kin::SpeedChangeTable>(kin::SpeedChangeTable::build(turns));
+    t.measured_speed_response = kin::measured_speed_response(turns);
     t.table = std::move(built);
     t.source = TableSource::turns;
   } else if (auto snap = snap_id ? db.latest_ckt_snapshot(vehicle_id) : std::nullopt) {

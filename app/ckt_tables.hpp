@@ -14,6 +14,8 @@
 
 #include "app/result.hpp"
 #include "kinematics/ckt.hpp"
+#include "kinematics/speed_change_table.hpp"
+#include "kinematics/speed_response.hpp"
 
 namespace avk::app {
 
@@ -30,6 +32,10 @@ struct VehicleTable {
   std::shared_ptr<const kinematics::Ckt> table;
   // The fine table predictions look up; none when the table holds no turn.
   std::shared_ptr<const kinematics::MaterializedCkt> fine;
+  // Issue 17 part 2: the measured cells of the vehicle's speed-change turns, and the speed
+  // response averaged from them; empty for an imported table.
+  std::shared_ptr<const kinematics::SpeedChangeTable> speed_changes;
+  std::optional<kinematics::SpeedResponse> measured_speed_response;
 };
 
 // The tables predictions use, rebuilt when a vehicle's turns or imported table change (checked

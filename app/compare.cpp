@@ -78,6 +78,19 @@ Result<Comparison> compare(Context& ctx, const CompareQuery& q) {
   po.corridor_share = q.corridor_share;
   c.corridor_share = q.corridor_share;
   c.predictive = kin::compare_predictive(c.table, c.model ? &predictor : nullptr, po);
+  {
+    kin::SpeedChangePredictor model_sc;
+    std::optional<kin::SpeedResponse> model_response;
+    if (c.model && c.model->model.speed) {
+      model_response = kin::speed_response_of_model(c.model->model);
+      model_sc = [&](double u0, double u1, double d) {
+        return kin::predict_normalized_turn(c.model->model, u0, d, q.completion_threshold_deg,
+                                            start_course_deg(turns, u0, d), 400, true, u1);
+      };
+    }
+    c.speed_change =
+        kin::compare_speed_changes(turns, c.table, model_response, model_sc ? &model_sc : nullptr);
+  }
   if (!q.test_missions.empty()) {
     const auto test = ctx.db().load_normalized_turns(q.test_missions, q.vehicle_id);
     if (test.empty())

@@ -11,6 +11,7 @@
 #include "kinematics/ckt.hpp"
 #include "kinematics/prediction_comparison.hpp"
 #include "kinematics/predictive_comparison.hpp"
+#include "kinematics/speed_change_comparison.hpp"
 #include "kinematics/table_evaluation.hpp"
 #include "store/store.hpp"
 
@@ -42,6 +43,9 @@ struct Comparison {
   std::vector<kinematics::PredictiveCell> predictive;
   // The table judged on the test missions' turns (empty without test missions).
   std::vector<kinematics::TestCell> test_cells;
+  // Issue 17 part 2: the turns with a speed change among the scored missions' turns, each
+  // predictor on turns it was not built from (kinematics/speed_change_comparison.hpp).
+  std::vector<kinematics::SpeedChangeCellScores> speed_change;
   double corridor_share = kinematics::kDefaultCorridorShare;
 };
 

@@ -49,7 +49,7 @@ MissionPlan resume_mission_plan(store::Store& db, std::int64_t mission_id, doubl
   p.config = mission::parse_mission_config(m->config_json, max_speed_mps);
   std::vector<mission::CellCount> done;
   for (const auto& c : db.mission_cell_stats(m->id)) {
-    done.push_back({c.speed_mps, c.dheading_deg, static_cast<int>(c.n_ok)});
+    done.push_back({c.speed_mps, c.dheading_deg, static_cast<int>(c.n_ok), c.speed_after_mps});
     p.done_before += static_cast<int>(c.n_ok);
   }
   p.tasks = mission::remaining_turns(mission::plan_turns(p.config), done);

@@ -48,11 +48,13 @@ std::vector<CellReport> planned_cells(const store::Mission& m) {
   if (config.kind != mission::MissionKind::turns) return planned;
   for (const auto& t : mission::plan_turns(config)) {
     auto it = std::find_if(planned.begin(), planned.end(), [&](const CellReport& c) {
-      return mission::same_cell(c.speed_mps, c.dheading_deg, t.speed_mps, t.dheading_deg);
+      return mission::same_cell(c.speed_mps, c.speed_after_mps, c.dheading_deg, t.speed_mps,
+                                t.speed_after_mps, t.dheading_deg);
     });
     if (it == planned.end()) {
       CellReport c;
       c.speed_mps = t.speed_mps;
+      c.speed_after_mps = t.speed_after_mps;
       c.dheading_deg = t.dheading_deg;
       it = planned.insert(planned.end(), c);
     }
@@ -61,9 +63,12 @@ std::vector<CellReport> planned_cells(const store::Mission& m) {
   return planned;
 }
 
-CellReport* find_cell(std::vector<CellReport>& cells, double speed_mps, double dheading_deg) {
+CellReport* find_cell(std::vector<CellReport>& cells, double speed_mps,
+                      std::optional<double> speed_after_mps, double dheading_deg) {
   for (auto& c : cells)
-    if (mission::same_cell(c.speed_mps, c.dheading_deg, speed_mps, dheading_deg)) return &c;
+    if (mission::same_cell(c.speed_mps, c.speed_after_mps, c.dheading_deg, speed_mps,
+                           speed_after_mps, dheading_deg))
+      return &c;
   return nullptr;
 }
 
@@ -92,6 +97,7 @@ std::vector<CellReport> cell_reports(const std::vector<mission::CellProgress>& c
   for (const auto& p : cells) {
     CellReport c;
     c.speed_mps = p.speed_mps;
+    c.speed_after_mps = p.speed_after_mps;
     c.dheading_deg = p.dheading_deg;
     c.planned = p.planned;
     c.ok = p.ok;
@@ -146,10 +152,11 @@ Result<MissionReport> mission_report(Context& ctx, std::int64_t mission_id) {
     r.cells = planned_cells(*m);
   }
   for (const auto& s : stats) {
-    CellReport* c = find_cell(r.cells, s.speed_mps, s.dheading_deg);
+    CellReport* c = find_cell(r.cells, s.speed_mps, s.speed_after_mps, s.dheading_deg);
     if (!c) {
       CellReport extra;
       extra.speed_mps = s.speed_mps;
+      extra.speed_after_mps = s.speed_after_mps;
       extra.dheading_deg = s.dheading_deg;
       r.cells.push_back(extra);
       c = &r.cells.back();

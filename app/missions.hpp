@@ -41,6 +41,7 @@ struct CellReport {
   std::optional<kinematics::MeanSd> advance_m;  // over ok turns
   std::optional<kinematics::MeanSd> transfer_m;
   std::optional<kinematics::MeanSd> condition_set_time_s;
+  std::optional<double> speed_after_mps;  // a speed-change cell (speed_mps -> this)
 };
 
 // A mission's cells as its runner sees them now (the live stream's progress).

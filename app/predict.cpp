@@ -8,6 +8,7 @@
 #include "app/yaw_rate_table.hpp"
 #include "kinematics/ckt.hpp"
 #include "kinematics/number_text.hpp"
+#include "kinematics/retimed_turn.hpp"
 #include "kinematics/water_frame.hpp"
 #include "kinematics/yaw_model.hpp"
 
@@ -34,6 +35,18 @@ std::optional<PredictionMethod> prediction_method_from_string(const std::string&
   return std::nullopt;
 }
 
+const char* to_string(SpeedChangeSource s) {
+  switch (s) {
+    case SpeedChangeSource::measured:
+      return "measured";
+    case SpeedChangeSource::retimed:
+      return "retimed";
+    case SpeedChangeSource::model:
+      return "model";
+  }
+  return "retimed";
+}
+
 kin::Polyline instantaneous_turn_ray(double speed_mps, double dheading_deg, double duration_s) {
   const kin::Point d = kin::rotate_by_heading({0.0, speed_mps * duration_s}, dheading_deg);
   return {{0.0, 0.0}, d};
@@ -55,10 +68,19 @@ std::optional<Error> check(const PredictQuery& q) {
     return invalid_argument("x", "a pose needs finite x, y and heading");
   if (!(q.corridor_share > 0.0 && q.corridor_share < 1.0))
     return invalid_argument("corridor", "must be a share within (0, 1)");
+  if (q.speed_after_mps && !(std::isfinite(*q.speed_after_mps) && *q.speed_after_mps > 0.0))
+    return invalid_argument("speed_after", "must be a positive speed (m/s)");
   if (q.initial_yaw_rate_dps && (!std::isfinite(*q.initial_yaw_rate_dps) ||
                                  std::abs(*q.initial_yaw_rate_dps) > kMaxInitialYawRateDps))
     return invalid_argument("initial_yaw_rate", "must be a yaw rate within [-90, 90] deg/s");
   return std::nullopt;
+}
+
+// A speed after equal to the speed before is no speed change.
+PredictQuery without_null_change(PredictQuery q) {
+  if (q.speed_after_mps && std::abs(*q.speed_after_mps - q.speed_mps) < 1e-9)
+    q.speed_after_mps.reset();
+  return q;
 }
 
 // The yaw rate relative to the turn: + into it (towards its side), - against it.
@@ -121,10 +143,66 @@ Result<Prediction> from_table(Prediction p, kin::TurnPrediction t) {
   return finish(std::move(p), t.corridor, t.timing);
 }
 
+// The speed response a re-timed answer uses: the vehicle's measured one, else its model's.
+struct ResponseChoice {
+  kin::SpeedResponse response;
+  std::string name;
+};
+
+std::optional<ResponseChoice> speed_response_for(Context& ctx, const VehicleTable& t,
+                                                 const std::string& vehicle_id) {
+  if (t.measured_speed_response) return ResponseChoice{*t.measured_speed_response, "measured"};
+  const auto m = ctx.db().latest_model(vehicle_id);
+  if (!m) return std::nullopt;
+  if (auto r = kin::speed_response_of_model(m->model)) return ResponseChoice{*r, "model"};
+  return std::nullopt;
+}
+
+// avk with a speed change: the measured cells of the pair, else the constant-speed turn at u0
+// re-timed.
+Result<Prediction> predict_speed_change(Context& ctx, const VehicleTable& t, Prediction p) {
+  const PredictQuery& q = p.query;
+  const double u0 = q.speed_mps, u1 = *q.speed_after_mps;
+  if (t.speed_changes) {
+    if (auto m = t.speed_changes->query(u0, u1, q.dheading_deg)) {
+      p.speed_change_source = SpeedChangeSource::measured;
+      return from_table(std::move(p), std::move(*m));
+    }
+  }
+  if (!t.fine) return invalid_argument("speed", "the table holds no turn to predict from");
+  const auto response = speed_response_for(ctx, t, q.vehicle_id);
+  if (!response)
+    return invalid_argument("speed_after",
+                            "no speed response to re-time a turn with: '" + q.vehicle_id +
+                                "' has no stored speed-change turns and no model with a speed "
+                                "model");
+  kin::TurnPrediction base;
+  try {
+    base = t.fine->query(u0, std::abs(q.dheading_deg));
+  } catch (const kin::CktRangeError& e) {
+    return invalid_argument("speed", e.what());
+  }
+  const kin::RetimedTurn r = kin::retime_turn(base, u0, u1, response->response);
+  p.speed_change_source = SpeedChangeSource::retimed;
+  p.speed_response = response->name;
+  p.trajectory = q.dheading_deg < 0.0 ? kin::reflect_x(r.trajectory) : r.trajectory;
+  p.advance_m = r.advance_m;
+  p.transfer_m = r.transfer_m;
+  p.exact_cell = false;
+  p.extrapolated = base.extrapolated;
+  p.short_of_goal = base.short_of_goal;
+  return finish(std::move(p));
+}
+
 }  // namespace
 
-Result<Prediction> predict_with_table(const kin::Ckt& table, const PredictQuery& q) {
-  if (auto e = check(q)) return *e;
+Result<Prediction> predict_with_table(const kin::Ckt& table, const PredictQuery& query) {
+  if (auto e = check(query)) return *e;
+  const PredictQuery q = without_null_change(query);
+  if (q.speed_after_mps)
+    return invalid_argument("speed_after",
+                            "a CKT file holds constant-speed turns only; ask the station, which "
+                            "has the vehicle's speed-change turns and speed response");
   if (q.live_current)
     return invalid_argument("current", "a table file has no live estimate; give the current");
   if (q.current && !(std::isfinite(q.current->east_mps) && std::isfinite(q.current->north_mps) &&
@@ -144,8 +222,9 @@ Result<Prediction> predict_with_table(const kin::Ckt& table, const PredictQuery&
   }
 }
 
-Result<Prediction> predict(Context& ctx, const PredictQuery& q) {
-  if (auto e = check(q)) return *e;
+Result<Prediction> predict(Context& ctx, const PredictQuery& query) {
+  if (auto e = check(query)) return *e;
+  const PredictQuery q = without_null_change(query);
   Prediction p;
   p.query = q;
   auto current = query_current(ctx, q.vehicle_id, q.current, q.live_current, "current");
@@ -160,6 +239,7 @@ Result<Prediction> predict(Context& ctx, const PredictQuery& q) {
       p.table_source = to_string(t->source);
       p.table_frame = kin::to_string(t->table->frame);
       p.snapshot_id = t->snapshot_id;
+      if (q.speed_after_mps) return predict_speed_change(ctx, *t, std::move(p));
       if (!t->fine) return invalid_argument("speed", "the table holds no turn to predict from");
       try {
         // The fine table: the answer guidance gets in its hot path, so every front end gets it.
@@ -174,16 +254,18 @@ Result<Prediction> predict(Context& ctx, const PredictQuery& q) {
       if (!m)
         return not_found(q.model_id ? "no model " + std::to_string(*q.model_id)
                                     : "no model of '" + q.vehicle_id + "' is stored");
-      if (q.use_speed_model && !m->model.speed)
-        return invalid_argument("speed_model",
+      if ((q.use_speed_model || q.speed_after_mps) && !m->model.speed)
+        return invalid_argument(q.speed_after_mps ? "speed_after" : "speed_model",
                                 "model " + std::to_string(m->id) + " has no speed model");
       p.model_id = m->id;
+      // A speed change is flown with the speed model following the stepped command.
+      if (q.speed_after_mps) p.speed_change_source = SpeedChangeSource::model;
       const double rate =
           q.initial_yaw_rate_dps ? into_turn_dps(*q.initial_yaw_rate_dps, q.dheading_deg) : 0.0;
       try {
-        p.trajectory = kin::predict_normalized_turn(m->model, q.speed_mps, std::abs(q.dheading_deg),
-                                                    q.completion_threshold_deg, 0.0, 400,
-                                                    q.use_speed_model, rate);
+        p.trajectory = kin::predict_normalized_turn(
+            m->model, q.speed_mps, std::abs(q.dheading_deg), q.completion_threshold_deg, 0.0, 400,
+            q.use_speed_model || q.speed_after_mps.has_value(), rate, q.speed_after_mps);
       } catch (const std::invalid_argument& e) {
         return invalid_argument("initial_yaw_rate", e.what());
       }

@@ -43,7 +43,15 @@ struct PredictQuery {
   // avk: the vehicle's table over initial yaw rate (yaw_rate_table.hpp); model: the model started
   // turning at that rate.
   std::optional<double> initial_yaw_rate_dps;
+  // Issue 17 part 2: the speed commanded with the new heading (u1); speed_mps is the speed held
+  // before the turn (u0). Empty (or equal to speed_mps): a constant-speed turn.
+  std::optional<double> speed_after_mps;
 };
+
+// How a turn with a speed change was answered: measured cells of that (u0, u1) pair, the
+// constant-speed turn at u0 re-timed by a speed response, or the yaw model's speed model.
+enum class SpeedChangeSource { measured, retimed, model };
+const char* to_string(SpeedChangeSource s);
 
 struct Prediction {
   PredictQuery query;
@@ -73,6 +81,11 @@ struct Prediction {
   // and whether the rate lay outside the table's yaw-rate range (answered by the nearest slice).
   std::optional<std::string> cell_source;
   std::optional<bool> yaw_rate_clamped;
+  // With a speed change: how it was answered, and for a re-timed answer which speed response
+  // re-timed it ("measured": the vehicle's stored speed-change turns; "model": its yaw model's
+  // speed model).
+  std::optional<SpeedChangeSource> speed_change_source;
+  std::optional<std::string> speed_response;
 };
 
 // invalid_argument names the parameter (speed, dheading, model, speed_model, current); not_found

@@ -184,7 +184,7 @@ std::optional<TableFrame> table_frame_from_string(const std::string& s) {
 CktGrid grid_of(const std::vector<TurnSequence>& turns) {
   std::vector<double> speeds, dheadings;
   for (const auto& t : turns) {
-    if (t.meta().status != TurnStatus::ok) continue;
+    if (t.meta().status != TurnStatus::ok || t.meta().speed_after_mps) continue;
     speeds.push_back(t.meta().commanded_speed_mps);
     dheadings.push_back(std::abs(t.meta().goal_dheading_deg));
   }
@@ -215,6 +215,10 @@ Ckt Ckt::build(const std::vector<TurnSequence>& turns, const CktOptions& options
   for (const auto& t : turns) {
     if (t.meta().status != TurnStatus::ok) {
       ++rep.turns_skipped_status;
+      continue;
+    }
+    if (t.meta().speed_after_mps) {
+      ++rep.turns_speed_change;
       continue;
     }
     const auto si =

@@ -131,6 +131,9 @@ struct CktBuildReport {
   std::size_t turns_water_frame = 0;     // of turns_used
   std::size_t turns_skipped_status = 0;  // aborted or rejected
   std::size_t turns_unassigned = 0;      // no grid cell within the match tolerances
+  // Turns with a commanded speed change (TurnMeta::speed_after_mps): never in a constant-speed
+  // cell; kinematics/speed_change_table.hpp holds them.
+  std::size_t turns_speed_change = 0;
   std::vector<std::string> warnings;
 };
 
@@ -138,8 +141,9 @@ class Ckt {
  public:
   Ckt() = default;
 
-  // Builds the table from turns (raw or normalised; only status ok is used). Without a grid the
-  // grid is the set of distinct commanded speeds and |goal| heading changes.
+  // Builds the table from turns (raw or normalised; only status ok is used, and no turn with a
+  // speed change). Without a grid the grid is the set of distinct commanded speeds and |goal|
+  // heading changes.
   static Ckt build(const std::vector<TurnSequence>& turns, const CktOptions& options = {},
                    std::optional<CktGrid> grid = std::nullopt, CktBuildReport* report = nullptr);
 

@@ -52,6 +52,8 @@ constexpr std::array<const char*, 17> kKeys = {
     "sample_fields",
     "samples",
 };
+// Keys a document may leave out (absent when empty), so documents written before them load.
+constexpr const char* kSpeedAfterKey = "speed_after_mps";
 
 // Keys a document may leave out: an absent key is the field's default (no removed current: over
 // ground; source collection; no quality), so documents written before the field existed load.
@@ -137,6 +139,7 @@ json to_json(const TurnSequence& turn) {
   if (m.quality) j["quality"] = *m.quality;
   for (const auto& [name, ptr] : kOptionalMetaDoubles)
     if (m.*ptr) j[name] = *(m.*ptr);
+  if (m.speed_after_mps) j[kSpeedAfterKey] = *m.speed_after_mps;
   j["warnings"] = turn.warnings();
   json fields = json::array();
   for (const char* f : kSampleFields)
@@ -172,6 +175,7 @@ TurnSequence turn_from_json(const json& j) {
       known = known || item.key() == k;
     for (const auto& [k, ptr] : kOptionalMetaDoubles)
       known = known || item.key() == k;
+    known = known || item.key() == kSpeedAfterKey;
     if (!known) throw ParseError(json_member_pointer(item.key()), 0, "unknown key");
   }
   for (const char* k : kKeys)
@@ -213,6 +217,11 @@ TurnSequence turn_from_json(const json& j) {
   for (const auto& [name, ptr] : kOptionalMetaDoubles) {
     if (const auto it = j.find(name); it != j.end())
       m.*ptr = read_double(*it, json_member_pointer(name), 0);
+  }
+  if (const auto it = j.find(kSpeedAfterKey); it != j.end()) {
+    m.speed_after_mps = read_double(*it, json_member_pointer(kSpeedAfterKey), 0);
+    if (!(*m.speed_after_mps > 0.0))
+      throw ParseError(json_member_pointer(kSpeedAfterKey), 0, "must be > 0");
   }
 
   const json& warnings = member(j, "warnings");

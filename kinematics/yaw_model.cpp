@@ -152,7 +152,8 @@ std::vector<PredictedStep> predict(const YawModel& m, const YawHistory& history,
 Polyline predict_normalized_turn(const YawModel& m, double speed_mps, double dheading_deg,
                                  double completion_threshold_deg, double course_deg,
                                  std::size_t max_steps, bool use_speed_model,
-                                 double initial_yaw_rate_dps) {
+                                 double initial_yaw_rate_dps,
+                                 std::optional<double> speed_after_mps) {
   // Into the turn is clockwise for a right turn, anticlockwise for a left one.
   const double raw_rate_dps = dheading_deg < 0.0 ? -initial_yaw_rate_dps : initial_yaw_rate_dps;
   const YawHistory h = initial_yaw_rate_dps == 0.0 ? steady_history(m, course_deg)
@@ -161,7 +162,7 @@ Polyline predict_normalized_turn(const YawModel& m, double speed_mps, double dhe
   o.steps = max_steps;
   o.completion_threshold_deg = completion_threshold_deg;
   o.use_speed_model = use_speed_model;
-  o.desired_speed_mps = speed_mps;
+  o.desired_speed_mps = speed_after_mps.value_or(speed_mps);
   const Pose start{0.0, 0.0, course_deg};
   const auto steps = predict(m, h, course_deg + dheading_deg, start, speed_mps, o);
   Polyline out;

@@ -81,12 +81,57 @@ std::vector<double> number_list(Reader& r, const char* key, double min, double m
   return out;
 }
 
+// turn_array.speed_changes: [{"from_mps": u0, "to_mps": u1}, ...].
+std::vector<SpeedChange> speed_change_list(Reader& r, double vmax) {
+  std::vector<SpeedChange> out;
+  const json* v = r.get("speed_changes", false);
+  if (!v) return out;
+  const std::string field = r.at("speed_changes");
+  if (!v->is_array() || v->empty()) {
+    r.error(field, "expected a non-empty array of {\"from_mps\", \"to_mps\"} objects");
+    return out;
+  }
+  if (v->size() > kMaxMissionSpeedChanges) {
+    r.error(field, "at most " + std::to_string(kMaxMissionSpeedChanges) + " entries, got " +
+                       std::to_string(v->size()));
+    return out;
+  }
+  std::vector<FieldError> entry_errors;
+  for (std::size_t i = 0; i < v->size(); ++i) {
+    const std::string f = field + "/" + std::to_string(i);
+    std::vector<FieldError> errors;
+    Reader e((*v)[i], f, errors);
+    SpeedChange c;
+    e.number("from_mps", c.from_mps, 0.0, vmax, true, true);
+    e.number("to_mps", c.to_mps, 0.0, vmax, true, true);
+    e.finish();
+    if (errors.empty() && std::abs(c.from_mps - c.to_mps) < kMinSpeedSpacingMps) {
+      errors.push_back({f + "/to_mps", "must differ from from_mps by at least " +
+                                           json(kMinSpeedSpacingMps).dump() +
+                                           " m/s (a constant-speed turn belongs in speeds_mps)"});
+    }
+    for (std::size_t j = 0; errors.empty() && j < out.size(); ++j) {
+      if (std::abs(out[j].from_mps - c.from_mps) < kMinSpeedSpacingMps &&
+          std::abs(out[j].to_mps - c.to_mps) < kMinSpeedSpacingMps) {
+        errors.push_back({f, "duplicates entry " + std::to_string(j)});
+      }
+    }
+    for (auto& err : errors)
+      r.error(err.field, err.message);
+    if (errors.empty()) out.push_back(c);
+  }
+  return out;
+}
+
 }  // namespace
 
 double return_speed_mps(const MissionConfig& config) {
   if (config.region.return_speed_mps) return *config.region.return_speed_mps;
   if (config.excitation) return config.excitation->speed_mps;
-  return config.turn_array.speeds_mps.empty() ? 1.0 : config.turn_array.speeds_mps.front();
+  if (!config.turn_array.speeds_mps.empty()) return config.turn_array.speeds_mps.front();
+  if (!config.turn_array.speed_changes.empty())
+    return config.turn_array.speed_changes.front().from_mps;
+  return 1.0;
 }
 
 MissionConfigError::MissionConfigError(std::vector<FieldError> errors)
@@ -130,8 +175,13 @@ MissionConfig parse_mission_config(std::string_view json_text, double max_speed_
   if (const json* ta = root.get("turn_array", c.kind == MissionKind::turns)) {
     Reader r(*ta, "/turn_array", errors);
     if (r.ok()) {
-      c.turn_array.speeds_mps = number_list(r, "speeds_mps", 0.0, vmax, true, "m/s",
-                                            kMaxMissionSpeeds, kMinSpeedSpacingMps);
+      c.turn_array.speed_changes = speed_change_list(r, vmax);
+      // With speed changes the constant-speed axis may be left out.
+      const bool speeds_required = !(ta->is_object() && ta->contains("speed_changes"));
+      if (speeds_required || ta->contains("speeds_mps")) {
+        c.turn_array.speeds_mps = number_list(r, "speeds_mps", 0.0, vmax, true, "m/s",
+                                              kMaxMissionSpeeds, kMinSpeedSpacingMps);
+      }
       c.turn_array.dheadings_deg = number_list(r, "dheadings_deg", 0.0, 180.0, true, "deg",
                                                kMaxMissionDheadings, kMinDheadingSpacingDeg);
       if (const json* d = r.get("direction", false)) {
@@ -163,12 +213,14 @@ MissionConfig parse_mission_config(std::string_view json_text, double max_speed_
       r.finish();
       // Each axis is bounded above, so this product cannot overflow.
       const std::size_t planned =
-          c.turn_array.speeds_mps.size() * c.turn_array.dheadings_deg.size() *
+          (c.turn_array.speeds_mps.size() + c.turn_array.speed_changes.size()) *
+          c.turn_array.dheadings_deg.size() *
           std::max<std::size_t>(1, c.turn_array.initial_yaw_rates_dps.size()) *
           static_cast<std::size_t>(c.turn_array.repeats);
       if (planned > kMaxPlannedTurns) {
         r.error("/turn_array", "plans " + std::to_string(planned) +
-                                   " turns (speeds x heading changes x initial yaw rates x "
+                                   " turns ((speeds + speed changes) x heading changes x initial "
+                                   "yaw rates x "
                                    "repeats); at most " +
                                    std::to_string(kMaxPlannedTurns));
       }

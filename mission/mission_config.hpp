@@ -37,8 +37,19 @@ inline constexpr double kMinDheadingSpacingDeg = 0.5;
 inline constexpr double kMinYawRateSpacingDps = 0.5;
 inline constexpr double kMaxInitialYawRateDps = 60.0;
 
+// Issue 17 part 2: a turn that changes speed as it changes heading. The ConditionSet establishes
+// from_mps (u0) on a steady course; the turn command sends the new heading with to_mps (u1).
+inline constexpr std::size_t kMaxMissionSpeedChanges = 20;
+struct SpeedChange {
+  double from_mps = 0.0;
+  double to_mps = 0.0;
+  friend bool operator==(const SpeedChange&, const SpeedChange&) = default;
+};
+
 struct TurnArray {
-  std::vector<double> speeds_mps;
+  std::vector<double> speeds_mps;  // empty only when speed_changes is not
+  // Each entry is flown for every heading change (x repeats), after the constant-speed turns.
+  std::vector<SpeedChange> speed_changes;
   std::vector<double> dheadings_deg;  // magnitudes in (0, 180]
   DirectionPolicy direction = DirectionPolicy::alternate;
   int repeats = 1;

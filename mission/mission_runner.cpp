@@ -25,6 +25,10 @@ std::string num(double v, int decimals = 2) {
 
 std::string cell_name(const TurnTask& t) {
   std::string out = num(t.speed_mps, 2);
+  if (t.speed_after_mps) {
+    out += " -> ";
+    out += num(*t.speed_after_mps, 2);
+  }
   out += " m/s, ";
   out += num(t.dheading_deg, 0);
   out += " deg";
@@ -117,12 +121,14 @@ MissionRunner::MissionRunner(MissionConfig config, vehicle::Vehicle& vehicle,
       queue_(tasks.begin(), tasks.end()),
       rng_(config_.excitation ? config_.excitation->seed : 1) {
   for (const TurnTask& t : plan_turns(config_)) {
-    if (!cell_of(t)) cells_.push_back({t.speed_mps, t.dheading_deg, 0, 0, 0, 0, 0, false});
+    if (!cell_of(t))
+      cells_.push_back({t.speed_mps, t.dheading_deg, 0, 0, 0, 0, 0, false, t.speed_after_mps});
     ++cell_of(t)->planned;
   }
   for (CellProgress& c : cells_) {
     const auto left = std::count_if(queue_.begin(), queue_.end(), [&](const TurnTask& t) {
-      return same_cell(t.speed_mps, t.dheading_deg, c.speed_mps, c.dheading_deg);
+      return same_cell(t.speed_mps, t.speed_after_mps, t.dheading_deg, c.speed_mps,
+                       c.speed_after_mps, c.dheading_deg);
     });
     c.ok = c.planned - static_cast<int>(left);
   }
@@ -130,7 +136,9 @@ MissionRunner::MissionRunner(MissionConfig config, vehicle::Vehicle& vehicle,
 
 CellProgress* MissionRunner::cell_of(const TurnTask& t) {
   for (CellProgress& c : cells_)
-    if (same_cell(t.speed_mps, t.dheading_deg, c.speed_mps, c.dheading_deg)) return &c;
+    if (same_cell(t.speed_mps, t.speed_after_mps, t.dheading_deg, c.speed_mps, c.speed_after_mps,
+                  c.dheading_deg))
+      return &c;
   return nullptr;
 }
 
@@ -410,7 +418,8 @@ void MissionRunner::start_turn(const vehicle::NavSample& s) {
   turn_start_s_ = s.t_s;
   turn_condition_set_time_s_ = cs_time;
   desired_heading_deg_ = turn_->goal_heading_deg();
-  desired_speed_mps_ = task.speed_mps;
+  // A speed-change turn sends the new heading with the new speed (issue 17 part 2).
+  desired_speed_mps_ = task.speed_after_mps.value_or(task.speed_mps);
   if (auto* c = cell_of(task)) c->running = true;
   set_mode(HelmMode::turning, s.t_s);
   for (auto* o : observers_)
@@ -421,6 +430,7 @@ void MissionRunner::finish_turn(const vehicle::NavSample& s, Completion how) {
   TurnOutcome out;
   out.task = queue_.front();
   out.raw = turn_->build(options_.vehicle_id, options_.mission_label);
+  out.raw.meta().speed_after_mps = out.task.speed_after_mps;
   if (how == Completion::passed_goal)
     out.raw.add_warning("completed by passing the goal heading between two samples");
   out.condition_set_time_s = turn_condition_set_time_s_;
@@ -476,6 +486,7 @@ void MissionRunner::abort_turn(double t_s, const std::string& reason, bool count
   if (count_attempt) ++task.attempts;
   out.task = task;
   out.raw = turn_->build(options_.vehicle_id, options_.mission_label);
+  out.raw.meta().speed_after_mps = task.speed_after_mps;
   out.status = TurnStatus::aborted;
   out.reason = reason;
   out.raw.meta().status = out.status;

@@ -45,6 +45,7 @@ struct CellProgress {
   int aborted = 0;
   int given_up = 0;
   bool running = false;
+  std::optional<double> speed_after_mps;  // a speed-change cell (speed_mps -> this)
 };
 
 class MissionRunner {

@@ -12,12 +12,19 @@ std::vector<TurnTask> plan_turns(const MissionConfig& config) {
   const auto& ta = config.turn_array;
   const std::vector<double> rates =
       ta.initial_yaw_rates_dps.empty() ? std::vector<double>{0.0} : ta.initial_yaw_rates_dps;
-  for (double u : ta.speeds_mps) {
+  // Constant-speed rows first, then the speed changes, each over every heading change.
+  std::vector<std::pair<double, std::optional<double>>> rows;
+  for (double u : ta.speeds_mps)
+    rows.push_back({u, std::nullopt});
+  for (const SpeedChange& c : ta.speed_changes)
+    rows.push_back({c.from_mps, c.to_mps});
+  for (const auto& [u, u1] : rows) {
     for (double d : ta.dheadings_deg) {
       for (std::size_t k = 0; k < rates.size() * static_cast<std::size_t>(ta.repeats); ++k) {
         TurnTask t;
         t.index = plan.size();
         t.speed_mps = u;
+        t.speed_after_mps = u1;
         t.dheading_deg = d;
         t.initial_yaw_rate_dps = rates[k / static_cast<std::size_t>(ta.repeats)];
         switch (ta.direction) {
@@ -48,6 +55,15 @@ bool same_cell(double speed_a_mps, double dheading_a_deg, double speed_b_mps,
              tolerances.dheading_match_deg;
 }
 
+bool same_cell(double speed_a_mps, std::optional<double> speed_after_a_mps, double dheading_a_deg,
+               double speed_b_mps, std::optional<double> speed_after_b_mps, double dheading_b_deg) {
+  if (speed_after_a_mps.has_value() != speed_after_b_mps.has_value()) return false;
+  if (speed_after_a_mps &&
+      std::abs(*speed_after_a_mps - *speed_after_b_mps) > kinematics::CktOptions{}.speed_match_mps)
+    return false;
+  return same_cell(speed_a_mps, dheading_a_deg, speed_b_mps, dheading_b_deg);
+}
+
 std::vector<TurnTask> remaining_turns(const std::vector<TurnTask>& plan,
                                       const std::vector<CellCount>& done) {
   std::vector<int> left_to_skip;
@@ -58,7 +74,8 @@ std::vector<TurnTask> remaining_turns(const std::vector<TurnTask>& plan,
     bool skipped = false;
     for (std::size_t i = 0; i < done.size() && !skipped; ++i) {
       if (left_to_skip[i] > 0 &&
-          same_cell(t.speed_mps, t.dheading_deg, done[i].speed_mps, done[i].dheading_deg)) {
+          same_cell(t.speed_mps, t.speed_after_mps, t.dheading_deg, done[i].speed_mps,
+                    done[i].speed_after_mps, done[i].dheading_deg)) {
         --left_to_skip[i];
         skipped = true;
       }

@@ -20,6 +20,9 @@ struct TurnTask {
   // Target yaw rate when the turn is commanded, deg/s, + into the turn, - against it; 0: from a
   // steady course (TurnArray::initial_yaw_rates_dps).
   double initial_yaw_rate_dps = 0.0;
+  // A speed-change turn (turn_array.speed_changes): speed_mps is u0, held before the turn, and
+  // this is u1, commanded with the new heading. Empty: a constant-speed turn.
+  std::optional<double> speed_after_mps;
 };
 
 // Speed-major, then heading change, then initial yaw rate, then repeats: at each speed the vehicle
@@ -32,6 +35,7 @@ struct CellCount {
   double speed_mps = 0.0;
   double dheading_deg = 0.0;
   int done = 0;
+  std::optional<double> speed_after_mps;  // a speed-change cell
 };
 
 // The plan without the turns already done: per cell, the first `done` tasks are dropped.
@@ -41,5 +45,8 @@ std::vector<TurnTask> remaining_turns(const std::vector<TurnTask>& plan,
 // Cells are matched with the same tolerances the CKT uses.
 bool same_cell(double speed_a_mps, double dheading_a_deg, double speed_b_mps,
                double dheading_b_deg);
+// Also the speed after: a speed-change cell is never a constant-speed one.
+bool same_cell(double speed_a_mps, std::optional<double> speed_after_a_mps, double dheading_a_deg,
+               double speed_b_mps, std::optional<double> speed_after_b_mps, double dheading_b_deg);
 
 }  // namespace avk::mission

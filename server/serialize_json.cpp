@@ -154,7 +154,7 @@ json mission_json(const app::MissionSummary& s) {
 
 json cells_json(const std::vector<app::CellReport>& cells) {
   json out = json::array();
-  for (const auto& c : cells)
+  for (const auto& c : cells) {
     out.push_back({{"speed_mps", c.speed_mps},
                    {"dheading_deg", c.dheading_deg},
                    {"planned", c.planned},
@@ -166,6 +166,8 @@ json cells_json(const std::vector<app::CellReport>& cells) {
                    {"advance_m", mean_sd_json(c.advance_m)},
                    {"transfer_m", mean_sd_json(c.transfer_m)},
                    {"condition_set_time_s", mean_sd_json(c.condition_set_time_s)}});
+    if (c.speed_after_mps) out.back()["speed_after_mps"] = *c.speed_after_mps;
+  }
   return out;
 }
 
@@ -221,7 +223,8 @@ json turn_row_json(const store::TurnRow& t) {
           {"start_heading_error_deg", optional_json(t.start_heading_error_deg)},
           {"start_yaw_rate_dps", optional_json(t.start_yaw_rate_dps)},
           {"source", kin::to_string(t.source)},
-          {"quality", optional_json(t.quality)}};
+          {"quality", optional_json(t.quality)},
+          {"speed_after_mps", optional_json(t.speed_after_mps)}};
 }
 
 json harvest_report_json(const app::HarvestReport& r) {
@@ -327,6 +330,12 @@ json prediction_json(const app::Prediction& p) {
   if (p.table_frame) j["table_frame"] = *p.table_frame;
   j["current"] = water_current_json(p.current, p.current_source);
   if (q.initial_yaw_rate_dps) j["initial_yaw_rate_dps"] = *q.initial_yaw_rate_dps;
+  if (q.speed_after_mps) {
+    j["speed_after_mps"] = *q.speed_after_mps;
+    j["speed_change_source"] =
+        p.speed_change_source ? json(app::to_string(*p.speed_change_source)) : json();
+    j["speed_response"] = p.speed_response ? json(*p.speed_response) : json();
+  }
   j["trajectory"] = points_json(p.trajectory);
   return j;
 }
@@ -668,8 +677,32 @@ json test_cells_json(const app::Comparison& c) {
   return cells;
 }
 
+json speed_change_json(const std::vector<kin::SpeedChangeCellScores>& cells) {
+  using M = kin::SpeedChangeMethod;
+  json jc = json::array();
+  for (const auto& c : cells) {
+    json j = {{"from_mps", c.from_mps},
+              {"to_mps", c.to_mps},
+              {"dheading_deg", c.dheading_deg},
+              {"n_turns", c.n_turns},
+              {"span_m", c.span_m}};
+    for (const M m : kin::kSpeedChangeMethods) {
+      const kin::HeldOutScores* s = kin::scores_of(c, m);
+      j[kin::to_string(m)] =
+          s && !s->path_m.empty() ? json{{"path_m", mean_sd_json(s->path())}} : json();
+    }
+    jc.push_back(std::move(j));
+  }
+  json out = {{"scoring", "held_out"}, {"metric", "path_m"}, {"cells", std::move(jc)}};
+  for (const M m : kin::kSpeedChangeMethods)
+    out["median_path_m"][kin::to_string(m)] =
+        optional_json(kin::median_speed_change_path_m(cells, m));
+  return out;
+}
+
 json comparison_json(const app::Comparison& c) {
   json out = {{"vehicle_id", c.vehicle_id}, {"model_id", c.model ? json(c.model->id) : json()}};
+  if (!c.speed_change.empty()) out["speed_change"] = speed_change_json(c.speed_change);
   if (!c.test_cells.empty()) out["test"] = {{"cells", test_cells_json(c)}};
   // The fair comparison first; "cells" and the medians below are the thesis' in-sample table.
   out["predictive"] = predictive_json(c);

@@ -21,7 +21,7 @@ namespace {
 
 // Each step moves the schema from version i to i + 1. Steps are append-only: a released step is
 // never edited, because databases in the field have already run it.
-constexpr std::array<const char*, 9> kMigrations = {
+constexpr std::array<const char*, 10> kMigrations = {
     R"sql(
 CREATE TABLE vehicles (
   id            TEXT PRIMARY KEY,
@@ -167,6 +167,11 @@ CREATE TABLE harvests (
 );
 CREATE INDEX harvests_by_mission ON harvests (mission_id, id);
 )sql",
+    // Issue 17 part 2: the speed commanded with the new heading when a turn changes speed (u1;
+    // commanded_speed_mps stays u0). NULL for a constant-speed turn and every older turn.
+    R"sql(
+ALTER TABLE turns ADD COLUMN speed_after_mps REAL;
+)sql",
     // The current each mission flew in (app/current.hpp) and its turns in the water frame, the
     // drift of that current removed (kinematics/water_frame.hpp), packed like the normalised
     // form: a table learned in one current then predicts turns in another.
@@ -198,8 +203,8 @@ constexpr const char* kTurnColumns =
     "id, mission_id, vehicle_id, cell_speed_mps, cell_dheading_deg, status, reason, "
     "commanded_speed_mps, goal_dheading_deg, observed_dheading_deg, start_time_s, end_time_s, "
     "advance_m, transfer_m, condition_set_time_s, start_heading_error_deg, start_yaw_rate_dps, "
-    "source, quality";
-constexpr int kTurnRowColumns = 19;
+    "source, quality, speed_after_mps";
+constexpr int kTurnRowColumns = 20;
 
 TurnRow read_turn_row(const Statement& s) {
   TurnRow r;
@@ -230,6 +235,7 @@ TurnRow read_turn_row(const Statement& s) {
     throw StoreError("turn " + std::to_string(r.id) + " has unknown source '" + source + "'");
   r.source = *parsed_source;
   r.quality = s.column_optional_double(18);
+  r.speed_after_mps = s.column_optional_double(19);
   return r;
 }
 
@@ -484,7 +490,9 @@ std::int64_t Store::store_turn(std::int64_t mission_id, const kinematics::TurnSe
       "reason, commanded_speed_mps, goal_dheading_deg, observed_dheading_deg, start_time_s, "
       "end_time_s, advance_m, transfer_m, condition_set_time_s, raw_json, normalized_json, "
       "normalized_meta_json, normalized_samples, start_heading_error_deg, start_yaw_rate_dps, "
-      "source, quality) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+      "source, quality, speed_after_mps) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, "
+      "?, ?, "
+      "?, ?, ?, ?, ?)");
   s.bind(1, mission_id).bind(2, m.vehicle_id).bind(3, m.commanded_speed_mps);
   s.bind(4, std::abs(m.goal_dheading_deg)).bind(5, kinematics::to_string(status)).bind(6, reason);
   s.bind(7, m.commanded_speed_mps).bind(8, m.goal_dheading_deg).bind(9, m.observed_dheading_deg);
@@ -492,6 +500,7 @@ std::int64_t Store::store_turn(std::int64_t mission_id, const kinematics::TurnSe
   s.bind(14, start.condition_set_time_s).bind(15, raw_json);
   s.bind(19, start.heading_error_deg).bind(20, start.yaw_rate_dps);
   s.bind(21, kinematics::to_string(m.source)).bind(22, m.quality);
+  s.bind(23, m.speed_after_mps);
   if (normalized_json) {
     s.bind(16, *normalized_json).bind(17, *normalized_meta).bind_blob(18, normalized_samples);
   } else {
@@ -641,8 +650,8 @@ std::map<std::int64_t, TurnCounts> Store::turn_counts_by_mission() {
 std::vector<CellStats> Store::mission_cell_stats(std::int64_t mission_id) {
   auto s = db_.prepare(
       "SELECT cell_speed_mps, cell_dheading_deg, status, advance_m, transfer_m, "
-      "condition_set_time_s FROM turns WHERE mission_id = ? "
-      "ORDER BY cell_speed_mps, cell_dheading_deg, id");
+      "condition_set_time_s, speed_after_mps FROM turns WHERE mission_id = ? "
+      "ORDER BY cell_speed_mps, coalesce(speed_after_mps, -1), cell_dheading_deg, id");
   s.bind(1, mission_id);
   std::vector<CellStats> out;
   std::vector<double> advances, transfers, condition_set_times;
@@ -662,11 +671,14 @@ std::vector<CellStats> Store::mission_cell_stats(std::int64_t mission_id) {
   while (s.step()) {
     const double speed = s.column_double(0);
     const double dheading = s.column_double(1);
-    if (out.empty() || out.back().speed_mps != speed || out.back().dheading_deg != dheading) {
+    const std::optional<double> speed_after = s.column_optional_double(6);
+    if (out.empty() || out.back().speed_mps != speed || out.back().dheading_deg != dheading ||
+        out.back().speed_after_mps != speed_after) {
       close_cell();
       out.push_back({});
       out.back().speed_mps = speed;
       out.back().dheading_deg = dheading;
+      out.back().speed_after_mps = speed_after;
     }
     CellStats& c = out.back();
     const std::string status = s.column_text(2);

@@ -69,7 +69,8 @@ struct TurnRow {
   std::optional<double> start_heading_error_deg;
   std::optional<double> start_yaw_rate_dps;
   kinematics::TurnSource source = kinematics::TurnSource::collection;
-  std::optional<double> quality;  // harvested turns
+  std::optional<double> quality;          // harvested turns
+  std::optional<double> speed_after_mps;  // u1 of a speed-change turn (issue 17 part 2)
 };
 
 // How steady the vehicle was when its turn was commanded, as the ConditionSet saw it.
@@ -157,6 +158,7 @@ struct CellStats {
   std::optional<kinematics::MeanSd> advance_m;  // over ok turns; absent with no ok turn
   std::optional<kinematics::MeanSd> transfer_m;
   std::optional<kinematics::MeanSd> condition_set_time_s;  // over ok turns that have one
+  std::optional<double> speed_after_mps;  // a speed-change cell (u0 -> u1); empty: constant speed
 };
 
 // An identified black-box yaw model with its provenance and validation errors.

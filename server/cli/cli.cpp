@@ -66,6 +66,8 @@ void usage(std::ostream& out) {
          "                  [--initial-yaw-rate DPS]  (the yaw rate when the turn is commanded,\n"
          "                  + clockwise; avk: the table over initial yaw rate, model: started at "
          "it)\n"
+         "                  [--speed-after M/S]  (the speed commanded with the new heading:\n"
+         "                   measured cells of the pair, else the turn at --speed re-timed)\n"
          "  avk maneuver evaluate --db FILE --own X,Y,HEADING,SPEED --contact X,Y,COURSE,SPEED\n"
          "                  [--contact ...] [--vehicle ID] [--standoff 10] [--horizon 120]\n"
          "                  [--method avk|model|instantaneous] [--model ID] [--step 5]\n"

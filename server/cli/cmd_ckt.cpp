@@ -86,7 +86,8 @@ app::BuiltTable build_table(const Args& a, Io& io) {
   }
   const auto& report = out.report;
   io.err << "ckt: " << report.turns_used << " turns used, " << report.turns_skipped_status
-         << " aborted/rejected skipped, " << report.turns_unassigned << " off the grid\n";
+         << " aborted/rejected skipped, " << report.turns_unassigned << " off the grid, "
+         << report.turns_speed_change << " with a speed change (not in constant-speed cells)\n";
   if (a.flag("include-harvested"))
     io.err << "ckt: " << out.harvested_turns << " of the turns harvested from navigation logs\n";
   return out;

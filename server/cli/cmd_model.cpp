@@ -204,6 +204,26 @@ void print_test_cells(const app::Comparison& c, bool path, Io& io) {
   }
 }
 
+// Turns with a speed change (issue 17 part 2), each predictor on turns it was not built from.
+void print_speed_change(const app::Comparison& c, Io& io) {
+  using M = kin::SpeedChangeMethod;
+  io.out << "\nturns with a speed change, held out, mean distance at equal arc length, m\n"
+         << "   u0 -> u1  dheading   n         measured retimed(measured)    retimed(model)"
+            "            model   constant speed    instantaneous\n";
+  for (const auto& cell : c.speed_change) {
+    io.out << std::setw(5) << fixed(cell.from_mps, 2) << " -> " << fixed(cell.to_mps, 2)
+           << std::setw(8) << fixed(cell.dheading_deg, 0) << std::setw(4) << cell.n_turns;
+    for (const M m : kin::kSpeedChangeMethods)
+      io.out << held_out_text(kin::scores_of(cell, m), true);
+    io.out << "\n";
+  }
+  io.out << "median:";
+  for (const M m : kin::kSpeedChangeMethods)
+    io.out << " " << kin::to_string(m) << " "
+           << fixed(kin::median_speed_change_path_m(c.speed_change, m).value_or(NAN), 2);
+  io.out << " m\n";
+}
+
 int compare(const std::vector<std::string>& rest, Io& io) {
   const Args a(rest,
                {"db", "model", "vehicle", "format", "threshold", "metric", "scoring", "corridor"},
@@ -245,6 +265,7 @@ int compare(const std::vector<std::string>& rest, Io& io) {
   if (scoring == "predictive") {
     print_predictive(comparison, metric == "path", io);
     if (!comparison.test_cells.empty()) print_test_cells(comparison, metric == "path", io);
+    if (!comparison.speed_change.empty()) print_speed_change(comparison, io);
     return 0;
   }
   io.out << "vehicle " << vehicle;
@@ -289,7 +310,7 @@ int compare(const std::vector<std::string>& rest, Io& io) {
 int predict(const std::vector<std::string>& rest, Io& io) {
   const Args a(rest,
                {"db", "speed", "dheading", "method", "model", "x", "y", "heading", "format",
-                "vehicle", "threshold", "corridor", "current", "initial-yaw-rate"},
+                "vehicle", "threshold", "corridor", "current", "initial-yaw-rate", "speed-after"},
                {"speed-model"});
   app::Context ctx(a.require("db"));
   app::PredictQuery q;
@@ -309,6 +330,10 @@ int predict(const std::vector<std::string>& rest, Io& io) {
   if (format != "json" && format != "csv") throw UsageError("--format must be json or csv");
   q.model_id = model_option(a);
   q.use_speed_model = a.flag("speed-model");
+  if (const auto after = a.number("speed-after")) {
+    if (!(*after > 0.0)) throw UsageError("--speed-after (m/s) must be > 0");
+    q.speed_after_mps = *after;
+  }
   q.completion_threshold_deg = a.number("threshold").value_or(5.0);
   if (const auto share = a.number("corridor")) {
     if (!(*share > 0.0 && *share < 1.0)) throw UsageError("--corridor must be within (0, 1)");

@@ -5,6 +5,7 @@
 
 #include "mission/mission_config.hpp"
 #include "support/example_file.hpp"
+#include "support/mission_field_errors.hpp"
 
 using namespace avk::mission;
 using nlohmann::json;
@@ -15,17 +16,7 @@ using avk::testing::example_text;
 
 // Fields named by the validation of a mutated copy of the Figure 4-1 mission.
 std::vector<std::string> fields_of(const std::function<void(json&)>& mutate, double vmax = 2.0) {
-  json doc = json::parse(example_text("thesis-fig4-1.json"));
-  mutate(doc);
-  try {
-    parse_mission_config(doc.dump(), vmax);
-  } catch (const MissionConfigError& e) {
-    std::vector<std::string> f;
-    for (const auto& err : e.errors())
-      f.push_back(err.field);
-    return f;
-  }
-  return {};
+  return avk::testing::mission_field_errors(mutate, vmax);
 }
 
 }  // namespace

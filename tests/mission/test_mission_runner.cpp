@@ -740,7 +740,7 @@ TEST(TurnPlan, SpeedMajorAlternatingByIndexAndResumable) {
     EXPECT_EQ(plan[i].side, i % 2 == 0 ? TurnSide::right : TurnSide::left);
     EXPECT_EQ(plan[i].attempts, 0);
   }
-  const auto left = remaining_turns(plan, {{0.5, 30, 1}, {1.0, 90, 2}});
+  const auto left = remaining_turns(plan, {{0.5, 30, 1, std::nullopt}, {1.0, 90, 2, std::nullopt}});
   std::vector<std::size_t> indices;
   for (const auto& t : left) {
     indices.push_back(t.index);

@@ -352,6 +352,25 @@ TEST_F(StationApi, CktCellsExportImportPredictModelsCompare) {
   const json model = body(call(get("/api/v1/vehicles/sim-usim/predict",
                                    {{"speed", "1"}, {"dheading", "70"}, {"method", "model"}})));
   EXPECT_EQ(model["model_id"], model_id);
+  // Issue 17 part 2: the speed after is a parameter named in its error; equal to the speed it is
+  // a constant-speed turn; the model flies a change with its speed model (or says it has none).
+  EXPECT_EQ(call(get("/api/v1/vehicles/sim-usim/predict",
+                     {{"speed", "1"}, {"dheading", "70"}, {"speed_after", "-1"}}))
+                .status,
+            400);
+  const json same = body(call(get("/api/v1/vehicles/sim-usim/predict",
+                                  {{"speed", "1"}, {"dheading", "70"}, {"speed_after", "1"}})));
+  EXPECT_FALSE(same.contains("speed_change_source"));
+  const ApiResponse slowing =
+      call(get("/api/v1/vehicles/sim-usim/predict",
+               {{"speed", "1"}, {"dheading", "70"}, {"speed_after", "0.5"}, {"method", "model"}}));
+  if (slowing.status == 200) {
+    EXPECT_EQ(body(slowing)["speed_change_source"], "model");
+    EXPECT_EQ(body(slowing)["speed_after_mps"], 0.5);
+  } else {
+    EXPECT_EQ(slowing.status, 400) << slowing.body;
+    EXPECT_NE(slowing.body.find("speed_after"), std::string::npos) << slowing.body;
+  }
   const json comparison = body(call(get("/api/v1/vehicles/sim-usim/compare")));
   EXPECT_EQ(comparison["cells"].size(), 4u);
   EXPECT_EQ(comparison["model_id"], model_id);

@@ -100,8 +100,8 @@ TEST(CurrentStore, AnotherMissionsTurnIsRefusedAndNothingChanges) {
       raw.normalized());
 }
 
-// A file exactly as schema 8 left it (every step before the currents), a turn stored then.
-TEST(CurrentStore, MigratesASchemaEightDatabase) {
+// A file exactly as schema 9 left it (every step before the currents), a turn stored then.
+TEST(CurrentStore, MigratesASchemaNineDatabase) {
   avk::testing::TempDb db("avk_store_current_migration");
   const TurnSequence raw = arc(120.0, 3);
   std::int64_t id = 0;
@@ -117,7 +117,7 @@ TEST(CurrentStore, MigratesASchemaEightDatabase) {
     c.exec("DROP TABLE mission_currents");
     c.exec("ALTER TABLE turns DROP COLUMN water_samples");
     c.exec("ALTER TABLE turns DROP COLUMN water_meta_json");
-    c.exec("PRAGMA user_version = 8");
+    c.exec("PRAGMA user_version = 9");
   }
   Store s(db.path());
   EXPECT_EQ(s.user_version(), schema_version());

@@ -73,10 +73,10 @@ void expect_mean_sd(const std::optional<avk::kinematics::MeanSd>& got, double me
 
 }  // namespace
 
-TEST(MissionQueries, SchemaIsVersionNine) {
+TEST(MissionQueries, SchemaIsVersionTen) {
   Store s(":memory:");
-  EXPECT_EQ(schema_version(), 9);
-  EXPECT_EQ(s.user_version(), 9);
+  EXPECT_EQ(schema_version(), 10);
+  EXPECT_EQ(s.user_version(), 10);
   EXPECT_FALSE(migration_step_sql(0).empty());
   EXPECT_NE(migration_step_sql(1).find("normalized_samples"), std::string_view::npos);
   EXPECT_NE(migration_step_sql(2).find("yaw_models"), std::string_view::npos);
@@ -85,8 +85,9 @@ TEST(MissionQueries, SchemaIsVersionNine) {
   EXPECT_NE(migration_step_sql(5).find("ckt_snapshots_by_vehicle"), std::string_view::npos);
   EXPECT_NE(migration_step_sql(6).find("start_heading_error_deg"), std::string_view::npos);
   EXPECT_NE(migration_step_sql(7).find("harvests"), std::string_view::npos);
-  EXPECT_NE(migration_step_sql(8).find("mission_currents"), std::string_view::npos);
-  EXPECT_THROW(migration_step_sql(9), std::out_of_range);
+  EXPECT_NE(migration_step_sql(8).find("speed_after_mps"), std::string_view::npos);
+  EXPECT_NE(migration_step_sql(9).find("mission_currents"), std::string_view::npos);
+  EXPECT_THROW(migration_step_sql(10), std::out_of_range);
   EXPECT_THROW(migration_step_sql(-1), std::out_of_range);
 }
 
@@ -587,4 +588,47 @@ TEST(MissionQueries, NewestOkTurnIdPerVehicle) {
   s.store_turn(m, arc(1.0, 40.0, 2), TurnStatus::aborted, "containment");
   EXPECT_EQ(s.newest_ok_turn_id("usim-1"), a);
   EXPECT_EQ(s.newest_ok_turn_id("other"), 0);
+}
+
+// Issue 17 part 2: a database at schema 7 (before speed_after_mps) upgrades, keeps its turns (with
+// no speed after), and then stores and reads back a speed-change turn and its cell.
+TEST(MissionQueries, MigratesSchemaSevenDatabaseToSpeedAfter) {
+  TempDb db;
+  const TurnSequence old_turn = arc(1.0, 90.0, 21);
+  {
+    Store s(db.path());
+    s.upsert_vehicle({"usim-1", "usim", 2.0, 1.0});
+    const auto m = s.create_mission("usim-1", "old", "{}");
+    s.store_turn(m, old_turn, TurnStatus::ok, "");
+  }
+  {
+    // Back to schema 7, as a station before this step left it.
+    Connection c(db.path());
+    c.exec("ALTER TABLE turns DROP COLUMN speed_after_mps");
+    c.exec("PRAGMA user_version = 7");
+  }
+  Store s(db.path());
+  EXPECT_EQ(s.user_version(), schema_version());
+  const auto rows = s.list_turns({});
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_FALSE(rows[0].speed_after_mps);
+  EXPECT_EQ(s.get_turn(rows[0].id)->raw, old_turn);
+  TurnSequence slowing = arc(1.5, 90.0, 22);
+  slowing.meta().speed_after_mps = 0.75;
+  const auto id = s.store_turn(rows[0].mission_id, slowing, TurnStatus::ok, "");
+  const auto stored = s.get_turn(id);
+  ASSERT_TRUE(stored);
+  EXPECT_EQ(stored->row.speed_after_mps, 0.75);
+  EXPECT_EQ(stored->raw.meta().speed_after_mps, 0.75);
+  const auto loaded = s.load_normalized_turns({rows[0].mission_id});
+  ASSERT_EQ(loaded.size(), 2u);
+  EXPECT_EQ(loaded[1].meta().speed_after_mps, 0.75);
+  // A speed-change cell is its own, even at a constant-speed cell's speed and heading change.
+  s.store_turn(rows[0].mission_id, arc(1.5, 90.0, 23), TurnStatus::ok, "");
+  const auto cells = s.mission_cell_stats(rows[0].mission_id);
+  ASSERT_EQ(cells.size(), 3u);
+  EXPECT_FALSE(cells[1].speed_after_mps);
+  EXPECT_EQ(cells[2].speed_after_mps, 0.75);
+  EXPECT_EQ(cells[2].n_ok, 1);
+  EXPECT_TRUE(s.integrity_check());
 }
