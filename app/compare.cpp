@@ -85,7 +85,7 @@ Result<Comparison> compare(Context& ctx, const CompareQuery& q) {
       model_response = kin::speed_response_of_model(c.model->model);
       model_sc = [&](double u0, double u1, double d) {
         return kin::predict_normalized_turn(c.model->model, u0, d, q.completion_threshold_deg,
-                                            start_course_deg(turns, u0, d), 400, true, u1);
+                                            start_course_deg(turns, u0, d), 400, true, 0.0, u1);
       };
     }
     c.speed_change =

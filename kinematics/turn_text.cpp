@@ -37,8 +37,17 @@ enum Key : std::size_t {
   k_warnings,
   k_n_samples,
   k_samples,
+  // Optional keys (issue 17): written only when the turn has the value, so records of turns
+  // without them read as they always did.
+  k_initial_yaw_rate_dps,
+  k_speed_after_mps,
   k_key_count,
 };
+constexpr std::size_t kFirstOptionalKey = k_initial_yaw_rate_dps;
+constexpr std::array<std::pair<Key, std::optional<double> TurnMeta::*>, 2> kOptionalDoubles = {{
+    {k_initial_yaw_rate_dps, &TurnMeta::initial_yaw_rate_dps},
+    {k_speed_after_mps, &TurnMeta::speed_after_mps},
+}};
 
 constexpr std::array<std::string_view, k_key_count> kKeyNames = {
     "vehicle_id",
@@ -57,6 +66,8 @@ constexpr std::array<std::string_view, k_key_count> kKeyNames = {
     "warnings",
     "n_samples",
     "samples",
+    "initial_yaw_rate_dps",
+    "speed_after_mps",
 };
 
 std::array<double TurnMeta::*, k_end_time_s - k_commanded_speed_mps + 1> meta_doubles() {
@@ -345,6 +356,9 @@ void check_turn_serialisable(const TurnSequence& turn) {
       fail(std::string(kKeyNames[k_commanded_speed_mps + k]) + " is NaN or infinite");
     }
   }
+  for (const auto& [key, ptr] : kOptionalDoubles)
+    if (m.*ptr && !std::isfinite(*(m.*ptr)))
+      fail(std::string(kKeyNames[key]) + " is NaN or infinite");
   if (m.removed_current &&
       !(std::isfinite(m.removed_current->east_mps) && std::isfinite(m.removed_current->north_mps)))
     fail("the removed current is NaN or infinite");
@@ -389,6 +403,12 @@ std::string to_text_record(const TurnSequence& turn) {
   for (std::size_t k = 0; k < doubles.size(); ++k) {
     append_key(out, static_cast<Key>(k_commanded_speed_mps + k));
     append_double(out, m.*doubles[k]);
+    out += ';';
+  }
+  for (const auto& [key, ptr] : kOptionalDoubles) {
+    if (!(m.*ptr)) continue;
+    append_key(out, key);
+    append_double(out, *(m.*ptr));
     out += ';';
   }
   append_key(out, k_n_warnings);
@@ -478,7 +498,7 @@ TurnSequence parse_text_record(std::string_view line) {
     if (semi == std::string_view::npos) break;
     at = semi + 1;
   }
-  for (std::size_t k = 0; k < k_key_count; ++k) {
+  for (std::size_t k = 0; k < kFirstOptionalKey; ++k) {
     if (!found[k]) throw ParseError(std::string(kKeyNames[k]), line.size(), "missing key");
   }
   const auto field = [&](Key k) -> const Located& { return *found[k]; };
@@ -506,6 +526,8 @@ TurnSequence parse_text_record(std::string_view line) {
     const auto key = static_cast<Key>(k_commanded_speed_mps + k);
     m.*doubles[k] = parse_double(field(key), name(key));
   }
+  for (const auto& [key, ptr] : kOptionalDoubles)
+    if (found[key]) m.*ptr = parse_double(field(key), name(key));
   const std::size_t n_warnings =
       parse_count(field(k_n_warnings), name(k_n_warnings), kMaxTurnRecordWarnings);
   std::vector<std::string> warnings = parse_warnings(field(k_warnings), n_warnings);

@@ -380,6 +380,7 @@ json mission_current_json(const app::MissionCurrent& c,
 json current_json(const std::string& vehicle_id, const store::StoredCurrent& c) {
   json j = current_estimate_json(c.estimate);
   j["vehicle_id"] = vehicle_id;
+  j["estimated"] = true;
   j["mission_id"] = c.mission_id;
   j["t_s"] = c.t_s;
   j["method"] = c.method;

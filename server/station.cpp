@@ -369,8 +369,12 @@ void Station::add_routes() {
   // every turn; else its newest mission's).
   get("/api/v1/vehicles/{vid}/current", [&ctx](const ApiRequest&, const PathParams& p) {
     const std::string vid = p.at("vid");
-    return answer(app::vehicle_current(ctx, vid), false, [&vid](const store::StoredCurrent& c) {
-      return json_response(current_json(vid, c));
+    auto c = app::vehicle_current(ctx, vid);
+    // No estimate yet is an answer, not a missing resource: a page asks on every load.
+    if (!c && c.error().code == app::ErrorCode::not_found)
+      return json_response({{"vehicle_id", vid}, {"estimated", false}});
+    return answer(std::move(c), false, [&vid](const store::StoredCurrent& cur) {
+      return json_response(current_json(vid, cur));
     });
   });
   get("/api/v1/vehicles/{vid}/predict", [&ctx](const ApiRequest& r, const PathParams& p) {

@@ -205,7 +205,7 @@ TEST(SpeedChangeYawModel, TheSpeedModelFollowsTheSteppedCommand) {
   m.heading_coeffs = {0.5};
   m.speed = SpeedModel{0.2, 0.0, 0.0};
   const Polyline same = predict_normalized_turn(m, 1.5, 90.0, 0.0, 0.0, 200, true);
-  const Polyline slower = predict_normalized_turn(m, 1.5, 90.0, 0.0, 0.0, 200, true, 0.75);
+  const Polyline slower = predict_normalized_turn(m, 1.5, 90.0, 0.0, 0.0, 200, true, 0.0, 0.75);
   ASSERT_EQ(same.size(), slower.size());
   // The first step is at u0, the last ones at u1.
   const auto step = [](const Polyline& p, std::size_t i) { return distance_m(p[i], p[i + 1]); };

@@ -71,6 +71,28 @@ void expect_parse_error(const std::string& line, const std::string& field, std::
 
 // ---- tests ----
 
+// Issue 17: the initial yaw rate and the speed after travel in the record when a turn has them,
+// and a record without them (every older one) reads as it always did.
+TEST(TurnText, OptionalYawRateAndSpeedAfterRoundTrip) {
+  TurnSequence t = example_turn();
+  const std::string plain = to_text_record(t);
+  EXPECT_EQ(plain.find("initial_yaw_rate_dps"), std::string::npos);
+  EXPECT_FALSE(parse_text_record(plain).meta().initial_yaw_rate_dps);
+  t.meta().initial_yaw_rate_dps = -7.25;
+  t.meta().speed_after_mps = 0.75;
+  const std::string text = to_text_record(t);
+  EXPECT_NE(text.find("initial_yaw_rate_dps=-7.25;speed_after_mps=0.75;"), std::string::npos);
+  EXPECT_EQ(parse_text_record(text), t);
+  t.meta().initial_yaw_rate_dps = std::nan("");
+  EXPECT_THROW(to_text_record(t), std::invalid_argument);
+  try {
+    parse_text_record(plain + ";speed_after_mps=1;speed_after_mps=2");
+    FAIL() << "a duplicate optional key must be refused";
+  } catch (const ParseError& e) {
+    EXPECT_EQ(e.field(), "speed_after_mps");
+  }
+}
+
 TEST(TurnText, WritesTheDocumentedExample) {
   EXPECT_EQ(to_text_record(example_turn()), kExampleLine);
   const TurnSequence back = parse_text_record(kExampleLine);

@@ -592,7 +592,7 @@ TEST(MissionQueries, NewestOkTurnIdPerVehicle) {
 
 // Issue 17 part 2: a database at schema 7 (before speed_after_mps) upgrades, keeps its turns (with
 // no speed after), and then stores and reads back a speed-change turn and its cell.
-TEST(MissionQueries, MigratesSchemaSevenDatabaseToSpeedAfter) {
+TEST(MissionQueries, MigratesSchemaEightDatabaseToSpeedAfter) {
   TempDb db;
   const TurnSequence old_turn = arc(1.0, 90.0, 21);
   {
@@ -602,10 +602,13 @@ TEST(MissionQueries, MigratesSchemaSevenDatabaseToSpeedAfter) {
     s.store_turn(m, old_turn, TurnStatus::ok, "");
   }
   {
-    // Back to schema 7, as a station before this step left it.
+    // Back to schema 8, as a station before this step (and the currents after it) left it.
     Connection c(db.path());
     c.exec("ALTER TABLE turns DROP COLUMN speed_after_mps");
-    c.exec("PRAGMA user_version = 7");
+    c.exec("DROP TABLE mission_currents");
+    c.exec("ALTER TABLE turns DROP COLUMN water_samples");
+    c.exec("ALTER TABLE turns DROP COLUMN water_meta_json");
+    c.exec("PRAGMA user_version = 8");
   }
   Store s(db.path());
   EXPECT_EQ(s.user_version(), schema_version());

@@ -26,9 +26,14 @@ export function initDeviation() {
   });
 }
 
+const MAX_ELAPSED_S = 600; // the API's limit on `elapsed` (docs/api.md)
+
 async function poll(turn) {
   const nav = state.nav;
   if (asking || state.turn !== turn || !nav || !state.vehicleId) return;
+  // The server evaluates up to MAX_ELAPSED_S into a maneuver; a turn still open after that (its
+  // end was missed) is not asked about again.
+  if (nav.t_s - turn.start.t > MAX_ELAPSED_S) return;
   // AVK where the table answers at this speed; else the instantaneous assumption, said so.
   const method = cktCovers(turn.speed) ? 'avk' : 'instantaneous';
   asking = true;

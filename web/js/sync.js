@@ -40,7 +40,8 @@ async function doCatchUp() {
   if (vid) {
     const v = await getJson(`/vehicles/${encodeURIComponent(vid)}`);
     state.vehicle = v;
-    if (v.nav) applyNav({ ...v.nav, link: v.link, vehicle_id: vid }, false);
+    // A ?test=1 hook feeding nav replaces the vehicle's, from REST as from the stream.
+    if (v.nav && !state.testFeed) applyNav({ ...v.nav, link: v.link, vehicle_id: vid }, false);
     state.helm = {
       vehicle_id: vid,
       mode: v.helm_mode,
@@ -335,7 +336,7 @@ export function applyNav(d, live) {
  *  still water the turn's predictions are asked with its drift (current=live). */
 function applyCurrent(d) {
   if (state.vehicleId && d?.vehicle_id && d.vehicle_id !== state.vehicleId) return;
-  state.current = d;
+  state.current = d?.estimated === false ? null : d; // GET /current before any estimate
   emit('current', d);
 }
 
@@ -347,8 +348,8 @@ export function currentParams() {
 async function refreshCurrent(vid) {
   try {
     applyCurrent(await getJson(`/vehicles/${encodeURIComponent(vid)}/current`));
-  } catch {
-    applyCurrent(null); // 404: no estimate yet
+  } catch (e) {
+    console.warn('no current estimate', e.message);
   }
 }
 

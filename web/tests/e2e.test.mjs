@@ -363,10 +363,11 @@ test('Live shows the estimated current: its value and uncertainty, and an arrow 
     assert.match(shown, /^\d+\.\d\d ± \d+\.\d\d m\/s toward \d+ ± \d+°/);
     // A current from the stream: 0.3 m/s toward the east, drawn from the vehicle eastwards.
     await p.evaluate(() => window.avkTest.streamMessage('current', { vehicle_id: window.avkTest.state().vehicleId, east_mps: 0.3, north_mps: 0, speed_mps: 0.3, toward_deg: 90, speed_sd_mps: 0.01, toward_sd_deg: 2, significant: true }));
-    assert.equal(await p.textContent('#live-current'), '0.30 ± 0.01 m/s toward 90 ± 2°');
+    await until('the streamed current in the readout', async () =>
+      (await p.textContent('#live-current')) === '0.30 ± 0.01 m/s toward 90 ± 2°' || null, 10000, 100);
     const arrow = await until('the current arrow', () =>
       p.evaluate(() => {
-        const t = document.getElementById('live-plot').data?.find((d) => /^current/.test(d.name));
+        const t = document.getElementById('live-plot').data?.find((d) => /^current \(drift/.test(d.name));
         return t && t.visible === true && t.x.length === 2 ? { x: t.x, y: t.y } : null;
       }),
     10000, 200);
