@@ -184,6 +184,14 @@ Result<AppliedCurrent> apply_mission_current(Context& ctx, std::int64_t mission_
   return out;
 }
 
+std::optional<Error> check_current(const kin::WaterCurrent& c, const std::string& field) {
+  if (std::isfinite(c.east_mps) && std::isfinite(c.north_mps) &&
+      std::hypot(c.east_mps, c.north_mps) <= kMaxCurrentMps)
+    return std::nullopt;
+  return invalid_argument(field, "must be finite east and north components (m/s) of at most " +
+                                     kin::number_text(kMaxCurrentMps) + " m/s");
+}
+
 Result<QueryCurrent> query_current(Context& ctx, const std::string& vehicle_id,
                                    const std::optional<kin::WaterCurrent>& given, bool live,
                                    const std::string& field) {
@@ -191,10 +199,7 @@ Result<QueryCurrent> query_current(Context& ctx, const std::string& vehicle_id,
   if (given && live)
     return invalid_argument(field, "either a current or the live estimate, not both");
   if (given) {
-    if (!(std::isfinite(given->east_mps) && std::isfinite(given->north_mps) &&
-          std::hypot(given->east_mps, given->north_mps) <= kMaxCurrentMps))
-      return invalid_argument(field, "must be finite east and north components (m/s) of at most " +
-                                         kin::number_text(kMaxCurrentMps) + " m/s");
+    if (auto e = check_current(*given, field)) return *e;
     out.current = given;
     out.source = "query";
   } else if (live) {

@@ -91,6 +91,9 @@ Result<AppliedCurrent> apply_mission_current(Context& ctx, std::int64_t mission_
 // The current a query asks to be predicted in: the given one (validated: finite, at most
 // kMaxCurrentMps), the station's live estimate (live), or none. invalid_argument names `field`
 // for a bad or doubly given current; not_found when live is asked and there is no estimate.
+// invalid_argument naming `field` unless the current is finite and at most kMaxCurrentMps.
+std::optional<Error> check_current(const kinematics::WaterCurrent& c, const std::string& field);
+
 struct QueryCurrent {
   std::optional<kinematics::WaterCurrent> current;
   std::optional<std::string> source;  // "query" or "live"

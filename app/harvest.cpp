@@ -43,23 +43,6 @@ mission::HarvestOptions options_for(const store::Mission& m) {
   return o;
 }
 
-std::vector<vehicle::GuidedNav> guided_log(const std::vector<store::NavRow>& rows) {
-  std::vector<vehicle::GuidedNav> out;
-  out.reserve(rows.size());
-  for (const auto& r : rows) {
-    vehicle::GuidedNav g;
-    g.nav.t_s = r.t_s;
-    g.nav.x_m = r.x_m;
-    g.nav.y_m = r.y_m;
-    g.nav.heading_deg = r.heading_deg;
-    g.nav.speed_mps = r.speed_mps;
-    g.desired_heading_deg = r.desired_heading_deg;
-    g.desired_speed_mps = r.desired_speed_mps;
-    out.push_back(std::move(g));
-  }
-  return out;
-}
-
 HarvestReport harvest(store::Store& db, const store::Mission& m) {
   const auto rows = db.nav_for_mission(m.id);
   const auto recorded = db.turn_start_times(m.id);
@@ -98,6 +81,23 @@ HarvestReport harvest(store::Store& db, const store::Mission& m) {
 }
 
 }  // namespace
+
+std::vector<vehicle::GuidedNav> guided_log(const std::vector<store::NavRow>& rows) {
+  std::vector<vehicle::GuidedNav> out;
+  out.reserve(rows.size());
+  for (const auto& r : rows) {
+    vehicle::GuidedNav g;
+    g.nav.t_s = r.t_s;
+    g.nav.x_m = r.x_m;
+    g.nav.y_m = r.y_m;
+    g.nav.heading_deg = r.heading_deg;
+    g.nav.speed_mps = r.speed_mps;
+    g.desired_heading_deg = r.desired_heading_deg;
+    g.desired_speed_mps = r.desired_speed_mps;
+    out.push_back(std::move(g));
+  }
+  return out;
+}
 
 Result<HarvestReport> harvest_mission(Context& ctx, std::int64_t mission_id) {
   store::Store& db = ctx.db();

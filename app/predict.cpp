@@ -205,11 +205,9 @@ Result<Prediction> predict_with_table(const kin::Ckt& table, const PredictQuery&
                             "has the vehicle's speed-change turns and speed response");
   if (q.live_current)
     return invalid_argument("current", "a table file has no live estimate; give the current");
-  if (q.current && !(std::isfinite(q.current->east_mps) && std::isfinite(q.current->north_mps) &&
-                     std::hypot(q.current->east_mps, q.current->north_mps) <= kMaxCurrentMps))
-    return invalid_argument("current",
-                            "must be finite east and north components (m/s) of at most " +
-                                kin::number_text(kMaxCurrentMps) + " m/s");
+  if (q.current) {
+    if (auto e = check_current(*q.current, "current")) return *e;
+  }
   Prediction p;
   p.query = q;
   p.table_frame = kin::to_string(table.frame);

@@ -212,6 +212,8 @@ Ckt Ckt::build(const std::vector<TurnSequence>& turns, const CktOptions& options
       table.cells_[i * nd + j].dheading_deg = grid->dheadings_deg[j];
     }
   }
+  // This call's own counts: a report passed in may already hold another build's.
+  std::size_t used = 0, water = 0;
   for (const auto& t : turns) {
     if (t.meta().status != TurnStatus::ok) {
       ++rep.turns_skipped_status;
@@ -231,14 +233,11 @@ Ckt Ckt::build(const std::vector<TurnSequence>& turns, const CktOptions& options
     }
     table.cells_[*si * nd + *di].turns.push_back(t.normalized());
     ++rep.turns_used;
-    if (t.meta().removed_current) ++rep.turns_water_frame;
-  }
-  // Counted from this call's turns alone, so a report passed in twice does not mix two builds.
-  std::size_t used = 0, water = 0;
-  for (const CktCell& c : table.cells_) {
-    used += c.turns.size();
-    for (const auto& t : c.turns)
-      water += t.meta().removed_current ? 1 : 0;
+    ++used;
+    if (t.meta().removed_current) {
+      ++rep.turns_water_frame;
+      ++water;
+    }
   }
   table.frame = water == 0      ? TableFrame::ground
                 : water == used ? TableFrame::water

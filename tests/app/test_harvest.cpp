@@ -21,22 +21,6 @@ namespace {
 
 using namespace avk;
 
-std::vector<vehicle::GuidedNav> guided(const std::vector<store::NavRow>& rows) {
-  std::vector<vehicle::GuidedNav> out;
-  for (const auto& r : rows) {
-    vehicle::GuidedNav g;
-    g.nav.t_s = r.t_s;
-    g.nav.x_m = r.x_m;
-    g.nav.y_m = r.y_m;
-    g.nav.heading_deg = r.heading_deg;
-    g.nav.speed_mps = r.speed_mps;
-    g.desired_heading_deg = r.desired_heading_deg;
-    g.desired_speed_mps = r.desired_speed_mps;
-    out.push_back(g);
-  }
-  return out;
-}
-
 void print(const char* what, const app::HarvestReport& r) {
   std::printf(
       "%s: %zu steps, %zu harvested (mean quality %.2f), %zu already recorded, %zu "
@@ -67,7 +51,7 @@ TEST(Harvest, TheFigure41MissionsHarvestedTurnsAreItsCollectedTurns) {
   mission::HarvestOptions options;
   options.extraction.condition_set = config.condition_set;
   options.extraction.completion = config.completion;
-  const auto log = guided(s.nav_for_mission(mission));
+  const auto log = app::guided_log(s.nav_for_mission(mission));
   const auto fresh = mission::harvest_turns(log, {}, options, "m200", std::to_string(mission));
   std::size_t matched = 0;
   for (const auto& row : collected) {
