@@ -13,7 +13,7 @@ RUN bash scripts/setup --runtime-build \
 
 FROM debian:12-slim
 RUN apt-get update \
- && apt-get install -y --no-install-recommends libsqlite3-0 curl \
+ && apt-get install -y --no-install-recommends libsqlite3-0 libzstd1 curl \
  && rm -rf /var/lib/apt/lists/* \
  && useradd --system --create-home --home-dir /var/lib/avk --shell /usr/sbin/nologin avk
 COPY --from=build /src/build/server/avk /usr/local/bin/avk
