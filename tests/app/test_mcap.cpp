@@ -370,6 +370,32 @@ TEST(McapReader, EveryFlippedByteIsAnError) {
   }
 }
 
+// With every CRC zeroed, corrupt bytes reach the parsers behind the CRCs: each flip must be
+// read or refused with McapError, never crash or throw anything else.
+TEST(McapReader, CorruptionBehindZeroedCrcsIsReadOrRefused) {
+  for (Compression c : {Compression::none, Compression::zstd}) {
+    std::string b = write_sample(c, 30, 512).bytes;
+    const McapSummary summary = read_summary(b);
+    for (const ChunkIndexRecord& ci : summary.chunk_indexes) {
+      b.replace(ci.chunk_start_offset + 9 + 24, 4, le<std::uint32_t>(0));  // uncompressed_crc
+    }
+    b.replace(summary.footer.summary_start - 4, 4, le<std::uint32_t>(0));  // data_section_crc
+    b.replace(b.size() - 12, 4, le<std::uint32_t>(0));                     // summary_crc
+    ASSERT_EQ(read_mcap(b).messages.size(), 30u);
+    std::size_t refused = 0;
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      std::string corrupt = b;
+      corrupt[i] = static_cast<char>(corrupt[i] ^ 0xA5);
+      try {
+        read_mcap(corrupt);
+      } catch (const McapError&) {
+        ++refused;
+      }
+    }
+    EXPECT_GT(refused, b.size() / 4) << to_string(c);
+  }
+}
+
 TEST(McapReader, FlippedChunkByteIsACrcMismatch) {
   std::string b = write_sample(Compression::none, 30, 512).bytes;
   const ChunkIndexRecord ci = read_summary(b).chunk_indexes.at(1);
