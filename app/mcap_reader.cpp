@@ -162,6 +162,18 @@ class ContentsReader {
  public:
   explicit ContentsReader(McapContents& out) : out_(out) {}
 
+  // Schema and Channel records, in a chunk, the data or the summary section; false for others.
+  bool definition(const RecordView& r) {
+    if (r.opcode == Opcode::schema) {
+      schema(r);
+    } else if (r.opcode == Opcode::channel) {
+      channel(r);
+    } else {
+      return false;
+    }
+    return true;
+  }
+
   void schema(const RecordView& r) {
     SchemaRecord s = parse<SchemaRecord>(r);
     if (s.id == 0) return;  // invalid by the specification: readers ignore it
@@ -205,20 +217,10 @@ class ContentsReader {
     try {
       for (std::uint64_t at = 0; at < records.size();) {
         const RecordView inner = record_at(records, at);
-        switch (inner.opcode) {
-          case Opcode::schema:
-            schema(inner);
-            break;
-          case Opcode::channel:
-            channel(inner);
-            break;
-          case Opcode::message:
-            message(inner);
-            break;
-          default:
-            if (is_known(static_cast<std::uint8_t>(inner.opcode))) {
-              throw McapError(where(inner) + " is not allowed inside a chunk");
-            }
+        if (inner.opcode == Opcode::message) {
+          message(inner);
+        } else if (!definition(inner) && is_known(static_cast<std::uint8_t>(inner.opcode))) {
+          throw McapError(where(inner) + " is not allowed inside a chunk");
         }
         at += inner.length();
       }
@@ -262,13 +264,11 @@ std::uint64_t read_data_section(std::string_view bytes, std::uint64_t offset,
                                 ContentsReader& reader, McapContents& out) {
   for (;;) {
     const RecordView r = next_record(bytes, offset);
+    if (reader.definition(r)) {
+      offset += r.length();
+      continue;
+    }
     switch (r.opcode) {
-      case Opcode::schema:
-        reader.schema(r);
-        break;
-      case Opcode::channel:
-        reader.channel(r);
-        break;
       case Opcode::message:
         reader.message(r);
         break;
@@ -466,13 +466,8 @@ McapContents read_mcap(std::string_view bytes) {
     if (r.opcode != Opcode::summary_offset && summary_offset_start != 0) {
       throw McapError(where(r) + " follows the Summary Offset records");
     }
+    if (reader.definition(r)) continue;
     switch (r.opcode) {
-      case Opcode::schema:
-        reader.schema(r);
-        break;
-      case Opcode::channel:
-        reader.channel(r);
-        break;
       case Opcode::statistics:
         if (out.statistics) throw McapError(where(r) + ": a second Statistics record");
         out.statistics = parse<StatisticsRecord>(r);
