@@ -6,7 +6,7 @@
 
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { mkdtempSync, rmSync } from 'node:fs';
+import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
@@ -88,6 +88,21 @@ test('a FoxgloveClient receives server info, the channels and valid messages whi
   assert.equal(channelByTopic(got, 'pose').schemaName, 'foxglove.PoseInFrame');
   assert.equal(channelByTopic(got, 'turn').schemaName, 'foxglove.SceneUpdate');
   assert.equal(channelByTopic(got, 'log').schemaName, 'foxglove.Log');
+
+  // The layout docs/foxglove.md offers names only what the station advertises, and its plots
+  // only members of the navigation schema.
+  const layout = JSON.parse(readFileSync(path.join(repo, 'docs/foxglove-layout.json'), 'utf8'));
+  const topics = new Set([...got.channels.values()].map((c) => c.topic));
+  const navFields = Object.keys(JSON.parse(channelByTopic(got, 'navigation').schema).properties);
+  for (const [panel, config] of Object.entries(layout.configById)) {
+    const named = [
+      ...Object.keys(config.topics ?? {}),
+      ...(config.paths ?? []).map((p) => p.value.split('.')[0]),
+      ...[config.topicToRender, config.topicPath].filter(Boolean),
+    ];
+    for (const t of named) assert.ok(topics.has(t), `${panel} names ${t}, which is not advertised`);
+    for (const p of config.paths ?? []) assert.ok(navFields.includes(p.value.split('.')[1]), `${panel}: ${p.value}`);
+  }
 
   // Subscribe to pose and navigation first, then to the rest.
   const topicOfSub = new Map();
