@@ -31,6 +31,7 @@
 #include <thread>
 #include <vector>
 
+#include "app/foxglove_channels.hpp"
 #include "server/api_types.hpp"
 #include "server/http/http_server.hpp"
 #include "server/stream_hub.hpp"
@@ -235,7 +236,8 @@ int status_of(const std::string& raw) {
 // A WebSocket client whose every operation has a deadline.
 class WsClient {
  public:
-  WsClient(unsigned short port, const std::string& origin = "", int receive_buffer = 0)
+  WsClient(unsigned short port, const std::string& origin = "", int receive_buffer = 0,
+           const std::string& path = "/api/v1/stream", const std::string& subprotocol = "")
       : ws_(ioc_) {
     auto& socket = ws_.next_layer();
     socket.open(tcp::v4());
@@ -243,12 +245,13 @@ class WsClient {
     if (receive_buffer > 0)
       socket.set_option(net::socket_base::receive_buffer_size(receive_buffer));
     socket.connect(loopback(port));
-    ws_.set_option(websocket::stream_base::decorator([origin](websocket::request_type& req) {
-      if (!origin.empty()) req.set(http::field::origin, origin);
-    }));
+    ws_.set_option(
+        websocket::stream_base::decorator([origin, subprotocol](websocket::request_type& req) {
+          if (!origin.empty()) req.set(http::field::origin, origin);
+          if (!subprotocol.empty()) req.set(http::field::sec_websocket_protocol, subprotocol);
+        }));
     const auto ec = run([&](auto handler) {
-      ws_.async_handshake(response_, "127.0.0.1:" + std::to_string(port), "/api/v1/stream",
-                          handler);
+      ws_.async_handshake(response_, "127.0.0.1:" + std::to_string(port), path, handler);
     });
     handshake_error_ = ec;
   }
@@ -278,6 +281,7 @@ class WsClient {
 
   beast::error_code error() const { return last_error_; }
   websocket::close_reason close_reason() const { return ws_.reason(); }
+  bool got_binary() const { return ws_.got_binary(); }
 
  private:
   // Runs one asynchronous operation to completion or cancels it at the limit.
@@ -828,6 +832,109 @@ TEST_F(HttpServerTest, StalledTelemetryClientStaysOpen) {
   EXPECT_EQ(last_seq, kMessages);
   EXPECT_LT(got, kMessages);  // older frames were replaced, not queued
   EXPECT_EQ(server->open_stream_sessions(), 1u);
+}
+
+// --- the Foxglove connection ---------------------------------------------------------------
+
+// A Foxglove client (foxglove.websocket.v1) on the given path, past server info and advertise.
+std::unique_ptr<WsClient> foxglove_client(unsigned short port, const std::string& path,
+                                          json* advertise = nullptr, int receive_buffer = 0) {
+  auto c = std::make_unique<WsClient>(port, "", receive_buffer, path, "foxglove.websocket.v1");
+  if (c->handshake_error()) return c;
+  const auto info = c->read();
+  EXPECT_TRUE(info && (*info)["op"] == "serverInfo");
+  const auto adv = c->read();
+  EXPECT_TRUE(adv && (*adv)["op"] == "advertise");
+  if (advertise && adv) *advertise = *adv;
+  return c;
+}
+
+std::uint32_t channel_id(const json& advertise, const std::string& topic) {
+  for (const auto& c : advertise["channels"])
+    if (c["topic"] == topic) return c["id"].get<std::uint32_t>();
+  ADD_FAILURE() << topic;
+  return 0;
+}
+
+std::uint32_t le32(const std::string& b, std::size_t at) {
+  std::uint32_t v = 0;
+  for (std::size_t i = 0; i < 4; ++i)
+    v |= static_cast<std::uint32_t>(static_cast<unsigned char>(b[at + i])) << (8 * i);
+  return v;
+}
+
+TEST_F(HttpServerTest, FoxgloveSelectsItsSubprotocolAndSendsBinaryMessageData) {
+  start();
+  hub.foxglove().advertise("boat", avk::app::foxglove::live_channels("boat"));
+  for (const std::string path : {"/api/v1/foxglove", "/api/v1/stream"}) {
+    json adv;
+    auto c = foxglove_client(port, path, &adv);
+    ASSERT_FALSE(c->handshake_error()) << path << ": " << c->handshake_error().message();
+    EXPECT_EQ(c->handshake_response()[http::field::sec_websocket_protocol],
+              "foxglove.websocket.v1");
+    const auto pose = channel_id(adv, "/boat/pose");
+    c->send(
+        json{{"op", "subscribe"}, {"subscriptions", {{{"id", 41}, {"channelId", pose}}}}}.dump());
+    ASSERT_TRUE(wait_for([&] { return hub.foxglove().wanted("/boat/pose"); }));
+    hub.foxglove().publish("/boat/pose", 1'500'000'000ULL, R"({"x":1})");
+    const auto frame = c->read_text();
+    ASSERT_TRUE(frame) << c->error().message();
+    EXPECT_TRUE(c->got_binary());
+    ASSERT_EQ(frame->size(), 13u + 7u);
+    EXPECT_EQ(static_cast<unsigned char>((*frame)[0]), 0x01);
+    EXPECT_EQ(le32(*frame, 1), 41u);
+    EXPECT_EQ(le32(*frame, 5) | (std::uint64_t{le32(*frame, 9)} << 32), 1'500'000'000ULL);
+    EXPECT_EQ(frame->substr(13), R"({"x":1})");
+    c->send(json{{"op", "unsubscribe"}, {"subscriptionIds", {41}}}.dump());
+    ASSERT_TRUE(wait_for([&] { return !hub.foxglove().wanted("/boat/pose"); }));
+  }
+  // Without the subprotocol the Foxglove path refuses the upgrade and says why.
+  WsClient bare(port, "", 0, "/api/v1/foxglove");
+  EXPECT_EQ(bare.handshake_response().result_int(), 400);
+}
+
+// A client that stops reading a channel of events is closed with 1008; one that stops reading
+// telemetry only loses older samples.
+TEST_F(HttpServerTest, FoxgloveStalledEventClientIsClosedAndTelemetryClientStaysOpen) {
+  HttpServerOptions o;
+  o.stream_event_queue_limit = 8;
+  o.close_timeout = 30s;
+  start(o);
+  auto& fox = hub.foxglove();
+  fox.advertise("boat", avk::app::foxglove::live_channels("boat"));
+  json adv;
+  auto events = foxglove_client(port, "/api/v1/foxglove", &adv, 4096);
+  auto telemetry = foxglove_client(port, "/api/v1/foxglove", nullptr, 4096);
+  events->send(json{{"op", "subscribe"},
+                    {"subscriptions", {{{"id", 1}, {"channelId", channel_id(adv, "/boat/log")}}}}}
+                   .dump());
+  telemetry->send(
+      json{{"op", "subscribe"},
+           {"subscriptions", {{{"id", 2}, {"channelId", channel_id(adv, "/boat/pose")}}}}}
+          .dump());
+  ASSERT_TRUE(wait_for([&] { return fox.subscriber_count("/boat/log") == 1; }));
+  ASSERT_TRUE(wait_for([&] { return fox.subscriber_count("/boat/pose") == 1; }));
+  const std::string pad(64 * 1024, 'p');
+  constexpr int kMessages = 2000;
+  for (int i = 1; i <= kMessages; ++i) {
+    fox.publish("/boat/log", static_cast<std::uint64_t>(i), R"({"pad":")" + pad + R"("})");
+    fox.publish("/boat/pose", static_cast<std::uint64_t>(i), R"({"i":)" + std::to_string(i) + "}");
+  }
+  EXPECT_TRUE(wait_for([&] { return fox.subscriber_count("/boat/log") == 0; }));
+  while (events->read_text()) {
+  }
+  EXPECT_EQ(events->close_reason().code, websocket::close_code::policy_error);
+  // The telemetry client reads on and reaches the newest pose.
+  int got = 0;
+  for (;;) {
+    const auto m = telemetry->read_text();
+    ASSERT_TRUE(m) << telemetry->error().message();
+    if (!telemetry->got_binary()) continue;
+    ++got;
+    if (m->substr(13) == R"({"i":)" + std::to_string(kMessages) + "}") break;
+  }
+  EXPECT_LT(got, kMessages);
+  EXPECT_EQ(fox.subscriber_count("/boat/pose"), 1u);
 }
 
 // --- lifecycle -----------------------------------------------------------------------------
