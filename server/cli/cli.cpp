@@ -110,7 +110,7 @@ void usage(std::ostream& out) {
          "  avk serve [--db FILE] [--sim [--vehicle KIND] [--sim-config FILE]\n"
          "                  | --m200 HOST:PORT [--datum LAT,LON] [--pid P]] [--realtime-factor K]\n"
          "                  [--bind 127.0.0.1] [--port 8080] [--web DIR] [--token T]\n"
-         "                  [--allow-host NAME]... [--max-connections 512]\n"
+         "                  [--allow-host NAME]... [--allow-origin ORIGIN]... [--max-connections 512]\n"
          "                  [--max-connections-per-address 64]\n"
          "      the ground station: REST + WebSocket API under /api/v1 and the dashboard\n"
          "  avk frontseat-emulator [--port 29500] [--bind 127.0.0.1] [--vehicle catamaran:m200]\n"

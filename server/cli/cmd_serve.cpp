@@ -6,6 +6,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -135,10 +137,27 @@ std::string vehicle_id(const app::VehicleLoopOptions& v) {
 
 int cmd_serve(const std::vector<std::string>& args, Io& io) {
   const Args a(args,
-               {"db", "vehicle", "sim-config", "realtime-factor", "seed", "ticks", "m200", "bind",
-                "port", "web", "token", "threads", "datum", "pid", "controller-hz", "vehicle-id",
-                "allow-host", "max-connections", "max-connections-per-address"},
-               {"sim", "jitter"}, {"allow-host"});
+               {"db",
+                "vehicle",
+                "sim-config",
+                "realtime-factor",
+                "seed",
+                "ticks",
+                "m200",
+                "bind",
+                "port",
+                "web",
+                "token",
+                "threads",
+                "datum",
+                "pid",
+                "controller-hz",
+                "vehicle-id",
+                "allow-host",
+                "allow-origin",
+                "max-connections",
+                "max-connections-per-address"},
+               {"sim", "jitter"}, {"allow-host", "allow-origin"});
   if (a.flag("sim") && a.get("m200")) throw UsageError("give one vehicle: --sim or --m200");
   auto m200 = m200_options_from(a);  // option mistakes show before anything is opened
   const double port = a.number("port").value_or(8080);
@@ -161,6 +180,19 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
     if (name.empty() || name.find_first_of(":/[] ") != std::string::npos)
       throw UsageError("--allow-host takes a host name without port or scheme, not '" + name + "'");
     ho.allowed_hosts.push_back(name);
+  }
+  for (auto origin : a.all("allow-origin")) {
+    std::transform(origin.begin(), origin.end(), origin.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    const auto sep = origin.find("://");
+    const bool web = origin.starts_with("http://") || origin.starts_with("https://");
+    if (!web || origin.size() == sep + 3 ||
+        origin.find_first_of("/?# ", sep + 3) != std::string::npos)
+      throw UsageError(
+          "--allow-origin takes an origin such as https://app.foxglove.dev "
+          "(scheme and host, optional port, no path), not '" +
+          origin + "'");
+    ho.allowed_origins.push_back(origin);
   }
   const double factor = realtime_factor_from(a);
   std::string user_token = a.get("token").value_or("");

@@ -41,6 +41,10 @@ struct HttpServerOptions {
   // Host names (besides loopback names and IP literals) the server answers to; anything else is
   // 421 (403 for the stream upgrade), which defeats DNS rebinding.
   std::vector<std::string> allowed_hosts;
+  // Origins (scheme://host[:port], lower case) whose pages may open the live stream and the
+  // Foxglove connection besides the server's own, e.g. https://app.foxglove.dev for Foxglove's
+  // web edition. Empty: only same-origin pages (and tools that send no Origin).
+  std::vector<std::string> allowed_origins;
   // Keep-alive: how long a connection may wait for its next request; also the longest pause
   // inside a body or a response write, and the WebSocket's dead-peer detection (pings at half).
   std::chrono::milliseconds idle_timeout{30000};

@@ -1,6 +1,7 @@
 #include "server/http/http_session.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdint>
 #include <exception>
@@ -22,6 +23,13 @@ namespace {
 constexpr std::string_view kApiPrefix = "/api/v1/";
 constexpr std::string_view kStreamPath = "/api/v1/stream";
 constexpr std::string_view kFoxglovePath = "/api/v1/foxglove";
+
+bool allowed_origin(std::string_view origin, const std::vector<std::string>& allowed) {
+  std::string o(origin);
+  std::transform(o.begin(), o.end(), o.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return std::find(allowed.begin(), allowed.end(), o) != allowed.end();
+}
 
 // Sec-WebSocket-Protocol lists the client's subprotocols, comma-separated.
 bool offers_subprotocol(std::string_view header, std::string_view wanted) {
@@ -289,7 +297,8 @@ void HttpSession::handle_request() {
     // Browsers send Origin; a page from elsewhere must not read the station's stream with the
     // user's network position. Tools without a browser send none and are let in.
     const auto origin = req[http::field::origin];
-    if (!origin.empty() && !same_origin(origin, req[http::field::host]))
+    if (!origin.empty() && !same_origin(origin, req[http::field::host]) &&
+        !allowed_origin(origin, state_->options().allowed_origins))
       return send(problem_response(http::status::forbidden,
                                    "Origin " + std::string(origin) + " does not match Host " +
                                        std::string(req[http::field::host]),

@@ -214,6 +214,23 @@ TEST(FoxgloveLiveFeed, BuildsOnlyWhatAClientWants) {
   EXPECT_EQ(sink.published.count("/boat/location"), 0u);
 }
 
+TEST(FoxgloveLiveFeed, AVehicleReportingLatitudeAndLongitudeHasItsLocationFix) {
+  RecordingSink sink;
+  FoxgloveLive live(sink, nullptr);
+  sink.wanted_topics = {topic("boat", ChannelKind::location)};
+  auto s = snapshot("boat", vehicle::LinkState::live, 4.0);
+  s.nav->lat_deg = 42.358456;
+  s.nav->lon_deg = -71.087589;
+  live.telemetry(s);
+  const auto range = sink.published.equal_range("/boat/location");
+  ASSERT_EQ(std::distance(range.first, range.second), 1);
+  const auto fix = json::parse(range.first->second);
+  EXPECT_DOUBLE_EQ(fix["latitude"].get<double>(), 42.358456);
+  EXPECT_DOUBLE_EQ(fix["longitude"].get<double>(), -71.087589);
+  EXPECT_EQ(fix["position_covariance"].size(), 9u);
+  EXPECT_EQ(fix["frame_id"], vehicle_frame("boat"));
+}
+
 TEST(FoxgloveLiveFeed, StationEventsBecomeStatusAndLogs) {
   RecordingSink sink;
   FoxgloveLive live(sink, nullptr);

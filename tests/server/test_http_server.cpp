@@ -893,6 +893,24 @@ TEST_F(HttpServerTest, FoxgloveSelectsItsSubprotocolAndSendsBinaryMessageData) {
   EXPECT_EQ(bare.handshake_response().result_int(), 400);
 }
 
+// The Origin rule with an operator's allow-list: Foxglove's web edition is let in only when
+// named, on the Foxglove connection and the stream alike.
+TEST_F(HttpServerTest, AllowedOriginsOpenTheLiveConnectionsToANamedSiteOnly) {
+  HttpServerOptions o;
+  o.allowed_origins = {"https://app.foxglove.dev"};
+  start(o);
+  WsClient fox(port, "https://App.Foxglove.dev", 0, "/api/v1/foxglove", "foxglove.websocket.v1");
+  EXPECT_FALSE(fox.handshake_error()) << fox.handshake_error().message();
+  WsClient stream(port, "https://app.foxglove.dev");
+  EXPECT_FALSE(stream.handshake_error()) << stream.handshake_error().message();
+  WsClient other(port, "https://app.foxglove.dev.evil.example", 0, "/api/v1/foxglove",
+                 "foxglove.websocket.v1");
+  EXPECT_EQ(other.handshake_response().result_int(), 403);
+  WsClient http_scheme(port, "http://app.foxglove.dev", 0, "/api/v1/foxglove",
+                       "foxglove.websocket.v1");
+  EXPECT_EQ(http_scheme.handshake_response().result_int(), 403);
+}
+
 // A client that stops reading a channel of events is closed with 1008; one that stops reading
 // telemetry only loses older samples.
 TEST_F(HttpServerTest, FoxgloveStalledEventClientIsClosedAndTelemetryClientStaysOpen) {

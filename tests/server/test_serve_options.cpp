@@ -109,6 +109,21 @@ TEST(ServeOptions, AUserTokenMustBeLongAndUnpredictable) {
   fs::remove(db.path() + ".token");
 }
 
+TEST(ServeOptions, AnAllowedOriginMustBeAnOriginAndNothingMore) {
+  avk::testing::TempDb db("avk_serve_origin");
+  const std::string log = db.path() + ".log";
+  for (const std::string& origin :
+       {std::string("app.foxglove.dev"), std::string("https://app.foxglove.dev/studio"),
+        std::string("ftp://x.example"), std::string("https://")}) {
+    const auto o =
+        run_avk({"serve", "--db", db.path(), "--port", "0", "--allow-origin", origin}, log);
+    EXPECT_TRUE(o.exited) << origin << ": the server started";
+    EXPECT_EQ(o.code, 2) << origin << "\n" << o.log;
+    EXPECT_NE(o.log.find("--allow-origin"), std::string::npos) << o.log;
+  }
+  fs::remove(db.path() + ".token");
+}
+
 // Regression: an existing token file readable by others (0644) was used silently.
 TEST(ServeOptions, ATokenFileOthersCanReadIsRefused) {
   avk::testing::TempDb db("avk_serve_mode");
