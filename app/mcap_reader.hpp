@@ -1,0 +1,84 @@
+#pragma once
+// Reads MCAP files (chunks uncompressed or zstd): the station's own exports and any valid file.
+// Every length is checked against the bytes that remain before anything is allocated, so a
+// corrupt or hostile file gives an McapError naming what is wrong and its byte offset.
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "app/mcap_records.hpp"
+
+namespace avk::app::mcap {
+
+class McapError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct McapContents {
+  std::string profile, library;
+  std::vector<SchemaRecord> schemas;
+  std::vector<ChannelRecord> channels;
+  std::vector<MessageRecord> messages;  // in file order
+  std::vector<MetadataRecord> metadata;
+  std::optional<StatisticsRecord> statistics;
+  std::size_t chunk_count = 0;
+};
+
+// Reads the data section linearly (checking chunk CRCs, the data-section CRC and every length),
+// then the summary section and footer (their CRC, and the statistics and chunk indexes against
+// what the data section holds).
+McapContents read_mcap(std::string_view bytes);
+
+// The pieces read_mcap is built from, for reading by index.
+
+// One record of `bytes`: its content views `bytes`.
+struct RecordView {
+  Opcode opcode = Opcode::header;
+  std::uint64_t offset = 0;
+  std::string_view content;
+
+  std::uint64_t length() const { return kRecordPrefixBytes + content.size(); }
+};
+
+// The record at `offset`; McapError when its prefix or its content runs past the end.
+RecordView record_at(std::string_view bytes, std::uint64_t offset);
+
+// Each checks the opcode and that the fields fit in the content (later fields a newer writer
+// may add are ignored).
+HeaderRecord parse_header(const RecordView& r);
+FooterRecord parse_footer(const RecordView& r);
+SchemaRecord parse_schema(const RecordView& r);
+ChannelRecord parse_channel(const RecordView& r);
+MessageRecord parse_message(const RecordView& r);
+ChunkRecord parse_chunk(const RecordView& r);
+MessageIndexRecord parse_message_index(const RecordView& r);
+ChunkIndexRecord parse_chunk_index(const RecordView& r);
+StatisticsRecord parse_statistics(const RecordView& r);
+MetadataRecord parse_metadata(const RecordView& r);
+MetadataIndexRecord parse_metadata_index(const RecordView& r);
+SummaryOffsetRecord parse_summary_offset(const RecordView& r);
+DataEndRecord parse_data_end(const RecordView& r);
+
+// A chunk's records, decompressed, their size and CRC checked; `chunk_offset` names the chunk in
+// errors.
+std::string chunk_records(const ChunkRecord& chunk, std::uint64_t chunk_offset);
+
+// The footer and the summary section, read from the end of the file as an indexed reader does.
+struct McapSummary {
+  FooterRecord footer;
+  std::vector<SchemaRecord> schemas;
+  std::vector<ChannelRecord> channels;
+  std::optional<StatisticsRecord> statistics;
+  std::vector<ChunkIndexRecord> chunk_indexes;
+  std::vector<MetadataIndexRecord> metadata_indexes;
+  std::vector<SummaryOffsetRecord> summary_offsets;
+};
+McapSummary read_summary(std::string_view bytes);
+
+}  // namespace avk::app::mcap
