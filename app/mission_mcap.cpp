@@ -587,6 +587,8 @@ ReadMission read_mission(std::string_view bytes) {
   if (const auto* cur = find_record(c, kCurrentRecord)) d.current = current_row(*cur);
 
   std::map<std::uint16_t, std::pair<std::string, std::optional<fg::ChannelKind>>> channels;
+  std::ranges::sort(c.channels, {},
+                    &mcap::ChannelRecord::id);  // listed as the writer numbered them
   for (const auto& ch : c.channels) {
     channels[ch.id] = {ch.topic, fg::channel_kind_of(ch.topic, d.mission.vehicle_id)};
     out.messages.per_topic.emplace_back(ch.topic, 0);
