@@ -116,35 +116,41 @@ class Fields {
   std::size_t pos_ = 0;
 };
 
-std::map<std::string, std::string> string_map(Fields& f, const char* field) {
-  Fields m = f.u32_prefixed(field);
-  std::map<std::string, std::string> out;
-  while (m.remaining() > 0) {
-    std::string key = m.string("key");
-    out[std::move(key)] = m.string("value");
-  }
-  return out;
-}
+// Reads the fields that mcap_records.hpp lists for each record.
+struct Decoder {
+  Fields& f;
 
-std::map<std::uint16_t, std::uint64_t> u16_u64_map(Fields& f, const char* field) {
-  Fields m = f.u32_prefixed(field);
-  std::map<std::uint16_t, std::uint64_t> out;
-  while (m.remaining() > 0) {
-    const std::uint16_t key = m.u16("key");
-    out[key] = m.u64("value");
+  void opcode(Opcode& v, const char* name) { v = static_cast<Opcode>(f.u8(name)); }
+  void u16(std::uint16_t& v, const char* name) { v = f.u16(name); }
+  void u32(std::uint32_t& v, const char* name) { v = f.u32(name); }
+  void u64(std::uint64_t& v, const char* name) { v = f.u64(name); }
+  void string(std::string& v, const char* name) { v = f.string(name); }
+  void rest(std::string& v, const char*) { v = std::string(f.rest()); }
+  void u64_bytes(std::string_view& v, const char* name) { v = f.bytes(f.u64(name), name); }
+  void string_map(std::map<std::string, std::string>& out, const char* name) {
+    Fields m = f.u32_prefixed(name);
+    while (m.remaining() > 0) {
+      std::string key = m.string("key");
+      out[std::move(key)] = m.string("value");
+    }
   }
-  return out;
-}
-
-Fields fields_of(const RecordView& r, Opcode expected) {
-  if (r.opcode != expected) {
-    throw McapError("record at offset " + std::to_string(r.offset) + ": expected a " +
-                    record_name(expected) + " record (opcode " +
-                    hex(static_cast<std::uint8_t>(expected)) + "), found opcode " +
-                    hex(static_cast<std::uint8_t>(r.opcode)));
+  void u16_u64_map(std::map<std::uint16_t, std::uint64_t>& out, const char* name) {
+    Fields m = f.u32_prefixed(name);
+    while (m.remaining() > 0) {
+      const std::uint16_t key = m.u16("key");
+      out[key] = m.u64("value");
+    }
   }
-  return Fields(r);
-}
+  void index_entries(std::vector<MessageIndexEntry>& out, const char* name) {
+    Fields m = f.u32_prefixed(name);
+    while (m.remaining() > 0) {
+      MessageIndexEntry e;
+      e.log_time_ns = m.u64("log_time");
+      e.offset = m.u64("offset");
+      out.push_back(e);
+    }
+  }
+};
 
 bool is_known(std::uint8_t op) {
   return op >= static_cast<std::uint8_t>(Opcode::header) &&
@@ -156,8 +162,20 @@ class ContentsReader {
  public:
   explicit ContentsReader(McapContents& out) : out_(out) {}
 
+  // Schema and Channel records, in a chunk, the data or the summary section; false for others.
+  bool definition(const RecordView& r) {
+    if (r.opcode == Opcode::schema) {
+      schema(r);
+    } else if (r.opcode == Opcode::channel) {
+      channel(r);
+    } else {
+      return false;
+    }
+    return true;
+  }
+
   void schema(const RecordView& r) {
-    SchemaRecord s = parse_schema(r);
+    SchemaRecord s = parse<SchemaRecord>(r);
     if (s.id == 0) return;  // invalid by the specification: readers ignore it
     const auto [it, added] = schema_index_.try_emplace(s.id, out_.schemas.size());
     if (added) {
@@ -169,7 +187,7 @@ class ContentsReader {
   }
 
   void channel(const RecordView& r) {
-    ChannelRecord c = parse_channel(r);
+    ChannelRecord c = parse<ChannelRecord>(r);
     if (c.schema_id != 0 && !schema_index_.contains(c.schema_id)) {
       throw McapError(where(r) + ": channel " + std::to_string(c.id) + " ('" + c.topic +
                       "') refers to schema id " + std::to_string(c.schema_id) +
@@ -185,7 +203,7 @@ class ContentsReader {
   }
 
   void message(const RecordView& r) {
-    MessageRecord m = parse_message(r);
+    MessageRecord m = parse<MessageRecord>(r);
     if (!channel_index_.contains(m.channel_id)) {
       throw McapError(where(r) + ": channel id " + std::to_string(m.channel_id) +
                       " has no Channel record before it");
@@ -195,24 +213,14 @@ class ContentsReader {
   }
 
   void chunk(const RecordView& r) {
-    const std::string records = chunk_records(parse_chunk(r), r.offset);
+    const std::string records = chunk_records(parse<ChunkRecord>(r), r.offset);
     try {
       for (std::uint64_t at = 0; at < records.size();) {
         const RecordView inner = record_at(records, at);
-        switch (inner.opcode) {
-          case Opcode::schema:
-            schema(inner);
-            break;
-          case Opcode::channel:
-            channel(inner);
-            break;
-          case Opcode::message:
-            message(inner);
-            break;
-          default:
-            if (is_known(static_cast<std::uint8_t>(inner.opcode))) {
-              throw McapError(where(inner) + " is not allowed inside a chunk");
-            }
+        if (inner.opcode == Opcode::message) {
+          message(inner);
+        } else if (!definition(inner) && is_known(static_cast<std::uint8_t>(inner.opcode))) {
+          throw McapError(where(inner) + " is not allowed inside a chunk");
         }
         at += inner.length();
       }
@@ -241,23 +249,26 @@ void check_magic(std::string_view bytes, std::uint64_t offset) {
   }
 }
 
+// The record at `offset` of a file that must go on up to its Footer.
+RecordView next_record(std::string_view bytes, std::uint64_t offset) {
+  if (offset == bytes.size()) {
+    throw McapError("truncated: the file ends at offset " + std::to_string(offset) +
+                    " without a Footer record");
+  }
+  return record_at(bytes, offset);
+}
+
 // Data section records; returns the offset of the record that ends it (Data End, or the first
 // summary record or Footer of a file written without Data End).
 std::uint64_t read_data_section(std::string_view bytes, std::uint64_t offset,
                                 ContentsReader& reader, McapContents& out) {
   for (;;) {
-    if (offset == bytes.size()) {
-      throw McapError("truncated: the file ends at offset " + std::to_string(offset) +
-                      " without a Footer record");
+    const RecordView r = next_record(bytes, offset);
+    if (reader.definition(r)) {
+      offset += r.length();
+      continue;
     }
-    const RecordView r = record_at(bytes, offset);
     switch (r.opcode) {
-      case Opcode::schema:
-        reader.schema(r);
-        break;
-      case Opcode::channel:
-        reader.channel(r);
-        break;
       case Opcode::message:
         reader.message(r);
         break;
@@ -265,10 +276,10 @@ std::uint64_t read_data_section(std::string_view bytes, std::uint64_t offset,
         reader.chunk(r);
         break;
       case Opcode::metadata:
-        out.metadata.push_back(parse_metadata(r));
+        out.metadata.push_back(parse<MetadataRecord>(r));
         break;
       case Opcode::message_index:
-        (void)parse_message_index(r);
+        (void)parse<MessageIndexRecord>(r);
         break;
       case Opcode::attachment:
         break;
@@ -347,143 +358,34 @@ RecordView record_at(std::string_view bytes, std::uint64_t offset) {
                     bytes.substr(offset + kRecordPrefixBytes, length)};
 }
 
-HeaderRecord parse_header(const RecordView& r) {
-  Fields f = fields_of(r, Opcode::header);
-  HeaderRecord h;
-  h.profile = f.string("profile");
-  h.library = f.string("library");
-  return h;
-}
-
-FooterRecord parse_footer(const RecordView& r) {
-  Fields f = fields_of(r, Opcode::footer);
-  FooterRecord h;
-  h.summary_start = f.u64("summary_start");
-  h.summary_offset_start = f.u64("summary_offset_start");
-  h.summary_crc = f.u32("summary_crc");
-  return h;
-}
-
-SchemaRecord parse_schema(const RecordView& r) {
-  Fields f = fields_of(r, Opcode::schema);
-  SchemaRecord s;
-  s.id = f.u16("id");
-  s.name = f.string("name");
-  s.encoding = f.string("encoding");
-  s.data = f.string("data");
-  return s;
-}
-
-ChannelRecord parse_channel(const RecordView& r) {
-  Fields f = fields_of(r, Opcode::channel);
-  ChannelRecord c;
-  c.id = f.u16("id");
-  c.schema_id = f.u16("schema_id");
-  c.topic = f.string("topic");
-  c.message_encoding = f.string("message_encoding");
-  c.metadata = string_map(f, "metadata");
-  return c;
-}
-
-MessageRecord parse_message(const RecordView& r) {
-  Fields f = fields_of(r, Opcode::message);
-  MessageRecord m;
-  m.channel_id = f.u16("channel_id");
-  m.sequence = f.u32("sequence");
-  m.log_time_ns = f.u64("log_time");
-  m.publish_time_ns = f.u64("publish_time");
-  m.data = std::string(f.rest());
-  return m;
-}
-
-ChunkRecord parse_chunk(const RecordView& r) {
-  Fields f = fields_of(r, Opcode::chunk);
-  ChunkRecord c;
-  c.message_start_time_ns = f.u64("message_start_time");
-  c.message_end_time_ns = f.u64("message_end_time");
-  c.uncompressed_size = f.u64("uncompressed_size");
-  c.uncompressed_crc = f.u32("uncompressed_crc");
-  c.compression = f.string("compression");
-  c.records = f.bytes(f.u64("records"), "records");
-  return c;
-}
-
-MessageIndexRecord parse_message_index(const RecordView& r) {
-  Fields f = fields_of(r, Opcode::message_index);
-  MessageIndexRecord m;
-  m.channel_id = f.u16("channel_id");
-  Fields entries = f.u32_prefixed("records");
-  while (entries.remaining() > 0) {
-    MessageIndexEntry e;
-    e.log_time_ns = entries.u64("log_time");
-    e.offset = entries.u64("offset");
-    m.records.push_back(e);
+template <class Record>
+Record parse(const RecordView& r) {
+  if (r.opcode != Record::opcode) {
+    throw McapError("record at offset " + std::to_string(r.offset) + ": expected a " +
+                    record_name(Record::opcode) + " record (opcode " +
+                    hex(static_cast<std::uint8_t>(Record::opcode)) + "), found opcode " +
+                    hex(static_cast<std::uint8_t>(r.opcode)));
   }
-  return m;
+  Fields f(r);
+  Decoder d{f};
+  Record out;
+  fields(d, out);
+  return out;
 }
 
-ChunkIndexRecord parse_chunk_index(const RecordView& r) {
-  Fields f = fields_of(r, Opcode::chunk_index);
-  ChunkIndexRecord c;
-  c.message_start_time_ns = f.u64("message_start_time");
-  c.message_end_time_ns = f.u64("message_end_time");
-  c.chunk_start_offset = f.u64("chunk_start_offset");
-  c.chunk_length = f.u64("chunk_length");
-  c.message_index_offsets = u16_u64_map(f, "message_index_offsets");
-  c.message_index_length = f.u64("message_index_length");
-  c.compression = f.string("compression");
-  c.compressed_size = f.u64("compressed_size");
-  c.uncompressed_size = f.u64("uncompressed_size");
-  return c;
-}
-
-StatisticsRecord parse_statistics(const RecordView& r) {
-  Fields f = fields_of(r, Opcode::statistics);
-  StatisticsRecord s;
-  s.message_count = f.u64("message_count");
-  s.schema_count = f.u16("schema_count");
-  s.channel_count = f.u32("channel_count");
-  s.attachment_count = f.u32("attachment_count");
-  s.metadata_count = f.u32("metadata_count");
-  s.chunk_count = f.u32("chunk_count");
-  s.message_start_time_ns = f.u64("message_start_time");
-  s.message_end_time_ns = f.u64("message_end_time");
-  s.channel_message_counts = u16_u64_map(f, "channel_message_counts");
-  return s;
-}
-
-MetadataRecord parse_metadata(const RecordView& r) {
-  Fields f = fields_of(r, Opcode::metadata);
-  MetadataRecord m;
-  m.name = f.string("name");
-  m.entries = string_map(f, "metadata");
-  return m;
-}
-
-MetadataIndexRecord parse_metadata_index(const RecordView& r) {
-  Fields f = fields_of(r, Opcode::metadata_index);
-  MetadataIndexRecord m;
-  m.offset = f.u64("offset");
-  m.length = f.u64("length");
-  m.name = f.string("name");
-  return m;
-}
-
-SummaryOffsetRecord parse_summary_offset(const RecordView& r) {
-  Fields f = fields_of(r, Opcode::summary_offset);
-  SummaryOffsetRecord s;
-  s.group_opcode = static_cast<Opcode>(f.u8("group_opcode"));
-  s.group_start = f.u64("group_start");
-  s.group_length = f.u64("group_length");
-  return s;
-}
-
-DataEndRecord parse_data_end(const RecordView& r) {
-  Fields f = fields_of(r, Opcode::data_end);
-  DataEndRecord d;
-  d.data_section_crc = f.u32("data_section_crc");
-  return d;
-}
+template HeaderRecord parse(const RecordView&);
+template FooterRecord parse(const RecordView&);
+template SchemaRecord parse(const RecordView&);
+template ChannelRecord parse(const RecordView&);
+template MessageRecord parse(const RecordView&);
+template ChunkRecord parse(const RecordView&);
+template MessageIndexRecord parse(const RecordView&);
+template ChunkIndexRecord parse(const RecordView&);
+template StatisticsRecord parse(const RecordView&);
+template MetadataRecord parse(const RecordView&);
+template MetadataIndexRecord parse(const RecordView&);
+template SummaryOffsetRecord parse(const RecordView&);
+template DataEndRecord parse(const RecordView&);
 
 std::string chunk_records(const ChunkRecord& chunk, std::uint64_t chunk_offset) {
   const std::string at = "chunk at offset " + std::to_string(chunk_offset) + ": ";
@@ -537,7 +439,7 @@ McapContents read_mcap(std::string_view bytes) {
   check_magic(bytes, 0);
   McapContents out;
   const RecordView header_record = record_at(bytes, kMagic.size());
-  const HeaderRecord header = parse_header(header_record);
+  const HeaderRecord header = parse<HeaderRecord>(header_record);
   out.profile = header.profile;
   out.library = header.library;
 
@@ -545,7 +447,7 @@ McapContents read_mcap(std::string_view bytes) {
   std::uint64_t offset =
       read_data_section(bytes, kMagic.size() + header_record.length(), reader, out);
   if (const RecordView end = record_at(bytes, offset); end.opcode == Opcode::data_end) {
-    const DataEndRecord data_end = parse_data_end(end);
+    const DataEndRecord data_end = parse<DataEndRecord>(end);
     if (data_end.data_section_crc != 0 &&
         crc32(bytes.substr(0, offset)) != data_end.data_section_crc) {
       throw McapError(where(end) + ": data section CRC mismatch");
@@ -559,34 +461,25 @@ McapContents read_mcap(std::string_view bytes) {
   std::vector<ChunkIndexRecord> chunk_indexes;
   RecordView r;
   for (;; offset += r.length()) {
-    if (offset == bytes.size()) {
-      throw McapError("truncated: the file ends at offset " + std::to_string(offset) +
-                      " without a Footer record");
-    }
-    r = record_at(bytes, offset);
+    r = next_record(bytes, offset);
     if (r.opcode == Opcode::footer) break;
     if (r.opcode != Opcode::summary_offset && summary_offset_start != 0) {
       throw McapError(where(r) + " follows the Summary Offset records");
     }
+    if (reader.definition(r)) continue;
     switch (r.opcode) {
-      case Opcode::schema:
-        reader.schema(r);
-        break;
-      case Opcode::channel:
-        reader.channel(r);
-        break;
       case Opcode::statistics:
         if (out.statistics) throw McapError(where(r) + ": a second Statistics record");
-        out.statistics = parse_statistics(r);
+        out.statistics = parse<StatisticsRecord>(r);
         break;
       case Opcode::chunk_index:
-        chunk_indexes.push_back(parse_chunk_index(r));
+        chunk_indexes.push_back(parse<ChunkIndexRecord>(r));
         break;
       case Opcode::metadata_index:
-        (void)parse_metadata_index(r);
+        (void)parse<MetadataIndexRecord>(r);
         break;
       case Opcode::summary_offset:
-        (void)parse_summary_offset(r);
+        (void)parse<SummaryOffsetRecord>(r);
         if (summary_offset_start == 0) summary_offset_start = offset;
         break;
       case Opcode::attachment_index:
@@ -598,7 +491,7 @@ McapContents read_mcap(std::string_view bytes) {
     }
   }
 
-  const FooterRecord footer = parse_footer(r);
+  const FooterRecord footer = parse<FooterRecord>(r);
   const std::uint64_t footer_end = offset + r.length();
   if (bytes.size() - footer_end != kMagic.size()) {
     throw McapError(where(r) + ": " + std::to_string(bytes.size() - footer_end) +
@@ -633,7 +526,7 @@ McapSummary read_summary(std::string_view bytes) {
   check_magic(bytes, bytes.size() - kMagic.size());
   const std::uint64_t footer_offset = bytes.size() - kMagic.size() - footer_length;
   McapSummary s;
-  s.footer = parse_footer(record_at(bytes, footer_offset));
+  s.footer = parse<FooterRecord>(record_at(bytes, footer_offset));
   if (s.footer.summary_start == 0) return s;
   if (s.footer.summary_start > footer_offset) {
     throw McapError("Footer record: summary_start " + std::to_string(s.footer.summary_start) +
@@ -644,22 +537,22 @@ McapSummary read_summary(std::string_view bytes) {
     const RecordView r = record_at(summary, at);
     switch (r.opcode) {
       case Opcode::schema:
-        s.schemas.push_back(parse_schema(r));
+        s.schemas.push_back(parse<SchemaRecord>(r));
         break;
       case Opcode::channel:
-        s.channels.push_back(parse_channel(r));
+        s.channels.push_back(parse<ChannelRecord>(r));
         break;
       case Opcode::statistics:
-        s.statistics = parse_statistics(r);
+        s.statistics = parse<StatisticsRecord>(r);
         break;
       case Opcode::chunk_index:
-        s.chunk_indexes.push_back(parse_chunk_index(r));
+        s.chunk_indexes.push_back(parse<ChunkIndexRecord>(r));
         break;
       case Opcode::metadata_index:
-        s.metadata_indexes.push_back(parse_metadata_index(r));
+        s.metadata_indexes.push_back(parse<MetadataIndexRecord>(r));
         break;
       case Opcode::summary_offset:
-        s.summary_offsets.push_back(parse_summary_offset(r));
+        s.summary_offsets.push_back(parse<SummaryOffsetRecord>(r));
         break;
       default:
         break;

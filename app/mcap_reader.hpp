@@ -49,21 +49,10 @@ struct RecordView {
 // The record at `offset`; McapError when its prefix or its content runs past the end.
 RecordView record_at(std::string_view bytes, std::uint64_t offset);
 
-// Each checks the opcode and that the fields fit in the content (later fields a newer writer
-// may add are ignored).
-HeaderRecord parse_header(const RecordView& r);
-FooterRecord parse_footer(const RecordView& r);
-SchemaRecord parse_schema(const RecordView& r);
-ChannelRecord parse_channel(const RecordView& r);
-MessageRecord parse_message(const RecordView& r);
-ChunkRecord parse_chunk(const RecordView& r);
-MessageIndexRecord parse_message_index(const RecordView& r);
-ChunkIndexRecord parse_chunk_index(const RecordView& r);
-StatisticsRecord parse_statistics(const RecordView& r);
-MetadataRecord parse_metadata(const RecordView& r);
-MetadataIndexRecord parse_metadata_index(const RecordView& r);
-SummaryOffsetRecord parse_summary_offset(const RecordView& r);
-DataEndRecord parse_data_end(const RecordView& r);
+// The record of type Record (SchemaRecord, ChunkIndexRecord, ...): checks the opcode and that
+// the fields fit in the content (later fields a newer writer may add are ignored).
+template <class Record>
+Record parse(const RecordView& r);
 
 // A chunk's records, decompressed, their size and CRC checked; `chunk_offset` names the chunk in
 // errors.

@@ -59,161 +59,58 @@ void put_u32_prefixed(std::string& out, Fill fill) {
     out[at + i] = static_cast<char>(n >> (8 * i));
 }
 
-void put_string_map(std::string& out, const std::map<std::string, std::string>& m) {
-  put_u32_prefixed(out, [&] {
-    for (const auto& [k, v] : m) {
-      put_string(out, k);
-      put_string(out, v);
-    }
-  });
-}
+// Writes the fields that mcap_records.hpp lists for each record.
+struct Encoder {
+  std::string& out;
 
-void put_u16_u64_map(std::string& out, const std::map<std::uint16_t, std::uint64_t>& m) {
-  put_u32_prefixed(out, [&] {
-    for (const auto& [k, v] : m) {
-      put_u16(out, k);
-      put_u64(out, v);
-    }
-  });
-}
-
-// Appends <opcode><u64 content length><content> with the content written by `fill`; returns the
-// record's offset in `out`.
-template <class Fill>
-std::uint64_t put_record(std::string& out, Opcode op, Fill fill) {
-  const std::size_t at = out.size();
-  put_u8(out, static_cast<std::uint8_t>(op));
-  put_u64(out, 0);
-  fill();
-  const std::uint64_t n = out.size() - at - kRecordPrefixBytes;
-  for (std::size_t i = 0; i < 8; ++i)
-    out[at + 1 + i] = static_cast<char>(n >> (8 * i));
-  return at;
-}
-
-std::uint64_t put(std::string& out, const HeaderRecord& r) {
-  return put_record(out, Opcode::header, [&] {
-    put_string(out, r.profile);
-    put_string(out, r.library);
-  });
-}
-
-std::uint64_t put(std::string& out, const FooterRecord& r) {
-  return put_record(out, Opcode::footer, [&] {
-    put_u64(out, r.summary_start);
-    put_u64(out, r.summary_offset_start);
-    put_u32(out, r.summary_crc);
-  });
-}
-
-std::uint64_t put(std::string& out, const SchemaRecord& r) {
-  return put_record(out, Opcode::schema, [&] {
-    put_u16(out, r.id);
-    put_string(out, r.name);
-    put_string(out, r.encoding);
-    put_string(out, r.data);
-  });
-}
-
-std::uint64_t put(std::string& out, const ChannelRecord& r) {
-  return put_record(out, Opcode::channel, [&] {
-    put_u16(out, r.id);
-    put_u16(out, r.schema_id);
-    put_string(out, r.topic);
-    put_string(out, r.message_encoding);
-    put_string_map(out, r.metadata);
-  });
-}
-
-std::uint64_t put_message(std::string& out, std::uint16_t channel_id, std::uint32_t sequence,
-                          std::uint64_t log_time_ns, std::uint64_t publish_time_ns,
-                          std::string_view data) {
-  return put_record(out, Opcode::message, [&] {
-    put_u16(out, channel_id);
-    put_u32(out, sequence);
-    put_u64(out, log_time_ns);
-    put_u64(out, publish_time_ns);
-    out.append(data);
-  });
-}
-
-std::uint64_t put(std::string& out, const ChunkRecord& r) {
-  return put_record(out, Opcode::chunk, [&] {
-    put_u64(out, r.message_start_time_ns);
-    put_u64(out, r.message_end_time_ns);
-    put_u64(out, r.uncompressed_size);
-    put_u32(out, r.uncompressed_crc);
-    put_string(out, r.compression);
-    put_u64(out, r.records.size());
-    out.append(r.records);
-  });
-}
-
-std::uint64_t put(std::string& out, const MessageIndexRecord& r) {
-  return put_record(out, Opcode::message_index, [&] {
-    put_u16(out, r.channel_id);
+  void opcode(Opcode v, const char*) { put_u8(out, static_cast<std::uint8_t>(v)); }
+  void u16(std::uint16_t v, const char*) { put_u16(out, v); }
+  void u32(std::uint32_t v, const char*) { put_u32(out, v); }
+  void u64(std::uint64_t v, const char*) { put_u64(out, v); }
+  void string(std::string_view v, const char*) { put_string(out, v); }
+  void rest(std::string_view v, const char*) { out.append(v); }
+  void u64_bytes(std::string_view v, const char*) {
+    put_u64(out, v.size());
+    out.append(v);
+  }
+  void string_map(const std::map<std::string, std::string>& m, const char*) {
     put_u32_prefixed(out, [&] {
-      for (const MessageIndexEntry& e : r.records) {
+      for (const auto& [k, v] : m) {
+        put_string(out, k);
+        put_string(out, v);
+      }
+    });
+  }
+  void u16_u64_map(const std::map<std::uint16_t, std::uint64_t>& m, const char*) {
+    put_u32_prefixed(out, [&] {
+      for (const auto& [k, v] : m) {
+        put_u16(out, k);
+        put_u64(out, v);
+      }
+    });
+  }
+  void index_entries(const std::vector<MessageIndexEntry>& entries, const char*) {
+    put_u32_prefixed(out, [&] {
+      for (const MessageIndexEntry& e : entries) {
         put_u64(out, e.log_time_ns);
         put_u64(out, e.offset);
       }
     });
-  });
-}
+  }
+};
 
-std::uint64_t put(std::string& out, const ChunkIndexRecord& r) {
-  return put_record(out, Opcode::chunk_index, [&] {
-    put_u64(out, r.message_start_time_ns);
-    put_u64(out, r.message_end_time_ns);
-    put_u64(out, r.chunk_start_offset);
-    put_u64(out, r.chunk_length);
-    put_u16_u64_map(out, r.message_index_offsets);
-    put_u64(out, r.message_index_length);
-    put_string(out, r.compression);
-    put_u64(out, r.compressed_size);
-    put_u64(out, r.uncompressed_size);
-  });
-}
-
-std::uint64_t put(std::string& out, const StatisticsRecord& r) {
-  return put_record(out, Opcode::statistics, [&] {
-    put_u64(out, r.message_count);
-    put_u16(out, r.schema_count);
-    put_u32(out, r.channel_count);
-    put_u32(out, r.attachment_count);
-    put_u32(out, r.metadata_count);
-    put_u32(out, r.chunk_count);
-    put_u64(out, r.message_start_time_ns);
-    put_u64(out, r.message_end_time_ns);
-    put_u16_u64_map(out, r.channel_message_counts);
-  });
-}
-
-std::uint64_t put(std::string& out, const MetadataRecord& r) {
-  return put_record(out, Opcode::metadata, [&] {
-    put_string(out, r.name);
-    put_string_map(out, r.entries);
-  });
-}
-
-std::uint64_t put(std::string& out, const MetadataIndexRecord& r) {
-  return put_record(out, Opcode::metadata_index, [&] {
-    put_u64(out, r.offset);
-    put_u64(out, r.length);
-    put_string(out, r.name);
-  });
-}
-
-std::uint64_t put(std::string& out, const SummaryOffsetRecord& r) {
-  return put_record(out, Opcode::summary_offset, [&] {
-    put_u8(out, static_cast<std::uint8_t>(r.group_opcode));
-    put_u64(out, r.group_start);
-    put_u64(out, r.group_length);
-  });
-}
-
-std::uint64_t put(std::string& out, const DataEndRecord& r) {
-  return put_record(out, Opcode::data_end, [&] { put_u32(out, r.data_section_crc); });
+// Appends <opcode><u64 content length><content>; returns the record's offset in `out`.
+template <class Record>
+std::uint64_t put(std::string& out, const Record& r) {
+  const std::size_t at = out.size();
+  put_u8(out, static_cast<std::uint8_t>(Record::opcode));
+  put_u64(out, 0);
+  Encoder e{out};
+  fields(e, r);
+  const std::uint64_t n = out.size() - at - kRecordPrefixBytes;
+  for (std::size_t i = 0; i < 8; ++i)
+    out[at + 1 + i] = static_cast<char>(n >> (8 * i));
+  return at;
 }
 
 std::string zstd_compress(std::string_view in) {
@@ -311,7 +208,8 @@ void Writer::add_message(std::uint16_t channel_id, std::uint64_t log_time_ns,
   chunk_end_time_ns_ = log_time_ns;
   const std::uint32_t sequence = ++sequences_[channel_id - 1];
   const std::uint64_t offset =
-      put_message(chunk_records_, channel_id, sequence, log_time_ns, publish_time_ns, data);
+      put(chunk_records_,
+          MessageRecord{channel_id, sequence, log_time_ns, publish_time_ns, std::string(data)});
   chunk_message_index_[channel_id].push_back(MessageIndexEntry{log_time_ns, offset});
 
   if (!first_log_time_ns_) first_log_time_ns_ = log_time_ns;

@@ -63,8 +63,13 @@ Polyline inset_polygon(const Polyline& polygon, double distance_m) {
       out.push_back({p.x(), p.y()});
     }
   }
-  // An inset wider than the polygon turns it inside out: the winding flips.
-  if (signed_area(out) * area <= 0.0) return {};
+  // An inset wider than the polygon turns it inside out: an edge runs against its original
+  // direction (a square of half width 10 inset by 11 comes back rotated by 180 degrees, its
+  // winding unchanged, so the area's sign alone would not tell).
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const Eigen::Vector2d e = vec(out[(i + 1) % out.size()]) - vec(out[i]);
+    if (e.dot(offset[i].direction) <= 0.0) return {};
+  }
   return out;
 }
 

@@ -6,6 +6,7 @@
 #include "app/compare.hpp"
 #include "app/current.hpp"
 #include "app/encounters.hpp"
+#include "app/foxglove_scene.hpp"
 #include "app/harvest.hpp"
 #include "app/maneuvers.hpp"
 #include "app/mission_mcap.hpp"
@@ -139,7 +140,14 @@ Station::Station(StationOptions options, StreamHub& hub)
       options_(std::move(options)),
       hub_(hub),
       feed_(hub),
-      context_(options_.db_path, options_.vehicle, &feed_) {
+      foxglove_(hub.foxglove(),
+                [this](const std::string& vid, double speed_mps, double dheading_deg,
+                       const kinematics::Pose& start) {
+                  return app::foxglove::scene_predictions(context_, vid, speed_mps, dheading_deg,
+                                                          start);
+                }),
+      feeds_({&feed_, &foxglove_}),
+      context_(options_.db_path, options_.vehicle, &feeds_) {
   add_routes();
 }
 
@@ -153,6 +161,7 @@ void Station::start() {
 
 void Station::shutdown() {
   context_.shutdown("the server stopped");
+  foxglove_.withdraw();
 }
 
 void Station::add_routes() {

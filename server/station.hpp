@@ -1,13 +1,16 @@
 #pragma once
 // The ground station behind /api/v1: the route table of the REST API and its adapters, each of
 // which reads the request, calls one use case of app/ and writes the answer (server/serialize).
-// Missions run on the station's vehicle loop (app::Context); its live feed goes to the stream.
+// Missions run on the station's vehicle loop (app::Context); its live feed goes to the stream and
+// to the Foxglove connection (docs/foxglove.md).
 
 #include <memory>
 #include <optional>
 #include <string>
 
 #include "app/context.hpp"
+#include "app/foxglove_live.hpp"
+#include "app/live_feeds.hpp"
 #include "app/vehicle_loop.hpp"
 #include "server/http/router.hpp"
 #include "server/stream_feed.hpp"
@@ -49,6 +52,8 @@ class Station final : public Router {
   StationOptions options_;
   StreamHub& hub_;
   StreamFeed feed_;
+  app::foxglove::FoxgloveLive foxglove_;
+  app::LiveFeeds feeds_;
   app::Context context_;
 };
 

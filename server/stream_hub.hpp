@@ -15,6 +15,7 @@
 
 #include "mission/event_kind.hpp"
 #include "server/api_types.hpp"
+#include "server/foxglove_hub.hpp"
 
 namespace avk::server {
 
@@ -49,8 +50,12 @@ class StreamHub {
 
   std::chrono::milliseconds status_min_interval{1000};
 
+  // The same live data for clients of the Foxglove WebSocket protocol (docs/foxglove.md).
+  FoxgloveHub& foxglove() { return foxglove_; }
+
  private:
   std::string session_id_;
+  FoxgloveHub foxglove_{session_id_};
   mutable std::mutex mutex_;
   std::map<std::string, std::vector<std::weak_ptr<StreamSink>>> subscribers_;
   std::map<std::string, std::uint64_t> seq_;

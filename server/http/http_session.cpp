@@ -9,6 +9,7 @@
 #include <map>
 #include <utility>
 
+#include "server/http/foxglove_session.hpp"
 #include "server/http/responses.hpp"
 #include "server/http/server_state.hpp"
 #include "server/http/url.hpp"
@@ -20,6 +21,23 @@ namespace {
 
 constexpr std::string_view kApiPrefix = "/api/v1/";
 constexpr std::string_view kStreamPath = "/api/v1/stream";
+constexpr std::string_view kFoxglovePath = "/api/v1/foxglove";
+
+// Sec-WebSocket-Protocol lists the client's subprotocols, comma-separated.
+bool offers_subprotocol(std::string_view header, std::string_view wanted) {
+  while (!header.empty()) {
+    const auto comma = header.find(',');
+    auto item = header.substr(0, comma);
+    while (!item.empty() && (item.front() == ' ' || item.front() == '\t'))
+      item.remove_prefix(1);
+    while (!item.empty() && (item.back() == ' ' || item.back() == '\t'))
+      item.remove_suffix(1);
+    if (item == wanted) return true;
+    if (comma == std::string_view::npos) break;
+    header.remove_prefix(comma + 1);
+  }
+  return false;
+}
 // How long a closing connection may keep sending what we will not read (the rest of an
 // oversized body): closing with unread data sends a reset that can destroy our error response
 // in the client's buffer before it reads it.
@@ -247,14 +265,27 @@ void HttpSession::handle_request() {
   const auto target = split_target(req.target());
   std::string path = percent_decode(target.path, false);
 
-  if (path == kStreamPath) {
+  if (path == kStreamPath || path == kFoxglovePath) {
     if (!websocket::is_upgrade(req)) {
       auto res = problem_response(http::status::upgrade_required,
-                                  "the stream is a WebSocket: connect with Upgrade: websocket",
+                                  path == kStreamPath
+                                      ? "the stream is a WebSocket: connect with Upgrade: websocket"
+                                      : "the Foxglove connection is a WebSocket: connect with "
+                                        "Upgrade: websocket and Sec-WebSocket-Protocol: " +
+                                            std::string(kFoxgloveSubprotocol),
                                   req.version(), keep_alive);
       res.set(http::field::upgrade, "websocket");
       return send(body_unless_head(head_, std::move(res)));
     }
+    // Foxglove's clients ask for their protocol by name, on its own path or on the stream's.
+    const bool foxglove =
+        offers_subprotocol(req[http::field::sec_websocket_protocol], kFoxgloveSubprotocol);
+    if (path == kFoxglovePath && !foxglove)
+      return send(problem_response(http::status::bad_request,
+                                   "this path speaks the Foxglove WebSocket protocol: offer "
+                                   "Sec-WebSocket-Protocol: " +
+                                       std::string(kFoxgloveSubprotocol),
+                                   req.version(), keep_alive));
     // Browsers send Origin; a page from elsewhere must not read the station's stream with the
     // user's network position. Tools without a browser send none and are let in.
     const auto origin = req[http::field::origin];
@@ -277,7 +308,10 @@ void HttpSession::handle_request() {
                                    req.version(), false));
     phase_ = Phase::done;
     awaiting_request_ = false;
-    std::make_shared<WebSocketSession>(stream_.release_socket(), state_)->run(std::move(req));
+    if (foxglove)
+      std::make_shared<FoxgloveSession>(stream_.release_socket(), state_)->run(std::move(req));
+    else
+      std::make_shared<WebSocketSession>(stream_.release_socket(), state_)->run(std::move(req));
     // The connection is the WebSocket's now: counted once, as a stream.
     state_->remove(this);
     return;

@@ -4,8 +4,7 @@
 #include <vector>
 
 #include "server/http/http_session.hpp"
-#include "server/http/websocket_session.hpp"
-#include "server/http/websocket_stream_sink.hpp"
+#include "server/http/live_session.hpp"
 
 namespace avk::server {
 
@@ -52,13 +51,13 @@ void ServerState::remove(const HttpSession* session) {
   if (http_sessions_.empty() && stream_sessions_.empty()) idle_.notify_all();
 }
 
-void ServerState::add(const std::shared_ptr<WebSocketSession>& session,
-                      const std::shared_ptr<WebSocketStreamSink>& sink) {
+void ServerState::add(const std::shared_ptr<LiveSession>& session,
+                      const std::shared_ptr<DetachableSink>& sink) {
   std::lock_guard lock(mutex_);
   stream_sessions_[session.get()] = StreamEntry{session, sink};
 }
 
-void ServerState::remove(const WebSocketSession* session) {
+void ServerState::remove(const LiveSession* session) {
   std::lock_guard lock(mutex_);
   stream_sessions_.erase(session);
   if (http_sessions_.empty() && stream_sessions_.empty()) idle_.notify_all();
@@ -66,7 +65,7 @@ void ServerState::remove(const WebSocketSession* session) {
 
 void ServerState::begin_stop() {
   std::vector<std::shared_ptr<HttpSession>> http;
-  std::vector<std::shared_ptr<WebSocketSession>> streams;
+  std::vector<std::shared_ptr<LiveSession>> streams;
   {
     // Under the lock so that a session added later sees the flag when it starts.
     std::lock_guard lock(mutex_);
@@ -89,7 +88,7 @@ bool ServerState::wait_until_idle(std::chrono::steady_clock::time_point deadline
 }
 
 void ServerState::detach_sinks() {
-  std::vector<std::shared_ptr<WebSocketStreamSink>> sinks;
+  std::vector<std::shared_ptr<DetachableSink>> sinks;
   {
     // Detached outside the lock: a delivery in progress holds the sink's lock and may end by
     // destroying its session, which takes this one.

@@ -13,6 +13,7 @@
 #include <string>
 
 #include "server/api_types.hpp"
+#include "server/foxglove_hub.hpp"
 #include "server/http/http_server.hpp"
 #include "server/http/static_files.hpp"
 #include "server/stream_hub.hpp"
@@ -20,8 +21,8 @@
 namespace avk::server {
 
 class HttpSession;
-class WebSocketSession;
-class WebSocketStreamSink;
+class LiveSession;
+class DetachableSink;
 
 class ServerState {
  public:
@@ -30,6 +31,7 @@ class ServerState {
   const HttpServerOptions& options() const { return options_; }
   Api& api() { return api_; }
   StreamHub& hub() { return hub_; }
+  FoxgloveHub& foxglove() { return hub_.foxglove(); }
   const StaticFiles& static_files() const { return static_files_; }
   bool stopping() const { return stopping_.load(); }
 
@@ -41,9 +43,11 @@ class ServerState {
   // Sessions add themselves when they start and remove themselves in their destructors.
   void add(const std::shared_ptr<HttpSession>& session);
   void remove(const HttpSession* session);
-  void add(const std::shared_ptr<WebSocketSession>& session,
-           const std::shared_ptr<WebSocketStreamSink>& sink);
-  void remove(const WebSocketSession* session);
+  // A live WebSocket session (the stream or the Foxglove connection) and what its publisher
+  // holds.
+  void add(const std::shared_ptr<LiveSession>& session,
+           const std::shared_ptr<DetachableSink>& sink);
+  void remove(const LiveSession* session);
 
   // A session counts as open from its accepted handshake until it starts to close.
   void stream_opened() { ++open_streams_; }
@@ -77,10 +81,10 @@ class ServerState {
   std::map<const HttpSession*, HttpEntry> http_sessions_;
   std::uint64_t accepted_ = 0;
   struct StreamEntry {
-    std::weak_ptr<WebSocketSession> session;
-    std::shared_ptr<WebSocketStreamSink> sink;
+    std::weak_ptr<LiveSession> session;
+    std::shared_ptr<DetachableSink> sink;
   };
-  std::map<const WebSocketSession*, StreamEntry> stream_sessions_;
+  std::map<const LiveSession*, StreamEntry> stream_sessions_;
 };
 
 }  // namespace avk::server

@@ -1,6 +1,6 @@
 #include "server/http/websocket_session.hpp"
 
-#include <algorithm>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <utility>
 #include <vector>
@@ -24,7 +24,10 @@ std::string error_message(const std::string& message) {
 }  // namespace
 
 WebSocketSession::WebSocketSession(tcp::socket&& socket, std::shared_ptr<ServerState> state)
-    : ws_(std::move(socket)), state_(std::move(state)), close_timer_(ws_.get_executor()) {}
+    : ws_(std::move(socket)),
+      state_(std::move(state)),
+      close_timer_(ws_.get_executor()),
+      queue_(state_->options().stream_event_queue_limit) {}
 
 WebSocketSession::~WebSocketSession() {
   if (sink_) state_->hub().unsubscribe_all(sink_.get());
@@ -157,26 +160,15 @@ void WebSocketSession::send_control(std::string text) {
 
 void WebSocketSession::enqueue(std::shared_ptr<const StreamMessage> message) {
   if (!open_ || closing_ || finished_) return;
-  if (message->latest_value_wins) {
-    const auto older = std::find_if(queue_.begin(), queue_.end(), [&](const auto& queued) {
-      return queued->latest_value_wins && queued->topic == message->topic;
-    });
-    if (older != queue_.end())
-      *older = std::move(message);
-    else
-      queue_.push_back(std::move(message));
-  } else {
-    queue_.push_back(std::move(message));
-    if (++queued_events_ > state_->options().stream_event_queue_limit)
-      return close(websocket::close_code::policy_error, "too slow: re-sync over REST");
-  }
+  std::optional<std::uint64_t> key;
+  if (message->latest_value_wins) key = std::hash<std::string>{}(message->topic);
+  if (!queue_.push(std::move(message), key))
+    return close(websocket::close_code::policy_error, "too slow: re-sync over REST");
   if (!in_flight_) do_write();
 }
 
 void WebSocketSession::do_write() {
-  in_flight_ = std::move(queue_.front());
-  queue_.pop_front();
-  if (!in_flight_->latest_value_wins) --queued_events_;
+  in_flight_ = queue_.pop();
   ws_.text(true);
   ws_.async_write(net::buffer(*in_flight_->payload),
                   beast::bind_front_handler(&WebSocketSession::on_write, shared_from_this()));
@@ -197,7 +189,6 @@ void WebSocketSession::close(websocket::close_code code, const char* reason) {
   if (closing_ || finished_) return;
   closing_ = true;
   queue_.clear();
-  queued_events_ = 0;
   if (open_) {
     open_ = false;
     state_->stream_closed();
@@ -217,7 +208,6 @@ void WebSocketSession::finish() {
   if (finished_) return;
   finished_ = true;
   queue_.clear();
-  queued_events_ = 0;
   if (open_) {
     open_ = false;
     state_->stream_closed();

@@ -6,30 +6,31 @@
 // stream_event_queue_limit of them pile up is closed with 1008 to re-sync over REST.
 
 #include <cstddef>
-#include <deque>
 #include <memory>
 #include <set>
 #include <string>
 
 #include "server/api_types.hpp"
 #include "server/http/beast.hpp"
+#include "server/http/live_session.hpp"
+#include "server/send_queue.hpp"
 
 namespace avk::server {
 
 class ServerState;
 class WebSocketStreamSink;
 
-class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
+class WebSocketSession : public LiveSession, public std::enable_shared_from_this<WebSocketSession> {
  public:
   WebSocketSession(tcp::socket&& socket, std::shared_ptr<ServerState> state);
-  ~WebSocketSession();
+  ~WebSocketSession() override;
 
   // Completes the upgrade the HTTP session has read.
   void run(Request request);
   // Any thread; returns at once.
   void deliver(std::shared_ptr<const StreamMessage> message);
   // Any thread: close with 1001 (going away).
-  void shutdown();
+  void shutdown() override;
 
  private:
   void on_accept(beast::error_code ec);
@@ -49,8 +50,7 @@ class WebSocketSession : public std::enable_shared_from_this<WebSocketSession> {
   beast::flat_buffer read_buffer_;
   net::steady_timer close_timer_;
 
-  std::deque<std::shared_ptr<const StreamMessage>> queue_;
-  std::size_t queued_events_ = 0;  // entries of queue_ that are not latest-value-wins
+  SendQueue<std::shared_ptr<const StreamMessage>> queue_;
   std::shared_ptr<const StreamMessage> in_flight_;  // keeps the payload alive while written
   std::set<std::string> topics_;
   bool open_ = false;     // counted in the server's open sessions

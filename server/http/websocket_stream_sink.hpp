@@ -8,17 +8,18 @@
 #include <mutex>
 
 #include "server/api_types.hpp"
+#include "server/http/live_session.hpp"
 
 namespace avk::server {
 
 class WebSocketSession;
 
-class WebSocketStreamSink final : public StreamSink {
+class WebSocketStreamSink final : public StreamSink, public DetachableSink {
  public:
   explicit WebSocketStreamSink(std::weak_ptr<WebSocketSession> session);
 
   void deliver(std::shared_ptr<const StreamMessage> message) override;
-  void detach();
+  void detach() override;
 
  private:
   std::mutex mutex_;

@@ -195,7 +195,7 @@ TEST_P(McapRoundTrip, IndexesPointAtTheirRecords) {
     ASSERT_LT(ci.chunk_start_offset + 9, s.bytes.size());
     EXPECT_EQ(static_cast<std::uint8_t>(s.bytes[ci.chunk_start_offset]), 0x06);
     EXPECT_EQ(u64_at(s.bytes, ci.chunk_start_offset + 1), ci.chunk_length - 9);
-    const ChunkRecord chunk = parse_chunk(record_at(s.bytes, ci.chunk_start_offset));
+    const ChunkRecord chunk = parse<ChunkRecord>(record_at(s.bytes, ci.chunk_start_offset));
     EXPECT_EQ(chunk.compression, to_string(GetParam()));
     EXPECT_EQ(ci.compression, chunk.compression);
     EXPECT_EQ(ci.compressed_size, chunk.records.size());
@@ -215,12 +215,12 @@ TEST_P(McapRoundTrip, IndexesPointAtTheirRecords) {
     for (const auto& [channel_id, mi_offset] : ci.message_index_offsets) {
       EXPECT_EQ(mi_offset, expected_at);
       const RecordView r = record_at(s.bytes, mi_offset);
-      const MessageIndexRecord mi = parse_message_index(r);
+      const MessageIndexRecord mi = parse<MessageIndexRecord>(r);
       EXPECT_EQ(mi.channel_id, channel_id);
       mi_total += r.length();
       expected_at += r.length();
       for (const MessageIndexEntry& e : mi.records) {
-        const MessageRecord m = parse_message(record_at(records, e.offset));
+        const MessageRecord m = parse<MessageRecord>(record_at(records, e.offset));
         EXPECT_EQ(m.channel_id, channel_id);
         EXPECT_EQ(m.log_time_ns, e.log_time_ns);
         EXPECT_GE(e.log_time_ns, ci.message_start_time_ns);
@@ -236,7 +236,7 @@ TEST_P(McapRoundTrip, IndexesPointAtTheirRecords) {
   for (const MetadataIndexRecord& mi : summary.metadata_indexes) {
     const RecordView r = record_at(s.bytes, mi.offset);
     EXPECT_EQ(r.length(), mi.length);
-    EXPECT_EQ(parse_metadata(r).name, mi.name);
+    EXPECT_EQ(parse<MetadataRecord>(r).name, mi.name);
   }
 }
 
@@ -246,7 +246,7 @@ TEST_P(McapRoundTrip, CrcsAreComputed) {
   EXPECT_NE(summary.footer.summary_crc, 0u);
   const RecordView data_end = record_at(s.bytes, summary.footer.summary_start - 13);
   ASSERT_EQ(data_end.opcode, Opcode::data_end);
-  const std::uint32_t crc = parse_data_end(data_end).data_section_crc;
+  const std::uint32_t crc = parse<DataEndRecord>(data_end).data_section_crc;
   EXPECT_EQ(crc, crc32(std::string_view(s.bytes).substr(0, data_end.offset)));
 }
 
@@ -367,6 +367,32 @@ TEST(McapReader, EveryFlippedByteIsAnError) {
       corrupt[i] = static_cast<char>(corrupt[i] ^ 0x5A);
       EXPECT_THROW(read_mcap(corrupt), McapError) << to_string(c) << " byte " << i;
     }
+  }
+}
+
+// With every CRC zeroed, corrupt bytes reach the parsers behind the CRCs: each flip must be
+// read or refused with McapError, never crash or throw anything else.
+TEST(McapReader, CorruptionBehindZeroedCrcsIsReadOrRefused) {
+  for (Compression c : {Compression::none, Compression::zstd}) {
+    std::string b = write_sample(c, 30, 512).bytes;
+    const McapSummary summary = read_summary(b);
+    for (const ChunkIndexRecord& ci : summary.chunk_indexes) {
+      b.replace(ci.chunk_start_offset + 9 + 24, 4, le<std::uint32_t>(0));  // uncompressed_crc
+    }
+    b.replace(summary.footer.summary_start - 4, 4, le<std::uint32_t>(0));  // data_section_crc
+    b.replace(b.size() - 12, 4, le<std::uint32_t>(0));                     // summary_crc
+    ASSERT_EQ(read_mcap(b).messages.size(), 30u);
+    std::size_t refused = 0;
+    for (std::size_t i = 0; i < b.size(); ++i) {
+      std::string corrupt = b;
+      corrupt[i] = static_cast<char>(corrupt[i] ^ 0xA5);
+      try {
+        read_mcap(corrupt);
+      } catch (const McapError&) {
+        ++refused;
+      }
+    }
+    EXPECT_GT(refused, b.size() / 4) << to_string(c);
   }
 }
 

@@ -14,6 +14,7 @@ import path from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 
 import { slow, sleep, until } from './wait.mjs';
+import { startAvkServer, stopAvkServer } from './avk_server.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const webDir = path.resolve(here, '..');
@@ -41,52 +42,10 @@ let phase = 'load';
 // ---------------------------------------------------------------- helpers
 
 function startServer(port = 0, vehicle = ['--sim', '--realtime-factor', '50'], db = 'station.db') {
-  return new Promise((resolve, reject) => {
-    const args = ['serve', '--db', path.join(tmp, db), ...vehicle, '--port', String(port), '--web', webDir];
-    const child = spawn(AVK, args, { stdio: ['ignore', 'pipe', 'pipe'] });
-    const s = { child, port: null, token: null, base: null, log: '' };
-    const timer = setTimeout(() => {
-      child.kill('SIGKILL');
-      reject(new Error(`avk serve did not print its URL within ${SERVER_START_MS} ms:\n${s.log}`));
-    }, SERVER_START_MS);
-    const onData = (chunk) => {
-      s.log = (s.log + chunk.toString()).slice(-20000); // keep draining: a full pipe would block it
-      const url = s.log.match(/AVK Station on http:\/\/127\.0\.0\.1:(\d+)\//);
-      const tok = s.log.match(/dashboard with control: \S+\?token=([0-9A-Za-z_-]+)/);
-      if (url && tok && !s.base) {
-        clearTimeout(timer);
-        s.port = Number(url[1]);
-        s.token = tok[1];
-        s.base = `http://127.0.0.1:${s.port}`;
-        resolve(s);
-      }
-    };
-    child.stdout.on('data', onData);
-    child.stderr.on('data', onData);
-    child.on('error', (e) => {
-      clearTimeout(timer);
-      reject(e);
-    });
-    child.on('exit', (code, sig) => {
-      s.exited = { code, sig };
-      if (!s.base) {
-        clearTimeout(timer);
-        reject(new Error(`avk serve exited (${code ?? sig}) before printing its URL:\n${s.log}`));
-      }
-    });
-  });
+  return startAvkServer(AVK, ['serve', '--db', path.join(tmp, db), ...vehicle, '--port', String(port), '--web', webDir]);
 }
 
-async function stopServer(s) {
-  if (!s || s.exited) return;
-  const exited = new Promise((r) => s.child.once('exit', r));
-  s.child.kill('SIGTERM');
-  const killed = await Promise.race([exited.then(() => true), sleep(8000).then(() => false)]);
-  if (!killed) {
-    s.child.kill('SIGKILL');
-    await Promise.race([exited, sleep(3000)]);
-  }
-}
+const stopServer = stopAvkServer;
 
 async function api(pathname) {
   const res = await fetch(`${server.base}/api/v1${pathname}`, { signal: AbortSignal.timeout(slow(10000)) });

@@ -1,0 +1,183 @@
+#include "app/foxglove_live.hpp"
+
+#include <utility>
+
+namespace avk::app::foxglove {
+
+namespace {
+
+NavigationState navigation_state(const VehicleSnapshot& s) {
+  const auto& n = *s.nav;
+  NavigationState out;
+  out.t_s = n.t_s;
+  out.x_m = n.x_m;
+  out.y_m = n.y_m;
+  out.heading_deg = n.heading_deg;
+  out.speed_mps = n.speed_mps;
+  out.yaw_rate_dps = n.yaw_rate_dps;
+  out.desired_heading_deg = s.desired_heading_deg;
+  out.desired_speed_mps = s.desired_speed_mps;
+  if (s.helm_mode) out.helm_mode = mission::to_string(*s.helm_mode);
+  out.mission_id = s.mission_id;
+  if (n.lat_deg && n.lon_deg) out.position = vehicle::LatLon{*n.lat_deg, *n.lon_deg};
+  return out;
+}
+
+LogLevel level_of(mission::EventKind kind) {
+  return mission::severity(kind) == mission::Severity::warning ? LogLevel::warning : LogLevel::info;
+}
+
+std::string turn_state(kinematics::TurnStatus s) {
+  return s == kinematics::TurnStatus::ok ? "finished" : kinematics::to_string(s);
+}
+
+}  // namespace
+
+// Follows one mission: its region when it starts, its turns, its events and state changes.
+class FoxgloveLive::MissionChannels final : public mission::MissionObserver {
+ public:
+  MissionChannels(FoxgloveLive& live, std::int64_t mission_id)
+      : live_(live), mission_id_(mission_id) {}
+
+  void on_turn_started(const mission::TurnTask& task, double t_s,
+                       double goal_heading_deg) override {
+    live_.turn_started(task, t_s, goal_heading_deg);
+  }
+  void on_turn(mission::TurnOutcome& t) override { live_.turn_ended(t); }
+  void on_event(const mission::MissionEventRecord& e) override {
+    live_.log(e.t_s, e.kind, "mission " + std::to_string(mission_id_) + ": " + e.message);
+  }
+  void on_state(mission::MissionState s, const std::string& reason, double t_s) override {
+    std::string text = "mission " + std::to_string(mission_id_) + " " + mission::to_string(s);
+    if (!reason.empty()) text += ": " + reason;
+    live_.log(t_s, mission::state_change_kind(s), text);
+  }
+
+ private:
+  FoxgloveLive& live_;
+  std::int64_t mission_id_;
+};
+
+FoxgloveLive::FoxgloveLive(FoxgloveSink& sink, TurnPredictor predictor)
+    : sink_(sink), predictor_(std::move(predictor)) {}
+
+FoxgloveLive::~FoxgloveLive() = default;
+
+void FoxgloveLive::telemetry(const VehicleSnapshot& s) {
+  std::lock_guard lock(mutex_);
+  const std::string& vid = s.info.id;
+  // A vehicle that lost its link is gone for a viewer until it reports again; the channels come
+  // back with the same ids.
+  const bool present = s.link != vehicle::LinkState::disconnected;
+  if (advertised_ && (!present || *advertised_ != vid)) {
+    sink_.unadvertise(*advertised_);
+    advertised_.reset();
+  }
+  if (!present || vid.empty()) return;
+  if (!advertised_) {
+    sink_.advertise(vid, live_channels(vid));
+    advertised_ = vid;
+  }
+  sink_.time(to_ns(s.t_s));
+  if (!s.nav) return;
+  last_nav_ = *s.nav;
+  const auto state = navigation_state(s);
+  const std::uint64_t t_ns = to_ns(state.t_s);
+  const auto send = [&](ChannelKind k, auto&& build) {
+    const std::string t = topic(vid, k);
+    if (sink_.wanted(t)) sink_.publish(t, t_ns, build());
+  };
+  send(ChannelKind::pose, [&] { return pose_message(state); });
+  send(ChannelKind::transform, [&] { return transform_message(state, vid); });
+  send(ChannelKind::navigation, [&] { return navigation_message(state); });
+  if (state.position) send(ChannelKind::location, [&] { return location_message(state, vid); });
+  if (turn_ && turn_running_) {
+    turn_->measured.push_back({state.x_m, state.y_m});
+    if (state.t_s - turn_drawn_t_s_ >= turn_redraw_interval_s) {
+      turn_->t_s = state.t_s;
+      publish_turn_scene();
+    }
+  }
+}
+
+void FoxgloveLive::station_event(double t_s, mission::EventKind kind, const std::string& message) {
+  std::lock_guard lock(mutex_);
+  log(t_s, kind, message);
+}
+
+std::unique_ptr<mission::MissionObserver> FoxgloveLive::follow(
+    std::int64_t mission_id, const mission::MissionRunner& runner) {
+  std::lock_guard lock(mutex_);
+  if (advertised_) {
+    const std::string t = topic(*advertised_, ChannelKind::region);
+    const double t_s = last_nav_ ? last_nav_->t_s : 0.0;
+    // Latched: sent even with no client now, so a viewer that connects later sees the region.
+    sink_.publish(t, to_ns(t_s), region_scene_message(t_s, runner.container().region()));
+  }
+  return std::make_unique<MissionChannels>(*this, mission_id);
+}
+
+void FoxgloveLive::withdraw() {
+  std::lock_guard lock(mutex_);
+  if (advertised_) sink_.unadvertise(*advertised_);
+  advertised_.reset();
+}
+
+void FoxgloveLive::turn_started(const mission::TurnTask& task, double t_s,
+                                double goal_heading_deg) {
+  std::lock_guard lock(mutex_);
+  if (!advertised_ || !last_nav_) return;
+  TurnScene scene;
+  scene.t_s = t_s;
+  scene.start = {last_nav_->x_m, last_nav_->y_m, last_nav_->heading_deg};
+  scene.speed_mps = task.speed_mps;
+  scene.dheading_deg =
+      task.side
+          ? (*task.side == kinematics::TurnSide::left ? -task.dheading_deg : task.dheading_deg)
+          : signed_dheading_deg(last_nav_->heading_deg, goal_heading_deg, task.dheading_deg);
+  scene.goal_heading_deg = goal_heading_deg;
+  scene.state = "running";
+  scene.measured.push_back({scene.start.x_m, scene.start.y_m});
+  // Predicting takes the vehicle's table (built once per new turn): only when someone looks.
+  if (predictor_ && sink_.wanted(topic(*advertised_, ChannelKind::turn))) {
+    auto p = predictor_(*advertised_, scene.speed_mps, scene.dheading_deg, scene.start);
+    scene.predictions = std::move(p.predictions);
+    scene.cell_label = std::move(p.cell_label);
+  }
+  turn_ = std::move(scene);
+  turn_running_ = true;
+  publish_turn_scene();
+}
+
+void FoxgloveLive::turn_ended(const mission::TurnOutcome& t) {
+  std::lock_guard lock(mutex_);
+  if (!turn_ || !advertised_) return;
+  turn_running_ = false;
+  turn_->state = turn_state(t.status);
+  if (!t.raw.samples().empty()) {
+    turn_->measured.clear();
+    for (const auto& s : t.raw.samples())
+      turn_->measured.push_back({s.x_m, s.y_m});
+    turn_->t_s = t.raw.samples().back().t_s;
+  }
+  publish_turn_scene();
+}
+
+void FoxgloveLive::publish_turn_scene() {
+  turn_drawn_t_s_ = turn_->t_s;
+  // Latched like the region: a viewer that connects mid-turn sees the turn at once.
+  sink_.publish(topic(*advertised_, ChannelKind::turn), to_ns(turn_->t_s),
+                turn_scene_message(*turn_));
+}
+
+void FoxgloveLive::log(double t_s, mission::EventKind kind, const std::string& message) {
+  sink_.status(level_of(kind), message);
+  if (!advertised_) return;
+  const std::string t = topic(*advertised_, ChannelKind::log);
+  if (sink_.wanted(t))
+    sink_.publish(t, to_ns(t_s),
+                  log_message(t_s, level_of(kind),
+                              *advertised_ + "/" + std::string(mission::to_string(kind)), message));
+}
+
+}  // namespace avk::app::foxglove
