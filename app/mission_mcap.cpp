@@ -9,8 +9,8 @@
 #include "app/current.hpp"
 #include "app/foxglove_channels.hpp"
 #include "app/foxglove_messages.hpp"
+#include "app/foxglove_scene.hpp"
 #include "app/mcap_reader.hpp"
-#include "app/predict.hpp"
 #include "kinematics/angles.hpp"
 #include "kinematics/turn_json.hpp"
 #include "mission/event_kind.hpp"
@@ -157,39 +157,6 @@ std::string turn_record_message(const store::StoredTurn& t) {
       .dump();
 }
 
-const char* scene_state(kin::TurnStatus s) {
-  switch (s) {
-    case kin::TurnStatus::ok:
-      return "finished";
-    case kin::TurnStatus::aborted:
-      return "aborted";
-    case kin::TurnStatus::rejected:
-      return "rejected";
-  }
-  return "finished";
-}
-
-// What each method the vehicle can answer with predicts from the turn's start; a method without
-// a table or model is left out.
-std::vector<fg::ScenePrediction> predictions_at(Context& ctx, const store::TurnRow& row,
-                                                const kin::Pose& start) {
-  std::vector<fg::ScenePrediction> out;
-  for (const auto method :
-       {PredictionMethod::avk, PredictionMethod::model, PredictionMethod::instantaneous}) {
-    PredictQuery q;
-    q.vehicle_id = row.vehicle_id;
-    q.speed_mps = row.commanded_speed_mps;
-    q.dheading_deg = row.goal_dheading_deg;
-    q.method = method;
-    q.pose = start;
-    q.speed_after_mps = row.speed_after_mps;
-    auto p = predict(ctx, q);
-    if (!p) continue;
-    out.push_back({to_string(method), std::move(p->trajectory), std::move(p->corridor)});
-  }
-  return out;
-}
-
 std::string turn_scene(Context& ctx, const store::StoredTurn& t) {
   const store::TurnRow& r = t.row;
   fg::TurnScene s;
@@ -201,12 +168,14 @@ std::string turn_scene(Context& ctx, const store::StoredTurn& t) {
   s.speed_mps = r.commanded_speed_mps;
   s.dheading_deg = r.goal_dheading_deg;
   s.goal_heading_deg = kin::wrap360_deg(heading + r.goal_dheading_deg);
-  s.state = scene_state(r.status);
-  if (!samples.empty()) s.predictions = predictions_at(ctx, r, s.start);
-  std::string label = json(r.cell_speed_mps).dump() + " m/s, " + json(r.goal_dheading_deg).dump() +
-                      " deg, turn " + std::to_string(r.id);
-  if (r.advance_m) label += ", advance " + json(*r.advance_m).dump() + " m";
-  s.cell_label = std::move(label);
+  // As the live connection names a turn that ended.
+  s.state = r.status == kin::TurnStatus::ok ? "finished" : kin::to_string(r.status);
+  if (!samples.empty()) {
+    auto p = fg::scene_predictions(ctx, r.vehicle_id, r.commanded_speed_mps, r.goal_dheading_deg,
+                                   s.start);
+    s.predictions = std::move(p.predictions);
+    s.cell_label = std::move(p.cell_label);
+  }
   s.measured = t.raw.points();
   return fg::turn_scene_message(s);
 }

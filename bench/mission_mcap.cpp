@@ -4,29 +4,22 @@
 
 #include <benchmark/benchmark.h>
 
-#include <fstream>
 #include <memory>
-#include <sstream>
 #include <string>
 
 #include "app/context.hpp"
 #include "app/mission_mcap.hpp"
+#include "support/example_file.hpp"
 #include "support/recorded_mission.hpp"
 #include "support/temp_db.hpp"
 
 namespace {
 
-std::string example(const std::string& name) {
-  std::ifstream f(std::string(AVK_SOURCE_DIR) + "/examples/" + name);
-  std::stringstream s;
-  s << f.rdbuf();
-  return s.str();
-}
-
 // Flown once for all the benchmarks: the mission is the input, not what is measured.
 struct Figure41 {
   Figure41() : ctx(db.path()) {
-    mission = avk::testing::run_recorded_mission(ctx.db(), "usim", example("thesis-fig4-1.json"));
+    mission = avk::testing::run_recorded_mission(ctx.db(), "usim",
+                                                 avk::testing::example_text("thesis-fig4-1.json"));
     nav = ctx.db().nav_for_mission(mission).size();
     // The vehicle's table is built once, as a running station holds it in its cache.
     (void)avk::app::export_mission_mcap(ctx, mission);

@@ -8,7 +8,7 @@
 // Environment: AVK_BINARY (default build/server/avk). Needs the sqlite3 command (scripts/setup).
 import { test, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { execFileSync, spawn } from 'node:child_process';
+import { execFileSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
 import { tmpdir } from 'node:os';
@@ -17,6 +17,7 @@ import { fileURLToPath } from 'node:url';
 import { McapIndexedReader, McapStreamReader } from '@mcap/core';
 import { decompress } from 'fzstd';
 
+import { startAvkServer, stopAvkServer } from './avk_server.mjs';
 import { slow } from './wait.mjs';
 
 const require = createRequire(import.meta.url);
@@ -76,28 +77,6 @@ function readStream(bytes) {
   while ((r = reader.nextRecord())) records.push(r);
   assert.ok(reader.done(), `the stream reader left ${reader.bytesRemaining()} bytes`);
   return records;
-}
-
-function startServe(db) {
-  return new Promise((resolve, reject) => {
-    const child = spawn(AVK, ['serve', '--db', db, '--port', '0'], { stdio: ['ignore', 'pipe', 'pipe'] });
-    let log = '';
-    const timer = setTimeout(() => {
-      child.kill('SIGKILL');
-      reject(new Error(`avk serve did not start:\n${log}`));
-    }, slow(20000));
-    const onData = (chunk) => {
-      log = (log + chunk.toString()).slice(-20000);
-      const url = log.match(/AVK Station on (http:\/\/127\.0\.0\.1:\d+)\//);
-      if (url) {
-        clearTimeout(timer);
-        resolve({ child, base: url[1] });
-      }
-    };
-    child.stdout.on('data', onData);
-    child.stderr.on('data', onData);
-    child.on('exit', (code) => reject(new Error(`avk serve exited (${code}):\n${log}`)));
-  });
 }
 
 const db = path.join(tmp, 'station.db');
@@ -198,7 +177,7 @@ test('the CLI export (zstd) reads with both @mcap/core readers and matches the d
 });
 
 test('the REST export (uncompressed) is a download the readers take, and 404/400 as documented', { timeout: slow(60000) }, async () => {
-  const serve = await startServe(db);
+  const serve = await startAvkServer(AVK, ['serve', '--db', db, '--port', '0']);
   try {
     const res = await fetch(`${serve.base}/api/v1/missions/${missionId}/export?format=mcap&compression=none`);
     assert.equal(res.status, 200);
@@ -216,8 +195,7 @@ test('the REST export (uncompressed) is a download the readers take, and 404/400
     assert.equal(csv.status, 400);
     assert.match(await csv.text(), /format/);
   } finally {
-    serve.child.removeAllListeners('exit');
-    serve.child.kill('SIGTERM');
+    await stopAvkServer(serve);
   }
 });
 
