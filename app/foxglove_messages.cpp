@@ -114,6 +114,15 @@ std::string dump(const json& j) {
   return j.dump(-1, ' ', false, json::error_handler_t::replace);
 }
 
+json log_json(double t_s, LogLevel level, const std::string& name, const std::string& message) {
+  return {{"timestamp", timestamp(t_s)},
+          {"level", static_cast<int>(level)},
+          {"message", message},
+          {"name", name},
+          {"file", ""},
+          {"line", 0}};
+}
+
 }  // namespace
 
 std::uint64_t to_ns(double t_s) {
@@ -174,12 +183,15 @@ std::string navigation_message(const NavigationState& s) {
 
 std::string log_message(double t_s, LogLevel level, const std::string& name,
                         const std::string& message) {
-  return dump({{"timestamp", timestamp(t_s)},
-               {"level", static_cast<int>(level)},
-               {"message", message},
-               {"name", name},
-               {"file", ""},
-               {"line", 0}});
+  return dump(log_json(t_s, level, name, message));
+}
+
+std::string event_log_message(double t_s, LogLevel level, const std::string& vehicle_id,
+                              const std::string& kind, const std::string& message) {
+  json j = log_json(t_s, level, vehicle_id + "/" + kind, message);
+  j["t_s"] = t_s;
+  j["kind"] = kind;
+  return dump(j);
 }
 
 std::string turn_scene_message(const TurnScene& scene) {

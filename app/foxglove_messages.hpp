@@ -53,6 +53,11 @@ enum class LogLevel { info = 2, warning = 3, error = 4 };
 // name: where it comes from ("<vehicle>/<event kind>"), so the Log panel can filter by it.
 std::string log_message(double t_s, LogLevel level, const std::string& name,
                         const std::string& message);
+// A stored mission event as a foxglove.Log that also carries the event's exact time ("t_s", the
+// Log's timestamp is rounded to nanoseconds) and kind ("kind"), members the schema allows: what
+// an MCAP import reads the event back from. name: "<vehicle>/<kind>".
+std::string event_log_message(double t_s, LogLevel level, const std::string& vehicle_id,
+                              const std::string& kind, const std::string& message);
 
 // A predicted turn as drawn: the method's trajectory in the grid and, for the table, the band of
 // its corridor.

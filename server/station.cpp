@@ -9,6 +9,7 @@
 #include "app/foxglove_scene.hpp"
 #include "app/harvest.hpp"
 #include "app/maneuvers.hpp"
+#include "app/mission_mcap.hpp"
 #include "app/missions.hpp"
 #include "app/models.hpp"
 #include "app/predict.hpp"
@@ -275,6 +276,26 @@ void Station::add_routes() {
                       items.push_back(nav_row_json(row.row));
                     return json_response({{"items", items}, {"next", optional_json(page.next)}});
                   });
+  });
+  // The mission as an MCAP recording for Foxglove/Lichtblick (docs/foxglove.md).
+  get("/api/v1/missions/{id}/export", [&ctx](const ApiRequest& r, const PathParams& p) {
+    const auto id = path_id(p, "id", "mission");
+    const auto format = r.query.find("format");
+    if (format == r.query.end() || format->second != "mcap")
+      throw bad_parameter("format", "must be mcap (the only export format of a mission)");
+    app::McapExportOptions o;
+    if (const auto c = r.query.find("compression"); c != r.query.end()) {
+      if (c->second == "none")
+        o.compression = app::mcap::Compression::none;
+      else if (c->second != "zstd")
+        throw bad_parameter("compression", "must be zstd or none");
+    }
+    return answer(app::export_mission_mcap(ctx, id, o), false, [id](const app::McapExport& e) {
+      ApiResponse resp{200, app::kMcapMediaType, e.bytes, {}};
+      resp.headers.push_back({"Content-Disposition",
+                              "attachment; filename=\"mission-" + std::to_string(id) + ".mcap\""});
+      return resp;
+    });
   });
   for (const auto c :
        {app::MissionCommand::pause, app::MissionCommand::resume, app::MissionCommand::abort}) {

@@ -7,6 +7,7 @@
 #include <limits>
 #include <span>
 #include <stdexcept>
+#include <tuple>
 
 #include <nlohmann/json.hpp>
 
@@ -458,56 +459,143 @@ std::vector<Mission> Store::list_missions() {
   return out;
 }
 
+namespace {
+
+// A turn's documents as stored: the raw JSON and, when it has one, the normalised JSON with its
+// packed samples (the CKT's fast path).
+struct TurnDocuments {
+  std::string raw_json;
+  std::optional<std::string> normalized_json, normalized_meta;
+  std::vector<unsigned char> normalized_samples;
+};
+
+TurnDocuments normalized_documents(std::string raw_json, const kinematics::TurnSequence& norm) {
+  return {std::move(raw_json), kinematics::to_json_string(norm), meta_json(norm),
+          pack_samples(norm.samples())};
+}
+
+// The row's columns as given (row.id and row.mission_id aside); the new turn id.
+std::int64_t insert_turn(Connection& db, std::int64_t mission_id, const TurnRow& r,
+                         const TurnDocuments& d) {
+  auto s = db.prepare(
+      "INSERT INTO turns (mission_id, vehicle_id, cell_speed_mps, cell_dheading_deg, status, "
+      "reason, commanded_speed_mps, goal_dheading_deg, observed_dheading_deg, start_time_s, "
+      "end_time_s, advance_m, transfer_m, condition_set_time_s, raw_json, normalized_json, "
+      "normalized_meta_json, normalized_samples, start_heading_error_deg, start_yaw_rate_dps, "
+      "source, quality, speed_after_mps) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, "
+      "?, ?, ?, ?, ?, ?, ?)");
+  s.bind(1, mission_id).bind(2, r.vehicle_id).bind(3, r.cell_speed_mps);
+  s.bind(4, r.cell_dheading_deg).bind(5, kinematics::to_string(r.status)).bind(6, r.reason);
+  s.bind(7, r.commanded_speed_mps).bind(8, r.goal_dheading_deg).bind(9, r.observed_dheading_deg);
+  s.bind(10, r.start_time_s).bind(11, r.end_time_s).bind(12, r.advance_m).bind(13, r.transfer_m);
+  s.bind(14, r.condition_set_time_s).bind(15, d.raw_json);
+  s.bind(19, r.start_heading_error_deg).bind(20, r.start_yaw_rate_dps);
+  s.bind(21, kinematics::to_string(r.source)).bind(22, r.quality);
+  s.bind(23, r.speed_after_mps);
+  if (d.normalized_json) {
+    s.bind(16, *d.normalized_json).bind(17, *d.normalized_meta).bind_blob(18, d.normalized_samples);
+  } else {
+    s.bind_null(16).bind_null(17).bind_null(18);
+  }
+  s.run();
+  return db.last_insert_rowid();
+}
+
+void insert_nav(Connection& db, std::int64_t mission_id, std::span<const NavRow> rows) {
+  auto s = db.prepare(
+      "INSERT INTO nav_samples (mission_id, t_s, x_m, y_m, heading_deg, speed_mps, "
+      "desired_heading_deg, desired_speed_mps, helm_mode) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  for (const NavRow& r : rows) {
+    s.bind(1, mission_id).bind(2, r.t_s).bind(3, r.x_m).bind(4, r.y_m).bind(5, r.heading_deg);
+    s.bind(6, r.speed_mps).bind(7, r.desired_heading_deg).bind(8, r.desired_speed_mps);
+    s.bind(9, r.helm_mode);
+    s.run();
+    s.reset();
+  }
+}
+
+// The water-frame form of one turn, packed like the normalised form.
+using PackedWaterTurn = std::tuple<std::int64_t, std::string, std::vector<unsigned char>>;
+
+PackedWaterTurn pack_water_turn(std::int64_t id, const kinematics::TurnSequence& turn) {
+  return {id, meta_json(turn), pack_samples(turn.samples())};
+}
+
+// Inside the caller's transaction; the new revision.
+std::int64_t write_current(Connection& db, const StoredCurrent& current,
+                           const std::vector<PackedWaterTurn>& packed) {
+  const kinematics::CurrentEstimate& e = current.estimate;
+  auto rev = db.prepare("SELECT coalesce(max(revision), 0) + 1 FROM mission_currents");
+  rev.step();
+  const std::int64_t revision = rev.column_int64(0);
+  auto s = db.prepare(
+      "INSERT OR REPLACE INTO mission_currents (mission_id, t_s, method, east_mps, north_mps, "
+      "cov_ee, cov_en, cov_nn, speed_scale, residual_rms_mps, evidence, revision) "
+      "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+  s.bind(1, current.mission_id).bind(2, current.t_s).bind(3, current.method);
+  s.bind(4, e.east_mps).bind(5, e.north_mps).bind(6, e.covariance[0]).bind(7, e.covariance[1]);
+  s.bind(8, e.covariance[2]).bind(9, e.speed_scale).bind(10, e.residual_rms_mps);
+  s.bind(11, static_cast<std::int64_t>(e.legs)).bind(12, revision);
+  s.run();
+  auto clear = db.prepare(
+      "UPDATE turns SET water_samples = NULL, water_meta_json = NULL WHERE mission_id = ?");
+  clear.bind(1, current.mission_id);
+  clear.run();
+  auto put = db.prepare(
+      "UPDATE turns SET water_meta_json = ?, water_samples = ? WHERE id = ? AND mission_id = ?");
+  for (const auto& [id, meta, samples] : packed) {
+    put.bind(1, meta).bind_blob(2, samples).bind(3, id).bind(4, current.mission_id);
+    put.run();
+    if (db.changes() != 1)
+      throw StoreError("turn " + std::to_string(id) + " is not a turn of mission " +
+                       std::to_string(current.mission_id));
+    put.reset();
+  }
+  return revision;
+}
+
+}  // namespace
+
 std::int64_t Store::store_turn(std::int64_t mission_id, const kinematics::TurnSequence& raw,
                                kinematics::TurnStatus status, const std::string& reason,
                                const TurnStart& start) {
   kinematics::TurnSequence turn = raw;
   turn.meta().status = status;
   turn.meta().status_reason = reason;
+  const auto& m = turn.meta();
+  TurnRow row;
+  row.vehicle_id = m.vehicle_id;
+  row.cell_speed_mps = m.commanded_speed_mps;
+  row.cell_dheading_deg = std::abs(m.goal_dheading_deg);
+  row.status = status;
+  row.reason = reason;
+  row.commanded_speed_mps = m.commanded_speed_mps;
+  row.goal_dheading_deg = m.goal_dheading_deg;
+  row.observed_dheading_deg = m.observed_dheading_deg;
+  row.start_time_s = m.start_time_s;
+  row.end_time_s = m.end_time_s;
+  row.condition_set_time_s = start.condition_set_time_s;
+  row.start_heading_error_deg = start.heading_error_deg;
+  row.start_yaw_rate_dps = start.yaw_rate_dps;
+  row.source = m.source;
+  row.quality = m.quality;
+  row.speed_after_mps = m.speed_after_mps;
   // Serialise and measure before taking the write lock: a turn JSON cannot hold (NaN) fails
   // here without touching the database, and the lock is held only for the inserts.
-  const std::string raw_json = kinematics::to_json_string(turn);
-  std::optional<std::string> normalized_json, normalized_meta;
-  std::vector<unsigned char> normalized_samples;
-  std::optional<double> advance_m, transfer_m;
+  TurnDocuments docs{kinematics::to_json_string(turn), std::nullopt, std::nullopt, {}};
   try {
-    const kinematics::TurnSequence norm = turn.meta().normalized ? turn : turn.normalized();
+    const kinematics::TurnSequence norm = m.normalized ? turn : turn.normalized();
     const auto at = kinematics::advance_transfer(norm.points());
-    normalized_json = kinematics::to_json_string(norm);
-    normalized_meta = meta_json(norm);
-    normalized_samples = pack_samples(norm.samples());
-    advance_m = at.advance_m;
-    transfer_m = at.transfer_m;
+    docs = normalized_documents(std::move(docs.raw_json), norm);
+    row.advance_m = at.advance_m;
+    row.transfer_m = at.transfer_m;
   } catch (const std::exception&) {
     // A rejected or aborted turn may be unusable (too short, empty); it is still worth keeping
     // with its reason. An ok turn must normalise.
     if (status == kinematics::TurnStatus::ok) throw;
   }
-  const auto& m = turn.meta();
   Transaction tx(db_);
-  auto s = db_.prepare(
-      "INSERT INTO turns (mission_id, vehicle_id, cell_speed_mps, cell_dheading_deg, status, "
-      "reason, commanded_speed_mps, goal_dheading_deg, observed_dheading_deg, start_time_s, "
-      "end_time_s, advance_m, transfer_m, condition_set_time_s, raw_json, normalized_json, "
-      "normalized_meta_json, normalized_samples, start_heading_error_deg, start_yaw_rate_dps, "
-      "source, quality, speed_after_mps) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, "
-      "?, ?, "
-      "?, ?, ?, ?, ?)");
-  s.bind(1, mission_id).bind(2, m.vehicle_id).bind(3, m.commanded_speed_mps);
-  s.bind(4, std::abs(m.goal_dheading_deg)).bind(5, kinematics::to_string(status)).bind(6, reason);
-  s.bind(7, m.commanded_speed_mps).bind(8, m.goal_dheading_deg).bind(9, m.observed_dheading_deg);
-  s.bind(10, m.start_time_s).bind(11, m.end_time_s).bind(12, advance_m).bind(13, transfer_m);
-  s.bind(14, start.condition_set_time_s).bind(15, raw_json);
-  s.bind(19, start.heading_error_deg).bind(20, start.yaw_rate_dps);
-  s.bind(21, kinematics::to_string(m.source)).bind(22, m.quality);
-  s.bind(23, m.speed_after_mps);
-  if (normalized_json) {
-    s.bind(16, *normalized_json).bind(17, *normalized_meta).bind_blob(18, normalized_samples);
-  } else {
-    s.bind_null(16).bind_null(17).bind_null(18);
-  }
-  s.run();
-  const std::int64_t id = db_.last_insert_rowid();
+  const std::int64_t id = insert_turn(db_, mission_id, row, docs);
   if (store_turn_hook_) store_turn_hook_("turn_inserted");
   tx.commit();
   return id;
@@ -743,38 +831,12 @@ std::int64_t Store::save_mission_current(
     const StoredCurrent& current,
     const std::vector<std::pair<std::int64_t, kinematics::TurnSequence>>& water_turns) {
   // Serialised before the write lock, as store_turn does.
-  std::vector<std::tuple<std::int64_t, std::string, std::vector<unsigned char>>> packed;
+  std::vector<PackedWaterTurn> packed;
   packed.reserve(water_turns.size());
   for (const auto& [id, turn] : water_turns)
-    packed.emplace_back(id, meta_json(turn), pack_samples(turn.samples()));
-  const kinematics::CurrentEstimate& e = current.estimate;
+    packed.push_back(pack_water_turn(id, turn));
   Transaction tx(db_);
-  auto rev = db_.prepare("SELECT coalesce(max(revision), 0) + 1 FROM mission_currents");
-  rev.step();
-  const std::int64_t revision = rev.column_int64(0);
-  auto s = db_.prepare(
-      "INSERT OR REPLACE INTO mission_currents (mission_id, t_s, method, east_mps, north_mps, "
-      "cov_ee, cov_en, cov_nn, speed_scale, residual_rms_mps, evidence, revision) "
-      "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
-  s.bind(1, current.mission_id).bind(2, current.t_s).bind(3, current.method);
-  s.bind(4, e.east_mps).bind(5, e.north_mps).bind(6, e.covariance[0]).bind(7, e.covariance[1]);
-  s.bind(8, e.covariance[2]).bind(9, e.speed_scale).bind(10, e.residual_rms_mps);
-  s.bind(11, static_cast<std::int64_t>(e.legs)).bind(12, revision);
-  s.run();
-  auto clear = db_.prepare(
-      "UPDATE turns SET water_samples = NULL, water_meta_json = NULL WHERE mission_id = ?");
-  clear.bind(1, current.mission_id);
-  clear.run();
-  auto put = db_.prepare(
-      "UPDATE turns SET water_meta_json = ?, water_samples = ? WHERE id = ? AND mission_id = ?");
-  for (const auto& [id, meta, samples] : packed) {
-    put.bind(1, meta).bind_blob(2, samples).bind(3, id).bind(4, current.mission_id);
-    put.run();
-    if (db_.changes() != 1)
-      throw StoreError("turn " + std::to_string(id) + " is not a turn of mission " +
-                       std::to_string(current.mission_id));
-    put.reset();
-  }
+  const std::int64_t revision = write_current(db_, current, packed);
   tx.commit();
   return revision;
 }
@@ -874,17 +936,60 @@ std::vector<HarvestRecord> Store::list_harvests(std::int64_t mission_id) {
 
 void Store::append_nav(std::int64_t mission_id, std::span<const NavRow> rows) {
   Transaction tx(db_);
+  insert_nav(db_, mission_id, rows);
+  tx.commit();
+}
+
+std::int64_t Store::import_mission(const MissionImport& m) {
+  // Everything serialised before the write lock, as store_turn does: a document that cannot be
+  // written fails before the database is touched.
+  std::vector<TurnDocuments> docs;
+  docs.reserve(m.turns.size());
+  for (const StoredTurn& t : m.turns) {
+    std::string raw_json = kinematics::to_json_string(t.raw);
+    docs.push_back(t.normalized
+                       ? normalized_documents(std::move(raw_json), *t.normalized)
+                       : TurnDocuments{std::move(raw_json), std::nullopt, std::nullopt, {}});
+  }
+  for (const auto& [index, turn] : m.water_turns)
+    if (index >= m.turns.size())
+      throw StoreError("water-frame turn " + std::to_string(index) + " of " +
+                       std::to_string(m.turns.size()) + " turns");
+
+  Transaction tx(db_);
+  auto v = db_.prepare(
+      "INSERT INTO vehicles (id, kind, max_speed_mps, length_m) VALUES (?, ?, ?, ?) "
+      "ON CONFLICT (id) DO NOTHING");
+  v.bind(1, m.vehicle.id).bind(2, m.vehicle.kind).bind(3, m.vehicle.max_speed_mps);
+  v.bind(4, m.vehicle.length_m);
+  v.run();
+  const Mission& mi = m.mission;
   auto s = db_.prepare(
-      "INSERT INTO nav_samples (mission_id, t_s, x_m, y_m, heading_deg, speed_mps, "
-      "desired_heading_deg, desired_speed_mps, helm_mode) VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?)");
-  for (const NavRow& r : rows) {
-    s.bind(1, mission_id).bind(2, r.t_s).bind(3, r.x_m).bind(4, r.y_m).bind(5, r.heading_deg);
-    s.bind(6, r.speed_mps).bind(7, r.desired_heading_deg).bind(8, r.desired_speed_mps);
-    s.bind(9, r.helm_mode);
-    s.run();
-    s.reset();
+      "INSERT INTO missions (vehicle_id, name, config_json, status, created_utc, started_s, "
+      "ended_s, status_reason) VALUES (?, ?, ?, ?, ?, ?, ?, ?)");
+  s.bind(1, mi.vehicle_id).bind(2, mi.name).bind(3, mi.config_json).bind(4, to_string(mi.status));
+  s.bind(5, mi.created_utc).bind(6, mi.started_s).bind(7, mi.ended_s).bind(8, mi.status_reason);
+  s.run();
+  const std::int64_t id = db_.last_insert_rowid();
+  insert_nav(db_, id, m.nav);
+  for (const MissionEvent& e : m.events)
+    append_event(id, e.t_s, e.kind, e.message);
+  for (const ConditionSetTiming& c : m.condition_sets)
+    append_condition_set(id, c);
+  std::vector<std::int64_t> turn_ids;
+  turn_ids.reserve(m.turns.size());
+  for (std::size_t i = 0; i < m.turns.size(); ++i)
+    turn_ids.push_back(insert_turn(db_, id, m.turns[i].row, docs[i]));
+  if (m.current) {
+    std::vector<PackedWaterTurn> packed;
+    for (const auto& [index, turn] : m.water_turns)
+      packed.push_back(pack_water_turn(turn_ids[index], turn));
+    StoredCurrent c = *m.current;
+    c.mission_id = id;
+    write_current(db_, c, packed);
   }
   tx.commit();
+  return id;
 }
 
 std::vector<NavRow> Store::nav_for_mission(std::int64_t mission_id) {

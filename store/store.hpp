@@ -13,6 +13,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "kinematics/ckt.hpp"
@@ -208,6 +209,21 @@ struct HarvestRecord {
   std::map<std::string, std::int64_t> rejected;  // reason -> count (reasons with a count only)
 };
 
+// A whole mission as another station recorded it (app/mission_mcap.hpp), for import_mission.
+struct MissionImport {
+  vehicle::VehicleInfo vehicle;  // inserted when the database does not know the vehicle yet
+  Mission mission;               // id and runner_pid are ignored: the mission gets a new id
+  std::vector<NavRow> nav;
+  std::vector<MissionEvent> events;  // id and mission_id ignored; stored in this order
+  std::vector<ConditionSetTiming> condition_sets;
+  // row.id and row.mission_id are ignored; every other row column is stored as given (not
+  // recomputed), and the documents are stored as given too (their metadata's status included).
+  std::vector<StoredTurn> turns;
+  std::optional<StoredCurrent> current;  // mission_id and revision ignored
+  // The water-frame form of turns (by index into `turns`), as save_mission_current stores it.
+  std::vector<std::pair<std::size_t, kinematics::TurnSequence>> water_turns;
+};
+
 class Store {
  public:
   // Opens (creating if needed) and migrates the database. ":memory:" gives a private in-memory
@@ -296,6 +312,10 @@ class Store {
   // The newest revision among the vehicle's missions (0: none): tells a cache whether the water
   // frame of its turns changed.
   std::int64_t current_revision(const std::string& vehicle_id);
+
+  // Stores the mission with everything it recorded in one transaction: on any failure the
+  // database is left as it was. Returns the new mission id. Throws StoreError.
+  std::int64_t import_mission(const MissionImport& m);
 
   // One transaction, one prepared statement for the whole batch.
   void append_nav(std::int64_t mission_id, std::span<const NavRow> rows);

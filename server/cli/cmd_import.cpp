@@ -111,9 +111,10 @@ int import_alog(const std::vector<std::string>& rest, Io& io) {
 }  // namespace
 
 int cmd_import(const std::vector<std::string>& args, Io& io) {
-  if (args.empty()) throw UsageError("expected 'import alog FILE --db FILE'");
+  if (args.empty()) throw UsageError("expected 'import alog|mcap FILE --db FILE'");
   const std::vector<std::string> rest(args.begin() + 1, args.end());
   if (args[0] == "alog") return import_alog(rest, io);
+  if (args[0] == "mcap") return import_mcap(rest, io);
   throw UsageError("unknown subcommand 'import " + args[0] + "'");
 }
 

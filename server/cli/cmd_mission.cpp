@@ -435,13 +435,14 @@ int validate(const std::vector<std::string>& rest, Io& io) {
 }  // namespace
 
 int cmd_mission(const std::vector<std::string>& args, Io& io) {
-  if (args.empty()) throw UsageError("expected 'mission validate|run|resume|list|report'");
+  if (args.empty()) throw UsageError("expected 'mission validate|run|resume|list|report|export'");
   const std::vector<std::string> rest(args.begin() + 1, args.end());
   if (args[0] == "validate") return validate(rest, io);
   if (args[0] == "run") return run(rest, io);
   if (args[0] == "resume") return resume(rest, io);
   if (args[0] == "list") return list(rest, io);
   if (args[0] == "report") return report(rest, io);
+  if (args[0] == "export") return mission_export(rest, io);
   throw UsageError("unknown subcommand 'mission " + args[0] + "'");
 }
 

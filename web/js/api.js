@@ -70,6 +70,13 @@ export async function getText(path, params, accept = 'text/csv') {
   return { text: await res.text(), headers: res.headers };
 }
 
+/** GET as bytes (a binary download such as an MCAP file); returns {blob, headers}. */
+export async function getBlob(path, params, accept) {
+  const res = await authedFetch(apiUrl(path, params), { headers: { Accept: accept } });
+  if (!res.ok) throw new ApiError(res.status, await problemOf(res));
+  return { blob: await res.blob(), headers: res.headers };
+}
+
 /** POST with the bearer token (a 401 asks for it inline and retries once, as every request). */
 export async function postJson(path, body) {
   const headers = { Accept: 'application/json' };

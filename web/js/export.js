@@ -1,8 +1,8 @@
-// The Export view: the CKT (JSON, CSV), the turns (CSV, every page) and the comparison (CSV) as
-// downloads, and a PNG of every plot drawn so far.
+// The Export view: the CKT (JSON, CSV), the turns (CSV, every page), a mission as an MCAP
+// recording and the comparison (CSV) as downloads, and a PNG of every plot drawn so far.
 
 import { state, on } from './state.js';
-import { getText } from './api.js';
+import { getBlob, getText } from './api.js';
 import { drawnPlots, downloadPng, onPlotsChanged } from './plots.js';
 import { el, setStatus } from './format.js';
 import { refreshTurnCount } from './sync.js';
@@ -18,10 +18,14 @@ function downloadUrl(url, filename) {
   a.remove();
 }
 
-function downloadText(text, filename, type) {
-  const url = URL.createObjectURL(new Blob([text], { type }));
+function downloadBlob(blob, filename) {
+  const url = URL.createObjectURL(blob);
   downloadUrl(url, filename);
   setTimeout(() => URL.revokeObjectURL(url), 10000);
+}
+
+function downloadText(text, filename, type) {
+  downloadBlob(new Blob([text], { type }), filename);
 }
 
 async function needTurns() {
@@ -72,6 +76,25 @@ async function turnsCsv() {
   }
 }
 
+/** A mission as an MCAP recording (GET /missions/{id}/export?format=mcap), fetched with the token
+ *  like the other downloads and saved as the server names it. */
+async function missionMcap() {
+  const id = $('exp-mcap-mission').value;
+  const status = $('exp-status');
+  if (!id) {
+    setStatus(status, 'No mission yet: there is nothing to export.', 'error');
+    return;
+  }
+  setStatus(status, `Writing mission ${id} as MCAP…`);
+  try {
+    const { blob } = await getBlob(`/missions/${encodeURIComponent(id)}/export`, { format: 'mcap' }, 'application/vnd.mcap');
+    downloadBlob(blob, `mission-${id}.mcap`);
+    setStatus(status, `Mission ${id} MCAP saved (${blob.size} bytes).`, 'ok');
+  } catch (e) {
+    setStatus(status, e.message, 'error');
+  }
+}
+
 /** The comparison as CSV: the held-out (predictive) table, or the thesis' in-sample one. */
 async function compareCsv(scoring) {
   if (!state.vehicleId || !(await needTurns())) return;
@@ -95,16 +118,22 @@ function renderPlotList() {
 }
 
 function renderMissionChoice() {
-  const sel = $('exp-turns-mission');
-  const keep = sel.value;
-  sel.replaceChildren(el('option', { value: '', text: 'all' }), ...[...state.missions].sort((a, b) => b.id - a.id).map((m) => el('option', { value: m.id, text: `${m.id} · ${m.name}` })));
-  sel.value = keep;
+  const options = () => [...state.missions].sort((a, b) => b.id - a.id).map((m) => el('option', { value: m.id, text: `${m.id} · ${m.name}` }));
+  const turns = $('exp-turns-mission');
+  const keepTurns = turns.value;
+  turns.replaceChildren(el('option', { value: '', text: 'all' }), ...options());
+  turns.value = keepTurns;
+  const mcap = $('exp-mcap-mission');
+  const keepMcap = mcap.value;
+  mcap.replaceChildren(...options());
+  if (keepMcap) mcap.value = keepMcap;
 }
 
 export function initExport() {
   $('exp-ckt-json').addEventListener('click', () => cktDownload('json'));
   $('exp-ckt-csv').addEventListener('click', () => cktDownload('csv'));
   $('exp-turns-csv').addEventListener('click', turnsCsv);
+  $('exp-mission-mcap').addEventListener('click', missionMcap);
   $('exp-compare-csv').addEventListener('click', () => compareCsv('predictive'));
   $('exp-compare-insample-csv').addEventListener('click', () => compareCsv('in_sample'));
   on('missions', renderMissionChoice);

@@ -554,6 +554,17 @@ test('the CKT JSON export downloads a file that `avk ckt import` accepts', { tim
   const lines = readFileSync(csvFile, 'utf8').trim().split('\n');
   assert.match(lines[0], /^id,mission_id,/);
   assert.ok(lines.length >= 9, `turns CSV has ${lines.length - 1} rows, expected the 8 turns at least`);
+
+  // The mission as MCAP: the file's magic at both ends, and `avk import mcap` takes it.
+  await page.selectOption('#exp-mcap-mission', String(missionId));
+  const [mcap] = await Promise.all([page.waitForEvent('download', { timeout: slow(15000) }), page.click('#exp-mission-mcap')]);
+  const mcapFile = path.join(tmp, 'mission.mcap');
+  await mcap.saveAs(mcapFile);
+  const bytes = readFileSync(mcapFile);
+  const magic = Buffer.from([0x89, 0x4d, 0x43, 0x41, 0x50, 0x30, 0x0d, 0x0a]);
+  assert.ok(bytes.subarray(0, 8).equals(magic) && bytes.subarray(-8).equals(magic), 'the download is an MCAP file');
+  const imported = await runAvk(['import', 'mcap', mcapFile, '--db', path.join(tmp, 'imported.db')]);
+  assert.equal(imported.code, 0, `avk import mcap failed: ${imported.stderr}${imported.stdout}`);
   await shot('export');
 });
 
