@@ -1,5 +1,6 @@
 #include "app/foxglove_live.hpp"
 
+#include <exception>
 #include <utility>
 
 namespace avk::app::foxglove {
@@ -58,8 +59,11 @@ class FoxgloveLive::MissionChannels final : public mission::MissionObserver {
   std::int64_t mission_id_;
 };
 
-FoxgloveLive::FoxgloveLive(FoxgloveSink& sink, TurnPredictor predictor)
-    : sink_(sink), predictor_(std::move(predictor)) {}
+FoxgloveLive::FoxgloveLive(FoxgloveSink& sink, TurnPredictor predictor,
+                           std::optional<vehicle::LatLon> datum)
+    : sink_(sink), predictor_(std::move(predictor)) {
+  if (datum) grid_.emplace(datum->lat_deg, datum->lon_deg);
+}
 
 FoxgloveLive::~FoxgloveLive() = default;
 
@@ -81,7 +85,14 @@ void FoxgloveLive::telemetry(const VehicleSnapshot& s) {
   sink_.time(to_ns(s.t_s));
   if (!s.nav) return;
   last_nav_ = *s.nav;
-  const auto state = navigation_state(s);
+  auto state = navigation_state(s);
+  if (!state.position && grid_) {
+    try {
+      state.position = grid_->to_geodetic(state.x_m, state.y_m);
+    } catch (const std::exception&) {
+      // Off the earth as seen from the datum: no fix rather than a wrong one.
+    }
+  }
   const std::uint64_t t_ns = to_ns(state.t_s);
   const auto send = [&](ChannelKind k, auto&& build) {
     const std::string t = topic(vid, k);

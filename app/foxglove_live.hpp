@@ -16,6 +16,7 @@
 #include "app/foxglove_messages.hpp"
 #include "app/foxglove_scene.hpp"
 #include "app/live_feed.hpp"
+#include "vehicle/local_grid.hpp"
 
 namespace avk::app::foxglove {
 
@@ -42,7 +43,10 @@ using TurnPredictor =
 
 class FoxgloveLive final : public LiveFeed {
  public:
-  FoxgloveLive(FoxgloveSink& sink, TurnPredictor predictor);
+  // datum: where the grid lies on the earth, for a vehicle whose navigation carries no latitude
+  // and longitude of its own (the simulator); none: positions only as the vehicle reports them.
+  FoxgloveLive(FoxgloveSink& sink, TurnPredictor predictor,
+               std::optional<vehicle::LatLon> datum = std::nullopt);
   ~FoxgloveLive() override;
 
   void telemetry(const VehicleSnapshot& s) override;
@@ -67,6 +71,7 @@ class FoxgloveLive final : public LiveFeed {
 
   FoxgloveSink& sink_;
   TurnPredictor predictor_;
+  std::optional<vehicle::LocalGrid> grid_;
   std::mutex mutex_;
   std::optional<std::string> advertised_;  // the vehicle whose channels are offered
   std::optional<vehicle::NavSample> last_nav_;

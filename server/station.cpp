@@ -140,12 +140,13 @@ Station::Station(StationOptions options, StreamHub& hub)
       options_(std::move(options)),
       hub_(hub),
       feed_(hub),
-      foxglove_(hub.foxglove(),
-                [this](const std::string& vid, double speed_mps, double dheading_deg,
-                       const kinematics::Pose& start) {
-                  return app::foxglove::scene_predictions(context_, vid, speed_mps, dheading_deg,
-                                                          start);
-                }),
+      foxglove_(
+          hub.foxglove(),
+          [this](const std::string& vid, double speed_mps, double dheading_deg,
+                 const kinematics::Pose& start) {
+            return app::foxglove::scene_predictions(context_, vid, speed_mps, dheading_deg, start);
+          },
+          options_.datum),
       feeds_({&feed_, &foxglove_}),
       context_(options_.db_path, options_.vehicle, &feeds_) {
   add_routes();

@@ -24,6 +24,9 @@ struct StationOptions {
   std::string server_version;
   // The vehicle missions run on (simulated, or an M200 over its link); none: no vehicle.
   std::optional<app::VehicleLoopOptions> vehicle;
+  // Where the local grid lies on the earth (`--datum`): the Foxglove connection's LocationFix for
+  // a simulated vehicle, whose navigation has no latitude/longitude of its own.
+  std::optional<vehicle::LatLon> datum;
 };
 
 // A CKT file of a long campaign is larger than any other request body.

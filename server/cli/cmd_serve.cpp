@@ -214,6 +214,7 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
   }
 
   const double clock = store::Store(db_path).station_clock_end_s();
+  so.datum = datum_from(a);
   if (a.flag("sim")) {
     app::VehicleLoopOptions v;
     v.setup = sim_setup_from(a, io);

@@ -231,6 +231,26 @@ TEST(FoxgloveLiveFeed, AVehicleReportingLatitudeAndLongitudeHasItsLocationFix) {
   EXPECT_EQ(fix["frame_id"], vehicle_frame("boat"));
 }
 
+TEST(FoxgloveLiveFeed, WithADatumASimulatedVehicleIsPlacedOnTheEarth) {
+  RecordingSink sink;
+  FoxgloveLive live(sink, nullptr, vehicle::LatLon{42.358456, -71.087589});
+  sink.wanted_topics = {topic("boat", ChannelKind::location)};
+  auto s = snapshot("boat", vehicle::LinkState::live, 0.0);  // at the grid's origin
+  live.telemetry(s);
+  s = snapshot("boat", vehicle::LinkState::live, 100.0);  // 100 m east
+  live.telemetry(s);
+  std::vector<json> fixes;
+  for (auto [it, end] = sink.published.equal_range("/boat/location"); it != end; ++it)
+    fixes.push_back(json::parse(it->second));
+  ASSERT_EQ(fixes.size(), 2u);
+  EXPECT_NEAR(fixes[0]["latitude"].get<double>(), 42.358456, 1e-9);
+  EXPECT_NEAR(fixes[0]["longitude"].get<double>(), -71.087589, 1e-9);
+  // 100 m east at 42.36 deg N: 100 / (cos(lat) * 111.32 km) of longitude.
+  const double dlon = fixes[1]["longitude"].get<double>() + 71.087589;
+  EXPECT_NEAR(dlon, 100.0 / (std::cos(42.358456 * std::numbers::pi / 180.0) * 111'320.0), 2e-6);
+  EXPECT_NEAR(fixes[1]["latitude"].get<double>(), 42.358456, 1e-6);
+}
+
 TEST(FoxgloveLiveFeed, StationEventsBecomeStatusAndLogs) {
   RecordingSink sink;
   FoxgloveLive live(sink, nullptr);

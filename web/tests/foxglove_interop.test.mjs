@@ -35,7 +35,8 @@ const MISSION = {
 };
 
 before(async () => {
-  server = await startAvkServer(AVK, ['serve', '--db', path.join(tmp, 'station.db'), '--sim', '--realtime-factor', '40', '--port', '0']);
+  // With a datum the simulated vehicle is placed on the earth: the location channel has fixes.
+  server = await startAvkServer(AVK, ['serve', '--db', path.join(tmp, 'station.db'), '--sim', '--datum', '42.358456,-71.087589', '--realtime-factor', '40', '--port', '0']);
 });
 
 after(async () => {
@@ -143,6 +144,10 @@ test('a FoxgloveClient receives server info, the channels and valid messages whi
   // The navigation carries the helm's command while the mission runs, and poses agree with it.
   const nav = on('navigation').map(decoded);
   assert.ok(nav.some((n) => n.mission_id === missionId && n.desired_heading_deg !== null && typeof n.helm_mode === 'string'), 'navigation with the mission, desired heading and helm mode');
+  // The fixes lie within the region's 80 m of the datum (0.001 deg of latitude is 111 m).
+  const fixes = on('location').map(decoded);
+  assert.ok(fixes.length > 0, 'location fixes with the datum');
+  assert.ok(fixes.every((f) => Math.abs(f.latitude - 42.358456) < 0.001 && Math.abs(f.longitude + 71.087589) < 0.0015), JSON.stringify(fixes[0]));
   // The region: its boundary loop and the buffer inside it.
   const region = decoded(on('region').at(-1));
   const lines = region.entities[0].lines;
