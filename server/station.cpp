@@ -279,12 +279,14 @@ void Station::add_routes() {
                   });
   });
   // The mission as an MCAP recording for Foxglove/Lichtblick (docs/foxglove.md).
-  get("/api/v1/missions/{id}/export", [&ctx](const ApiRequest& r, const PathParams& p) {
+  get("/api/v1/missions/{id}/export", [this, &ctx](const ApiRequest& r, const PathParams& p) {
     const auto id = path_id(p, "id", "mission");
     const auto format = r.query.find("format");
     if (format == r.query.end() || format->second != "mcap")
       throw bad_parameter("format", "must be mcap (the only export format of a mission)");
     app::McapExportOptions o;
+    // The station's grid on the earth (avk serve --datum), so a recording has its location fixes.
+    o.datum = options_.datum;
     if (const auto c = r.query.find("compression"); c != r.query.end()) {
       if (c->second == "none")
         o.compression = app::mcap::Compression::none;
