@@ -35,10 +35,10 @@ class SendQueue {
   }
 
   Item pop() {
-    Entry e = std::move(queue_.front());
+    Item item = std::move(queue_.front().item);
+    if (!queue_.front().key) --events_;
     queue_.pop_front();
-    if (!e.key) --events_;
-    return std::move(e.item);
+    return item;
   }
 
   bool empty() const { return queue_.empty(); }

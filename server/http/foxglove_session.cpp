@@ -13,8 +13,6 @@ using nlohmann::json;
 
 namespace {
 
-// Client messages are small commands; anything larger is a broken or hostile client.
-constexpr std::size_t kMaxClientMessage = 64 * 1024;
 constexpr std::uint8_t kOpMessageData = 0x01;
 constexpr std::uint8_t kOpTime = 0x02;
 // Queue keys: a channel id for its latest-value-wins messages, this one for the time.
@@ -72,10 +70,7 @@ class FoxgloveSessionSink final : public FoxgloveClient, public DetachableSink {
 }  // namespace
 
 FoxgloveSession::FoxgloveSession(tcp::socket&& socket, std::shared_ptr<ServerState> state)
-    : ws_(std::move(socket)),
-      state_(std::move(state)),
-      close_timer_(ws_.get_executor()),
-      queue_(state_->options().stream_event_queue_limit) {}
+    : LiveWebSocket(std::move(socket), std::move(state)) {}
 
 FoxgloveSession::~FoxgloveSession() {
   if (client_) state_->foxglove().leave(client_.get());
@@ -87,50 +82,35 @@ void FoxgloveSession::run(Request request) {
   auto sink = std::make_shared<FoxgloveSessionSink>(weak_from_this());
   client_ = sink;
   state_->add(shared_from_this(), sink);
-
-  const auto& options = state_->options();
-  beast::get_lowest_layer(ws_).expires_never();
-  auto timeouts = websocket::stream_base::timeout::suggested(beast::role_type::server);
-  timeouts.handshake_timeout = options.close_timeout;
-  timeouts.idle_timeout = options.idle_timeout;
-  timeouts.keep_alive_pings = true;
-  ws_.set_option(timeouts);
   // The client offered the subprotocol (the HTTP session checked): the server must select it.
-  ws_.set_option(websocket::stream_base::decorator([](websocket::response_type& res) {
-    res.set(http::field::server, "avk-station");
-    res.set(http::field::sec_websocket_protocol, kFoxgloveSubprotocol);
-  }));
-  ws_.read_message_max(kMaxClientMessage);
-  ws_.async_accept(request,
-                   beast::bind_front_handler(&FoxgloveSession::on_accept, shared_from_this()));
+  accept(std::move(request), kFoxgloveSubprotocol);
 }
 
-void FoxgloveSession::on_accept(beast::error_code ec) {
-  if (ec) return finish();
-  open_ = true;
-  state_->stream_opened();
-  if (state_->stopping()) return close(websocket::close_code::going_away, "server shutting down");
+void FoxgloveSession::on_open() {
   auto& hub = state_->foxglove();
   enqueue(std::make_shared<const std::string>(hub.server_info(state_->options().server_version)),
           std::nullopt);
   enqueue(std::make_shared<const std::string>(hub.join(client_)), std::nullopt);
-  do_read();
 }
 
-void FoxgloveSession::shutdown() {
-  net::post(ws_.get_executor(), [self = shared_from_this()] {
-    if (self->open_) self->close(websocket::close_code::going_away, "server shutting down");
-  });
+void FoxgloveSession::on_binary() {
+  send_status(error,
+              "client publishing and service calls are not supported by this server "
+              "(capabilities: time)");
+}
+
+void FoxgloveSession::leave_hub() {
+  if (client_) state_->foxglove().leave(client_.get());
 }
 
 void FoxgloveSession::post_text(std::shared_ptr<const std::string> text) {
-  net::post(ws_.get_executor(), [self = shared_from_this(), t = std::move(text)]() mutable {
+  on_strand([self = shared_from_this(), t = std::move(text)]() mutable {
     self->enqueue(std::move(t), std::nullopt);
   });
 }
 
 void FoxgloveSession::post_frame(std::shared_ptr<const FoxgloveFrame> frame) {
-  net::post(ws_.get_executor(), [self = shared_from_this(), f = std::move(frame)]() mutable {
+  on_strand([self = shared_from_this(), f = std::move(frame)]() mutable {
     // Unsubscribed while the frame was on its way.
     if (!self->subscription_of_channel_.contains(f->channel_id)) return;
     std::optional<std::uint64_t> key;
@@ -140,8 +120,9 @@ void FoxgloveSession::post_frame(std::shared_ptr<const FoxgloveFrame> frame) {
 }
 
 void FoxgloveSession::post_time(std::uint64_t t_ns) {
-  net::post(ws_.get_executor(),
-            [self = shared_from_this(), t_ns] { self->enqueue(Time{t_ns}, kTimeKey); });
+  net::post(ws_.get_executor(), [self = shared_from_this(), t_ns] {
+    self->enqueue(foxglove_wire::Time{t_ns}, kTimeKey);
+  });
 }
 
 void FoxgloveSession::post_channels_removed(std::vector<std::uint32_t> ids,
@@ -158,25 +139,7 @@ void FoxgloveSession::post_channels_removed(std::vector<std::uint32_t> ids,
             });
 }
 
-void FoxgloveSession::do_read() {
-  ws_.async_read(read_buffer_,
-                 beast::bind_front_handler(&FoxgloveSession::on_read, shared_from_this()));
-}
-
-void FoxgloveSession::on_read(beast::error_code ec, std::size_t) {
-  if (ec) return finish();
-  if (closing_) return;
-  if (ws_.got_text())
-    handle_text(beast::buffers_to_string(read_buffer_.data()));
-  else
-    send_status(error,
-                "client publishing and service calls are not supported by this server "
-                "(capabilities: time)");
-  read_buffer_.consume(read_buffer_.size());
-  if (!closing_) do_read();
-}
-
-void FoxgloveSession::handle_text(const std::string& text) {
+void FoxgloveSession::on_text(const std::string& text) {
   const auto command = json::parse(text, nullptr, false);
   if (command.is_discarded() || !command.is_object() || !command.contains("op") ||
       !command["op"].is_string())
@@ -252,80 +215,31 @@ void FoxgloveSession::send_status(int level, const std::string& message) {
           std::nullopt);
 }
 
-void FoxgloveSession::enqueue(Outgoing item, std::optional<std::uint64_t> key) {
-  if (!open_ || closing_ || finished_) return;
-  if (!queue_.push(std::move(item), key))
-    return close(websocket::close_code::policy_error, "too slow: reconnect");
-  if (!in_flight_) do_write();
-}
-
-void FoxgloveSession::do_write() {
-  in_flight_ = queue_.pop();
-  auto done = beast::bind_front_handler(&FoxgloveSession::on_write, shared_from_this());
-  if (const auto* text = std::get_if<std::shared_ptr<const std::string>>(&*in_flight_)) {
+template <class Handler>
+bool FoxgloveSession::start_write(foxglove_wire::Outgoing& item, Handler&& done) {
+  if (const auto* text = std::get_if<std::shared_ptr<const std::string>>(&item)) {
     ws_.text(true);
-    return ws_.async_write(net::buffer(**text), std::move(done));
+    ws_.async_write(net::buffer(**text), std::forward<Handler>(done));
+    return true;
   }
   ws_.binary(true);
-  if (const auto* t = std::get_if<Time>(&*in_flight_)) {
+  if (const auto* t = std::get_if<foxglove_wire::Time>(&item)) {
     header_[0] = kOpTime;
     put_le(&header_[1], t->t_ns);
-    return ws_.async_write(net::buffer(header_.data(), 9), std::move(done));
+    ws_.async_write(net::buffer(header_.data(), 9), std::forward<Handler>(done));
+    return true;
   }
-  const auto& frame = *std::get<std::shared_ptr<const FoxgloveFrame>>(*in_flight_);
+  const auto& frame = *std::get<std::shared_ptr<const FoxgloveFrame>>(item);
   const auto sub = subscription_of_channel_.find(frame.channel_id);
   // Unsubscribed while queued: the frame is dropped (its own write would name a dead id).
-  if (sub == subscription_of_channel_.end()) {
-    in_flight_.reset();
-    if (!queue_.empty()) do_write();
-    return;
-  }
+  if (sub == subscription_of_channel_.end()) return false;
   header_[0] = kOpMessageData;
   put_le(&header_[1], sub->second);
   put_le(&header_[5], frame.t_ns);
   const std::array<net::const_buffer, 2> buffers{net::buffer(header_.data(), header_.size()),
                                                  net::buffer(*frame.payload)};
-  ws_.async_write(buffers, std::move(done));
-}
-
-void FoxgloveSession::on_write(beast::error_code ec, std::size_t) {
-  in_flight_.reset();
-  if (ec) {
-    beast::get_lowest_layer(ws_).close();
-    return finish();
-  }
-  if (closing_ || finished_) return;
-  if (!queue_.empty()) do_write();
-}
-
-void FoxgloveSession::close(websocket::close_code code, const char* reason) {
-  if (closing_ || finished_) return;
-  closing_ = true;
-  queue_.clear();
-  if (open_) {
-    open_ = false;
-    state_->stream_closed();
-  }
-  state_->foxglove().leave(client_.get());
-  close_timer_.expires_after(state_->options().close_timeout);
-  close_timer_.async_wait([self = shared_from_this()](beast::error_code ec) {
-    if (!ec) beast::get_lowest_layer(self->ws_).close();
-  });
-  ws_.async_close(websocket::close_reason(code, reason),
-                  [self = shared_from_this()](beast::error_code) { self->close_timer_.cancel(); });
-}
-
-void FoxgloveSession::finish() {
-  if (finished_) return;
-  finished_ = true;
-  queue_.clear();
-  if (open_) {
-    open_ = false;
-    state_->stream_closed();
-  }
-  if (client_) state_->foxglove().leave(client_.get());
-  close_timer_.cancel();
-  beast::get_lowest_layer(ws_).close();
+  ws_.async_write(buffers, std::forward<Handler>(done));
+  return true;
 }
 
 }  // namespace avk::server

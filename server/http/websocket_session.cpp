@@ -13,9 +13,6 @@ namespace avk::server {
 
 namespace {
 
-// Client messages are small commands; anything larger is a broken or hostile client.
-constexpr std::size_t kMaxClientMessage = 64 * 1024;
-
 std::string error_message(const std::string& message) {
   return nlohmann::json{{"type", "error"}, {"message", message}}.dump(
       -1, ' ', false, nlohmann::json::error_handler_t::replace);
@@ -24,10 +21,7 @@ std::string error_message(const std::string& message) {
 }  // namespace
 
 WebSocketSession::WebSocketSession(tcp::socket&& socket, std::shared_ptr<ServerState> state)
-    : ws_(std::move(socket)),
-      state_(std::move(state)),
-      close_timer_(ws_.get_executor()),
-      queue_(state_->options().stream_event_queue_limit) {}
+    : LiveWebSocket(std::move(socket), std::move(state)) {}
 
 WebSocketSession::~WebSocketSession() {
   if (sink_) state_->hub().unsubscribe_all(sink_.get());
@@ -38,65 +32,26 @@ WebSocketSession::~WebSocketSession() {
 void WebSocketSession::run(Request request) {
   sink_ = std::make_shared<WebSocketStreamSink>(weak_from_this());
   state_->add(shared_from_this(), sink_);
-
-  const auto& options = state_->options();
-  // The websocket stream keeps its own timers; the HTTP deadline must not cut a long stream.
-  beast::get_lowest_layer(ws_).expires_never();
-  auto timeouts = websocket::stream_base::timeout::suggested(beast::role_type::server);
-  timeouts.handshake_timeout = options.close_timeout;
-  // Pings at half the idle time find peers that vanished without a FIN (Wi-Fi out of range).
-  timeouts.idle_timeout = options.idle_timeout;
-  timeouts.keep_alive_pings = true;
-  ws_.set_option(timeouts);
-  ws_.set_option(websocket::stream_base::decorator(
-      [](websocket::response_type& res) { res.set(http::field::server, "avk-station"); }));
-  ws_.read_message_max(kMaxClientMessage);
-  ws_.async_accept(request,
-                   beast::bind_front_handler(&WebSocketSession::on_accept, shared_from_this()));
+  accept(std::move(request), std::nullopt);
 }
 
-void WebSocketSession::on_accept(beast::error_code ec) {
-  if (ec) return finish();
-  open_ = true;
-  state_->stream_opened();
-  // A stop that came while the handshake ran did not reach this session yet.
-  if (state_->stopping()) return close(websocket::close_code::going_away, "server shutting down");
+void WebSocketSession::on_open() {
   send_control(state_->hub().hello(state_->options().server_version));
-  do_read();
+}
+
+void WebSocketSession::on_binary() {
+  send_control(error_message("binary frames are not supported: send JSON text"));
 }
 
 void WebSocketSession::deliver(std::shared_ptr<const StreamMessage> message) {
-  net::post(ws_.get_executor(), [self = shared_from_this(), m = std::move(message)]() mutable {
-    self->enqueue(std::move(m));
+  on_strand([self = shared_from_this(), m = std::move(message)]() mutable {
+    std::optional<std::uint64_t> key;
+    if (m->latest_value_wins) key = std::hash<std::string>{}(m->topic);
+    self->enqueue(std::move(m), key);
   });
 }
 
-void WebSocketSession::shutdown() {
-  net::post(ws_.get_executor(), [self = shared_from_this()] {
-    // Before the handshake completes on_accept sees the stop flag instead.
-    if (self->open_) self->close(websocket::close_code::going_away, "server shutting down");
-  });
-}
-
-void WebSocketSession::do_read() {
-  ws_.async_read(read_buffer_,
-                 beast::bind_front_handler(&WebSocketSession::on_read, shared_from_this()));
-}
-
-void WebSocketSession::on_read(beast::error_code ec, std::size_t) {
-  // Closed by the peer, by our close, by a timeout or a reset: either way the session is over.
-  if (ec) return finish();
-  // Our close is on its way: a late command must not subscribe the session again.
-  if (closing_) return;
-  if (ws_.got_text())
-    handle_text(beast::buffers_to_string(read_buffer_.data()));
-  else
-    send_control(error_message("binary frames are not supported: send JSON text"));
-  read_buffer_.consume(read_buffer_.size());
-  if (!closing_) do_read();
-}
-
-void WebSocketSession::handle_text(const std::string& text) {
+void WebSocketSession::on_text(const std::string& text) {
   const auto command = nlohmann::json::parse(text, nullptr, false);
   if (command.is_discarded() || !command.is_object())
     return send_control(error_message(
@@ -155,68 +110,11 @@ void WebSocketSession::handle_text(const std::string& text) {
 void WebSocketSession::send_control(std::string text) {
   auto message = std::make_shared<StreamMessage>();
   message->payload = std::make_shared<const std::string>(std::move(text));
-  enqueue(std::move(message));
+  enqueue(std::move(message), std::nullopt);
 }
 
-void WebSocketSession::enqueue(std::shared_ptr<const StreamMessage> message) {
-  if (!open_ || closing_ || finished_) return;
-  std::optional<std::uint64_t> key;
-  if (message->latest_value_wins) key = std::hash<std::string>{}(message->topic);
-  if (!queue_.push(std::move(message), key))
-    return close(websocket::close_code::policy_error, "too slow: re-sync over REST");
-  if (!in_flight_) do_write();
-}
-
-void WebSocketSession::do_write() {
-  in_flight_ = queue_.pop();
-  ws_.text(true);
-  ws_.async_write(net::buffer(*in_flight_->payload),
-                  beast::bind_front_handler(&WebSocketSession::on_write, shared_from_this()));
-}
-
-void WebSocketSession::on_write(beast::error_code ec, std::size_t) {
-  in_flight_.reset();
-  if (ec) {
-    // The pending read may never learn of it (a half-open peer): make sure it does.
-    beast::get_lowest_layer(ws_).close();
-    return finish();
-  }
-  if (closing_ || finished_) return;
-  if (!queue_.empty()) do_write();
-}
-
-void WebSocketSession::close(websocket::close_code code, const char* reason) {
-  if (closing_ || finished_) return;
-  closing_ = true;
-  queue_.clear();
-  if (open_) {
-    open_ = false;
-    state_->stream_closed();
-  }
-  state_->hub().unsubscribe_all(sink_.get());
-  // Beast sends the close frame after a write in progress, which a client that stopped reading
-  // never lets finish: the timer cuts the socket then.
-  close_timer_.expires_after(state_->options().close_timeout);
-  close_timer_.async_wait([self = shared_from_this()](beast::error_code ec) {
-    if (!ec) beast::get_lowest_layer(self->ws_).close();
-  });
-  ws_.async_close(websocket::close_reason(code, reason),
-                  [self = shared_from_this()](beast::error_code) { self->close_timer_.cancel(); });
-}
-
-void WebSocketSession::finish() {
-  if (finished_) return;
-  finished_ = true;
-  queue_.clear();
-  if (open_) {
-    open_ = false;
-    state_->stream_closed();
-  }
+void WebSocketSession::leave_hub() {
   if (sink_) state_->hub().unsubscribe_all(sink_.get());
-  close_timer_.cancel();
-  // Whatever is still pending (a write to a peer that vanished) completes now, and the session
-  // is released instead of waiting for the kernel to give up on the connection.
-  beast::get_lowest_layer(ws_).close();
 }
 
 }  // namespace avk::server

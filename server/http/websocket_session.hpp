@@ -1,26 +1,22 @@
 #pragma once
-// One client of the live stream at /api/v1/stream. The hub's publisher must never wait for a
-// client, and Beast queues nothing itself, so the session keeps its own write queue on its
-// strand: telemetry (nav, helm) is latest-value-wins — an unsent older frame of the topic is
-// replaced in place, keeping its position — events are queued, and a client that lets more than
-// stream_event_queue_limit of them pile up is closed with 1008 to re-sync over REST.
+// One client of the live stream at /api/v1/stream (server/http/live_websocket.hpp for the queue,
+// the timeouts and how a session ends): telemetry (nav, helm, current) is latest-value-wins per
+// topic, events are queued, and a client that lets more than stream_event_queue_limit of them
+// pile up is closed with 1008 to re-sync over REST.
 
-#include <cstddef>
 #include <memory>
 #include <set>
 #include <string>
 
 #include "server/api_types.hpp"
-#include "server/http/beast.hpp"
-#include "server/http/live_session.hpp"
-#include "server/send_queue.hpp"
+#include "server/http/live_websocket.hpp"
 
 namespace avk::server {
 
-class ServerState;
 class WebSocketStreamSink;
 
-class WebSocketSession : public LiveSession, public std::enable_shared_from_this<WebSocketSession> {
+class WebSocketSession
+    : public LiveWebSocket<WebSocketSession, std::shared_ptr<const StreamMessage>> {
  public:
   WebSocketSession(tcp::socket&& socket, std::shared_ptr<ServerState> state);
   ~WebSocketSession() override;
@@ -29,33 +25,24 @@ class WebSocketSession : public LiveSession, public std::enable_shared_from_this
   void run(Request request);
   // Any thread; returns at once.
   void deliver(std::shared_ptr<const StreamMessage> message);
-  // Any thread: close with 1001 (going away).
-  void shutdown() override;
 
  private:
-  void on_accept(beast::error_code ec);
-  void do_read();
-  void on_read(beast::error_code ec, std::size_t bytes);
-  void handle_text(const std::string& text);
+  friend class LiveWebSocket<WebSocketSession, std::shared_ptr<const StreamMessage>>;
+  void on_open();
+  void on_text(const std::string& text);
+  void on_binary();
+  const char* too_slow_reason() const { return "too slow: re-sync over REST"; }
+  template <class Handler>
+  bool start_write(const std::shared_ptr<const StreamMessage>& m, Handler&& done) {
+    ws_.text(true);
+    ws_.async_write(net::buffer(*m->payload), std::forward<Handler>(done));
+    return true;
+  }
+  void leave_hub();
   void send_control(std::string text);
-  void enqueue(std::shared_ptr<const StreamMessage> message);
-  void do_write();
-  void on_write(beast::error_code ec, std::size_t bytes);
-  void close(websocket::close_code code, const char* reason);
-  void finish();
 
-  websocket::stream<beast::tcp_stream> ws_;
-  std::shared_ptr<ServerState> state_;
   std::shared_ptr<WebSocketStreamSink> sink_;
-  beast::flat_buffer read_buffer_;
-  net::steady_timer close_timer_;
-
-  SendQueue<std::shared_ptr<const StreamMessage>> queue_;
-  std::shared_ptr<const StreamMessage> in_flight_;  // keeps the payload alive while written
   std::set<std::string> topics_;
-  bool open_ = false;     // counted in the server's open sessions
-  bool closing_ = false;  // no more writes; a close is on its way
-  bool finished_ = false;
 };
 
 }  // namespace avk::server
