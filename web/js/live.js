@@ -16,6 +16,14 @@ import { deviationText } from './deviation.js';
 
 const RAY_M = 20; // length of the goal-heading and heading rays
 
+/** The vehicle as a long, narrow arrow whose tip is the vehicle's position, rotated by its heading
+ *  (Plotly turns a marker clockwise from up, as headings turn from north, and the axes are
+ *  equal). An equilateral triangle looks the same turned by 120 deg, so it could be read as
+ *  pointing two other ways (issue 19). */
+function vehicleMarker(nav, size) {
+  return { symbol: 'arrow', size, angle: nav?.heading_deg ?? 0, color: C.yellow, line: { color: C.black, width: 2 } };
+}
+
 let plotEl;
 let visible = false;
 let dirtyPlot = true;
@@ -237,7 +245,7 @@ function renderPlot() {
       name: 'vehicle',
       x: nav ? [nav.x_m] : [],
       y: nav ? [nav.y_m] : [],
-      marker: { symbol: 'triangle-up', size: 18, angle: nav?.heading_deg ?? 0, color: C.yellow, line: { color: C.black, width: 2 } },
+      marker: vehicleMarker(nav, 26),
       hovertemplate: 'x %{x:.1f} m<br>y %{y:.1f} m<extra>vehicle</extra>',
     },
   ];
@@ -329,7 +337,7 @@ function renderTurnPlot(turn, { turnX, turnY, goalRay, band, preds, nav, faded }
       showlegend: false,
       x: running && nav ? [nav.x_m] : [],
       y: running && nav ? [nav.y_m] : [],
-      marker: { symbol: 'triangle-up', size: 14, angle: nav?.heading_deg ?? 0, color: C.yellow, line: { color: C.black, width: 2 } },
+      marker: vehicleMarker(nav, 20),
     },
   ];
   // A new turn is a new figure: Plotly.react from the last turn's equal axes, somewhere else on

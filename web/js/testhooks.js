@@ -100,6 +100,14 @@ export function installTestHooks() {
       applyNav({ vehicle_id: state.vehicleId, link: 'LIVE', t_s: r.t0 + t, x_m: along * Math.sin(h) - Math.cos(h), y_m: -70 + along * Math.cos(h) + Math.sin(h), heading_deg: r.dheading, speed_mps: r.speed }, true);
       return t;
     },
+    /** One nav sample where the vehicle is, with this heading; stream nav is ignored from now on. */
+    setHeading(h) {
+      state.testFeed = true;
+      const n = state.nav ?? { t_s: 0, x_m: 0, y_m: 0 };
+      applyNav({ vehicle_id: state.vehicleId, link: 'LIVE', t_s: (n.t_s ?? 0) + 0.1, x_m: n.x_m, y_m: n.y_m, heading_deg: h, speed_mps: 0 }, true);
+      renderNow();
+      return h;
+    },
     trackLength: () => state.track.length,
     /** The last read of a mission's stored track ({missionId, rows, trackLength} right after it). */
     navHistory: () => navHistory,

@@ -665,6 +665,53 @@ test('a 72,000-point track in Live stays bounded, is drawn simplified and takes 
   }
 });
 
+// Issue 19 defect 2: an equilateral triangle rotated by the heading was read as pointing
+// elsewhere. The vehicle is now an arrow: its tip, as the browser draws it, lies along the
+// heading (screen x right = east, y down = south on the equal axes).
+test('the vehicle icon points along the heading at any heading', { timeout: slow(60000) }, async () => {
+  phase = 'icon';
+  const p = await newPage();
+  try {
+    await p.goto(`${server.base}/?test=1#live`, { waitUntil: 'load', timeout: slow(20000) });
+    await p.waitForFunction(() => window.avkTest && document.querySelector('#live-plot .main-svg'), null, { timeout: slow(20000) });
+    for (const heading of [0, 28, 55, 117, 200, 300]) {
+      await p.evaluate((h) => window.avkTest.setHeading(h), heading);
+      const tip = await p.evaluate(async () => {
+        await new Promise((r) => requestAnimationFrame(() => r()));
+        const trace = [...document.querySelectorAll('#live-plot .scatterlayer .trace')].find((g) => g.__data__?.[0]?.trace?.name === 'vehicle');
+        const point = trace?.querySelector('path.point');
+        if (!point) return null;
+        const rotate = /rotate\(([-\d.e]+)/.exec(point.getAttribute('transform') ?? '');
+        const a = ((rotate ? Number(rotate[1]) : 0) * Math.PI) / 180;
+        const nums = (point.getAttribute('d').match(/-?\d*\.?\d+(e-?\d+)?/g) ?? []).map(Number);
+        const v = [];
+        for (let i = 0; i + 1 < nums.length; i += 2) {
+          // SVG rotate(a) turns clockwise on screen (y down).
+          const x = nums[i] * Math.cos(a) - nums[i + 1] * Math.sin(a);
+          const y = nums[i] * Math.sin(a) + nums[i + 1] * Math.cos(a);
+          if (!v.some((q) => Math.hypot(q.x - x, q.y - y) < 1e-6)) v.push({ x, y });
+        }
+        if (v.length !== 3) return { vertices: v.length };
+        // A long isosceles arrow: its tip is the vertex opposite the shortest side, and it
+        // points from the middle of that side to the tip.
+        let best = null;
+        for (let i = 0; i < 3; i++) {
+          const [b, c] = [v[(i + 1) % 3], v[(i + 2) % 3]];
+          const side = Math.hypot(b.x - c.x, b.y - c.y);
+          if (!best || side < best.side) best = { side, x: v[i].x - (b.x + c.x) / 2, y: v[i].y - (b.y + c.y) / 2 };
+        }
+        return best;
+      });
+      assert.ok(tip && tip.vertices === undefined, `the vehicle marker is drawn as a triangle at heading ${heading}: ${JSON.stringify(tip)}`);
+      const drawn = ((Math.atan2(tip.x, -tip.y) * 180) / Math.PI + 360) % 360;
+      const off = Math.abs(((drawn - heading + 540) % 360) - 180);
+      assert.ok(off < 3, `heading ${heading}: the arrow's tip points at ${drawn.toFixed(1)} deg`);
+    }
+  } finally {
+    await p.close();
+  }
+});
+
 test('without a token, a POST asks for it inline and is retried with it', { timeout: slow(60000) }, async () => {
   phase = 'token';
   const p = await newPage();
