@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <sstream>
+#include <thread>
 
 #include "app/context.hpp"
 #include "app/mission_liveness.hpp"
@@ -60,13 +61,17 @@ class StopSignals {
   void (*previous_term_)(int);
 };
 
+// A heading change with its side: + right, - left.
+std::string signed_goal(double goal_deg) {
+  std::string out = goal_deg > 0 ? "+" : "";
+  out += fixed(goal_deg, 0);
+  return out;
+}
+
 std::string signed_deg(const mission::TurnTask& t, const kinematics::TurnSequence& raw) {
   const double d =
       raw.meta().goal_dheading_deg != 0.0 ? raw.meta().goal_dheading_deg : t.dheading_deg;
-  std::string out = d > 0 ? "+" : "";
-  out += fixed(d, 0);
-  out += " deg";
-  return out;
+  return signed_goal(d) + " deg";
 }
 
 // One line per turn and the events an operator must read.
@@ -95,8 +100,9 @@ class ProgressPrinter final : public mission::MissionObserver {
     if (t.start_heading_error_deg && t.start_yaw_rate_dps)
       out_ << " (" << fixed(*t.start_heading_error_deg, 1) << "° off course, "
            << fixed(*t.start_yaw_rate_dps, 2) << " °/s)";
+    // One numbering of turns (the mission's k/N); the database id is named as what it is.
     out_ << "  [t=" << fixed(t.raw.meta().end_time_s, 1) << " s";
-    if (t.stored_id) out_ << ", turn " << *t.stored_id;
+    if (t.stored_id) out_ << ", id " << *t.stored_id;
     out_ << "]" << std::endl;  // flushed: an operator may be watching a pipe or a log file
   }
 
@@ -346,8 +352,26 @@ int list(const std::vector<std::string>& rest, Io& io) {
   return 0;
 }
 
-std::string pm(const std::optional<kinematics::MeanSd>& v, int decimals) {
-  return v ? fixed(v->mean, decimals) + " ± " + fixed(v->sd, decimals) : "-";
+// A mean of one value has no spread to show: "± 0.00" would claim one.
+std::string pm(const std::optional<kinematics::MeanSd>& v, int decimals, std::int64_t n = 2) {
+  if (!v) return "-";
+  return n == 1 ? fixed(v->mean, decimals)
+                : fixed(v->mean, decimals) + " ± " + fixed(v->sd, decimals);
+}
+
+// A stored turn as `mission run` prints it live, for `mission wait`.
+void print_stored_turn(std::ostream& out, const store::TurnRow& t, int ok, int planned) {
+  const bool done = t.status == kinematics::TurnStatus::ok;
+  const std::string count = done ? std::to_string(ok) + "/" + std::to_string(planned) : "-";
+  out << "turn " << std::setw(7) << count << "  " << fixed(t.commanded_speed_mps, 2) << " m/s "
+      << std::setw(9) << signed_goal(t.goal_dheading_deg) + " deg"
+      << "  " << std::left << std::setw(8) << kinematics::to_string(t.status) << std::right;
+  if (done && t.advance_m && t.transfer_m)
+    out << " advance " << fixed(*t.advance_m, 2) << " m, transfer " << fixed(*t.transfer_m, 2)
+        << " m";
+  else if (!done)
+    out << " " << t.reason;
+  out << "  [t=" << fixed(t.end_time_s, 1) << " s, id " << t.id << "]" << std::endl;
 }
 
 int report(const std::vector<std::string>& rest, Io& io) {
@@ -389,25 +413,62 @@ int report(const std::vector<std::string>& rest, Io& io) {
   for (const auto& c : r.cells)
     io.out << std::setw(9) << fixed(c.speed_mps, 2) << std::setw(10) << fixed(c.dheading_deg, 0)
            << std::setw(9) << c.planned << std::setw(5) << c.ok << std::setw(9) << c.aborted
-           << std::setw(10) << c.rejected << std::setw(18) << pm(c.advance_m, 2) << std::setw(18)
-           << pm(c.transfer_m, 2) << std::setw(18) << pm(c.condition_set_time_s, 2) << "\n";
+           << std::setw(10) << c.rejected << std::setw(18) << pm(c.advance_m, 2, c.ok)
+           << std::setw(18) << pm(c.transfer_m, 2, c.ok) << std::setw(18)
+           << pm(c.condition_set_time_s, 2, c.ok) << "\n";
   if (r.turns.empty()) return 0;
   // How steady each turn began: a turn started in the middle of a swing shows here.
   const auto opt = [](const std::optional<double>& v, int digits) {
     return v ? fixed(*v, digits) : std::string("-");
   };
   io.out << "\n"
-         << std::setw(7) << "turn" << std::setw(9) << "speed" << std::setw(10) << "goal"
+         << std::setw(7) << "id" << std::setw(9) << "speed" << std::setw(10) << "goal"
          << std::setw(10) << "status" << std::setw(14) << "conditions s" << std::setw(18)
          << "start heading err" << std::setw(16) << "start yaw rate"
          << "\n";
   for (const auto& t : r.turns)
     io.out << std::setw(7) << t.id << std::setw(9) << fixed(t.commanded_speed_mps, 2)
-           << std::setw(10) << fixed(t.goal_dheading_deg, 0) << std::setw(10)
+           << std::setw(10) << signed_goal(t.goal_dheading_deg) << std::setw(10)
            << kinematics::to_string(t.status) << std::setw(14) << opt(t.condition_set_time_s, 1)
            << std::setw(16) << opt(t.start_heading_error_deg, 2) << " °" << std::setw(12)
            << opt(t.start_yaw_rate_dps, 2) << " °/s\n";
   return 0;
+}
+
+// Follows a mission another process runs (avk serve): each turn as it is stored, then how the
+// mission ended. Reads the database only, so it works beside a running server.
+int wait(const std::vector<std::string>& rest, Io& io) {
+  const Args a(rest, {"db", "poll"});
+  app::Context ctx(a.require("db"));
+  const double poll_s = a.number("poll").value_or(1.0);
+  if (!(poll_s >= 0.1 && poll_s <= 60.0)) throw UsageError("--poll must be in [0.1, 60] seconds");
+  const std::int64_t id = mission_id_arg(a);
+  std::int64_t last_turn = 0;
+  int ok = 0;
+  for (;;) {
+    const app::MissionReport r = value_or_fail(app::mission_report(ctx, id));
+    int planned = 0;
+    for (const auto& c : r.cells)
+      planned += static_cast<int>(c.planned);
+    for (const auto& t : r.turns) {
+      if (t.id <= last_turn) continue;
+      last_turn = t.id;
+      if (t.status == kinematics::TurnStatus::ok) ++ok;
+      print_stored_turn(io.out, t, ok, planned);
+    }
+    const auto status = r.summary.status;
+    if (status != store::MissionStatus::running && status != store::MissionStatus::paused &&
+        status != store::MissionStatus::created) {
+      const store::Mission& m = r.summary.mission;
+      io.out << "mission " << m.id << " '" << m.name << "' finished: " << app::status_text(r);
+      if (!m.status_reason.empty()) io.out << " (" << m.status_reason << ")";
+      io.out << "; " << r.summary.turns.ok << "/" << planned << " turns ok, "
+             << r.summary.turns.aborted << " aborted, " << r.summary.turns.rejected << " rejected"
+             << std::endl;
+      return status == store::MissionStatus::done ? 0 : 1;
+    }
+    std::this_thread::sleep_for(std::chrono::duration<double>(poll_s));
+  }
 }
 
 int validate(const std::vector<std::string>& rest, Io& io) {
@@ -435,13 +496,15 @@ int validate(const std::vector<std::string>& rest, Io& io) {
 }  // namespace
 
 int cmd_mission(const std::vector<std::string>& args, Io& io) {
-  if (args.empty()) throw UsageError("expected 'mission validate|run|resume|list|report|export'");
+  if (args.empty())
+    throw UsageError("expected 'mission validate|run|resume|list|report|wait|export'");
   const std::vector<std::string> rest(args.begin() + 1, args.end());
   if (args[0] == "validate") return validate(rest, io);
   if (args[0] == "run") return run(rest, io);
   if (args[0] == "resume") return resume(rest, io);
   if (args[0] == "list") return list(rest, io);
   if (args[0] == "report") return report(rest, io);
+  if (args[0] == "wait") return wait(rest, io);
   if (args[0] == "export") return mission_export(rest, io);
   throw UsageError("unknown subcommand 'mission " + args[0] + "'");
 }

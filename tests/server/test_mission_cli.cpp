@@ -13,6 +13,7 @@
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <sstream>
 #include <thread>
 
@@ -133,6 +134,35 @@ TEST_F(MissionCli, Figure41OnUsimCompletesEveryTurnAndStoresEverything) {
   const Result list = run({"mission", "list", "--db", db_.path()});
   EXPECT_NE(list.out.find("done"), std::string::npos);
   EXPECT_NE(list.out.find("thesis-fig4-1"), std::string::npos);
+
+  // Issue 19: turns are numbered one way (k/N) and the database id is called an id; each turn
+  // shows its side; a cell of one turn shows its value without a "± 0.00" spread.
+  EXPECT_EQ(r.out.find(", turn "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(", id "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("turn   18/18"), std::string::npos) << r.out;
+  const Result table = run({"mission", "report", "1", "--db", db_.path()});
+  ASSERT_EQ(table.rc, 0) << table.err;
+  EXPECT_EQ(table.out.find("± 0.00"), std::string::npos) << table.out;
+  // The turn list: id, speed, then the signed goal; the mission alternates sides.
+  EXPECT_TRUE(std::regex_search(table.out, std::regex(R"(\n\s+\d+\s+\d\.\d\d\s+\+\d+\s+ok)")))
+      << table.out;
+  EXPECT_TRUE(std::regex_search(table.out, std::regex(R"(\n\s+\d+\s+\d\.\d\d\s+-\d+\s+ok)")))
+      << table.out;
+  // `mission wait` replays what is stored and says how the mission ended.
+  const Result waited = run({"mission", "wait", "1", "--db", db_.path()});
+  ASSERT_EQ(waited.rc, 0) << waited.out << waited.err;
+  std::istringstream lines(waited.out);
+  std::string line;
+  int turn_lines = 0;
+  std::string last;
+  while (std::getline(lines, line)) {
+    if (line.rfind("turn ", 0) == 0) ++turn_lines;
+    last = line;
+  }
+  EXPECT_EQ(turn_lines, all) << waited.out;
+  EXPECT_NE(waited.out.find("turn   18/18"), std::string::npos) << waited.out;
+  EXPECT_NE(last.find("finished: done"), std::string::npos) << last;
+  EXPECT_NE(last.find("18/18 turns ok"), std::string::npos) << last;
 }
 
 TEST_F(MissionCli, CatamaranInCurrentAndWindIsContainedAndLosesNoTurn) {
