@@ -419,20 +419,23 @@ function renderTurnPanel() {
   text('live-cst', parts.length ? parts.join(' · ') : '–');
 }
 
-/** A cell's state for the grid: running, done, aborted (given up, or the mission ended without
- *  it), pending. Each has a mark as well as a colour. */
+/** A cell's state for the grid: running, done, aborted (given up, or tried and then the mission
+ *  ended), not run (the mission ended before it was ever tried), pending. Each has a mark as well
+ *  as a colour. */
 export function cellState(c, missionStatus) {
   if (c.running) return 'running';
   const planned = c.planned ?? 1;
   if ((c.ok ?? 0) >= planned) return 'done';
   if ((c.given_up ?? 0) > 0) return 'aborted';
   const ended = ['done', 'aborted', 'halted'].includes(missionStatus);
-  if (ended) return 'aborted'; // the mission ended without it
+  const tried = (c.ok ?? 0) + (c.aborted ?? 0) + (c.rejected ?? 0) > 0;
+  if (ended) return tried ? 'aborted' : 'notrun';
   // Aborted attempts that will be re-queued stay pending (the label counts them with ✗n).
   return 'pending';
 }
 
-const MARK = { pending: '·', running: '▶', done: '✓', aborted: '✗' };
+const MARK = { pending: '·', running: '▶', done: '✓', aborted: '✗', notrun: '–' };
+const STATE_NAME = { pending: 'pending', running: 'running', done: 'done', aborted: 'aborted', notrun: 'not run' };
 
 function renderProgress() {
   const grid = document.getElementById('progress-grid');
@@ -451,7 +454,7 @@ function renderProgress() {
   }
   const speeds = [...new Set(cells.map((c) => c.speed_mps))].sort((a, b) => a - b);
   const dpsis = [...new Set(cells.map((c) => c.dheading_deg))].sort((a, b) => a - b);
-  const counts = { pending: 0, running: 0, done: 0, aborted: 0 };
+  const counts = { pending: 0, running: 0, done: 0, aborted: 0, notrun: 0 };
   const table = el('table', { 'aria-label': 'Turn array: rows are speeds, columns heading changes' });
   table.append(el('tr', {}, el('th', { scope: 'col', text: 'm/s \\ Δψ' }), ...dpsis.map((d) => el('th', { scope: 'col', text: `${d}°` }))));
   for (const s of speeds) {
@@ -470,14 +473,14 @@ function renderProgress() {
         el('td', {
           class: `st-${st}`,
           text: label,
-          title: `${s} m/s, ${d}°: ${st}; ok ${c.ok ?? 0} of ${c.planned ?? 1}, aborted ${c.aborted ?? 0}, rejected ${c.rejected ?? 0}${c.given_up ? `, given up ${c.given_up}` : ''}`,
+          title: `${s} m/s, ${d}°: ${STATE_NAME[st]}; ok ${c.ok ?? 0} of ${c.planned ?? 1}, aborted ${c.aborted ?? 0}, rejected ${c.rejected ?? 0}${c.given_up ? `, given up ${c.given_up}` : ''}`,
         }),
       );
     }
     table.append(tr);
   }
   grid.replaceChildren(table);
-  text('progress-counts', `pending ${counts.pending} · running ${counts.running} · done ${counts.done} · aborted ${counts.aborted}`);
+  text('progress-counts', `pending ${counts.pending} · running ${counts.running} · done ${counts.done} · aborted ${counts.aborted}${counts.notrun ? ` · not run ${counts.notrun}` : ''}`);
 }
 
 function renderEvents() {

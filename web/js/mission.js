@@ -328,6 +328,26 @@ function updateButtons() {
   $('m-pause').disabled = s !== 'running';
   $('m-resume').disabled = !(s === 'paused' || s === 'interrupted');
   $('m-abort').disabled = !(s === 'running' || s === 'paused' || s === 'interrupted');
+  // A confirmation asked for a mission that has since ended (or another one picked) goes away.
+  if ($('m-abort').disabled || ($('m-abort-confirm').dataset.mission ?? '') !== String(m?.id ?? '')) hideAbortConfirm();
+}
+
+/** Abort cannot be undone: the first click only asks, inline, naming the mission and what is lost. */
+function askAbort() {
+  const m = targetMission();
+  if (!m) return;
+  const box = $('m-abort-confirm');
+  box.dataset.mission = String(m.id);
+  const left = (m.cells ?? []).reduce((n, c) => n + Math.max(0, (c.planned ?? 1) - (c.ok ?? 0)), 0);
+  $('m-abort-question').textContent = `Abort mission ${m.id} “${m.name}”? The vehicle stops at once and ${left} planned turn${left === 1 ? '' : 's'} will not run. This cannot be undone (Pause can).`;
+  box.hidden = false;
+  $('m-abort-no').focus();
+}
+
+function hideAbortConfirm() {
+  const box = $('m-abort-confirm');
+  box.hidden = true;
+  delete box.dataset.mission;
 }
 
 export function initMission() {
@@ -356,7 +376,12 @@ export function initMission() {
   $('m-target').addEventListener('change', updateButtons);
   $('m-pause').addEventListener('click', () => command('pause'));
   $('m-resume').addEventListener('click', () => command('resume'));
-  $('m-abort').addEventListener('click', () => command('abort'));
+  $('m-abort').addEventListener('click', askAbort);
+  $('m-abort-no').addEventListener('click', hideAbortConfirm);
+  $('m-abort-yes').addEventListener('click', () => {
+    hideAbortConfirm();
+    command('abort');
+  });
   on('missions', renderControl);
   on('mission', renderControl);
   applyKind();

@@ -780,6 +780,45 @@ test("the event log's levels are the ones the hello names", { timeout: slow(6000
   }
 });
 
+// Issue 19 defect 4: Abort asks inline before it acts, and the cells the aborted mission never
+// tried count as "not run", not as aborted.
+test('Abort asks first, and an aborted mission counts the cells it never tried as not run', { timeout: slow(90000) }, async () => {
+  phase = 'abort';
+  const mission = JSON.parse(readFileSync(path.join(repo, 'examples/thesis-fig4-1.json'), 'utf8'));
+  const res = await fetch(`${server.base}/api/v1/vehicles/sim-usim/missions`, {
+    method: 'POST',
+    headers: { Authorization: `Bearer ${server.token}`, 'Content-Type': 'application/json' },
+    body: JSON.stringify({ ...mission, name: 'to be aborted' }),
+  });
+  const started = await res.text();
+  assert.equal(res.status, 201, started);
+  const id = JSON.parse(started).id;
+  const status = async () => (await api(`/missions/${id}`)).status;
+  await goView('mission');
+  await until('the new mission in the control list', () => page.evaluate((v) => [...document.querySelectorAll('#m-target option')].some((o) => o.value === v), String(id)), 15000);
+  await page.selectOption('#m-target', String(id));
+  await until('Abort enabled', async () => !(await page.isDisabled('#m-abort')), 15000);
+  // The first click only asks, naming the mission; nothing is sent.
+  await page.click('#m-abort');
+  assert.equal(await page.isVisible('#m-abort-confirm'), true);
+  assert.match(await page.textContent('#m-abort-question'), new RegExp(`Abort mission ${id} “to be aborted”\\? .*\\d+ planned turns? will not run`));
+  assert.equal(await status(), 'running');
+  await page.click('#m-abort-no');
+  assert.equal(await page.isVisible('#m-abort-confirm'), false);
+  assert.equal(await status(), 'running', 'Keep it changes nothing');
+  // Confirmed, it aborts.
+  await page.click('#m-abort');
+  await page.click('#m-abort-yes');
+  await until('the mission aborted', async () => (await status()) === 'aborted', 15000);
+  const report = await api(`/missions/${id}`);
+  const neverTried = report.cells.filter((c) => (c.ok ?? 0) + (c.aborted ?? 0) + (c.rejected ?? 0) === 0).length;
+  assert.ok(neverTried > 0, 'the mission was aborted before trying every cell');
+  await goView('live');
+  await until('the progress grid of the aborted mission', async () => (await page.locator('#progress-grid td.st-notrun').count()) === neverTried, 15000);
+  assert.match(await page.textContent('#progress-counts'), new RegExp(`not run ${neverTried}`));
+  await shot('live-aborted');
+});
+
 /** `avk frontseat-emulator` on a free port: resolves {child, port} once it listens. */
 function startEmulator() {
   return new Promise((resolve, reject) => {
