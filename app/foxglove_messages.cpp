@@ -2,9 +2,9 @@
 
 #include <cmath>
 #include <nlohmann/json.hpp>
-#include <numbers>
 
 #include "app/foxglove_channels.hpp"
+#include "kinematics/angles.hpp"
 #include "kinematics/polygon_inset.hpp"
 
 namespace avk::app::foxglove {
@@ -105,7 +105,7 @@ json key_value(const std::string& k, const std::string& v) {
 
 // A goal heading as a ray from the turn's start, long enough to read at a turn's scale.
 kinematics::Polyline goal_ray(const kinematics::Pose& start, double heading_deg, double length_m) {
-  const double h = heading_deg * std::numbers::pi / 180.0;
+  const double h = kinematics::deg_to_rad(heading_deg);
   return {{start.x_m, start.y_m},
           {start.x_m + length_m * std::sin(h), start.y_m + length_m * std::cos(h)}};
 }
@@ -135,7 +135,7 @@ double to_s(std::uint64_t t_ns) {
 }
 
 Quaternion heading_quaternion(double heading_deg) {
-  const double yaw = (90.0 - heading_deg) * std::numbers::pi / 180.0;
+  const double yaw = kinematics::deg_to_rad(90.0 - heading_deg);
   return {0.0, 0.0, std::sin(yaw / 2.0), std::cos(yaw / 2.0)};
 }
 

@@ -4,6 +4,7 @@
 #include <cstdio>
 
 #include "app/predict.hpp"
+#include "kinematics/angles.hpp"
 
 namespace avk::app::foxglove {
 
@@ -44,8 +45,8 @@ ScenePredictions scene_predictions(Context& ctx, const std::string& vehicle_id, 
 }
 
 double signed_dheading_deg(double heading_deg, double goal_heading_deg, double magnitude_deg) {
-  const double d = std::remainder(goal_heading_deg - heading_deg, 360.0);
-  return d < 0.0 && d > -180.0 ? -std::abs(magnitude_deg) : std::abs(magnitude_deg);
+  const double d = kinematics::angle180_deg(goal_heading_deg - heading_deg);
+  return d < 0.0 ? -std::abs(magnitude_deg) : std::abs(magnitude_deg);
 }
 
 }  // namespace avk::app::foxglove

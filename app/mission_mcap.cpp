@@ -219,6 +219,8 @@ std::vector<Item> message_order(const MissionData& d, bool location) {
   return items;
 }
 
+// Each stored sample as the navigation channels tell it (pose, tf, location, navigation draw on
+// the same state): built once per sample, the geodetic position only with a datum.
 fg::NavigationState navigation_state(const MissionData& d, std::size_t i,
                                      const std::optional<vehicle::LocalGrid>& grid) {
   const store::NavRow& r = d.nav[i];
@@ -252,18 +254,18 @@ std::optional<mission::OperatingRegion> mission_region(const MissionData& d) {
 }
 
 std::string message_data(Context& ctx, const MissionData& d, const Item& item,
-                         const std::optional<vehicle::LocalGrid>& grid,
+                         const std::vector<fg::NavigationState>& nav,
                          const std::optional<mission::OperatingRegion>& region) {
   const std::string& vid = d.mission.vehicle_id;
   switch (item.kind) {
     case fg::ChannelKind::pose:
-      return fg::pose_message(navigation_state(d, item.index, std::nullopt));
+      return fg::pose_message(nav[item.index]);
     case fg::ChannelKind::transform:
-      return fg::transform_message(navigation_state(d, item.index, std::nullopt), vid);
+      return fg::transform_message(nav[item.index], vid);
     case fg::ChannelKind::location:
-      return fg::location_message(navigation_state(d, item.index, grid), vid);
+      return fg::location_message(nav[item.index], vid);
     case fg::ChannelKind::navigation:
-      return fg::navigation_message(navigation_state(d, item.index, grid));
+      return fg::navigation_message(nav[item.index]);
     case fg::ChannelKind::region:
       return fg::region_scene_message(fg::to_s(item.log_time_ns), *region);
     case fg::ChannelKind::turn:
@@ -662,17 +664,21 @@ Result<McapExport> export_mission_mcap(Context& ctx, std::int64_t mission_id,
     channel_ids[kind] = w.add_channel(schema->second, spec.topic, fg::kMessageEncoding);
     out.messages.per_topic.emplace_back(spec.topic, 0);
   }
-  std::map<fg::ChannelKind, std::uint64_t> counts;
+  std::vector<fg::NavigationState> nav;
+  nav.reserve(d.nav.size());
   try {
-    for (const Item& item : message_order(d, grid.has_value())) {
-      if (!channel_ids.contains(item.kind)) continue;
-      w.add_message(channel_ids[item.kind], item.log_time_ns, item.log_time_ns,
-                    message_data(ctx, d, item, grid, region));
-      ++counts[item.kind];
-    }
+    for (std::size_t i = 0; i < d.nav.size(); ++i)
+      nav.push_back(navigation_state(d, i, grid));
   } catch (const std::out_of_range& e) {
     return invalid_argument("datum",
                             std::string("the track is too far from the datum: ") + e.what());
+  }
+  std::map<fg::ChannelKind, std::uint64_t> counts;
+  for (const Item& item : message_order(d, grid.has_value())) {
+    if (!channel_ids.contains(item.kind)) continue;
+    w.add_message(channel_ids[item.kind], item.log_time_ns, item.log_time_ns,
+                  message_data(ctx, d, item, nav, region));
+    ++counts[item.kind];
   }
   for (auto& [topic, n] : out.messages.per_topic)
     for (const auto& [kind, count] : counts)

@@ -24,28 +24,13 @@ constexpr std::string_view kApiPrefix = "/api/v1/";
 constexpr std::string_view kStreamPath = "/api/v1/stream";
 constexpr std::string_view kFoxglovePath = "/api/v1/foxglove";
 
-bool allowed_origin(std::string_view origin, const std::vector<std::string>& allowed) {
-  std::string o(origin);
-  std::transform(o.begin(), o.end(), o.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return std::find(allowed.begin(), allowed.end(), o) != allowed.end();
-}
-
-// Sec-WebSocket-Protocol lists the client's subprotocols, comma-separated.
+// Sec-WebSocket-Protocol lists the client's subprotocols as a comma-separated token list.
 bool offers_subprotocol(std::string_view header, std::string_view wanted) {
-  while (!header.empty()) {
-    const auto comma = header.find(',');
-    auto item = header.substr(0, comma);
-    while (!item.empty() && (item.front() == ' ' || item.front() == '\t'))
-      item.remove_prefix(1);
-    while (!item.empty() && (item.back() == ' ' || item.back() == '\t'))
-      item.remove_suffix(1);
+  for (const auto& item : http::token_list{header})
     if (item == wanted) return true;
-    if (comma == std::string_view::npos) break;
-    header.remove_prefix(comma + 1);
-  }
   return false;
 }
+
 // How long a closing connection may keep sending what we will not read (the rest of an
 // oversized body): closing with unread data sends a reset that can destroy our error response
 // in the client's buffer before it reads it.
@@ -297,8 +282,8 @@ void HttpSession::handle_request() {
     // Browsers send Origin; a page from elsewhere must not read the station's stream with the
     // user's network position. Tools without a browser send none and are let in.
     const auto origin = req[http::field::origin];
-    if (!origin.empty() && !same_origin(origin, req[http::field::host]) &&
-        !allowed_origin(origin, state_->options().allowed_origins))
+    if (!origin.empty() &&
+        !origin_allowed(origin, req[http::field::host], state_->options().allowed_origins))
       return send(problem_response(http::status::forbidden,
                                    "Origin " + std::string(origin) + " does not match Host " +
                                        std::string(req[http::field::host]),

@@ -102,6 +102,13 @@ void parse_query(std::string_view raw_query, std::map<std::string, std::string>&
   }
 }
 
+bool origin_allowed(std::string_view origin, std::string_view host,
+                    const std::vector<std::string>& allowed_origins) {
+  if (same_origin(origin, host)) return true;
+  const std::string o = lower(origin);
+  return std::find(allowed_origins.begin(), allowed_origins.end(), o) != allowed_origins.end();
+}
+
 bool same_origin(std::string_view origin, std::string_view host) {
   const auto sep = origin.find("://");
   if (sep == std::string_view::npos) return false;  // also "null" (sandboxed, file://)

@@ -27,6 +27,10 @@ void parse_query(std::string_view raw_query, std::map<std::string, std::string>&
 // Whether an Origin header ("scheme://host[:port]") names the host:port of the Host header.
 // A missing port is the scheme's default on both sides, so a proxy that drops it still matches.
 bool same_origin(std::string_view origin, std::string_view host);
+// The Origin rule of the live connections: the page's origin is the server's own, or one the
+// operator named (allowed_origins, lower case; compared case-insensitively).
+bool origin_allowed(std::string_view origin, std::string_view host,
+                    const std::vector<std::string>& allowed_origins);
 
 // Well-formed UTF-8 (no overlong forms, surrogates or code points above U+10FFFF): what JSON
 // may carry, so that a decoded path or query can be echoed in an answer.
