@@ -65,7 +65,9 @@ FoxgloveLive::FoxgloveLive(FoxgloveSink& sink, TurnPredictor predictor,
   if (datum) grid_.emplace(datum->lat_deg, datum->lon_deg);
 }
 
-FoxgloveLive::~FoxgloveLive() = default;
+FoxgloveLive::~FoxgloveLive() {
+  if (predicting_.valid()) predicting_.wait();
+}
 
 void FoxgloveLive::telemetry(const VehicleSnapshot& s) {
   std::lock_guard lock(mutex_);
@@ -129,6 +131,7 @@ std::unique_ptr<mission::MissionObserver> FoxgloveLive::follow(
 }
 
 void FoxgloveLive::withdraw() {
+  if (predicting_.valid()) predicting_.wait();
   std::lock_guard lock(mutex_);
   if (advertised_) sink_.unadvertise(*advertised_);
   advertised_.reset();
@@ -136,6 +139,8 @@ void FoxgloveLive::withdraw() {
 
 void FoxgloveLive::turn_started(const mission::TurnTask& task, double t_s,
                                 double goal_heading_deg) {
+  // The last turn's predictions, long finished in practice; waited for outside the lock they take.
+  if (predicting_.valid()) predicting_.wait();
   std::lock_guard lock(mutex_);
   if (!advertised_ || !last_nav_) return;
   TurnScene scene;
@@ -149,11 +154,21 @@ void FoxgloveLive::turn_started(const mission::TurnTask& task, double t_s,
   scene.goal_heading_deg = goal_heading_deg;
   scene.state = "running";
   scene.measured.push_back({scene.start.x_m, scene.start.y_m});
-  // Predicting takes the vehicle's table (built once per new turn): only when someone looks.
-  if (predictor_ && sink_.wanted(topic(*advertised_, ChannelKind::turn))) {
-    auto p = predictor_(*advertised_, scene.speed_mps, scene.dheading_deg, scene.start);
-    scene.predictions = std::move(p.predictions);
-    scene.cell_label = std::move(p.cell_label);
+  const bool predict = predictor_ && sink_.wanted(topic(*advertised_, ChannelKind::turn));
+  const std::uint64_t number = ++turn_number_;
+  // Predicting takes the vehicle's table (rebuilt after each new turn): only when someone looks,
+  // and on a thread of its own; the scene is drawn now and again when the predictions arrive.
+  if (predict) {
+    predicting_ =
+        std::async(std::launch::async, [this, number, vid = *advertised_, speed = scene.speed_mps,
+                                        dheading = scene.dheading_deg, start = scene.start] {
+          auto p = predictor_(vid, speed, dheading, start);
+          std::lock_guard lock(mutex_);
+          if (!turn_ || turn_number_ != number || !advertised_) return;  // a newer turn is shown
+          turn_->predictions = std::move(p.predictions);
+          turn_->cell_label = std::move(p.cell_label);
+          publish_turn_scene();
+        });
   }
   turn_ = std::move(scene);
   turn_running_ = true;

@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <future>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -54,7 +55,8 @@ class FoxgloveLive final : public LiveFeed {
   std::unique_ptr<mission::MissionObserver> follow(std::int64_t mission_id,
                                                    const mission::MissionRunner& runner) override;
 
-  // Every vehicle's channels go away (the station is stopping).
+  // Every vehicle's channels go away (the station is stopping). Waits for a turn's predictions
+  // still being computed: call it before what the predictor uses (the Context) goes.
   void withdraw();
 
   // How often the scene of a running turn is redrawn with its measured track, station clock.
@@ -71,6 +73,10 @@ class FoxgloveLive final : public LiveFeed {
 
   FoxgloveSink& sink_;
   TurnPredictor predictor_;
+  // The predictions of the turn just started, computed beside the vehicle loop: a table that must
+  // be rebuilt first must not hold up the helm at the very moment it commands a turn.
+  std::future<void> predicting_;
+  std::uint64_t turn_number_ = 0;  // which turn the scene shows
   std::optional<vehicle::LocalGrid> grid_;
   std::mutex mutex_;
   std::optional<std::string> advertised_;  // the vehicle whose channels are offered
