@@ -148,6 +148,7 @@ Result<MissionReport> mission_report(Context& ctx, std::int64_t mission_id) {
     r.live_state = live->state;
     r.helm_mode = live->helm_mode;
     r.cells = cell_reports(live->cells);
+    r.running_turn = live->turn;
   } else {
     r.cells = planned_cells(*m);
   }

@@ -57,8 +57,9 @@ struct MissionReport {
   MissionSummary summary;
   // Attached to the station's vehicle now: state and helm from the same live moment.
   bool live = false;
-  std::optional<mission::MissionState> live_state;  // live, none until it starts
-  std::optional<mission::HelmMode> helm_mode;       // live only
+  std::optional<mission::MissionState> live_state;   // live, none until it starts
+  std::optional<mission::HelmMode> helm_mode;        // live only
+  std::optional<mission::RunningTurn> running_turn;  // live only: the turn under way
   std::vector<CellReport> cells;
   std::optional<double> duration_s;  // mission clock, start to end
   // ConditionSet episodes by outcome ("set", "timeout", "interrupted"), and the time to set.

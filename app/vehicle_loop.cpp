@@ -173,6 +173,7 @@ struct VehicleLoop::Impl {
     l.state = r.state();
     l.helm_mode = r.mode();
     l.cells = r.cells();
+    l.turn = r.running_turn();
     std::lock_guard lock(mutex);
     snapshot.helm_mode = l.helm_mode;
     snapshot.desired_heading_deg = r.desired_heading_deg();

@@ -31,6 +31,7 @@ struct MissionLive {
   std::optional<mission::MissionState> state;  // none: attached, not started yet
   mission::HelmMode helm_mode{};
   std::vector<mission::CellProgress> cells;
+  std::optional<mission::RunningTurn> turn;  // the turn under way
 };
 
 }  // namespace avk::app

@@ -415,6 +415,12 @@ void MissionRunner::start_turn(const vehicle::NavSample& s) {
   end_condition_set(s.t_s, ConditionSetEpisode::Outcome::set);
   const double signed_dheading = side == TurnSide::left ? -task.dheading_deg : task.dheading_deg;
   turn_.emplace(s, task.speed_mps, signed_dheading, config_.completion);
+  running_turn_ = RunningTurn{s,
+                              task.speed_mps,
+                              signed_dheading,
+                              turn_->goal_heading_deg(),
+                              task.attempts + 1,
+                              task.speed_after_mps};
   turn_start_s_ = s.t_s;
   turn_condition_set_time_s_ = cs_time;
   desired_heading_deg_ = turn_->goal_heading_deg();
@@ -438,6 +444,7 @@ void MissionRunner::finish_turn(const vehicle::NavSample& s, Completion how) {
   out.start_yaw_rate_dps = turn_start_yaw_rate_dps_;
   out.raw.meta().initial_yaw_rate_dps = turn_start_yaw_rate_dps_;
   turn_.reset();
+  running_turn_.reset();
   const auto anomaly = turn_anomaly(out.raw, {config_.completion, options_.max_sample_gap_s});
   CellProgress* cell = cell_of(out.task);
   if (cell) cell->running = false;
@@ -496,6 +503,7 @@ void MissionRunner::abort_turn(double t_s, const std::string& reason, bool count
   out.start_yaw_rate_dps = turn_start_yaw_rate_dps_;
   out.raw.meta().initial_yaw_rate_dps = turn_start_yaw_rate_dps_;
   turn_.reset();
+  running_turn_.reset();
   CellProgress* cell = cell_of(task);
   if (cell) {
     cell->running = false;

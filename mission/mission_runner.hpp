@@ -48,6 +48,17 @@ struct CellProgress {
   std::optional<double> speed_after_mps;  // a speed-change cell (speed_mps -> this)
 };
 
+// The turn under way, as commanded: where and when the new heading was sent. A front end that
+// opens mid-turn draws the turn and its predictions from this, not from a stream event it missed.
+struct RunningTurn {
+  vehicle::NavSample start;   // the sample at which the new heading was commanded
+  double speed_mps = 0.0;     // the cell's speed (u0 of a speed-change turn)
+  double dheading_deg = 0.0;  // signed: + clockwise (starboard)
+  double goal_heading_deg = 0.0;
+  int attempt = 1;                        // 1 for the cell's first try
+  std::optional<double> speed_after_mps;  // a speed-change turn's u1
+};
+
 class MissionRunner {
  public:
   // tasks: the turns still to do (plan_turns, or remaining_turns when resuming).
@@ -76,6 +87,8 @@ class MissionRunner {
   const std::vector<CellProgress>& cells() const { return cells_; }
   const Container& container() const { return container_; }
   std::size_t turns_given_up() const { return given_up_; }
+  // Set from the moment a turn is commanded until it ends (finished, aborted or paused).
+  const std::optional<RunningTurn>& running_turn() const { return running_turn_; }
 
  private:
   void process(const vehicle::NavSample& s);
@@ -127,6 +140,7 @@ class MissionRunner {
   double condition_set_start_s_ = 0.0;
   double held_course_deg_ = 0.0;
   std::optional<TurnMonitor> turn_;
+  std::optional<RunningTurn> running_turn_;  // with turn_
   double turn_start_s_ = 0.0;
   std::optional<double> turn_condition_set_time_s_;
   std::optional<double> turn_start_heading_error_deg_;

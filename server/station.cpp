@@ -1,5 +1,7 @@
 #include "server/station.hpp"
 
+#include <chrono>
+
 #include <nlohmann/json.hpp>
 
 #include "app/ckt_tables.hpp"
@@ -183,10 +185,22 @@ void Station::add_routes() {
   // --- the station, vehicles ---------------------------------------------------------------
   get("/api/v1/health", [this, &ctx](const ApiRequest&, const PathParams&) {
     app::VehicleLoop* loop = ctx.vehicle_loop();
-    return json_response({{"status", "ok"},
-                          {"server_version", options_.server_version},
-                          {"session_id", hub_.session_id()},
-                          {"vehicle_id", loop ? json(loop->info().id) : json()}});
+    json j = {{"status", "ok"},
+              {"server_version", options_.server_version},
+              {"session_id", hub_.session_id()},
+              {"vehicle_id", loop ? json(loop->info().id) : json()}};
+    // The station clock beside the wall clock at one moment: every time of this session (nav,
+    // events, turns) is in the station clock, which runs x realtime_factor on the simulator; a
+    // front end shows wall-clock time as utc_ms - (clock_s - t_s) / realtime_factor * 1000.
+    j["utc_ms"] = std::chrono::duration_cast<std::chrono::milliseconds>(
+                      std::chrono::system_clock::now().time_since_epoch())
+                      .count();
+    j["clock_s"] = loop ? json(loop->snapshot().t_s) : json();
+    j["realtime_factor"] = options_.vehicle ? json(options_.vehicle->realtime_factor) : json();
+    j["datum"] = options_.datum ? json{{"lat_deg", options_.datum->lat_deg},
+                                       {"lon_deg", options_.datum->lon_deg}}
+                                : json();
+    return json_response(j);
   });
   // The names the station uses (event kinds with their severity, helm modes, link states, turn
   // statuses), so a client keeps no copy of its own.

@@ -10,6 +10,7 @@
 #include "app/context.hpp"
 #include "app/missions.hpp"
 #include "app/vehicles.hpp"
+#include "kinematics/angles.hpp"
 #include "sim/sim_config.hpp"
 #include "support/recorded_mission.hpp"
 #include "support/temp_db.hpp"
@@ -84,6 +85,39 @@ TEST_F(StationVehicle, AMissionStartsPausesResumesAndAborts) {
   EXPECT_EQ(app::mission_report(ctx_, *id)->summary.status, store::MissionStatus::aborted);
   EXPECT_EQ(app::command_mission(ctx_, *id, app::MissionCommand::pause).error().code,
             app::ErrorCode::conflict);
+}
+
+// A page opened mid-turn reads the turn from the report (issue 19): while the helm is TURNING the
+// live report names the turn as commanded; paused, it has none.
+TEST_F(StationVehicle, TheLiveReportCarriesTheTurnUnderWay) {
+  const auto id = app::start_mission(ctx_, "sim-usim", avk::testing::kSmallMission);
+  ASSERT_TRUE(id) << id.error().message;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  app::MissionReport r;
+  for (;;) {
+    const auto got = app::mission_report(ctx_, *id);
+    ASSERT_TRUE(got);
+    r = *got;
+    if (r.helm_mode == mission::HelmMode::turning) break;
+    ASSERT_LT(std::chrono::steady_clock::now(), deadline) << "no TURNING seen";
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  EXPECT_TRUE(r.live);
+  ASSERT_TRUE(r.running_turn.has_value());
+  const mission::RunningTurn& t = *r.running_turn;
+  EXPECT_NEAR(kinematics::wrap360_deg(t.start.heading_deg + t.dheading_deg), t.goal_heading_deg,
+              1e-9);
+  EXPECT_TRUE(std::abs(std::abs(t.dheading_deg) - 40.0) < 1e-9 ||
+              std::abs(std::abs(t.dheading_deg) - 90.0) < 1e-9)
+      << t.dheading_deg;
+  EXPECT_TRUE(t.speed_mps == 1.0 || t.speed_mps == 1.5) << t.speed_mps;
+  EXPECT_GE(t.attempt, 1);
+
+  ASSERT_TRUE(app::command_mission(ctx_, *id, app::MissionCommand::pause));
+  const auto p = wait_for(*id, {"paused"});
+  EXPECT_FALSE(p.running_turn.has_value());
+  ASSERT_TRUE(app::command_mission(ctx_, *id, app::MissionCommand::abort));
+  wait_for(*id, {"aborted"});
 }
 
 }  // namespace

@@ -323,6 +323,38 @@ TEST(MissionRunner, TwoTurnMissionGoesThroughTheModes) {
   EXPECT_EQ(turn_no, 2u);
 }
 
+// A page opened mid-turn draws the turn from this (issue 19): set exactly while TURNING, the
+// commanded turn with its signed heading change and the sample it was commanded at.
+TEST(MissionRunner, RunningTurnIsTheCommandedTurnWhileTurning) {
+  Sim r(turns_config({1.0}, {40, 90}, DirectionPolicy::alternate, square_region(200, 20, {0, -20})),
+        FakeVehicle(0, 0, 0));
+  std::vector<RunningTurn> seen;
+  int mismatches = 0;
+  ASSERT_TRUE(r.run_until(
+      [&] {
+        const auto& rt = r.runner.running_turn();
+        if (rt.has_value() != (r.runner.mode() == HelmMode::turning)) ++mismatches;
+        if (rt && (seen.empty() || seen.back().start.t_s != rt->start.t_s)) seen.push_back(*rt);
+        return r.runner.finished();
+      },
+      600.0));
+  EXPECT_EQ(mismatches, 0);
+  EXPECT_FALSE(r.runner.running_turn().has_value());
+  ASSERT_EQ(seen.size(), 2u);
+  ASSERT_EQ(r.rec.turns.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const auto& meta = r.rec.turns[i].raw.meta();
+    EXPECT_DOUBLE_EQ(seen[i].goal_heading_deg, r.rec.started[i].goal_heading_deg);
+    EXPECT_DOUBLE_EQ(seen[i].dheading_deg, meta.goal_dheading_deg);  // signed: +40, then -90
+    EXPECT_NEAR(k::wrap360_deg(seen[i].start.heading_deg + seen[i].dheading_deg),
+                seen[i].goal_heading_deg, 1e-9);
+    EXPECT_DOUBLE_EQ(seen[i].start.t_s, r.rec.turns[i].raw.samples().front().t_s);
+    EXPECT_DOUBLE_EQ(seen[i].speed_mps, 1.0);
+    EXPECT_EQ(seen[i].attempt, 1);
+    EXPECT_FALSE(seen[i].speed_after_mps.has_value());
+  }
+}
+
 // ---- 2. Dockside start ----------------------------------------------------------------------
 
 TEST(MissionRunner, StartingOutsideTheRegionContainsInsteadOfHalting) {
