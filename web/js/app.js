@@ -7,6 +7,7 @@ import { Stream } from './stream.js';
 import { attachStream, catchUp, onHello, onMessage, onStreamClose, onGap, updateLink } from './sync.js';
 import { initRouter } from './router.js';
 import { initLive, showLive } from './live.js';
+import { initReplay, showReplay } from './replay.js';
 import { initMission, showMission } from './mission.js';
 import { initCkt, showCkt } from './ckt.js';
 import { initCompare, showCompare } from './compare.js';
@@ -45,6 +46,7 @@ function main() {
   initTokenBar();
   for (const el of document.querySelectorAll('.plot')) framePlot(el);
   initLive();
+  initReplay();
   initMission();
   initCkt();
   initCompare();
@@ -56,7 +58,7 @@ function main() {
   on('vehicle', renderVehicle);
   renderBadge(state.link);
 
-  initRouter({ live: showLive, mission: showMission, ckt: showCkt, compare: showCompare, model: showModel, encounter: showEncounter, export: showExport });
+  initRouter({ live: showLive, replay: showReplay, mission: showMission, ckt: showCkt, compare: showCompare, model: showModel, encounter: showEncounter, export: showExport });
 
   const stream = new Stream({
     onHello,

@@ -46,6 +46,20 @@ export const METRICS = {
   },
 };
 
+/** What each metric scores against, said in the view (issue 19): an in-sample number on a
+ *  repeatable vehicle is near zero for AVK by construction, not because AVK is right. */
+export const BASIS = {
+  held_out:
+    'Scored on turns each method was not built from: AVK predicts each turn from the mean of its cell’s other turns (leave-one-out); the model is identified on other data (persistent excitation) and flown from a steady course; the instantaneous turn is the ray along the goal heading. Points are the mean over a cell’s held-out turns, bars ± 1 sd, n per cell in the table.',
+  in_sample:
+    'In sample, as in the thesis: AVK is graded against the mean of the very turns it was built from, so on a vehicle that repeats its turns its error is near zero by construction. Use a held-out metric to compare methods.',
+};
+
+/** The lowest value a log axis shows (m²): the variance of a GNSS fix (σ 0.1 m, a good RTK-less
+ *  receiver is worse). Errors below it are below what the measurement can tell apart; they are
+ *  drawn on the floor, hollow, and named in the hover, rather than stretching the axis to 1e-30. */
+export const LOG_FLOOR_M2 = 0.01;
+
 let visible = false;
 let plotKey = '';
 let plotIds = [];
@@ -148,6 +162,7 @@ function render(cmp) {
   const med = medianOf(cmp, key);
   $('cmp-median').textContent = `${metric.median}: ${METHODS.map((m) => `${METHOD_STYLE[m].name} ${typeof med[m] === 'number' ? `${metric.fmt(med[m])} ${metric.unit}` : 'none'}`).join(' · ')}`;
   $('cmp-corridor').textContent = corridorLine(cmp.predictive?.corridor);
+  $('cmp-basis').textContent = BASIS[key === 'in_sample' ? 'in_sample' : 'held_out'];
   if (key !== 'in_sample' && !cmp.predictive) {
     setStatus($('cmp-status'), 'This server sends no held-out (predictive) scoring: choose the thesis in-sample MSE.', 'error');
   }
@@ -195,28 +210,31 @@ function renderPlots(plots, rows, key) {
     const traces = METHODS.map((m, k) => {
       const pts = cells.filter((c) => {
         const v = c.value(m);
-        return v && Number.isFinite(v.mean) && (!metric.log || v.mean > 0);
+        return v && Number.isFinite(v.mean) && v.mean >= 0;
       });
       const vals = pts.map((c) => c.value(m));
       const st = METHOD_STYLE[m];
       const sds = vals.map((v) => (typeof v.sd === 'number' && Number.isFinite(v.sd) ? v.sd : 0));
+      // On a log axis a value below the floor sits on it, hollow; the hover says the real value.
+      const floored = vals.map((v) => metric.log && v.mean < LOG_FLOOR_M2);
+      const shown = vals.map((v, j) => (floored[j] ? LOG_FLOOR_M2 : v.mean));
       const trace = {
         type: 'scatter',
         mode: 'lines+markers',
         name: st.name,
         x: pts.map((c) => c.dheading_deg),
-        y: vals.map((v) => v.mean),
-        customdata: pts.map((c, j) => [c.n_turns, sds[j]]),
+        y: shown,
+        customdata: pts.map((c, j) => [c.n_turns, sds[j], floored[j] ? ` (below the ${LOG_FLOOR_M2} m² floor)` : '', vals[j].mean]),
         line: { color: st.color, dash: st.dash, width: 2 },
-        marker: { color: st.color, symbol: SYMBOLS[k], size: 8 },
+        marker: { color: st.color, symbol: pts.map((_, j) => (floored[j] ? `${SYMBOLS[k]}-open` : SYMBOLS[k])), size: 8 },
         hovertemplate:
           key === 'in_sample'
-            ? `${st.name}, Δψ %{x}°: %{y:.3g} m²<extra></extra>`
-            : `${st.name}, Δψ %{x}°: %{y:.3g} ± %{customdata[1]:.2g} ${metric.unit} (n %{customdata[0]})<extra></extra>`,
+            ? `${st.name}, Δψ %{x}°: %{customdata[3]:.3g} m²%{customdata[2]}<extra></extra>`
+            : `${st.name}, Δψ %{x}°: %{customdata[3]:.3g} ± %{customdata[1]:.2g} ${metric.unit} (n %{customdata[0]})%{customdata[2]}<extra></extra>`,
       };
       if (key !== 'in_sample') {
-        // On the log axis a bar cannot reach zero: its lower half stops at 1 % of the mean.
-        const minus = metric.log ? sds.map((sd, j) => Math.min(sd, 0.99 * vals[j].mean)) : sds;
+        // On the log axis a bar cannot reach below the floor: its lower half stops there.
+        const minus = metric.log ? sds.map((sd, j) => Math.max(0, Math.min(sd, shown[j] - LOG_FLOOR_M2))) : sds;
         trace.error_y = { type: 'data', symmetric: false, array: sds, arrayminus: minus, visible: true, color: st.color, thickness: 1.2, width: 4 };
       }
       return trace;
@@ -224,10 +242,18 @@ function renderPlots(plots, rows, key) {
     draw($(wanted[i]), traces, {
       ...baseLayout(),
       xaxis: axis('heading change Δψ (°)', { range: [0, 185], dtick: 20 }),
-      yaxis: axis(metric.yTitle, metric.log ? { type: 'log', exponentformat: 'power' } : { rangemode: 'tozero' }),
+      yaxis: axis(metric.yTitle, metric.log ? logAxis(traces) : { rangemode: 'tozero' }),
       showlegend: true,
     });
   });
+}
+
+/** A log axis from the floor (GNSS noise) to a little above the largest value drawn. */
+function logAxis(traces) {
+  let top = LOG_FLOOR_M2 * 10;
+  for (const t of traces)
+    for (let j = 0; j < t.y.length; j++) top = Math.max(top, t.y[j] + (t.error_y?.array?.[j] ?? 0));
+  return { type: 'log', exponentformat: 'power', range: [Math.log10(LOG_FLOOR_M2) - 0.05, Math.log10(top) + 0.15] };
 }
 
 const sorted = (cells) => [...(cells ?? [])].sort((a, b) => a.speed_mps - b.speed_mps || a.dheading_deg - b.dheading_deg);

@@ -64,3 +64,17 @@ export function along(x, y, headingDeg, len) {
   const h = (headingDeg * Math.PI) / 180;
   return [x + len * Math.sin(h), y + len * Math.cos(h)];
 }
+
+/** The rings Live and Replay draw for a mission's operating region (its file's
+ *  `operating_region`): the region, its buffer (inset by buffer_m, default 10) and the return
+ *  point; empty rings without a region. */
+export function regionRings(region) {
+  if (!(region?.polygon_m?.length >= 3)) return { region: { x: [], y: [] }, buffer: { x: [], y: [] }, bufferM: null, ret: { x: [], y: [] } };
+  const bufferM = region.buffer_m ?? 10;
+  return {
+    region: ring(region.polygon_m),
+    buffer: ring(insetPolygon(region.polygon_m, bufferM)),
+    bufferM,
+    ret: region.return_point_m ? { x: [region.return_point_m[0]], y: [region.return_point_m[1]] } : { x: [], y: [] },
+  };
+}

@@ -8,27 +8,27 @@
 // 72,000-point track at 10 Hz costs one plot update per nav message at most.
 
 import { state, on } from './state.js';
-import { C, METHOD_STYLE, baseLayout, equalAxes, draw, showEmpty, corridorTrace } from './plots.js';
-import { insetPolygon, ring, along } from './geometry.js';
+import { C, METHOD_STYLE, baseLayout, equalAxes, draw, showEmpty, corridorTrace, vehicleMarker } from './plots.js';
+import { regionRings, along } from './geometry.js';
 import { TrackDecimator } from './decimate.js';
 import { num, meanSd, headingDiff, el } from './format.js';
 import { deviationText } from './deviation.js';
+import { drawSeries } from './timeseries.js';
 
 const RAY_M = 20; // length of the goal-heading and heading rays
 
-/** The vehicle as a long, narrow arrow whose tip is the vehicle's position, rotated by its heading
- *  (Plotly turns a marker clockwise from up, as headings turn from north, and the axes are
- *  equal). An equilateral triangle looks the same turned by 120 deg, so it could be read as
- *  pointing two other ways (issue 19). */
-function vehicleMarker(nav, size) {
-  return { symbol: 'arrow', size, angle: nav?.heading_deg ?? 0, color: C.yellow, line: { color: C.black, width: 2 } };
-}
 
 let plotEl;
 let visible = false;
 let dirtyPlot = true;
 let dirtyText = true;
 let dirtyProgress = true;
+let dirtySeries = true;
+let seriesKey = '';
+let lastSeriesMs = -Infinity;
+let seriesTimer = null;
+const SERIES_MIN_MS = 250;
+const SERIES_MAX_POINTS = 3000; // per trace: a 30-minute window at 10 Hz is drawn every 6th sample
 let frameRequested = false;
 let uirevision = 1;
 // Arrays handed to Plotly keep their identity while unchanged, so Plotly.react recomputes only
@@ -45,6 +45,8 @@ export function initLive() {
   const markPlot = () => request(true);
   const markText = () => request(false);
   on('nav', markPlot);
+  on('series', () => request(true));
+  document.getElementById('ts-window').addEventListener('change', () => request(true));
   on('helm', markText);
   on('mission', () => {
     dirtyProgress = true; // the grid is rebuilt on mission messages only, not at 10 Hz
@@ -108,6 +110,21 @@ function frame() {
     renderPlot();
     renderTimes.push(performance.now() - t0);
     if (renderTimes.length > 1000) renderTimes.shift();
+    dirtySeries = true;
+  }
+  if (dirtySeries) {
+    // At most four redraws a second: five traces of up to 18,000 samples are not redrawn per frame.
+    const now = performance.now();
+    if (now - lastSeriesMs >= SERIES_MIN_MS) {
+      dirtySeries = false;
+      lastSeriesMs = now;
+      renderSeries();
+    } else if (!seriesTimer) {
+      seriesTimer = setTimeout(() => {
+        seriesTimer = null;
+        request(false);
+      }, SERIES_MIN_MS - (now - lastSeriesMs));
+    }
   }
 }
 
@@ -130,18 +147,7 @@ function regionTraces() {
   const region = state.mission?.config?.operating_region;
   const key = region ? JSON.stringify(region) : null;
   if (key !== regionCache.key) {
-    regionCache.key = key;
-    if (region?.polygon_m?.length >= 3) {
-      const buffer = region.buffer_m ?? 10;
-      regionCache.region = ring(region.polygon_m);
-      regionCache.buffer = ring(insetPolygon(region.polygon_m, buffer));
-      regionCache.bufferM = buffer;
-      regionCache.ret = region.return_point_m ? { x: [region.return_point_m[0]], y: [region.return_point_m[1]] } : { x: [], y: [] };
-    } else {
-      regionCache.region = { x: [], y: [] };
-      regionCache.buffer = { x: [], y: [] };
-      regionCache.ret = { x: [], y: [] };
-    }
+    regionCache = { key, ...regionRings(region) };
   }
   return regionCache;
 }
@@ -259,6 +265,24 @@ function renderPlot() {
   renderTurnPlot(turn, { turnX, turnY, goalRay, band, preds: [pred('avk'), pred('model'), pred('instantaneous')], nav, faded });
 }
 
+/** The time series over the chosen window, ending at the newest sample; redrawn only when a
+ *  sample, a turn mark or the window changed. */
+function renderSeries() {
+  const el = document.getElementById('live-series');
+  const buf = state.series;
+  const span = Number(document.getElementById('ts-window').value) || 120;
+  const to = buf.length ? buf.lastT() : 0;
+  const from = to - span;
+  const key = `${buf.version}|${span}|${state.turnMarks.length}|${state.turnMarksMission}`;
+  if (key === seriesKey) return;
+  seriesKey = key;
+  if (!buf.length) {
+    showEmpty(el, 'No navigation yet.');
+    return;
+  }
+  drawSeries(el, buf.window(from, to, SERIES_MAX_POINTS), { from, to, marks: state.turnMarks });
+}
+
 /** "0.20 ± 0.01 m/s toward 182 ± 3°": the station's estimate of the current (issue 17). */
 export function currentText(c) {
   if (!c) return 'not estimated yet';
@@ -324,12 +348,15 @@ function renderTurnPlot(turn, { turnX, turnY, goalRay, band, preds, nav, faded }
     : `${turn.start.t}|ended|${turnX.length}|${Object.keys(turn.predictions).length}`;
   if (key === turnPlotKey) return;
   turnPlotKey = key;
+  // Its own legend (issue 19): the close-up is read on its own, often without the track plot.
+  // Only what is drawn is listed; names without the track plot's "(last turn)" suffix.
+  const plain = (name) => name.replace(/ \(last turn\)$/, '');
   const traces = [
-    { ...band, showlegend: false },
+    { ...band, name: plain(band.name), showlegend: Boolean(band.x?.length) },
     { type: 'scatter', mode: 'lines+markers', name: running ? 'turn so far' : `turn (${turn.outcome})`, x: turnX, y: turnY, line: { color: C.orange, width: 4 }, marker: { size: 4 }, opacity: faded },
-    ...preds.map((t) => ({ ...t, showlegend: false, visible: t.visible === true })),
-    { type: 'scatter', mode: 'lines', name: 'goal heading', showlegend: false, x: goalRay.x, y: goalRay.y, line: { color: C.vermillion, width: 2, dash: 'longdash' }, opacity: faded },
-    expectedTrace({ showlegend: false }),
+    ...preds.filter((t) => t.visible === true).map((t) => ({ ...t, name: plain(t.name) })),
+    { type: 'scatter', mode: 'lines', name: 'goal heading', x: goalRay.x, y: goalRay.y, line: { color: C.vermillion, width: 2, dash: 'longdash' }, opacity: faded },
+    expectedTrace({ showlegend: Boolean(state.turn && state.ongoing?.expected) }),
     {
       type: 'scatter',
       mode: 'markers',
@@ -344,7 +371,12 @@ function renderTurnPlot(turn, { turnX, turnY, goalRay, band, preds, nav, faded }
   // the grid, could collapse the y axis to a line and keep it so for the whole turn.
   if (turn.start.t !== turnPlotStart && el._fullLayout) window.Plotly?.purge(el);
   turnPlotStart = turn.start.t;
-  draw(el, traces, { ...baseLayout({ margin: { l: 44, r: 8, t: 8, b: 36 } }), ...equalAxes('x (m)', 'y (m)'), showlegend: false });
+  draw(el, traces, {
+    ...baseLayout({ margin: { l: 44, r: 8, t: 8, b: 36 } }),
+    ...equalAxes('x (m)', 'y (m)'),
+    showlegend: true,
+    legend: { orientation: 'h', x: 0, y: 1.01, yanchor: 'bottom', font: { size: 10 } },
+  });
 }
 
 // ---------------------------------------------------------------- text panels

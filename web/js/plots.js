@@ -14,6 +14,14 @@ export const C = {
   grey: '#8a8f98',
 };
 
+/** The vehicle as a long, narrow arrow whose tip is the vehicle's position, rotated by its heading
+ *  (Plotly turns a marker clockwise from up, as headings turn from north, and the axes are
+ *  equal). An equilateral triangle looks the same turned by 120 deg, so it could be read as
+ *  pointing two other ways (issue 19). */
+export function vehicleMarker(nav, size) {
+  return { symbol: 'arrow', size, angle: nav?.heading_deg ?? 0, color: C.yellow, line: { color: C.black, width: 2 } };
+}
+
 /** One colour per speed, in order; with a marker symbol each so the series differ without colour. */
 export const SERIES = [C.blue, C.orange, C.green, C.vermillion, C.purple, C.sky, C.black, C.yellow];
 export const SYMBOLS = ['circle', 'square', 'diamond', 'triangle-up', 'cross', 'x', 'star', 'hexagon'];

@@ -1,10 +1,10 @@
-// Hash routing (#live, #mission, #ckt, #compare, #model, #encounter, #export): the address names the view,
+// Hash routing (#live, #replay, #mission, #ckt, #compare, #model, #encounter, #export): the address names the view,
 // so views can be bookmarked and the back button works. The tabs are plain links (Tab and Enter
 // reach them); Alt+1…7 jump to a view from anywhere, and the arrow keys move along the tabs.
 
 import { resizeWithin } from './plots.js';
 
-export const VIEWS = ['live', 'mission', 'ckt', 'compare', 'model', 'encounter', 'export'];
+export const VIEWS = ['live', 'replay', 'mission', 'ckt', 'compare', 'model', 'encounter', 'export'];
 
 let handlers = {};
 let current = null;

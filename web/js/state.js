@@ -1,6 +1,8 @@
 // The dashboard's shared state and a tiny event bus. Views read the state and redraw on events;
 // only stream.js and sync.js write the live parts, so there is one source of truth per field.
 
+import { SeriesBuffer } from './timeseries.js';
+
 /** The live track: a fixed-size ring of (t, x, y). A 2-hour track at 10 Hz is 72,000 samples;
  *  beyond the capacity the oldest samples drop out (history is read from REST, not kept here). */
 export class TrackBuffer {
@@ -69,6 +71,8 @@ export class TrackBuffer {
 }
 
 export const TRACK_CAPACITY = 72000;
+// The Live time series: an hour at 10 Hz (the longest window offered is 30 minutes).
+export const SERIES_CAPACITY = 36000;
 
 export const state = {
   sessionId: null,       // the server's session; a new one means it restarted
@@ -92,6 +96,9 @@ export const state = {
   events: [],            // the event log, newest last, bounded
   eventLevels: new Map(), // event kind -> 'info' | 'warning', from the stream's hello
   track: new TrackBuffer(TRACK_CAPACITY),
+  series: new SeriesBuffer(SERIES_CAPACITY), // heading, speed, their desired values, yaw rate
+  turnMarks: [],         // [{t, label}] turn starts of the current mission, for the time series
+  turnMarksMission: null, // the mission turnMarks belong to
   okTurns: 0,            // stored ok turns of the vehicle (0: the CKT and the comparison 404)
   testFeed: false,       // a ?test=1 hook feeds nav (the stream's nav is dropped meanwhile)
 };

@@ -6,6 +6,7 @@ import { state, emit, addEvent } from './state.js';
 import { getJson, getAllItems } from './api.js';
 import { headingDiff, wrap360 } from './format.js';
 import { simplify } from './decimate.js';
+import { mergeStoredRows } from './timeseries.js';
 
 const STALE_AFTER_MS = 2000;
 const MAX_RECORDED_TURNS = 60; // drawn as history in Live; older ones are in the CKT view
@@ -114,9 +115,100 @@ export async function loadMission(id, { force = false } = {}) {
   }
   state.mission = m;
   emit('mission', m);
+  setTurnMarks(m);
+  adoptRunningTurn(m);
   if (isNew) {
     await Promise.all([loadEvents(id), loadRecordedTurns(id), loadTrackHistory(id)]);
+    if (!state.shownTurn) await adoptLastTurn(m);
   }
+}
+
+const markLabel = (speed, dheading) => `${dheading > 0 ? '+' : ''}${Math.round(dheading)}° @ ${speed} m/s`;
+
+/** The turn starts the time series marks: the mission's stored turns, the one under way, and any
+ *  the stream started since (kept when the report does not list them yet). */
+function setTurnMarks(m) {
+  const marks = (m.turn_list ?? []).map((r) => ({ t: r.start_time_s, label: markLabel(r.speed_mps, r.goal_dheading_deg) }));
+  if (m.running_turn) marks.push({ t: m.running_turn.t_s, label: markLabel(m.running_turn.speed_mps, m.running_turn.dheading_deg) });
+  const newest = marks.length ? Math.max(...marks.map((k) => k.t)) : -Infinity;
+  const sameMission = state.turnMarksMission === m.id;
+  if (sameMission) for (const k of state.turnMarks) if (k.t > newest + 1e-6) marks.push(k);
+  state.turnMarks = marks.sort((a, b) => a.t - b.t);
+  state.turnMarksMission = m.id;
+  emit('series');
+}
+
+function turnFromServer(missionId, rt) {
+  return {
+    missionId,
+    speed: rt.speed_mps,
+    dheading: rt.dheading_deg,
+    goalHeading: rt.goal_heading_deg,
+    attempt: rt.attempt,
+    start: { t: rt.t_s, x: rt.x_m, y: rt.y_m, heading: rt.heading_deg },
+    predictions: {},
+  };
+}
+
+/** The turn under way as the server has it (issue 19): a page opened or reloaded mid-turn, or one
+ *  that missed the stream's `started`, draws it from the report. A report without one never
+ *  clears a turn the stream started: the answer may predate it. */
+function adoptRunningTurn(m) {
+  const rt = m.running_turn;
+  if (!rt) return;
+  if (state.turn && state.turn.missionId === m.id && Math.abs((state.turn.start?.t ?? NaN) - rt.t_s) < 1e-6) return;
+  state.turn = turnFromServer(m.id, rt);
+  state.shownTurn = state.turn;
+  emit('turn', state.turn);
+  fetchPredictions(state.turn);
+}
+
+/** The mission's last stored turn, drawn (faded, with its predictions) as the last turn when the
+ *  page did not see it happen: its start pose is the first sample of its record. */
+async function adoptLastTurn(m) {
+  const row = m.turn_list?.at(-1);
+  if (!row) return;
+  state.lastTurn = {
+    event: row.status === 'ok' ? 'finished' : row.status,
+    status: row.status,
+    reason: row.reason,
+    id: row.id,
+    mission_id: m.id,
+    speed_mps: row.speed_mps,
+    goal_dheading_deg: row.goal_dheading_deg,
+    advance_m: row.advance_m,
+    transfer_m: row.transfer_m,
+    condition_set_time_s: row.condition_set_time_s,
+    t: row.end_time_s,
+  };
+  let first;
+  try {
+    first = (await getJson(`/turns/${row.id}`)).raw?.samples?.[0];
+  } catch (e) {
+    console.warn('the last turn could not be read', e.message);
+  }
+  if (state.shownTurn || !first) {
+    emit('turn', state.turn);
+    return;
+  }
+  const [t, x, y, heading] = first;
+  state.shownTurn = {
+    ...turnFromServer(m.id, {
+      t_s: t,
+      x_m: x,
+      y_m: y,
+      heading_deg: heading,
+      speed_mps: row.speed_mps,
+      dheading_deg: row.goal_dheading_deg,
+      goal_heading_deg: wrap360(heading + row.goal_dheading_deg),
+      attempt: null,
+    }),
+    ended: true,
+    endT: row.end_time_s,
+    outcome: state.lastTurn.event,
+  };
+  emit('turn', state.turn);
+  fetchPredictions(state.shownTurn);
 }
 
 const NAV_PAGE = 5000;
@@ -136,6 +228,7 @@ async function loadTrackHistory(id) {
   const t = [];
   const x = [];
   const y = [];
+  const rows = [];
   let lastCount = 0;
   let lastAfter = after;
   for (;;) {
@@ -144,6 +237,7 @@ async function loadTrackHistory(id) {
       t.push(r.t_s);
       x.push(r.x_m);
       y.push(r.y_m);
+      rows.push(r);
     }
     lastCount = page.items.length;
     lastAfter = after;
@@ -157,7 +251,11 @@ async function loadTrackHistory(id) {
     after = again.next ?? lastAfter;
   }
   const rows = (resume ? navCursor.rows : 0) + t.length;
-  if (t.length && !state.testFeed) mergeIntoTrack(t, x, y); // a test hook owns the track then
+  if (t.length && !state.testFeed) {
+    mergeIntoTrack(t, x, y); // a test hook owns the track then
+    mergeStoredRows(state.series, rows);
+    emit('series');
+  }
   navCursor = { missionId: id, after, epoch: tr.epoch, rows };
   emit('nav-history', { missionId: id, rows });
 }
@@ -270,6 +368,7 @@ export function onHello(hello) {
   applyVocabulary(hello);
   if (restarted) {
     state.track.clear();
+    state.series.clear();
     state.turn = null;
     state.shownTurn = null;
     state.recordedTurns = [];
@@ -328,6 +427,9 @@ export function applyNav(d, live) {
     const last = state.track.last();
     const still = last && Math.abs(last.x - d.x_m) < 0.01 && Math.abs(last.y - d.y_m) < 0.01 && d.t_s - last.t < 5;
     if (!still) state.track.push(d.t_s, d.x_m, d.y_m);
+  }
+  if (Number.isFinite(d.t_s) && Number.isFinite(d.heading_deg)) {
+    state.series.push(d.t_s, d.heading_deg, state.helm?.desired_heading_deg, d.speed_mps, state.helm?.desired_speed_mps);
   }
   emit('nav', d);
 }
@@ -402,6 +504,10 @@ function applyTurn(d, t) {
       predictions: {},
     };
     state.shownTurn = state.turn;
+    if (state.turn.start && state.turnMarksMission === d.mission_id) {
+      state.turnMarks.push({ t: state.turn.start.t, label: markLabel(d.speed_mps, dheading) });
+      emit('series');
+    }
     emit('turn', state.turn);
     fetchPredictions(state.turn);
     return;

@@ -5,6 +5,7 @@
 import { state, on } from './state.js';
 import { applyNav, onMessage } from './sync.js';
 import { renderNow, renderTimes, deviationLog } from './live.js';
+import { replayState, seek as replaySeek, poseAt as replayPoseAt } from './replay.js';
 
 /** A lawn-mower survey at 1 m/s sampled at 10 Hz: long straight legs joined by half circles,
  *  which is what two hours of turn collection looks like to the renderer. */
@@ -120,5 +121,23 @@ export function installTestHooks() {
     /** The event log as shown ({kind, level}) and the levels the hello gave each kind. */
     events: () => state.events.map((e) => ({ kind: e.kind, level: e.level })),
     eventLevels: () => Object.fromEntries(state.eventLevels),
+    /** The turn Live draws: the one under way (running) or the last one (ended). */
+    shownTurn: () => {
+      const s = state.shownTurn;
+      return s ? { running: s === state.turn, start: s.start, dheading: s.dheading, speed: s.speed, goalHeading: s.goalHeading, predictions: Object.keys(s.predictions), ended: Boolean(s.ended) } : null;
+    },
+    /** The Live time series: samples held, the newest, the turn marks. */
+    series: () => {
+      const b = state.series;
+      const k = b.length - 1;
+      return { length: b.length, last: k >= 0 ? { t: b.at(k, 't'), heading: b.at(k, 'heading'), dheading: b.at(k, 'dheading'), speed: b.at(k, 'speed'), yawRate: b.at(k, 'yawRate') } : null, marks: state.turnMarks.slice() };
+    },
+    /** Replay: its state, a seek, and the interpolated pose it draws at a time. */
+    replay: () => replayState(),
+    replaySeek: (t) => {
+      replaySeek(t);
+      return replayState();
+    },
+    replayPose: (t) => replayPoseAt(t),
   };
 }

@@ -475,7 +475,7 @@ test("the CKT cell plot draws the AVK prediction's corridor for a cell of ≥ 2 
   await shot('ckt-corridor');
 });
 
-test('the Compare view plots held-out path distance by default and switches to the thesis metrics', { timeout: slow(60000) }, async () => {
+test('the Compare view plots held-out path distance by default, says what it scores against, floors its log axes at the GNSS noise and switches to the thesis metrics', { timeout: slow(60000) }, async () => {
   phase = 'compare-metric';
   await goView('compare');
   const cmp = await api('/vehicles/sim-usim/compare');
@@ -492,7 +492,9 @@ test('the Compare view plots held-out path distance by default and switches to t
         return {
           yTitle: e.layout.yaxis.title.text,
           yType: e._fullLayout.yaxis.type,
-          traces: e.data.map((t) => ({ name: t.name, x: [...t.x], y: [...t.y], err: t.error_y ? [...t.error_y.array] : null })),
+          yRange: [...e._fullLayout.yaxis.range],
+          basis: document.getElementById('cmp-basis').textContent,
+          traces: e.data.map((t) => ({ name: t.name, x: [...t.x], y: [...t.y], value: (t.customdata ?? []).map((c) => c[3]), err: t.error_y ? [...t.error_y.array] : null })),
           median: document.getElementById('cmp-median').textContent,
           corridor: document.getElementById('cmp-corridor').textContent,
           table: document.getElementById('cmp-table').dataset.metric,
@@ -506,6 +508,8 @@ test('the Compare view plots held-out path distance by default and switches to t
   assert.match(path.median, /^Median path distance \(held out\): AVK \(CKT\) \d/);
   assert.match(path.corridor, /^90 % corridor/);
   assert.equal(path.table, 'predictive');
+  assert.match(path.basis, /not built from/);
+  assert.match(path.basis, /leave-one-out/);
   // The plotted points and error bars are the API's held-out means and sds.
   const avk = path.traces.find((t) => t.name === 'AVK (CKT)');
   const cells = cmp.predictive.cells.filter((c) => c.speed_mps === speed && c.avk).sort((a, b) => a.dheading_deg - b.dheading_deg);
@@ -519,7 +523,13 @@ test('the Compare view plots held-out path distance by default and switches to t
   assert.match(yx.yTitle, /y\(x\) MSE/);
   assert.equal(yx.yType, 'log');
   assert.match(yx.median, /^Median y\(x\) MSE \(held out\)/);
-  assert.deepEqual(yx.traces.find((t) => t.name === 'AVK (CKT)').y, cells.filter((c) => c.avk.yx_mse_m2.mean > 0).map((c) => c.avk.yx_mse_m2.mean));
+  // Every cell's value (the hover's), drawn at max(value, floor): the axis starts at the GNSS noise
+  // (0.01 m²), not at whatever tiny number a repeatable vehicle gives.
+  const FLOOR = 0.01;
+  const yxAvk = yx.traces.find((t) => t.name === 'AVK (CKT)');
+  assert.deepEqual(yxAvk.value, cells.map((c) => c.avk.yx_mse_m2.mean));
+  assert.deepEqual(yxAvk.y, cells.map((c) => Math.max(FLOOR, c.avk.yx_mse_m2.mean)));
+  assert.ok(Math.abs(yx.yRange[0] - (Math.log10(FLOOR) - 0.05)) < 1e-9, `log axis from ${yx.yRange[0]}`);
 
   await page.selectOption('#cmp-metric', 'in_sample');
   const thesis = await plotOf('in_sample');
@@ -528,8 +538,13 @@ test('the Compare view plots held-out path distance by default and switches to t
   assert.match(thesis.median, /^Median MSE \(thesis, in sample\)/);
   assert.equal(thesis.table, 'in_sample');
   assert.ok(thesis.traces.every((t) => t.err === null), 'the thesis figure has no error bars');
-  const inSample = cmp.cells.filter((c) => c.speed_mps === speed && c.avk?.mse_m2 > 0).sort((a, b) => a.dheading_deg - b.dheading_deg);
-  assert.deepEqual(thesis.traces.find((t) => t.name === 'AVK (CKT)').y, inSample.map((c) => c.avk.mse_m2));
+  assert.match(thesis.basis, /built from/);
+  assert.match(thesis.basis, /by construction/);
+  const inSample = cmp.cells.filter((c) => c.speed_mps === speed && typeof c.avk?.mse_m2 === 'number').sort((a, b) => a.dheading_deg - b.dheading_deg);
+  const thesisAvk = thesis.traces.find((t) => t.name === 'AVK (CKT)');
+  assert.deepEqual(thesisAvk.value, inSample.map((c) => c.avk.mse_m2));
+  assert.ok(thesisAvk.y.every((v) => v >= FLOOR), 'nothing drawn below the floor');
+  assert.ok(thesis.yRange[0] >= Math.log10(FLOOR) - 0.05 - 1e-9, `log axis from ${thesis.yRange[0]}`);
 
   // Back to the default for the screenshots that follow.
   await page.selectOption('#cmp-metric', 'path_m');
