@@ -74,3 +74,54 @@ export function scaleBarLength(maxM) {
   for (const m of [5, 2, 1]) if (m * p <= maxM) return m * p;
   return p;
 }
+
+/** Lines of constant latitude and longitude over a grid box {xMin, xMax, yMin, yMax} (metres),
+ *  at a round spacing in degrees that gives about 3 to 8 lines across: [{kind: 'lat'|'lon',
+ *  value, x: [], y: []}]. Each line is sampled so that it bends as it should far from the datum. */
+export function graticule(datum, box) {
+  const g = localGrid(datum);
+  const corners = [
+    g.toLatLon(box.xMin, box.yMin),
+    g.toLatLon(box.xMax, box.yMin),
+    g.toLatLon(box.xMin, box.yMax),
+    g.toLatLon(box.xMax, box.yMax),
+  ].filter(Boolean);
+  if (corners.length < 4) return { step: null, lines: [] };
+  const lat0 = Math.min(...corners.map((c) => c.lat));
+  const lat1 = Math.max(...corners.map((c) => c.lat));
+  const lon0 = Math.min(...corners.map((c) => c.lon));
+  const lon1 = Math.max(...corners.map((c) => c.lon));
+  const span = Math.max(lat1 - lat0, lon1 - lon0);
+  let step = null;
+  for (const e of [-5, -4, -3, -2, -1, 0]) {
+    for (const m of [1, 2, 5]) {
+      const s = m * 10 ** e;
+      if (!step && span / s <= 8) step = s;
+    }
+  }
+  if (!step) return { step: null, lines: [] };
+  const lines = [];
+  const N = 24;
+  const round = (v) => Number(v.toFixed(7));
+  for (let lat = Math.ceil(lat0 / step) * step; lat <= lat1 + 1e-12; lat += step) {
+    const x = [];
+    const y = [];
+    for (let k = 0; k <= N; k++) {
+      const p = g.toGrid(lat, lon0 + ((lon1 - lon0) * k) / N);
+      x.push(p.x);
+      y.push(p.y);
+    }
+    lines.push({ kind: 'lat', value: round(lat), x, y });
+  }
+  for (let lon = Math.ceil(lon0 / step) * step; lon <= lon1 + 1e-12; lon += step) {
+    const x = [];
+    const y = [];
+    for (let k = 0; k <= N; k++) {
+      const p = g.toGrid(lat0 + ((lat1 - lat0) * k) / N, lon);
+      x.push(p.x);
+      y.push(p.y);
+    }
+    lines.push({ kind: 'lon', value: round(lon), x, y });
+  }
+  return { step, lines };
+}

@@ -8,12 +8,13 @@
 // 72,000-point track at 10 Hz costs one plot update per nav message at most.
 
 import { state, on } from './state.js';
-import { C, METHOD_STYLE, baseLayout, equalAxes, draw, showEmpty, corridorTrace, vehicleMarker } from './plots.js';
+import { C, METHOD_STYLE, baseLayout, equalAxes, draw, showEmpty, corridorTrace, vehicleMarker, updateScaleBar } from './plots.js';
 import { regionRings, along } from './geometry.js';
 import { TrackDecimator } from './decimate.js';
 import { num, meanSd, headingDiff, el } from './format.js';
 import { deviationText } from './deviation.js';
 import { drawSeries } from './timeseries.js';
+import { localGrid, formatLatLon, scaleBarLength, graticule } from './geo.js';
 
 const RAY_M = 20; // length of the goal-heading and heading rays
 
@@ -227,6 +228,7 @@ function renderPlot() {
   }
 
   const traces = [
+    graticuleTrace(),
     { type: 'scatter', mode: 'lines', name: 'region', x: reg.region.x, y: reg.region.y, line: { color: C.black, width: 2 }, hoverinfo: 'skip' },
     { type: 'scatter', mode: 'lines', name: `buffer (${reg.bufferM ?? '–'} m)`, x: reg.buffer.x, y: reg.buffer.y, line: { color: C.grey, width: 1.5, dash: 'dash' }, hoverinfo: 'skip' },
     { type: 'scatter', mode: 'markers', name: 'return point', x: reg.ret.x, y: reg.ret.y, marker: { symbol: 'x-thin-open', size: 12, color: C.black, line: { width: 2 } } },
@@ -262,6 +264,7 @@ function renderPlot() {
     showlegend: true,
   };
   draw(plotEl, traces, layout, { scrollZoom: true });
+  updateScaleBar(plotEl, scaleBarLength);
   renderTurnPlot(turn, { turnX, turnY, goalRay, band, preds: [pred('avk'), pred('model'), pred('instantaneous')], nav, faded });
 }
 
@@ -281,6 +284,45 @@ function renderSeries() {
     return;
   }
   drawSeries(el, buf.window(from, to, SERIES_MAX_POINTS), { from, to, marks: state.turnMarks });
+}
+
+let gratCache = { key: undefined, trace: null };
+/** With a datum, a latitude/longitude grid over the operating region (one trace, lines broken by
+ *  NaN): where the grid lies on a chart. Without a datum or a region: nothing. */
+function graticuleTrace() {
+  const region = state.mission?.config?.operating_region?.polygon_m;
+  const key = state.datum && region?.length >= 3 ? JSON.stringify([state.datum, region]) : null;
+  if (key !== gratCache.key) {
+    let x = [];
+    let y = [];
+    let step = null;
+    if (key) {
+      const xs = region.map((p) => p[0]);
+      const ys = region.map((p) => p[1]);
+      const pad = 0.1 * Math.max(Math.max(...xs) - Math.min(...xs), Math.max(...ys) - Math.min(...ys));
+      const g = graticule(state.datum, { xMin: Math.min(...xs) - pad, xMax: Math.max(...xs) + pad, yMin: Math.min(...ys) - pad, yMax: Math.max(...ys) + pad });
+      step = g.step;
+      for (const l of g.lines) {
+        x.push(...l.x, NaN);
+        y.push(...l.y, NaN);
+      }
+    }
+    gratCache = {
+      key,
+      trace: {
+        type: 'scatter',
+        mode: 'lines',
+        name: step ? `lat/lon grid (${step}°)` : 'lat/lon grid',
+        x,
+        y,
+        line: { color: '#9aa3ad', width: 0.8, dash: 'dot' },
+        hoverinfo: 'skip',
+        visible: x.length ? true : 'legendonly',
+        showlegend: x.length > 0,
+      },
+    };
+  }
+  return gratCache.trace;
 }
 
 /** "0.20 ± 0.01 m/s toward 182 ± 3°": the station's estimate of the current (issue 17). */
@@ -386,6 +428,16 @@ function text(id, v) {
   if (e && e.textContent !== v) e.textContent = v;
 }
 
+let gridOf = { datum: null, grid: null };
+/** The vehicle's latitude and longitude: the grid point through the station's datum
+ *  (`avk serve --datum`); without a datum the grid is all there is. */
+export function latLonText(nav) {
+  if (!state.datum) return 'no datum (avk serve --datum LAT,LON)';
+  if (!nav || !Number.isFinite(nav.x_m)) return '–';
+  if (gridOf.datum !== state.datum) gridOf = { datum: state.datum, grid: localGrid(state.datum) };
+  return formatLatLon(gridOf.grid.toLatLon(nav.x_m, nav.y_m));
+}
+
 function renderReadout() {
   const nav = state.nav;
   const helm = state.helm;
@@ -397,6 +449,7 @@ function renderReadout() {
   text('live-dspeed', num(helm?.desired_speed_mps, 2));
   text('live-dheading', num(helm?.desired_heading_deg, 1));
   text('live-t', num(nav?.t_s, 1));
+  text('live-latlon', latLonText(nav));
   text('live-current', currentText(state.current));
   // Only a real vehicle (the M200 driver) reports a battery and a frontseat link.
   const fs = nav?.frontseat;

@@ -222,3 +222,33 @@ export function corridorTrace(corridor, extra = {}) {
     ...extra,
   };
 }
+
+/** A scale bar over an equal-axes plot (metres): a round length (1, 2 or 5 × 10^k m) about a
+ *  fifth of the plot's width, bottom left of the plotting area, kept right as the operator zooms.
+ *  Drawn as HTML over the plot, not in the figure: it must not move with the data. */
+export function updateScaleBar(el, lengthFor) {
+  const xa = el._fullLayout?.xaxis;
+  if (!xa || !xa.range || !(xa._length > 0)) return;
+  let bar = el.parentElement.querySelector('.scale-bar');
+  if (!bar) {
+    bar = document.createElement('div');
+    bar.className = 'scale-bar';
+    bar.setAttribute('aria-hidden', 'true');
+    bar.append(document.createElement('span'), document.createElement('span'));
+    bar.firstChild.className = 'scale-bar-line';
+    bar.lastChild.className = 'scale-bar-label';
+    el.parentElement.append(bar);
+    el.on?.('plotly_relayout', () => updateScaleBar(el, lengthFor));
+  }
+  const metresPerPx = Math.abs(xa.range[1] - xa.range[0]) / xa._length;
+  const m = lengthFor(metresPerPx * xa._length * 0.2);
+  if (!m) return;
+  const px = m / metresPerPx;
+  const ya = el._fullLayout.yaxis;
+  bar.style.left = `${xa._offset + 10}px`;
+  bar.style.top = `${el.offsetTop + ya._offset + ya._length - 30}px`;
+  bar.firstChild.style.width = `${px}px`;
+  bar.lastChild.textContent = m >= 1000 ? `${m / 1000} km` : `${m} m`;
+  bar.dataset.metres = String(m);
+  bar.dataset.px = String(px);
+}

@@ -7,7 +7,8 @@
 
 import { state, on } from './state.js';
 import { getJson } from './api.js';
-import { C, METHOD_STYLE, baseLayout, equalAxes, draw, showEmpty, corridorTrace, vehicleMarker } from './plots.js';
+import { C, METHOD_STYLE, baseLayout, equalAxes, draw, showEmpty, corridorTrace, vehicleMarker, updateScaleBar } from './plots.js';
+import { scaleBarLength } from './geo.js';
 import { regionRings, along } from './geometry.js';
 import { el, num, headingDiff, wrap360 } from './format.js';
 import { SeriesBuffer, drawSeries } from './timeseries.js';
@@ -341,7 +342,7 @@ function renderTrack(p, turn) {
   const traces = [
     { type: 'scatter', mode: 'lines', name: 'region', x: r.region.x, y: r.region.y, line: { color: C.black, width: 2 }, hoverinfo: 'skip' },
     { type: 'scatter', mode: 'lines', name: `buffer (${r.bufferM ?? '–'} m)`, x: r.buffer.x, y: r.buffer.y, line: { color: C.grey, width: 1.5, dash: 'dash' }, hoverinfo: 'skip' },
-    { type: 'scatter', mode: 'lines', name: 'whole track', x: rec.whole.x, y: rec.whole.y, line: { color: C.grey, width: 1 }, opacity: 0.45, hoverinfo: 'skip' },
+    { type: 'scatter', mode: 'lines', name: 'whole track', x: rec.whole.x, y: rec.whole.y, line: { color: C.grey, width: 1.5 }, opacity: 0.6, hoverinfo: 'skip' },
     { type: 'scatter', mode: 'lines', name: 'track so far', x: past.x, y: past.y, line: { color: C.blue, width: 1.5 }, hoverinfo: 'skip' },
     corridorTrace(turn?.predictions?.avk?.corridor ?? null),
     { type: 'scatter', mode: 'lines', name: 'turn so far', x: turnX, y: turnY, line: { color: C.orange, width: 5 }, hoverinfo: 'skip' },
@@ -361,6 +362,7 @@ function renderTrack(p, turn) {
     },
   ];
   draw($('rp-plot'), traces, { ...baseLayout({ margin: { l: 56, r: 10, t: 40, b: 40 } }), ...equalAxes(), uirevision: rec.id, showlegend: true });
+  updateScaleBar($('rp-plot'), scaleBarLength);
 }
 
 let eventsKey = '';

@@ -36,6 +36,10 @@ async function doCatchUp() {
   const health = await getJson('/health');
   state.serverVersion = health.server_version;
   if (state.sessionId === null) state.sessionId = health.session_id;
+  // Where the grid lies on the earth (null without --datum); a new object only when it changed,
+  // so views that cache a grid by it keep theirs.
+  const d = health.datum ?? null;
+  if (JSON.stringify(d) !== JSON.stringify(state.datum)) state.datum = d;
   state.vehicleId = health.vehicle_id ?? null;
   const vid = state.vehicleId;
   if (vid) {
@@ -228,7 +232,7 @@ async function loadTrackHistory(id) {
   const t = [];
   const x = [];
   const y = [];
-  const rows = [];
+  const stored = [];
   let lastCount = 0;
   let lastAfter = after;
   for (;;) {
@@ -237,7 +241,7 @@ async function loadTrackHistory(id) {
       t.push(r.t_s);
       x.push(r.x_m);
       y.push(r.y_m);
-      rows.push(r);
+      stored.push(r);
     }
     lastCount = page.items.length;
     lastAfter = after;
@@ -253,7 +257,7 @@ async function loadTrackHistory(id) {
   const rows = (resume ? navCursor.rows : 0) + t.length;
   if (t.length && !state.testFeed) {
     mergeIntoTrack(t, x, y); // a test hook owns the track then
-    mergeStoredRows(state.series, rows);
+    mergeStoredRows(state.series, stored);
     emit('series');
   }
   navCursor = { missionId: id, after, epoch: tr.epoch, rows };

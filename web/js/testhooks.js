@@ -4,7 +4,7 @@
 
 import { state, on } from './state.js';
 import { applyNav, onMessage } from './sync.js';
-import { renderNow, renderTimes, deviationLog } from './live.js';
+import { renderNow, renderTimes, deviationLog, latLonText } from './live.js';
 import { replayState, seek as replaySeek, poseAt as replayPoseAt } from './replay.js';
 
 /** A lawn-mower survey at 1 m/s sampled at 10 Hz: long straight legs joined by half circles,
@@ -121,6 +121,9 @@ export function installTestHooks() {
     /** The event log as shown ({kind, level}) and the levels the hello gave each kind. */
     events: () => state.events.map((e) => ({ kind: e.kind, level: e.level })),
     eventLevels: () => Object.fromEntries(state.eventLevels),
+    nav: () => state.nav,
+    /** The latitude/longitude readout: as shown, as computed now for the newest nav, the datum. */
+    latLon: () => ({ shown: document.getElementById('live-latlon').textContent, text: latLonText(state.nav), nav: state.nav, datum: state.datum }),
     /** The turn Live draws: the one under way (running) or the last one (ended). */
     shownTurn: () => {
       const s = state.shownTurn;

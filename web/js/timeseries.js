@@ -151,9 +151,10 @@ export function drawSeries(el, w, { from, to, marks = [], cursor = null, xTitle 
   }
   if (cursor !== null) shapes.push({ type: 'line', xref: 'x', yref: 'paper', x0: cursor, x1: cursor, y0: 0, y1: 1, line: { color: C.black, width: 1.5 } });
   const layout = {
-    ...baseLayout({ margin: { l: 56, r: 10, t: 30, b: 40 } }),
+    ...baseLayout({ margin: { l: 56, r: 10, t: 30, b: 86 } }),
     showlegend: true,
-    legend: { orientation: 'h', x: 0, y: -0.12, yanchor: 'top', font: { size: 10 } },
+    // Below the axis title, not over it.
+    legend: { orientation: 'h', x: 0, y: -0.2, yanchor: 'top', font: { size: 11 } },
     xaxis: axis(xTitle, { range: [from, to], anchor: 'y3' }),
     yaxis: axis('heading (°)', { domain: [0.7, 1], range: [0, 360], dtick: 90 }),
     yaxis2: axis('speed (m/s)', { domain: [0.37, 0.63], rangemode: 'tozero' }),
