@@ -1,6 +1,6 @@
 // Hash routing (#live, #replay, #mission, #ckt, #compare, #model, #encounter, #export): the address names the view,
 // so views can be bookmarked and the back button works. The tabs are plain links (Tab and Enter
-// reach them); Alt+1…7 jump to a view from anywhere, and the arrow keys move along the tabs.
+// reach them); Alt+1…8 jump to a view from anywhere, and the arrow keys move along the tabs.
 
 import { resizeWithin } from './plots.js';
 

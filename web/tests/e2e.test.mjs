@@ -165,12 +165,12 @@ test('the page loads with no console errors, and every view opens', { timeout: s
   await page.waitForFunction(() => window.Plotly && document.querySelector('#live-plot .main-svg'), null, { timeout: slow(20000) });
   assert.ok(!page.url().includes('token='), `the token stays in the address bar: ${page.url()}`);
   assert.equal(await page.evaluate(() => sessionStorage.getItem('avk-token')), server.token);
-  for (const v of ['mission', 'ckt', 'compare', 'model', 'encounter', 'export', 'live']) {
+  for (const v of ['replay', 'mission', 'ckt', 'compare', 'model', 'encounter', 'export', 'live']) {
     await goView(v);
     await sleep(700);
   }
-  // Keyboard: the tabs are links in the tab order, and Alt+2 jumps to the Mission view.
-  await page.keyboard.press('Alt+2');
+  // Keyboard: the tabs are links in the tab order, and Alt+3 jumps to the Mission view (the third).
+  await page.keyboard.press('Alt+3');
   await page.waitForSelector('#view-mission:not([hidden])', { timeout: slow(5000) });
   await goView('live');
   await shot('01-load-live');
@@ -390,7 +390,8 @@ test('the Encounter view evaluates, flies the choice, and a dragged contact chan
   await page.click('#enc-simulate');
   await page.waitForFunction(() => /^Flown /.test(document.getElementById('enc-sim').textContent), null, { timeout: slow(20000) });
   assert.match(await page.textContent('#enc-sim'), /actual CPA \d+\.\d m, standoff 10\.0 m (kept|violated)/);
-  const flown = await page.evaluate(() => document.getElementById('enc-plot').data.find((t) => t.name === 'flown (simulator)').x.length);
+  // The plot is redrawn on the next animation frame after the text: wait for the track itself.
+  const flown = await until('the flown track drawn', () => page.evaluate(() => document.getElementById('enc-plot').data.find((t) => t.name === 'flown (simulator)').x.length), 20000);
   assert.ok(flown > 10, `the flown track has ${flown} points`);
   await shot('encounter');
 
