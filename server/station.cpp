@@ -21,6 +21,7 @@
 #include "server/api_errors.hpp"
 #include "server/api_params.hpp"
 #include "server/maneuver_requests.hpp"
+#include "server/map_tile_routes.hpp"
 #include "server/serialize.hpp"
 #include "server/vocabulary_json.hpp"
 #include "sim/sim_config.hpp"
@@ -532,6 +533,9 @@ void Station::add_routes() {
         app::model_headings(ctx, model, *mission, static_cast<std::size_t>(limit)), false,
         [](const app::ModelHeadings& h) { return json_response(model_headings_json(h)); });
   });
+
+  // --- the map background (avk serve --tiles) ---------------------------------------------
+  add_map_tile_routes(*this, options_.tiles, options_.datum);
 }
 
 }  // namespace avk::server

@@ -18,6 +18,7 @@
 #include <random>
 #include <string_view>
 
+#include "app/map_tiles.hpp"
 #include "server/cli/args.hpp"
 #include "server/cli/commands.hpp"
 #include "server/cli/m200_options.hpp"
@@ -150,6 +151,7 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
                 "token",
                 "threads",
                 "datum",
+                "tiles",
                 "pid",
                 "controller-hz",
                 "vehicle-id",
@@ -197,6 +199,17 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
   const double factor = realtime_factor_from(a);
   std::string user_token = a.get("token").value_or("");
   if (a.get("token")) check_user_token(user_token);
+  // The map background is opened (and checked) before anything is written.
+  std::shared_ptr<const app::MapTiles> tiles;
+  if (const auto path = a.get("tiles")) {
+    auto opened = app::open_map_tiles(*path);
+    if (!opened) {
+      std::string why = "--tiles: ";
+      why += opened.error().message;
+      throw UsageError(why);
+    }
+    tiles = *opened;
+  }
 
   // The default location is made only when it is used: a user without a home can still give
   // --db.
@@ -215,6 +228,7 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
 
   const double clock = store::Store(db_path).station_clock_end_s();
   so.datum = datum_from(a);
+  so.tiles = tiles;
   if (a.flag("sim")) {
     app::VehicleLoopOptions v;
     v.setup = sim_setup_from(a, io);
@@ -265,6 +279,12 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
          << ")\n"
          << "dashboard with control: http://" << host << ":" << http.port()
          << "/?token=" << so.token << std::endl;
+  if (tiles) {
+    const auto& t = tiles->info();
+    io.out << "map tiles: " << t.source << " " << *a.get("tiles") << " (" << t.format << ", zoom "
+           << t.min_zoom << "-" << t.max_zoom << ")"
+           << (so.datum ? "" : "; the dashboard draws them only with --datum") << std::endl;
+  }
   const bool loopback_only =
       !everywhere && (ho.bind_address.starts_with("127.") || ho.bind_address == "::1");
   if (!loopback_only)

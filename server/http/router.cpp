@@ -54,7 +54,7 @@ void Router::add(Route route) {
   for (const auto segment : segments(route.pattern))
     pattern.emplace_back(segment);
   patterns_.push_back(std::move(pattern));
-  if (route.method == "GET" && (route.access != Access::read || route.body_limit_bytes))
+  if (route.method == "GET" && (route.access == Access::control || route.body_limit_bytes))
     gets_are_open_reads_ = false;
   routes_.push_back(std::move(route));
 }
@@ -80,8 +80,11 @@ Router::Match Router::match(const ApiRequest& request) const {
 }
 
 bool Router::authorised(const ApiRequest& request, Access access) const {
-  if (access == Access::read && request.remote_is_loopback) return true;
-  return bearer_token_matches(request.authorization, token_);
+  if (access != Access::control && request.remote_is_loopback) return true;
+  if (bearer_token_matches(request.authorization, token_)) return true;
+  if (access != Access::image) return false;
+  const auto it = request.query.find("token");
+  return it != request.query.end() && bearer_token_matches("Bearer " + it->second, token_);
 }
 
 std::optional<ApiResponse> Router::refusal(const ApiRequest& request, Access access) const {

@@ -18,8 +18,10 @@
 namespace avk::server {
 
 // read: open on this machine (loopback), the token from anywhere else. control: the token
-// always, for anything that changes the station or commands the boat.
-enum class Access { read, control };
+// always, for anything that changes the station or commands the boat. image: a read that a page
+// makes with an <img> (map tiles), which cannot carry a header: the token may also come as
+// `?token=`, as on the stream's upgrade.
+enum class Access { read, control, image };
 
 using PathParams = std::map<std::string, std::string>;
 using RouteHandler = std::function<ApiResponse(const ApiRequest&, const PathParams&)>;

@@ -124,6 +124,36 @@ TEST(ServeOptions, AnAllowedOriginMustBeAnOriginAndNothingMore) {
   fs::remove(db.path() + ".token");
 }
 
+// The map background is checked before anything is opened or written: a path that is not a tile
+// folder or an MBTiles file stops the start, naming the option and the path.
+TEST(ServeOptions, TilesMustBeAFolderOfTilesOrAnMbtilesFile) {
+  avk::testing::TempDb db("avk_serve_tiles");
+  const std::string log = db.path() + ".log";
+  const fs::path dir = db.path() + ".dir";
+  fs::create_directories(dir / "empty");
+  std::ofstream(dir / "notes.mbtiles") << "not a database\n";
+  for (const fs::path& tiles : {dir / "missing", dir / "empty", dir / "notes.mbtiles"}) {
+    const auto o =
+        run_avk({"serve", "--db", db.path(), "--port", "0", "--tiles", tiles.string()}, log);
+    EXPECT_TRUE(o.exited) << tiles << ": the server started";
+    EXPECT_EQ(o.code, 2) << tiles << "\n" << o.log;
+    EXPECT_NE(o.log.find("--tiles"), std::string::npos) << o.log;
+    EXPECT_NE(o.log.find(tiles.string()), std::string::npos) << o.log;
+    EXPECT_FALSE(fs::exists(db.path() + ".token")) << "a refused start left its token file";
+  }
+  // A folder with a tile is taken, and the start says so.
+  fs::create_directories(dir / "tiles/3/2");
+  std::ofstream(dir / "tiles/3/2/5.png", std::ios::binary) << "\x89PNG\r\n\x1a\n";
+  const auto o =
+      run_avk({"serve", "--db", db.path(), "--port", "0", "--tiles", (dir / "tiles").string()}, log,
+              "map tiles:");
+  EXPECT_FALSE(o.exited) << o.log;
+  EXPECT_NE(o.log.find("map tiles: folder"), std::string::npos) << o.log;
+  EXPECT_NE(o.log.find("zoom 3-3"), std::string::npos) << o.log;
+  fs::remove_all(dir);
+  fs::remove(db.path() + ".token");
+}
+
 // Regression: an existing token file readable by others (0644) was used silently.
 TEST(ServeOptions, ATokenFileOthersCanReadIsRefused) {
   avk::testing::TempDb db("avk_serve_mode");
