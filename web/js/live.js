@@ -15,6 +15,7 @@ import { num, meanSd, headingDiff, el } from './format.js';
 import { deviationText } from './deviation.js';
 import { drawSeries } from './timeseries.js';
 import { localGrid, formatLatLon, scaleBarLength, graticule } from './geo.js';
+import { attachMap, mapImages } from './maptiles.js';
 
 const RAY_M = 20; // length of the goal-heading and heading rays
 
@@ -72,6 +73,7 @@ export function initLive() {
     request(true);
   });
   plotEl.parentElement.querySelector('.plot-buttons')?.prepend(fit);
+  attachMap(plotEl, () => request(true));
 }
 
 export function showLive(isVisible) {
@@ -262,6 +264,7 @@ function renderPlot() {
     ...equalAxes(),
     uirevision,
     showlegend: true,
+    images: mapImages(plotEl),
   };
   draw(plotEl, traces, layout, { scrollZoom: true });
   updateScaleBar(plotEl, scaleBarLength);

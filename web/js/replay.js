@@ -14,6 +14,7 @@ import { el, num, headingDiff, wrap360 } from './format.js';
 import { SeriesBuffer, drawSeries } from './timeseries.js';
 import { simplify } from './decimate.js';
 import { cktCovers, refreshMissions } from './sync.js';
+import { attachMap, mapImages } from './maptiles.js';
 
 const $ = (id) => document.getElementById(id);
 const NAV_PAGE = 10000;
@@ -40,6 +41,7 @@ export function initReplay() {
   $('rp-prev-turn').addEventListener('click', () => jumpTurn(-1));
   $('rp-next-turn').addEventListener('click', () => jumpTurn(1));
   on('missions', renderMissionChoice);
+  attachMap($('rp-plot'), () => request());
 }
 
 export function showReplay(isVisible) {
@@ -361,7 +363,7 @@ function renderTrack(p, turn) {
       hovertemplate: 'x %{x:.1f} m<br>y %{y:.1f} m<extra>vehicle</extra>',
     },
   ];
-  draw($('rp-plot'), traces, { ...baseLayout({ margin: { l: 56, r: 10, t: 40, b: 40 } }), ...equalAxes(), uirevision: rec.id, showlegend: true });
+  draw($('rp-plot'), traces, { ...baseLayout({ margin: { l: 56, r: 10, t: 40, b: 40 } }), ...equalAxes(), uirevision: rec.id, showlegend: true, images: mapImages($('rp-plot')) });
   updateScaleBar($('rp-plot'), scaleBarLength);
 }
 
