@@ -92,6 +92,7 @@ export const state = {
   events: [],            // the event log, newest last, bounded
   eventLevels: new Map(), // event kind -> 'info' | 'warning', from the stream's hello
   track: new TrackBuffer(TRACK_CAPACITY),
+  previousTrack: null,   // {missionId, x, y}: the track of the mission before, drawn faded (tracks.js)
   okTurns: 0,            // stored ok turns of the vehicle (0: the CKT and the comparison 404)
   testFeed: false,       // a ?test=1 hook feeds nav (the stream's nav is dropped meanwhile)
 };
