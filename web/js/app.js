@@ -16,6 +16,11 @@ import { initExport, showExport } from './export.js';
 import { initEncounter, showEncounter } from './encounter.js';
 import { initDeviation } from './deviation.js';
 import { installTestHooks } from './testhooks.js';
+import { initTheme } from './theme.js';
+import { initBanner } from './banner.js';
+import { initEventLog } from './eventlog.js';
+import { initAlarms } from './alarms.js';
+import { initKeys } from './keys.js';
 
 function renderBadge(link) {
   const b = document.getElementById('link-badge');
@@ -44,6 +49,7 @@ function main() {
   const params = new URLSearchParams(window.location.search);
   if (params.get('test') === '1') installTestHooks();
   initTokenBar();
+  initTheme(); // before anything is drawn: the plots take its colours
   for (const el of document.querySelectorAll('.plot')) framePlot(el);
   initLive();
   initReplay();
@@ -54,11 +60,15 @@ function main() {
   initExport();
   initEncounter();
   initDeviation();
+  initEventLog();
+  initBanner();
+  initAlarms();
   on('link', renderBadge);
   on('vehicle', renderVehicle);
   renderBadge(state.link);
 
   initRouter({ live: showLive, replay: showReplay, mission: showMission, ckt: showCkt, compare: showCompare, model: showModel, encounter: showEncounter, export: showExport });
+  initKeys();
 
   const stream = new Stream({
     onHello,

@@ -98,6 +98,12 @@ function cellAt(speed, dheading) {
   return table?.cells.find((c) => c.speed_mps === speed && c.dheading_deg === dheading) ?? null;
 }
 
+/** Colour-bar ticks for a count: whole numbers, about eight at most. */
+export function countTicks(z) {
+  const max = Math.max(1, ...z.flat().filter((v) => typeof v === 'number'));
+  return { tickmode: 'linear', tick0: 0, dtick: Math.max(1, Math.ceil(max / 8)), tickformat: 'd' };
+}
+
 function renderGrid() {
   if (!table) return;
   const metric = METRICS[$('ckt-metric').value];
@@ -123,7 +129,8 @@ function renderGrid() {
       texttemplate: '%{text}',
       colorscale: 'Viridis',
       zmin: $('ckt-metric').value === 'n' ? 0 : undefined,
-      colorbar: { title: { text: metric.label } },
+      // Turns are counted: integer ticks (a colour bar at 0.5-turn steps reads as nonsense).
+      colorbar: { title: { text: metric.label }, ...($('ckt-metric').value === 'n' ? countTicks(z) : {}) },
       hovertemplate: '%{y}, Δψ %{x}: %{text}<extra></extra>',
       xgap: 2,
       ygap: 2,
@@ -202,7 +209,7 @@ async function openCell(speed, dheading) {
     if (chosen?.speed !== speed || chosen?.dheading !== dheading) return; // another cell was chosen meanwhile
     const noCorridor = preds.avk && !preds.avk.corridor ? ` · no corridor (${cell.n_turns < 2 ? 'needs 2 turns' : 'none in the table'})` : '';
     $('ckt-cell-info').textContent =
-      `${cell.n_turns} turn${cell.n_turns === 1 ? '' : 's'} · advance ${meanSd(cell.advance_m, 2, ' m')} · transfer ${meanSd(cell.transfer_m, 2, ' m')} · AVK error ${typeof cell.avk_error_m2 === 'number' ? cell.avk_error_m2.toPrecision(3) + ' m²' : '– (needs 2 turns)'}${noCorridor}`;
+      `${cell.n_turns} turn${cell.n_turns === 1 ? '' : 's'} · advance ${meanSd(cell.advance_m, 2, ' m', cell.n_turns)} · transfer ${meanSd(cell.transfer_m, 2, ' m', cell.n_turns)} · AVK error ${typeof cell.avk_error_m2 === 'number' ? cell.avk_error_m2.toPrecision(3) + ' m²' : '– (needs 2 turns)'}${noCorridor}`;
     showShortOfGoal(preds.avk?.short_of_goal === true);
     // The corridor first, so the turns and the trajectories are drawn over it.
     const traces = [corridorTrace(preds.avk?.corridor)];

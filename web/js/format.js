@@ -4,9 +4,11 @@ export function num(v, digits = 1) {
   return typeof v === 'number' && Number.isFinite(v) ? v.toFixed(digits) : '–';
 }
 
-export function meanSd(ms, digits = 1, unit = '') {
+/** "12.3 ± 0.4 m"; just "12.3 m" for the mean of one value (n = 1, or an sd the station left out):
+ *  a spread of one value is no spread, and "± 0.0" would say it was measured to be nil. */
+export function meanSd(ms, digits = 1, unit = '', n = ms?.n) {
   if (!ms || typeof ms.mean !== 'number') return '–';
-  const sd = typeof ms.sd === 'number' ? ` ± ${ms.sd.toFixed(digits)}` : '';
+  const sd = typeof ms.sd === 'number' && n !== 1 ? ` ± ${ms.sd.toFixed(digits)}` : '';
   return `${ms.mean.toFixed(digits)}${sd}${unit}`;
 }
 

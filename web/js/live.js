@@ -16,6 +16,7 @@ import { deviationText } from './deviation.js';
 import { drawSeries } from './timeseries.js';
 import { localGrid, formatLatLon, scaleBarLength, graticule } from './geo.js';
 import { attachMap, mapImages } from './maptiles.js';
+import { renderEventLog } from './eventlog.js';
 
 const RAY_M = 20; // length of the goal-heading and heading rays
 
@@ -64,10 +65,11 @@ export function initLive() {
   on('recorded-turns', markPlot);
   on('restart', markPlot);
   on('nav-history', markPlot);
+  on('previous-track', markPlot);
   on('events', renderEvents);
   on('link', markText);
   // A "fit" control: double-click already resets the zoom in Plotly; this is the keyboard way.
-  const fit = el('button', { type: 'button', class: 'png', text: 'Fit view', 'aria-label': 'Fit the live plot to the track' });
+  const fit = el('button', { type: 'button', id: 'live-fit', class: 'png', text: 'Fit view', 'aria-label': 'Fit the live plot to the track' });
   fit.addEventListener('click', () => {
     uirevision++;
     request(true);
@@ -237,6 +239,20 @@ function renderPlot() {
     // Stored turns as a wide halo under the track: where the turns were, and the history (from
     // REST) of a mission that ran before the page was opened.
     { type: 'scatter', mode: 'lines', name: 'recorded turns', x: rec.x, y: rec.y, line: { color: C.sky, width: 6 }, opacity: 0.55, hoverinfo: 'skip', connectgaps: false },
+    // The previous mission's track, faded grey under this one's (a new mission started while the
+    // page was open: tracks.js).
+    {
+      type: 'scatter',
+      mode: 'lines',
+      name: state.previousTrack ? `mission ${state.previousTrack.missionId} track (previous)` : 'previous track',
+      x: state.previousTrack?.x ?? [],
+      y: state.previousTrack?.y ?? [],
+      line: { color: C.grey, width: 1.2 },
+      opacity: 0.45,
+      visible: state.previousTrack ? true : 'legendonly',
+      showlegend: Boolean(state.previousTrack),
+      hoverinfo: 'skip',
+    },
     // The track: its simplified older part (unchanged between updates) and the raw newest minute.
     { type: 'scatter', mode: 'lines', name: 'track', legendgroup: 'track', showlegend: false, x: trk.older.x, y: trk.older.y, line: { color: C.blue, width: 1.5 }, hoverinfo: 'skip' },
     { type: 'scatter', mode: 'lines', name: 'track', legendgroup: 'track', x: trk.tail.x, y: trk.tail.y, line: { color: C.blue, width: 1.5 }, hoverinfo: 'skip' },
@@ -485,13 +501,9 @@ function renderTurnPanel() {
       if (deviationLog.length > 200) deviationLog.shift();
     }
   } else {
-    // Between turns the commanded column shows the helm's desired values, the measured the nav.
-    text('turn-cmd-speed', num(state.helm?.desired_speed_mps, 2));
-    text('turn-cmd-dpsi', '–');
-    text('turn-cmd-goal', num(state.helm?.desired_heading_deg, 1));
-    text('turn-meas-speed', num(nav?.speed_mps, 2));
-    text('turn-meas-dpsi', '–');
-    text('turn-meas-heading', num(nav?.heading_deg, 1));
+    // Between turns (conditioning, containment, the return leg) nothing is a turn: the helm's
+    // desired values are in the Vehicle readout, not presented here as one (issue 19, defect 10).
+    for (const id of ['turn-cmd-speed', 'turn-cmd-dpsi', 'turn-cmd-goal', 'turn-meas-speed', 'turn-meas-dpsi', 'turn-meas-heading']) text(id, '–');
     text('turn-deviation', '–');
     text(
       'turn-status',
@@ -503,7 +515,7 @@ function renderTurnPanel() {
   const parts = [];
   if (state.conditioningSinceT !== null && nav) parts.push(`conditioning for ${num(nav.t_s - state.conditioningSinceT, 1)} s`);
   if (typeof last?.condition_set_time_s === 'number') parts.push(`last ${num(last.condition_set_time_s, 1)} s`);
-  if (state.mission?.condition_set_time_s) parts.push(`mission mean ${meanSd(state.mission.condition_set_time_s, 1, ' s')}`);
+  if (state.mission?.condition_set_time_s) parts.push(`mission mean ${meanSd(state.mission.condition_set_time_s, 1, ' s', state.mission.condition_set?.episodes?.set)}`);
   text('live-cst', parts.length ? parts.join(' · ') : '–');
 }
 
@@ -573,18 +585,5 @@ function renderProgress() {
 
 function renderEvents() {
   if (!visible) return;
-  const list = document.getElementById('event-log');
-  const items = state.events.slice(-200).reverse(); // newest first
-  list.replaceChildren(
-    ...items.map((e) =>
-      el(
-        'li',
-        { class: `lvl-${e.level}` },
-        el('span', { class: 't', text: e.t === null || e.t === undefined ? '' : `${num(e.t, 1)} s` }),
-        el('span', { class: 'kind', text: e.kind }),
-        el('span', { text: e.message + (e.suppressed ? ` (+${e.suppressed} suppressed)` : '') }),
-      ),
-    ),
-  );
-  if (items.length === 0) list.replaceChildren(el('li', { class: 'muted', text: 'No events yet.' }));
+  renderEventLog(document.getElementById('event-log')); // phrases, one entry per happening (eventlog.js)
 }

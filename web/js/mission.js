@@ -7,7 +7,8 @@ import { postJson, ApiError } from './api.js';
 import { EXAMPLES } from './examples.js';
 import { C, baseLayout, equalAxes, draw, showEmpty } from './plots.js';
 import { insetPolygon, ring } from './geometry.js';
-import { el, fillTable, setStatus, num } from './format.js';
+import { el, fillTable, setStatus } from './format.js';
+import { timeLabel, fmtElapsed } from './clock.js';
 import { loadMission, refreshMissions } from './sync.js';
 
 // id -> [JSON pointer, kind]. Kinds: list (numbers), number, int, text, select, points, point.
@@ -170,6 +171,37 @@ function fieldFor(pointer) {
   return best;
 }
 
+/** The words an operator reads for a field: its label without the typing hint in brackets
+ *  ("Speeds (m/s, comma separated)" -> "Speeds (m/s)"). */
+function fieldLabel(field) {
+  const label = field.querySelector('label')?.textContent ?? field.dataset.pointer;
+  return label.replace(/,\s*(comma separated|magnitudes)\)/, ')').replace(/\s*\(x east, y north in m; one "x, y" a line\)/, '').trim();
+}
+
+/** What the part of a pointer below its field names: "item 2" of a list, "vertex 3, y" of a
+ *  polygon, "x" of a point. */
+function partName(type, rest) {
+  const seg = rest.split('/').filter((p) => p !== '');
+  if (seg.length === 0) return '';
+  const idx = seg.map((p) => (/^\d+$/.test(p) ? Number(p) : p));
+  const coord = (k) => (k === 0 ? 'x' : k === 1 ? 'y' : `value ${k + 1}`);
+  if (type === 'points') return typeof idx[0] === 'number' ? `vertex ${idx[0] + 1}${typeof idx[1] === 'number' ? `, ${coord(idx[1])}` : ''}` : seg.join(' ');
+  if (type === 'point') return typeof idx[0] === 'number' ? coord(idx[0]) : seg.join(' ');
+  return typeof idx[0] === 'number' ? `item ${idx[0] + 1}` : seg.join(' ').replaceAll('_', ' ');
+}
+
+const TYPE_OF = Object.fromEntries(Object.values(FIELDS).map(([pointer, type]) => [pointer, type]));
+
+/** "Speeds (m/s) — item 1" for /turn_array/speeds_mps/0; a pointer with no field reads as its
+ *  words ("/operating_region" -> "operating region"). */
+export function pointerLabel(pointer) {
+  const field = fieldFor(pointer || '');
+  if (!field) return (pointer || '').split('/').filter(Boolean).join(' › ').replaceAll('_', ' ');
+  const p = field.dataset.pointer;
+  const part = partName(TYPE_OF[p], pointer.slice(p.length));
+  return part ? `${fieldLabel(field)} — ${part}` : fieldLabel(field);
+}
+
 export function showErrors(errors) {
   clearErrors();
   const general = [];
@@ -181,7 +213,8 @@ export function showErrors(errors) {
       continue;
     }
     const input = field.querySelector('input, select, textarea');
-    const msg = el('p', { class: 'field-error', id: `m-err-${i}`, 'data-field': e.field, text: `${e.field}: ${e.message}` });
+    // The field's label, not the JSON pointer (kept in data-field and the title for the file's writer).
+    const msg = el('p', { class: 'field-error', id: `m-err-${i}`, 'data-field': e.field, title: e.field, text: `${pointerLabel(e.field)}: ${e.message}` });
     field.append(msg);
     input.setAttribute('aria-invalid', 'true');
     input.setAttribute('aria-describedby', [input.getAttribute('aria-describedby'), msg.id].filter(Boolean).join(' '));
@@ -189,7 +222,7 @@ export function showErrors(errors) {
   }
   if (general.length) {
     $('m-general-errors').replaceChildren(
-      el('ul', {}, ...general.map((e) => el('li', { text: e.field ? `${e.field}: ${e.message}` : e.message }))),
+      el('ul', {}, ...general.map((e) => el('li', { title: e.field || undefined, text: e.field ? `${pointerLabel(e.field)}: ${e.message}` : e.message }))),
     );
   }
   first?.focus();
@@ -253,7 +286,8 @@ async function startMission(ev) {
   }
   clearErrors();
   setStatus(result, 'Starting…');
-  $('m-start').disabled = true;
+  starting = true;
+  updateStart();
   try {
     const r = await postJson(`/vehicles/${encodeURIComponent(state.vehicleId)}/missions`, body);
     setStatus(result, `Mission ${r.id} started.`, 'ok');
@@ -270,8 +304,30 @@ async function startMission(ev) {
       setStatus(result, e.message, 'error');
     }
   } finally {
-    $('m-start').disabled = false;
+    starting = false;
+    updateStart();
   }
+}
+
+let starting = false;
+
+/** The mission holding the vehicle (running or paused), if any: another cannot start. */
+function busyMission() {
+  const m = state.mission;
+  if (m && ['running', 'paused', 'created'].includes(m.status)) return m;
+  return null;
+}
+
+/** Start is off while a mission holds the vehicle (the server would answer 409), and says why. */
+function updateStart() {
+  const b = $('m-start');
+  const busy = busyMission();
+  b.disabled = starting || Boolean(busy);
+  b.title = busy
+    ? `Mission ${busy.id} “${busy.name}” is ${busy.status}: one mission at a time. Abort it, or wait for it to end.`
+    : starting
+      ? 'Starting…'
+      : 'Send the mission to the vehicle';
 }
 
 function targetMission() {
@@ -313,16 +369,25 @@ function renderControl() {
       { key: 'id', label: 'id' },
       { key: 'name', label: 'name' },
       { key: 'status', label: 'status' },
-      { key: 'started_s', label: 'start (s)', fmt: (v) => num(v, 0) },
-      { key: 'ended_s', label: 'end (s)', fmt: (v) => num(v, 0) },
-      { key: 'status_reason', label: 'reason' },
+      { key: 'started_s', label: 'started', get: (m) => timeCell(m.started_s, m) },
+      { key: 'ended_s', label: 'duration', get: (m) => (typeof m.started_s === 'number' && typeof m.ended_s === 'number' ? fmtElapsed(m.ended_s - m.started_s) : '–') },
+      { key: 'status_reason', label: 'reason', get: (m) => el('span', { class: 'reason', text: m.status_reason ?? '–' }) },
     ],
     missions,
     { rowClass: (m) => (m.id === cur?.id ? 'current' : undefined) },
   );
 }
 
+/** A station-clock time of a mission: local wall time when this session ran it, else its
+ *  created_utc; UTC, the station clock and the session's note on hover. */
+function timeCell(t, m) {
+  if (typeof t !== 'number') return '–';
+  const l = timeLabel(t, m);
+  return el('time', { title: l.title, text: l.wall ? l.text : `${(m.created_utc ?? '').replace('T', ' ').replace(/\.\d+Z$/, 'Z')}` || l.text });
+}
+
 function updateButtons() {
+  updateStart();
   const m = targetMission();
   const s = m?.status;
   $('m-pause').disabled = s !== 'running';

@@ -52,7 +52,7 @@ function fillSelect(select, options) {
 
 function renderHeadingPickers() {
   const models = [...state.models].sort((a, b) => b.id - a.id);
-  fillSelect($('model-h-model'), models.map((m) => [m.id, `${m.id} · ${m.form}, ${m.history} samples`]));
+  fillSelect($('model-h-model'), models.map((m) => [m.id, `${m.id} · ${m.form}, history ${historyText(m)}`]));
   const mine = state.missions.filter((m) => !state.vehicleId || m.vehicle_id === state.vehicleId).sort((a, b) => b.id - a.id);
   fillSelect($('model-h-mission'), mine.map((m) => [m.id, `${m.id} · ${m.name}`]));
   $('model-h-show').disabled = models.length === 0 || mine.length === 0;
@@ -94,7 +94,7 @@ async function showHeadings() {
       yaxis: axis('heading (°, unwrapped)'),
       showlegend: true,
     });
-    setStatus(out, `Model ${model} on mission ${mission}: ${n} samples in ${h.segments.length} segment(s) at ${num(1 / h.dt_s, 1)} Hz; predictions start after ${h.warmup_samples} samples of history.`, 'ok');
+    setStatus(out, `Model ${model} on mission ${mission}: ${n} samples in ${h.segments.length} segment(s) at ${num(1 / h.dt_s, 1)} Hz; predictions start after ${num(h.warmup_samples * h.dt_s, 1)} s (${h.warmup_samples} samples) of history.`, 'ok');
   } catch (e) {
     showEmpty(headingsPlot, e.message);
     setStatus(out, e.message, 'error');
@@ -113,6 +113,14 @@ export function showModel(isVisible) {
   }
 }
 
+/** A model's history in seconds, as the fit form asks for it, with its samples: "10.0 s (100 samples)". */
+export function historyText(m) {
+  const n = m?.history;
+  if (typeof n !== 'number') return '–';
+  const s = typeof m.rate_hz === 'number' && m.rate_hz > 0 ? n / m.rate_hz : null;
+  return s === null ? `${n} samples` : `${num(s, 1)} s (${n} samples)`;
+}
+
 function renderModels() {
   if (!visible) return;
   renderHeadingPickers();
@@ -122,7 +130,8 @@ function renderModels() {
     [
       { key: 'id', label: 'id' },
       { key: 'form', label: 'form' },
-      { key: 'history', label: 'history (samples)' },
+      // Asked for in seconds (the form), so shown in seconds, the samples beside them.
+      { key: 'history', label: 'history (s)', fmt: (v, m) => historyText(m) },
       { key: 'rate_hz', label: 'rate (Hz)', fmt: (v) => num(v, 1) },
       { key: 'refined', label: 'refined', fmt: (v) => (v ? 'yes' : 'no') },
       { key: 'ridge_lambda', label: 'ridge λ', fmt: (v) => (typeof v === 'number' ? v.toExponential(1) : '–') },

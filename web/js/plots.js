@@ -92,12 +92,43 @@ export function downloadPng(el) {
   });
 }
 
+// The plots' own colours, light or dark (theme.js): the page's background and ink, the grid.
+const PLOT_THEMES = {
+  light: { ink: '#1b1f24', bg: '#ffffff', grid: '#e3e7ee', zero: '#b9c0ca', black: '#000000' },
+  dark: { ink: '#d8dee6', bg: '#1b2129', grid: '#333c48', zero: '#566273', black: '#e8ecf1' },
+};
+let plotTheme = PLOT_THEMES.light;
+
+/** Switches the plots to a theme: new figures take its colours, drawn ones are relaid out, and
+ *  what is drawn in "black" (the region, AVK) becomes the theme's ink so it stays visible. */
+export function applyPlotTheme(name) {
+  plotTheme = PLOT_THEMES[name] ?? PLOT_THEMES.light;
+  const before = C.black;
+  C.black = plotTheme.black;
+  METHOD_STYLE.avk.color = plotTheme.black;
+  const i = SERIES.indexOf(before);
+  if (i >= 0) SERIES[i] = plotTheme.black;
+  if (!window.Plotly) return;
+  for (const p of plots.values()) {
+    const fl = p.el._fullLayout;
+    if (!p.drawn || !fl) continue;
+    const update = { paper_bgcolor: plotTheme.bg, plot_bgcolor: plotTheme.bg, 'font.color': plotTheme.ink };
+    for (const k of Object.keys(fl)) {
+      if (/^[xy]axis\d*$/.test(k)) {
+        update[`${k}.gridcolor`] = plotTheme.grid;
+        update[`${k}.zerolinecolor`] = plotTheme.zero;
+      }
+    }
+    window.Plotly.relayout(p.el, update).catch(() => {});
+  }
+}
+
 export function baseLayout(extra = {}) {
   return {
     margin: { l: 58, r: 14, t: 34, b: 48 },
-    font: { family: 'system-ui, sans-serif', size: 12, color: '#1b1f24' },
-    paper_bgcolor: '#ffffff',
-    plot_bgcolor: '#ffffff',
+    font: { family: 'system-ui, sans-serif', size: 12, color: plotTheme.ink },
+    paper_bgcolor: plotTheme.bg,
+    plot_bgcolor: plotTheme.bg,
     // Above the plot: below it the legend collides with the x-axis title.
     legend: { orientation: 'h', x: 0, y: 1.01, yanchor: 'bottom' },
     hovermode: 'closest',
@@ -106,7 +137,7 @@ export function baseLayout(extra = {}) {
 }
 
 export function axis(title, extra = {}) {
-  return { title: { text: title }, gridcolor: '#e3e7ee', zerolinecolor: '#b9c0ca', automargin: true, ...extra };
+  return { title: { text: title }, gridcolor: plotTheme.grid, zerolinecolor: plotTheme.zero, automargin: true, ...extra };
 }
 
 /** Metres on both axes, one metre the same length on each (trajectories are never distorted). */

@@ -37,6 +37,13 @@ function activate() {
   requestAnimationFrame(() => resizeWithin(document.getElementById(`view-${next}`)));
 }
 
+/** Draws the view on screen again (the theme changed: its plots take the new colours). */
+export function refreshView() {
+  if (!current) return;
+  handlers[current]?.(true);
+  requestAnimationFrame(() => resizeWithin(document.getElementById(`view-${current}`)));
+}
+
 export function initRouter(viewHandlers) {
   handlers = viewHandlers;
   window.addEventListener('hashchange', activate);

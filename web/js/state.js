@@ -99,6 +99,7 @@ export const state = {
   series: new SeriesBuffer(SERIES_CAPACITY), // heading, speed, their desired values, yaw rate
   turnMarks: [],         // [{t, label}] turn starts of the current mission, for the time series
   turnMarksMission: null, // the mission turnMarks belong to
+  previousTrack: null,   // {missionId, x, y}: the track of the mission before, drawn faded (tracks.js)
   okTurns: 0,            // stored ok turns of the vehicle (0: the CKT and the comparison 404)
   datum: null,           // {lat_deg, lon_deg} of avk serve --datum (GET /health), else null
   testFeed: false,       // a ?test=1 hook feeds nav (the stream's nav is dropped meanwhile)

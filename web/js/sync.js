@@ -7,6 +7,8 @@ import { getJson, getAllItems } from './api.js';
 import { headingDiff, wrap360 } from './format.js';
 import { simplify } from './decimate.js';
 import { mergeStoredRows } from './timeseries.js';
+import { setClockMapping } from './clock.js';
+import { retireTrack } from './tracks.js';
 
 const STALE_AFTER_MS = 2000;
 const MAX_RECORDED_TURNS = 60; // drawn as history in Live; older ones are in the CKT view
@@ -34,6 +36,8 @@ export function catchUp() {
 
 async function doCatchUp() {
   const health = await getJson('/health');
+  setClockMapping(health); // this session's station clock -> wall clock (clock.js)
+  emit('clock', health);
   state.serverVersion = health.server_version;
   if (state.sessionId === null) state.sessionId = health.session_id;
   // Where the grid lies on the earth (null without --datum); a new object only when it changed,
@@ -117,6 +121,8 @@ export async function loadMission(id, { force = false } = {}) {
     m.helm_mode = state.mission.helm_mode;
     m.live = state.mission.live;
   }
+  // Another mission than the one drawn: its track starts afresh, the last one is kept faded.
+  if (state.mission && state.mission.id !== id && !state.testFeed) retireTrack(state.mission.id, m.started_s);
   state.mission = m;
   emit('mission', m);
   setTurnMarks(m);

@@ -6,6 +6,9 @@ import { state, on } from './state.js';
 import { applyNav, onMessage } from './sync.js';
 import { renderNow, renderTimes, deviationLog, latLonText } from './live.js';
 import { replayState, seek as replaySeek, poseAt as replayPoseAt } from './replay.js';
+import { logEntries } from './eventlog.js';
+import { alarmsState } from './alarms.js';
+import { clockMapping } from './clock.js';
 
 /** A lawn-mower survey at 1 m/s sampled at 10 Hz: long straight legs joined by half circles,
  *  which is what two hours of turn collection looks like to the renderer. */
@@ -78,6 +81,11 @@ export function installTestHooks() {
     streamMessage(topic, data) {
       onMessage({ topic, seq: 0, t: state.nav?.t_s ?? 0, data });
     },
+    /** The vehicle's newest nav sample again through the stream's path, with `extra` fields (a
+     *  frontseat report): the track does not move. */
+    streamNav(extra) {
+      onMessage({ topic: 'nav', seq: 0, t: state.nav?.t_s ?? 0, data: { ...state.nav, vehicle_id: state.vehicleId, ...extra } });
+    },
     startTurn(dheading = 90, speed = 1.0) {
       state.testFeed = true;
       state.track.clear();
@@ -142,5 +150,14 @@ export function installTestHooks() {
       return replayState();
     },
     replayPose: (t) => replayPoseAt(t),
+    /** The event log as drawn, oldest first: one entry per happening ({kind, severity, count, message}). */
+    eventLog: () => logEntries().map((e) => ({ kind: e.kind, severity: e.severity, count: e.count, message: e.message, t: e.t })),
+    /** Alarms: the unacknowledged ones, every kind raised, the beeps played, mute and audio state. */
+    alarms: () => alarmsState(),
+    /** The station clock -> wall clock mapping from GET /health ({utcMs, clockS, factor}). */
+    clock: () => clockMapping(),
+    /** The mission shown ({id, status, started_s, live}) and the previous mission's track. */
+    mission: () => (state.mission ? { id: state.mission.id, status: state.mission.status, started_s: state.mission.started_s, live: state.mission.live } : null),
+    previousTrack: () => (state.previousTrack ? { missionId: state.previousTrack.missionId, points: state.previousTrack.x.length } : null),
   };
 }

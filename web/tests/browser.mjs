@@ -1,6 +1,8 @@
-// Debian's Chromium driven by playwright-core for the browser tests that run their own station
-// (the big e2e file keeps its own set-up). A missing Chromium or web/node_modules is a failure, not
-// a skip: CI installs both (scripts/setup, scripts/web-deps).
+// Shared set-up of the browser tests that run their own station (the big e2e file keeps its own):
+// where things are, Debian's Chromium through playwright-core (no browser download), pages that
+// record console errors, view switching that waits for the view to be shown, and screenshots. A
+// missing Chromium or web/node_modules is a failure, not a skip: CI installs both (scripts/setup,
+// scripts/web-deps).
 
 import assert from 'node:assert/strict';
 import { existsSync, mkdirSync, copyFileSync } from 'node:fs';
@@ -15,39 +17,62 @@ export const repo = path.resolve(webDir, '..');
 export const AVK = path.resolve(process.env.AVK_BINARY || path.join(repo, 'build/server/avk'));
 export const SHOTS = path.resolve(process.env.AVK_SCREENSHOTS || path.join(repo, 'build/web-screenshots'));
 export const DOC_SHOTS = path.join(repo, 'docs/screenshots');
-const CHROMIUM = process.env.AVK_CHROMIUM || '/usr/bin/chromium';
+export const CHROMIUM = process.env.AVK_CHROMIUM || '/usr/bin/chromium';
 
-/** Launches the browser; resolves to {browser, context, newPage(viewport), errors}. errors
- *  collects console errors and page exceptions of every page it made. */
-export async function launchBrowser() {
+export function checkPrerequisites() {
   assert.ok(existsSync(AVK), `the avk binary is missing: ${AVK} (build it, or set AVK_BINARY)`);
   assert.ok(existsSync(CHROMIUM), `Chromium is missing: ${CHROMIUM} (scripts/setup installs Debian's chromium)`);
-  assert.ok(existsSync(path.join(webDir, 'node_modules/playwright-core')), 'web/node_modules is missing: run scripts/web-deps');
+  assert.ok(
+    existsSync(path.join(webDir, 'node_modules/playwright-core')) && existsSync(path.join(webDir, 'node_modules/plotly.js-dist-min/plotly.min.js')),
+    'web/node_modules is missing: run scripts/web-deps (npm ci in web/)',
+  );
   mkdirSync(SHOTS, { recursive: true });
+}
+
+/** The headless browser itself. */
+export async function launchChromium() {
   const { chromium } = await import('playwright-core');
-  const browser = await chromium.launch({
+  return chromium.launch({
     executablePath: CHROMIUM,
     headless: true,
     timeout: slow(30000),
     args: ['--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run', '--disable-background-networking', '--disable-component-update', '--disable-sync'],
   });
-  const context = await browser.newContext({ acceptDownloads: true });
-  const errors = [];
-  const newPage = async (viewport = { width: 1280, height: 800 }) => {
-    const p = await context.newPage();
-    await p.setViewportSize(viewport);
-    p.setDefaultTimeout(slow(15000));
-    p.on('console', (m) => {
-      if (m.type() === 'error') errors.push(m.text());
-    });
-    p.on('pageerror', (e) => errors.push(`${e.message}\n${e.stack ?? ''}`));
-    return p;
-  };
-  return { browser, context, newPage, errors };
 }
 
-/** Shows a view by its address and waits until it is the one shown. */
-export async function goView(page, view) {
+/** A page of `context` with the viewport, recording console errors and uncaught exceptions in
+ *  `errors` ({console: [], page: []}) tagged with errors.phase. */
+export async function openPage(context, viewport, errors) {
+  const p = await context.newPage();
+  await p.setViewportSize(viewport);
+  p.setDefaultTimeout(slow(15000));
+  p.on('console', (m) => {
+    if (m.type() === 'error') errors.console.push({ text: m.text(), phase: errors.phase, url: m.location()?.url });
+  });
+  p.on('pageerror', (e) => errors.page.push({ text: `${e.message}\n${e.stack ?? ''}`, phase: errors.phase }));
+  return p;
+}
+
+/** Checks the prerequisites and launches the browser; resolves to {browser, context,
+ *  newPage(viewport), errors}, errors a flat list of every page's console errors and exceptions. */
+export async function launchBrowser() {
+  checkPrerequisites();
+  const browser = await launchChromium();
+  const context = await browser.newContext({ acceptDownloads: true });
+  const recorded = { console: [], page: [], phase: '' };
+  const newPage = (viewport = { width: 1280, height: 800 }) => openPage(context, viewport, recorded);
+  return {
+    browser,
+    context,
+    newPage,
+    get errors() {
+      return [...recorded.console.map((e) => e.text), ...recorded.page.map((e) => e.text)];
+    },
+  };
+}
+
+/** Sets the address's view and checks it is shown, again until it is. */
+export async function showView(page, view) {
   await until(
     `the ${view} view`,
     () =>
@@ -60,6 +85,7 @@ export async function goView(page, view) {
     100,
   );
 }
+export const goView = showView;
 
 /** A full-page screenshot into SHOTS; copied to docs/screenshots with AVK_UPDATE_DOC_SCREENSHOTS=1
  *  (a test run never leaves the checkout modified otherwise). */

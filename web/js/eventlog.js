@@ -1,0 +1,212 @@
+// The event log as an operator reads it (issue 19, defect 6): a phrase for each kind instead of
+// its internal name, one entry per happening, an entry per finished turn with its advance and
+// transfer, and a severity shown by a coloured border, a word and an icon, not a character alone.
+//
+// One happening reaches the page several ways: the stored event (REST) and the stream's `status`
+// message of the same event; a mission's stop as its own event (`aborted`) and as the state change
+// (`mission_aborted`), followed by the mission leaving the vehicle (`mission_detached`); the turn
+// under way aborted by that same stop. They are merged here, where the log is drawn: state.events
+// stays what the station sent.
+
+import { state, on, emit } from './state.js';
+import { el, num } from './format.js';
+import { timeLabel } from './clock.js';
+import { alarmEntries } from './alarms.js';
+
+/** kind → what an operator reads. A kind not listed reads as its name with spaces. */
+export const PHRASES = {
+  link: 'Navigation link',
+  condition_set_timeout: 'Conditions not set in time',
+  containment: 'Containment: heading back inside',
+  turn_rejected: 'Turn rejected',
+  turn_given_up: 'Cell given up',
+  turn_aborted: 'Turn aborted',
+  turn_finished: 'Turn finished',
+  excitation: 'Excitation started',
+  returning: 'Returning to the return point',
+  pause: 'Mission paused',
+  resume: 'Mission resumed',
+  halted: 'Mission halted',
+  aborted: 'Mission aborted',
+  interrupted: 'Mission interrupted',
+  mission_attached: 'Mission started on the vehicle',
+  mission_detached: 'Mission left the vehicle',
+  mission_running: 'Mission running',
+  mission_paused: 'Mission paused',
+  mission_interrupted: 'Mission interrupted',
+  mission_aborted: 'Mission aborted',
+  mission_halted: 'Mission halted',
+  mission_done: 'Mission done',
+  station: 'Station',
+  alarm: 'Alarm',
+};
+
+export function phrase(kind, message = '') {
+  if (kind === 'link') return /^navigation is back/.test(message) ? 'Navigation back' : 'Navigation lost';
+  return PHRASES[kind] ?? String(kind ?? 'event').replaceAll('_', ' ');
+}
+
+// The state change a stop or pause is also logged as: one happening, two kinds.
+const SAME_AS = { mission_aborted: 'aborted', mission_paused: 'pause', mission_halted: 'halted', mission_interrupted: 'interrupted', mission_running: 'resume' };
+const STOPS = new Set(['aborted', 'pause', 'halted', 'interrupted']);
+const ENDS = new Set(['aborted', 'halted', 'interrupted', 'mission_done']);
+// Severity as shown: the station names info and warning; a stop the operator did not ask for is an
+// error, an alarm is an alarm, a finished turn is good news.
+const ERRORS = new Set(['halted', 'interrupted']);
+
+export function severityOf(e) {
+  if (e.level === 'alarm' || e.kind === 'alarm') return 'alarm';
+  if (e.kind === 'turn_finished') return 'ok';
+  if (ERRORS.has(SAME_AS[e.kind] ?? e.kind)) return 'error';
+  return e.level === 'warning' ? 'warning' : 'info';
+}
+
+const SEVERITY_WORD = { info: 'info', ok: 'ok', warning: 'warning', error: 'error', alarm: 'ALARM' };
+const SEVERITY_ICON = { info: 'ℹ', ok: '✓', warning: '⚠', error: '✖', alarm: '‼' };
+
+// ---------------------------------------------------------------- finished turns
+
+let turnMission = null; // the mission whose turns are listed
+const turns = new Map(); // id (or 't<time>') -> {t, speed, dheading, advance, transfer}
+let lastTurnSeen = null;
+let lastTurnList = null;
+
+function addTurn(key, r) {
+  turns.set(key, r);
+}
+
+function turnsFromMission(m) {
+  if (!m || !Array.isArray(m.turn_list) || m.turn_list === lastTurnList) return false;
+  lastTurnList = m.turn_list;
+  if (turnMission !== m.id) {
+    turns.clear();
+    turnMission = m.id;
+  }
+  for (const r of m.turn_list) {
+    if (r.status !== 'ok') continue; // aborted and rejected turns are logged as events already
+    turns.delete(`t${r.end_time_s}`);
+    addTurn(r.id, { t: r.end_time_s, speed: r.speed_mps, dheading: r.goal_dheading_deg, advance: r.advance_m, transfer: r.transfer_m, logged: true });
+  }
+  return true;
+}
+
+function turnFromStream() {
+  const d = state.lastTurn;
+  if (!d || d === lastTurnSeen) return false;
+  lastTurnSeen = d;
+  if (d.status !== 'ok' || (d.mission_id && state.mission && d.mission_id !== state.mission.id)) return false;
+  if (turnMission !== d.mission_id) {
+    turns.clear();
+    turnMission = d.mission_id;
+  }
+  const key = d.id ?? `t${d.t}`;
+  if (turns.has(key)) return false;
+  addTurn(key, { t: d.t, speed: d.speed_mps, dheading: d.goal_dheading_deg, advance: d.advance_m, transfer: d.transfer_m });
+  return true;
+}
+
+const signed = (d) => (typeof d === 'number' ? `${d > 0 ? '+' : ''}${d.toFixed(0)}°` : '–');
+
+function turnEntries() {
+  if (state.mission && turnMission !== state.mission.id) return [];
+  const list = [...turns.values()].sort((a, b) => (a.t ?? 0) - (b.t ?? 0));
+  const planned = (state.mission?.cells ?? []).reduce((n, c) => n + (c.planned ?? 1), 0);
+  return list.map((r, i) => ({
+    kind: 'turn_finished',
+    level: 'info',
+    t: r.t,
+    logged: r.logged,
+    message: `turn ${i + 1}${planned ? `/${planned}` : ''}: ${num(r.speed, 2)} m/s, Δψ ${signed(r.dheading)}, advance ${num(r.advance, 1)} m, transfer ${num(r.transfer, 1)} m`,
+  }));
+}
+
+// ---------------------------------------------------------------- one entry per happening
+
+const sameT = (a, b, tol) => typeof a === 'number' && typeof b === 'number' && Math.abs(a - b) <= tol;
+
+/** The log as shown, oldest first: [{kind, canon, t, message, level, severity, count, notes}]. */
+export function logEntries(events = state.events, extra = [...turnEntries(), ...alarmEntries()]) {
+  // Events in arrival order; finished turns placed by time among them.
+  const all = [...events.map((e, i) => ({ ...e, order: i })), ...extra.map((e) => ({ ...e, order: Infinity }))];
+  let lastT = -Infinity;
+  for (const e of all) {
+    if (e.order !== Infinity) lastT = typeof e.t === 'number' ? e.t : lastT;
+    e.sortT = typeof e.t === 'number' ? e.t : lastT;
+  }
+  all.sort((a, b) => a.sortT - b.sortT || (a.order === Infinity) - (b.order === Infinity) || a.order - b.order);
+
+  const seen = new Set();
+  const out = [];
+  for (const e of all) {
+    const canon = SAME_AS[e.kind] ?? e.kind;
+    const key = `${canon}|${typeof e.t === 'number' ? e.t.toFixed(1) : ''}|${e.message ?? ''}`;
+    if (seen.has(key)) continue; // the same event again (stream and REST; event and state change)
+    seen.add(key);
+    // The mission leaving the vehicle right after its end, the turn under way aborted by a stop:
+    // parts of the happening already listed.
+    if (e.kind === 'mission_detached' && out.some((p) => ENDS.has(p.canon) && sameT(p.t, e.t, 1))) continue;
+    if (canon === 'turn_aborted' && out.some((p) => STOPS.has(p.canon) && sameT(p.t, e.t, 0.05))) continue;
+    if (STOPS.has(canon)) {
+      const turn = out.findLastIndex((p) => p.canon === 'turn_aborted' && sameT(p.t, e.t, 0.05));
+      if (turn >= 0) out.splice(turn, 1); // the stop is listed instead, the turn as its note
+    }
+    const prev = out.at(-1);
+    const entry = {
+      kind: e.kind,
+      canon,
+      t: e.t,
+      logged: Boolean(e.logged),
+      message: e.message ?? '',
+      level: e.level ?? 'info',
+      severity: severityOf(e),
+      suppressed: e.suppressed ?? 0,
+      count: 1,
+    };
+    // Identical repeats (a link flapping, a condition timeout per attempt): one line, ×n.
+    if (prev && prev.canon === canon && prev.message === entry.message) {
+      prev.count++;
+      prev.t = entry.t ?? prev.t;
+      prev.suppressed += entry.suppressed;
+      continue;
+    }
+    out.push(entry);
+  }
+  return out;
+}
+
+// ---------------------------------------------------------------- drawing
+
+/** Fills the event log list, newest first (live.js calls it when the log changes). */
+export function renderEventLog(list) {
+  const entries = logEntries().slice(-200).reverse();
+  if (entries.length === 0) {
+    list.replaceChildren(el('li', { class: 'muted', text: 'No events yet.' }));
+    return;
+  }
+  list.replaceChildren(
+    ...entries.map((e) => {
+      // Times of the mission shown (its elapsed time on hover, and no wall time for a mission of
+      // an earlier session); the station's own notes (a restart, an alarm) are of this session.
+      const time = timeLabel(e.t, e.kind === 'station' || e.kind === 'alarm' ? null : state.mission);
+      return el(
+        'li',
+        { class: `lvl-${e.level} sev-${e.severity}`, 'data-kind': e.kind, 'data-count': e.count },
+        el('span', { class: 'sev', title: `severity: ${SEVERITY_WORD[e.severity]}` }, el('span', { 'aria-hidden': 'true', text: `${SEVERITY_ICON[e.severity]} ` }), SEVERITY_WORD[e.severity]),
+        el('time', { class: 't', title: time.title, text: time.text }),
+        el('span', { class: 'kind', title: e.kind, text: phrase(e.kind, e.message) }),
+        e.count > 1 ? el('span', { class: 'count', title: `${e.count} times`, text: `×${e.count}` }) : null,
+        el('span', { class: 'msg', text: e.message + (e.suppressed ? ` (+${e.suppressed} suppressed)` : '') }),
+      );
+    }),
+  );
+}
+
+export function initEventLog() {
+  on('mission', (m) => {
+    if (turnsFromMission(m)) emit('events', state.events);
+  });
+  on('turn', () => {
+    if (turnFromStream()) emit('events', state.events);
+  });
+  on('clock', () => emit('events', state.events));
+}

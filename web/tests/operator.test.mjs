@@ -1,0 +1,501 @@
+// Browser tests of what an operator on the shore reads and does (issue 19, defects 5–10, alarms,
+// keyboard shortcuts, the dark theme): a real `avk serve --sim` at a low real-time factor (×10, so
+// a mission is seen running) and Debian's Chromium through playwright-core. Run with
+// `node --test web/tests/operator.test.mjs` (CTest: web_operator).
+//
+// Environment as e2e.test.mjs: AVK_BINARY, AVK_SCREENSHOTS, AVK_CHROMIUM, AVK_E2E_SLOW; with
+// AVK_UPDATE_DOC_SCREENSHOTS=1 the alarm screenshot is copied to docs/screenshots/.
+
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { copyFileSync, mkdirSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+import { pathToFileURL } from 'node:url';
+
+import { slow, sleep, until } from './wait.mjs';
+import { startAvkServer, stopAvkServer } from './avk_server.mjs';
+import { AVK, SHOTS, DOC_SHOTS, webDir, repo, checkPrerequisites, launchChromium, openPage, showView } from './browser.mjs';
+
+const FACTOR = '10';
+const tmp = mkdtempSync(path.join(tmpdir(), 'avk-web-operator-'));
+let server = null;
+let browser = null;
+let context = null;
+let page = null;
+const errors = { console: [], page: [], phase: 'load' };
+const TABLET = { width: 768, height: 1024 };
+const DESKTOP = { width: 1280, height: 800 };
+
+function startServer(port = 0) {
+  return startAvkServer(AVK, ['serve', '--db', path.join(tmp, 'station.db'), '--sim', '--realtime-factor', FACTOR, '--port', String(port), '--web', webDir]);
+}
+
+async function api(pathname, { method = 'GET', body } = {}) {
+  const res = await fetch(`${server.base}/api/v1${pathname}`, {
+    method,
+    headers: { Authorization: `Bearer ${server.token}`, ...(body ? { 'Content-Type': 'application/json' } : {}) },
+    body: body ? JSON.stringify(body) : undefined,
+    signal: AbortSignal.timeout(slow(10000)),
+  });
+  const text = await res.text();
+  assert.ok(res.ok, `${method} ${pathname}: ${res.status} ${text}`);
+  return text ? JSON.parse(text) : null;
+}
+
+async function shot(name) {
+  const file = path.join(SHOTS, `${name}.png`);
+  await page.screenshot({ path: file, fullPage: false, timeout: slow(20000) });
+  return file;
+}
+
+const hook = (name, ...args) => page.evaluate(([n, a]) => window.avkTest[n](...a), [name, args]);
+
+before(async () => {
+  mkdirSync(SHOTS, { recursive: true });
+  checkPrerequisites();
+  server = await startServer();
+  browser = await launchChromium();
+  context = await browser.newContext({ colorScheme: 'light' });
+  page = await openPage(context, TABLET, errors);
+  await page.goto(`${server.base}/?token=${server.token}&test=1#live`, { waitUntil: 'load', timeout: slow(20000) });
+  await page.waitForFunction(() => document.getElementById('link-badge')?.textContent === 'LIVE', null, { timeout: slow(20000) });
+  await page.waitForFunction(() => window.Plotly && document.querySelector('#live-plot .main-svg'), null, { timeout: slow(20000) });
+});
+
+after(async () => {
+  await Promise.race([browser?.close(), sleep(10000)]).catch(() => {});
+  await stopAvkServer(server).catch(() => {});
+  rmSync(tmp, { recursive: true, force: true });
+});
+
+process.on('exit', () => {
+  if (server && !server.exited) server.child.kill('SIGKILL');
+});
+
+// ---------------------------------------------------------------- the modules on their own
+
+test('the event log merges one happening into one entry, names kinds in words and counts repeats', async () => {
+  const { logEntries, phrase } = await import(pathToFileURL(path.join(webDir, 'js/eventlog.js')).href);
+  assert.equal(phrase('mission_detached'), 'Mission left the vehicle');
+  assert.equal(phrase('turn_aborted'), 'Turn aborted');
+  assert.equal(phrase('some_new_kind'), 'some new kind', 'an unknown kind reads as its name with spaces');
+  assert.equal(phrase('link', 'navigation STALE: all stop until it is back'), 'Navigation lost');
+  const reason = 'aborted by the operator';
+  const events = [
+    // A pause: the stored event, its stream status, and the state change.
+    { t: 10, kind: 'pause', level: 'info', message: 'paused by the operator', logged: true },
+    { t: 10, kind: 'pause', level: 'info', message: 'paused by the operator' },
+    { t: 10, kind: 'mission_paused', level: 'info', message: 'paused by the operator' },
+    // An abort: the turn under way, the stop, the state change, the mission leaving the vehicle.
+    { t: 20, kind: 'turn_aborted', level: 'warning', message: `1.0 m/s 40°: ${reason}; re-queued` },
+    { t: 20, kind: 'aborted', level: 'warning', message: reason },
+    { t: 20, kind: 'mission_aborted', level: 'info', message: reason },
+    { t: 20.2, kind: 'mission_detached', level: 'info', message: 'mission 1 aborted' },
+  ];
+  const log = logEntries(events, []);
+  assert.deepEqual(log.map((e) => e.canon), ['pause', 'aborted'], JSON.stringify(log));
+  assert.equal(log[1].severity, 'warning');
+  // The same condition again and again: one line, ×n.
+  const flapping = [1, 2, 3].map((t) => ({ t, kind: 'condition_set_timeout', level: 'warning', message: 'conditions not set in 120 s' }));
+  const collapsed = logEntries(flapping, []);
+  assert.equal(collapsed.length, 1);
+  assert.equal(collapsed[0].count, 3);
+  // A stop the operator did not ask for is an error; a finished turn is placed by its time.
+  const mixed = logEntries([{ t: 5, kind: 'returning', level: 'info', message: 'x' }, { t: 50, kind: 'halted', level: 'warning', message: 'left the region' }], [{ t: 30, kind: 'turn_finished', level: 'info', message: 'turn 1/4' }]);
+  assert.deepEqual(mixed.map((e) => [e.kind, e.severity]), [['returning', 'info'], ['turn_finished', 'ok'], ['halted', 'error']]);
+});
+
+test('the station clock maps to wall time by /health, and only for missions of this session', async () => {
+  const clock = await import(pathToFileURL(path.join(webDir, 'js/clock.js')).href);
+  const nowMs = Date.now();
+  clock.setClockMapping({ utc_ms: nowMs, clock_s: 1000, realtime_factor: 10 });
+  // 100 s of station clock before now at ×10 is 10 s of wall time before.
+  assert.equal(clock.wallMs(900), nowMs - 10_000);
+  assert.equal(clock.fmtElapsed(3725), '1:02:05');
+  assert.equal(clock.fmtElapsed(65), '01:05');
+  const created = new Date(nowMs - 20_000).toISOString();
+  assert.ok(clock.inSession({ started_s: 800, created_utc: created }), 'started 20 s ago by both clocks');
+  const old = { started_s: 800, created_utc: '2020-01-01T00:00:00.000Z' };
+  assert.ok(!clock.inSession(old), 'a mission of an earlier session');
+  assert.ok(!clock.inSession({ started_s: 1500, created_utc: created }), 'started after this session\'s now: another clock');
+  assert.ok(!clock.inSession({ started_s: 990, created_utc: new Date(nowMs - 5_000).toISOString() }), 'created 4 s before the time its start maps to: the station was down meanwhile');
+  const l = clock.timeLabel(860, old);
+  assert.equal(l.wall, false);
+  assert.equal(l.text, 'T+01:00', 'an earlier session: the time since the mission started');
+  assert.match(l.title, /station clock 860\.0 s/);
+  assert.match(l.title, /2020-01-01/);
+  const now = clock.timeLabel(1000, null);
+  assert.equal(now.wall, true);
+  assert.match(now.text, /^\d\d:\d\d:\d\d$/);
+  assert.match(now.title, /UTC · station clock 1000\.0 s/);
+  const { meanSd } = await import(pathToFileURL(path.join(webDir, 'js/format.js')).href);
+  assert.equal(meanSd({ mean: 2, sd: 0 }, 1, ' s', 1), '2.0 s', 'a mean of one value has no ± 0.0');
+  assert.equal(meanSd({ mean: 2, sd: 0.5 }, 1, ' s', 3), '2.0 ± 0.5 s');
+});
+
+// ---------------------------------------------------------------- the page
+
+test('Live shows wall-clock time with UTC and the station clock on hover (defect 5)', { timeout: slow(60000) }, async () => {
+  errors.phase = 'clock';
+  const mapping = await until('the clock mapping from /health', () => hook('clock'), 15000);
+  assert.equal(mapping.factor, Number(FACTOR));
+  const wall = await until('the wall-clock readout', async () => {
+    const w = await page.evaluate(() => ({ text: document.getElementById('live-wall').textContent, title: document.getElementById('live-wall').title }));
+    return /^\d\d:\d\d:\d\d$/.test(w.text) ? w : null;
+  }, 15000);
+  assert.match(wall.title, /\d{4}-\d\d-\d\d \d\d:\d\d:\d\d\.\d UTC · station clock \d+\.\d s/);
+  // The wall clock shown is the server's now, within a minute (the machine's clock and the
+  // server's are the same here; this is not a timing check, only that the mapping is not off by
+  // the station clock).
+  const shownUtc = Date.parse(wall.title.slice(0, 19).replace(' ', 'T') + 'Z');
+  assert.ok(Math.abs(shownUtc - Date.now()) < 60000, `${wall.title} vs ${new Date().toISOString()}`);
+  assert.match(await page.textContent('#live-t'), /^\d+\.\d$/, 'the station clock stays in the readout');
+});
+
+test('a bad mission names the field by its label, not a JSON pointer (defect 9)', { timeout: slow(60000) }, async () => {
+  errors.phase = 'bad-mission';
+  await showView(page, 'mission');
+  await page.fill('#m-name', 'bad');
+  await page.fill('#m-speeds', '99');
+  await page.fill('#m-polygon', '-100, -100\n100, -100');
+  await page.click('#m-start');
+  const speedErr = page.locator('.field[data-pointer="/turn_array/speeds_mps"] .field-error').first();
+  await speedErr.waitFor({ state: 'visible', timeout: slow(10000) });
+  const text = await speedErr.textContent();
+  assert.match(text, /^Speeds \(m\/s\) — item 1: must be in/);
+  assert.doesNotMatch(text, /\/turn_array/);
+  assert.equal(await speedErr.getAttribute('data-field'), '/turn_array/speeds_mps/0', 'the pointer is kept for the file writer');
+  const all = await page.locator('.field-error, #m-general-errors li').allTextContents();
+  assert.ok(all.length >= 2, JSON.stringify(all));
+  for (const t of all) assert.doesNotMatch(t, /^\//, `a message starts with a pointer: ${t}`);
+  await page.fill('#m-speeds', '1.0, fast');
+  await page.click('#m-start');
+  await page.waitForSelector('.field-error:has-text("Speeds (m/s) — item 2: “fast” is not a number")', { timeout: slow(5000) });
+});
+
+let missionA = null;
+const N_TURNS = 8;
+
+test('a running mission: the state banner above the fold on a tablet, Start disabled and why (defects 7, 9)', { timeout: slow(90000) }, async () => {
+  errors.phase = 'mission';
+  await showView(page, 'mission');
+  await page.fill('#m-name', 'operator-a');
+  await page.fill('#m-speeds', '1.0, 1.5');
+  await page.fill('#m-dheadings', '40, 90');
+  await page.fill('#m-repeats', '2');
+  await page.fill('#m-polygon', '-150, -150\n150, -150\n150, 150\n-150, 150');
+  await page.fill('#m-buffer', '25');
+  await page.fill('#m-return', '0, -70');
+  await page.click('#m-start');
+  await page.waitForFunction(() => /Mission \d+ started/.test(document.getElementById('m-result').textContent), null, { timeout: slow(15000) });
+  missionA = Number((await page.textContent('#m-result')).match(/Mission (\d+)/)[1]);
+  // Disabled while the request is under way, then because the mission holds the vehicle.
+  const title = await until('Start disabled while the mission runs, saying why', async () => {
+    const t = await page.getAttribute('#m-start', 'title');
+    return (await page.isDisabled('#m-start')) && /is (running|created)/.test(t) ? t : null;
+  }, 15000);
+  assert.match(title, new RegExp(`Mission ${missionA} “operator-a” is (running|created): one mission at a time`));
+
+  await showView(page, 'live');
+  const banner = await until('the running banner', () =>
+    page.evaluate(() => {
+      const b = document.getElementById('mission-banner');
+      return b.dataset.state === 'running' && /\d\d:\d\d/.test(document.getElementById('mb-elapsed').textContent)
+        ? { text: b.textContent, cls: b.className, rect: b.getBoundingClientRect().toJSON(), turns: document.getElementById('mb-turns').textContent }
+        : null;
+    }), 20000);
+  assert.match(banner.text, /RUNNING/);
+  assert.match(banner.text, new RegExp(`mission ${missionA} “operator-a”`));
+  assert.match(banner.turns, new RegExp(`^\\d+ of ${N_TURNS}$`));
+  assert.ok(banner.cls.includes('ms-running'));
+  assert.ok(banner.rect.top >= 0 && banner.rect.bottom <= TABLET.height, `the banner is above the fold: ${JSON.stringify(banner.rect)}`);
+  // Elapsed time runs with the station clock.
+  const e0 = await page.textContent('#mb-elapsed');
+  await until('the elapsed time to advance', async () => (await page.textContent('#mb-elapsed')) !== e0, 15000);
+  await shot('operator-running-tablet');
+});
+
+test('finished turns are listed with advance and transfer, times as local wall time (defects 5, 6)', { timeout: slow(120000) }, async () => {
+  errors.phase = 'mission';
+  await showView(page, 'live');
+  const li = await until('a finished turn in the event log', () =>
+    page.evaluate(() => {
+      const e = document.querySelector('#event-log li[data-kind="turn_finished"]');
+      return e ? { text: e.textContent, cls: e.className, time: e.querySelector('time')?.textContent, title: e.querySelector('time')?.title } : null;
+    }), 90000, 500);
+  assert.match(li.text, /Turn finished/);
+  assert.match(li.text, /turn \d\/8: \d\.\d\d m\/s, Δψ [+-]?\d+°, advance -?\d+\.\d m, transfer -?\d+\.\d m/);
+  // Numbered one way, newest first: k/8 … 1/8.
+  const numbers = await page.evaluate(() => [...document.querySelectorAll('#event-log li[data-kind="turn_finished"] .msg')].map((e) => Number(e.textContent.match(/^turn (\d+)\//)[1])));
+  assert.deepEqual(numbers, numbers.map((_, i) => numbers.length - i), JSON.stringify(numbers));
+  assert.ok(li.cls.includes('sev-ok'));
+  assert.match(li.time, /^\d\d:\d\d:\d\d$/);
+  assert.match(li.title, /UTC · station clock \d+\.\d s · mission T\+\d\d:\d\d/);
+});
+
+test('pause and abort are one entry each, with their severity in words (defect 6)', { timeout: slow(90000) }, async () => {
+  errors.phase = 'mission';
+  await api(`/missions/${missionA}/pause`, { method: 'POST' });
+  await until('the paused banner', () => page.evaluate(() => document.getElementById('mission-banner').dataset.state === 'paused'), 15000);
+  assert.match(await page.textContent('#mb-state'), /PAUSED/);
+  await until('the pause in the log', async () => (await hook('eventLog')).some((e) => e.kind === 'pause' || e.kind === 'mission_paused'), 10000);
+  await api(`/missions/${missionA}/resume`, { method: 'POST' });
+  await until('running again', () => page.evaluate(() => document.getElementById('mission-banner').dataset.state === 'running'), 15000);
+  await api(`/missions/${missionA}/abort`, { method: 'POST' });
+  await until('the aborted banner', () => page.evaluate(() => document.getElementById('mission-banner').dataset.state === 'aborted'), 15000);
+  // The stream's status messages, then the stored log read again: still one entry each.
+  await until('the abort in the log', async () => (await hook('eventLog')).some((e) => e.kind === 'aborted' || e.kind === 'mission_aborted'), 10000);
+  // The mission leaving the vehicle follows the abort on the stream.
+  await until('mission_detached from the stream', async () => (await hook('events')).some((e) => e.kind === 'mission_detached'), 15000);
+  const log = await hook('eventLog');
+  const count = (kinds) => log.filter((e) => kinds.includes(e.kind)).length;
+  assert.equal(count(['aborted', 'mission_aborted']), 1, JSON.stringify(log));
+  assert.equal(count(['mission_detached']), 0, `the mission leaving the vehicle is part of the abort: ${JSON.stringify(log)}`);
+  assert.equal(count(['pause', 'mission_paused']), 1, JSON.stringify(log));
+  const abortLi = await page.evaluate(() => {
+    const e = document.querySelector('#event-log li[data-kind="aborted"], #event-log li[data-kind="mission_aborted"]');
+    return { cls: e.className, sev: e.querySelector('.sev').textContent, kind: e.querySelector('.kind').textContent, border: getComputedStyle(e).borderLeftWidth };
+  });
+  assert.equal(abortLi.kind, 'Mission aborted');
+  assert.match(abortLi.sev, /warning/);
+  assert.ok(abortLi.cls.includes('sev-warning'));
+  assert.ok(parseFloat(abortLi.border) >= 5, `a coloured left border: ${abortLi.border}`);
+  for (const k of await page.locator('#event-log .kind').allTextContents()) assert.doesNotMatch(k, /_/, `an internal name in the log: ${k}`);
+  await until('Start enabled again', async () => !(await page.isDisabled('#m-start')), 15000);
+});
+
+let missionB = null;
+
+test("a new mission draws its own track; the previous one's is faded grey (defect 8)", { timeout: slow(90000) }, async () => {
+  errors.phase = 'mission';
+  const before = await page.evaluate(() => window.avkTest.trackLength());
+  assert.ok(before > 10, `mission ${missionA} left a track of ${before} points`);
+  const mission = JSON.parse(readFileSync(path.join(repo, 'examples/thesis-fig4-1.json'), 'utf8'));
+  missionB = (await api('/vehicles/sim-usim/missions', { method: 'POST', body: { ...mission, name: 'operator-b' } })).id;
+  await until('the new mission in Live', async () => (await hook('mission'))?.id === missionB, 15000);
+  const prev = await until('the previous track', () => hook('previousTrack'), 10000);
+  assert.equal(prev.missionId, missionA);
+  assert.ok(prev.points > 1);
+  const traces = await until('the previous track drawn', () =>
+    page.evaluate(() => {
+      const d = document.getElementById('live-plot').data ?? [];
+      const old = d.find((t) => /track \(previous\)$/.test(t.name));
+      const cur = d.filter((t) => t.name === 'track');
+      return old && old.x.length > 1 ? { old: { name: old.name, color: old.line.color, opacity: old.opacity, n: old.x.length }, cur: cur.map((t) => t.line.color) } : null;
+    }), 15000);
+  assert.match(traces.old.name, new RegExp(`mission ${missionA} track`));
+  assert.equal(traces.old.color, '#8a8f98', 'grey');
+  assert.ok(traces.old.opacity < 1, 'faded');
+  assert.ok(traces.cur.every((c) => c === '#0072B2'), `the new track in the track colour: ${traces.cur}`);
+  assert.ok(!traces.cur.includes(traces.old.color));
+  await shot('operator-new-mission');
+});
+
+test('between turns the turn table shows no commanded turn (defect 10)', { timeout: slow(90000) }, async () => {
+  errors.phase = 'mission';
+  await showView(page, 'live');
+  const seen = await until('a moment between turns with a desired heading', () =>
+    page.evaluate(() => {
+      const t = (id) => document.getElementById(id).textContent;
+      if (t('live-mode') === 'TURNING' || t('live-dheading') === '–' || !/No turn running/.test(t('turn-status'))) return null;
+      return { goal: t('turn-cmd-goal'), dpsi: t('turn-cmd-dpsi'), speed: t('turn-cmd-speed'), mode: t('live-mode'), desired: t('live-dheading') };
+    }), 30000, 100);
+  assert.deepEqual([seen.goal, seen.dpsi, seen.speed], ['–', '–', '–'], JSON.stringify(seen));
+});
+
+test('the Model view gives history in seconds; the CKT n colour bar has whole-number ticks (defect 10)', { timeout: slow(60000) }, async () => {
+  errors.phase = 'views';
+  const text = await page.evaluate(async () => (await import('/js/model.js')).historyText({ history: 100, rate_hz: 10 }));
+  assert.equal(text, '10.0 s (100 samples)');
+  await showView(page, 'model');
+  await page.waitForSelector('#models-table th', { timeout: slow(10000) });
+  const heads = await page.locator('#models-table th').allTextContents();
+  assert.ok(heads.includes('history (s)'), JSON.stringify(heads));
+  assert.equal(await page.textContent('label[for="model-history"]'), 'History (s)');
+  await until('a stored ok turn', async () => (await api('/turns?status=ok&limit=1')).items.length > 0, 60000, 500);
+  await showView(page, 'ckt');
+  await page.selectOption('#ckt-metric', 'n');
+  await page.click('#ckt-refresh');
+  const bar = await until('the heat map', () =>
+    page.evaluate(() => {
+      const t = document.getElementById('ckt-heatmap').data?.[0];
+      return t?.type === 'heatmap' ? t.colorbar : null;
+    }), 20000);
+  assert.equal(bar.tickformat, 'd');
+  assert.ok(Number.isInteger(bar.dtick) && bar.dtick >= 1, JSON.stringify(bar));
+});
+
+test('the missions table stays inside its panel at 1280×800 and 768×1024 (defect 9)', { timeout: slow(60000) }, async () => {
+  errors.phase = 'layout';
+  for (const vp of [DESKTOP, TABLET]) {
+    await page.setViewportSize(vp);
+    await showView(page, 'mission');
+    await page.waitForSelector('#missions-table tbody tr', { timeout: slow(10000) });
+    const m = await page.evaluate(() => {
+      const wrap = document.querySelector('#missions-table').closest('.table-wrap');
+      const panel = wrap.closest('.panel').getBoundingClientRect();
+      const w = wrap.getBoundingClientRect();
+      const wide = [...document.querySelectorAll('body *')]
+        .filter((e) => e.offsetParent !== null && e.getBoundingClientRect().right > window.innerWidth + 1)
+        .slice(0, 8)
+        .map((e) => `${e.tagName.toLowerCase()}#${e.id}.${e.className} ${Math.round(e.getBoundingClientRect().right)}`);
+      return { page: document.documentElement.scrollWidth - window.innerWidth, panelRight: panel.right, wrapRight: w.right, inner: window.innerWidth, scrolls: getComputedStyle(wrap).overflowX, over: wrap.scrollWidth - wrap.clientWidth, wide };
+    });
+    assert.ok(m.page <= 1, `${vp.width}: the page is ${m.page} px wider than the viewport: ${m.wide.join(', ')}`);
+    assert.ok(m.panelRight <= m.inner && m.wrapRight <= m.panelRight + 0.5, `${vp.width}: ${JSON.stringify(m)}`);
+    assert.ok(m.over <= 0 || m.scrolls === 'auto', `${vp.width}: a wider table scrolls inside its panel: ${JSON.stringify(m)}`);
+    const started = await page.locator('#missions-table tbody tr time').first().getAttribute('title');
+    assert.match(started, /UTC · station clock/, 'the start in wall-clock time, UTC and station clock on hover');
+  }
+  await page.setViewportSize(TABLET);
+});
+
+test('alarms: shown until acknowledged, beeping unless muted, listed in the event log', { timeout: slow(60000) }, async () => {
+  errors.phase = 'alarms';
+  await showView(page, 'live');
+  // The running mission may have raised a real containment alarm by now: start from none.
+  await page.evaluate(() => document.getElementById('alarm-ack').click());
+  const before = (await hook('alarms')).raised.length;
+  const alarmsInLog = await page.locator('#event-log li.sev-alarm').count();
+  await page.click('#mb-state'); // a user gesture: the browser lets the page play sound from now on
+  await page.evaluate(() => window.avkTest.streamMessage('status', { kind: 'containment', level: 'warning', message: 'in the buffer at (120.0, 3.0) m: heading for the interior' }));
+  await page.waitForSelector('#alarm-bar:not([hidden])', { timeout: slow(5000) });
+  assert.match(await page.textContent('#alarm-bar'), /Containment/);
+  const a = await until('a beep', async () => {
+    const s = await hook('alarms');
+    return s.beeps > 0 ? s : null;
+  }, 10000);
+  assert.ok(a.active.some((x) => x.kind === 'containment'), JSON.stringify(a));
+  await page.waitForSelector('#event-log li.sev-alarm', { timeout: slow(5000) });
+  assert.match(await page.textContent('#event-log li.sev-alarm'), /ALARM.*Containment: /);
+  await shot('alarm');
+  if (process.env.AVK_UPDATE_DOC_SCREENSHOTS === '1') {
+    mkdirSync(DOC_SHOTS, { recursive: true });
+    copyFileSync(path.join(SHOTS, 'alarm.png'), path.join(DOC_SHOTS, 'alarm.png'));
+  }
+  // The alarm stays: another message of the kind does not add a second one, and it needs the
+  // acknowledgement (a: the keyboard).
+  await page.keyboard.press('a');
+  await page.waitForSelector('#alarm-bar[hidden]', { state: 'attached', timeout: slow(5000) });
+
+  // Muted: an alarm is shown and logged, and makes no sound.
+  await page.keyboard.press('m');
+  assert.equal(await page.getAttribute('#mute-toggle', 'aria-pressed'), 'true');
+  const beeps = (await hook('alarms')).beeps;
+  // The frontseat's failsafe, from the vehicle's nav.
+  await page.evaluate(() => window.avkTest.streamNav({ frontseat: { battery_v: 12.1, failsafe: 'no_command', bad_lines: 0, disconnects: 0 } }));
+  await page.waitForSelector('#alarm-bar:not([hidden]) li[data-kind="failsafe"]', { timeout: slow(5000) });
+  assert.match(await page.textContent('#alarm-bar'), /Frontseat failsafe.*no_command/);
+  // A mission halted, as the stream says it.
+  await page.evaluate(() => window.avkTest.streamMessage('status', { kind: 'mission_halted', level: 'info', message: 'left the operating region' }));
+  await page.waitForSelector('#alarm-bar li[data-kind="halted"]', { timeout: slow(5000) });
+  assert.equal((await hook('alarms')).beeps, beeps, 'no sound while muted');
+  await page.click('#alarm-ack');
+  await page.waitForSelector('#alarm-bar[hidden]', { state: 'attached', timeout: slow(5000) });
+  const raised = (await hook('alarms')).raised.slice(before);
+  for (const k of ['containment', 'failsafe', 'halted']) assert.ok(raised.includes(k), `${k} raised: ${raised}`);
+  assert.ok((await page.locator('#event-log li.sev-alarm').count()) >= alarmsInLog + 3, 'each alarm is in the event log');
+  await page.keyboard.press('m');
+  assert.equal(await page.getAttribute('#mute-toggle', 'aria-pressed'), 'false');
+});
+
+test('keyboard shortcuts: ? lists them, digits switch views, not while typing', { timeout: slow(60000) }, async () => {
+  errors.phase = 'keys';
+  await showView(page, 'live');
+  await page.evaluate(() => document.activeElement?.blur());
+  await page.keyboard.press('?');
+  await page.waitForSelector('#help-overlay:not([hidden])', { timeout: slow(5000) });
+  const keys = await page.locator('#help-keys dt').allTextContents();
+  for (const k of ['1 … 8', 'f', 'a', 't', '?', 'Esc']) assert.ok(keys.includes(k), `${k} in ${JSON.stringify(keys)}`);
+  await page.keyboard.press('Escape');
+  await page.waitForSelector('#help-overlay[hidden]', { state: 'attached', timeout: slow(5000) });
+  await page.keyboard.press('3');
+  await page.waitForSelector('#view-mission:not([hidden])', { timeout: slow(5000) });
+  await page.focus('#m-name');
+  await page.keyboard.press('3');
+  assert.ok(await page.isVisible('#view-mission'), 'typing a digit in a field does not switch the view');
+  assert.match(await page.inputValue('#m-name'), /3$/);
+  await page.evaluate(() => document.activeElement?.blur());
+  await page.keyboard.press('1');
+  await page.waitForSelector('#view-live:not([hidden])', { timeout: slow(5000) });
+  await page.keyboard.press('f'); // fit: the plot is redrawn with a new uirevision
+  await until('the fitted plot', () => page.evaluate(() => document.getElementById('live-plot').layout?.uirevision > 1), 5000);
+});
+
+test('the dark theme: toggled by button or t, remembered, the plots follow, the system preference by default', { timeout: slow(60000) }, async () => {
+  errors.phase = 'theme';
+  await showView(page, 'live');
+  assert.equal(await page.evaluate(() => document.documentElement.dataset.theme), 'light');
+  await page.evaluate(() => document.activeElement?.blur());
+  await page.keyboard.press('t');
+  assert.equal(await page.evaluate(() => document.documentElement.dataset.theme), 'dark');
+  const dark = await until('the plot in dark colours', () =>
+    page.evaluate(() => {
+      const l = document.getElementById('live-plot')._fullLayout;
+      const bg = getComputedStyle(document.body).backgroundColor;
+      return l && l.paper_bgcolor !== '#ffffff' && l.paper_bgcolor !== 'rgb(255, 255, 255)' ? { paper: l.paper_bgcolor, body: bg, region: document.getElementById('live-plot').data.find((t) => t.name === 'region').line.color } : null;
+    }), 10000);
+  assert.notEqual(dark.body, 'rgb(246, 247, 249)');
+  assert.notEqual(dark.region, '#000000', 'what is black on white is light on dark');
+  await shot('operator-dark');
+  await page.reload({ waitUntil: 'load' });
+  await page.waitForFunction(() => document.getElementById('link-badge')?.textContent === 'LIVE', null, { timeout: slow(20000) });
+  assert.equal(await page.evaluate(() => document.documentElement.dataset.theme), 'dark', 'remembered');
+  await page.click('#theme-toggle');
+  assert.equal(await page.evaluate(() => document.documentElement.dataset.theme), 'light');
+  assert.equal(await page.evaluate(() => localStorage.getItem('avk-theme')), 'light');
+  // A browser that prefers dark, with nothing chosen yet.
+  const ctx = await browser.newContext({ colorScheme: 'dark' });
+  try {
+    const p = await openPage(ctx, DESKTOP, errors);
+    await p.goto(`${server.base}/#live`, { waitUntil: 'load', timeout: slow(20000) });
+    await p.waitForFunction(() => document.documentElement.dataset.theme === 'dark', null, { timeout: slow(10000) });
+  } finally {
+    await ctx.close();
+  }
+});
+
+test('the link lost while a mission runs is an alarm; after a restart the older missions show elapsed time and created_utc (defects 5, alarms)', { timeout: slow(120000) }, async () => {
+  errors.phase = 'restart';
+  await showView(page, 'live');
+  await page.click('#mb-state');
+  // Mission B may have ended by now (at ×10 its 18 turns take minutes): then another one runs.
+  if ((await api(`/missions/${missionB}`)).status !== 'running') {
+    const mission = JSON.parse(readFileSync(path.join(repo, 'examples/thesis-fig4-1.json'), 'utf8'));
+    await api('/vehicles/sim-usim/missions', { method: 'POST', body: { ...mission, name: 'operator-c' } });
+  }
+  await until('a mission running in the banner', () => page.evaluate(() => document.getElementById('mission-banner').dataset.state === 'running'), 15000);
+  const port = server.port;
+  // The station gone without a word (a crash, the network): a station stopped in order interrupts
+  // its mission first, and the page says so instead.
+  const gone = new Promise((r) => server.child.once('exit', r));
+  server.child.kill('SIGKILL');
+  await gone;
+  await page.waitForSelector('#alarm-bar:not([hidden]) li[data-kind="link"]', { timeout: slow(20000) });
+  assert.match(await page.textContent('#alarm-bar'), /Link lost/);
+  await page.click('#alarm-ack');
+  server = await until('avk serve to bind its old port again', () => startServer(port), 30000, 1000);
+  await page.waitForFunction(() => document.getElementById('link-badge').textContent === 'LIVE', null, { timeout: slow(30000) });
+  // The mission was running when the station went away: interrupted.
+  await until('the interrupted banner', () => page.evaluate(() => document.getElementById('mission-banner').dataset.state === 'interrupted'), 30000);
+  await showView(page, 'mission');
+  const row = await until('mission A in the table', () =>
+    page.evaluate((id) => {
+      const tr = [...document.querySelectorAll('#missions-table tbody tr')].find((r) => r.cells[0].textContent === String(id));
+      const t = tr?.querySelector('time');
+      return t ? { text: t.textContent, title: t.title } : null;
+    }, missionA), 15000);
+  const why = JSON.stringify({ clock: await hook('clock'), now: new Date().toISOString(), a: (await api('/missions')).find((m) => m.id === missionA) });
+  assert.match(row.text, /^\d{4}-\d\d-\d\d \d\d:\d\d:\d\dZ$/, `created_utc for a mission of an earlier session: ${row.text} ${why}`);
+  assert.match(row.title, /earlier server session/);
+  assert.match(row.title, /station clock \d+\.\d s/);
+});
+
+test('no unexpected console errors', () => {
+  const expected = (e) =>
+    (e.phase === 'bad-mission' && /status of 422/.test(e.text)) ||
+    (e.phase === 'restart' && /(ERR_CONNECTION_REFUSED|WebSocket connection|Failed to fetch|ERR_EMPTY_RESPONSE)/.test(e.text));
+  assert.deepEqual(errors.console.filter((e) => !expected(e)), [], 'unexpected console errors');
+  assert.deepEqual(errors.page, [], 'uncaught errors in the page');
+});
