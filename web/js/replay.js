@@ -13,6 +13,8 @@ import { regionRings, along } from './geometry.js';
 import { el, num, headingDiff, wrap360 } from './format.js';
 import { SeriesBuffer, drawSeries } from './timeseries.js';
 import { simplify } from './decimate.js';
+import { phrase } from './eventlog.js';
+import { timeLabel } from './clock.js';
 import { cktCovers, refreshMissions } from './sync.js';
 import { attachMap, mapImages } from './maptiles.js';
 
@@ -375,8 +377,19 @@ function renderEvents() {
   eventsKey = key;
   const list = $('rp-events');
   const items = shown.slice(-100).reverse();
+  // T+ mission time, the wall-clock time (when this server session ran it) on hover; the
+  // station's words for the kind, as in Live's log.
   list.replaceChildren(
-    ...items.map((e) => el('li', {}, el('span', { class: 't', text: `${num(e.t_s - rec.nav.t[0], 1)} s` }), el('span', { class: 'kind', text: e.kind }), el('span', { text: e.message }))),
+    ...items.map((e) => {
+      const when = timeLabel(e.t_s, rec.report);
+      return el(
+        'li',
+        { 'data-kind': e.kind },
+        el('span', { class: 't', text: `T+${num(e.t_s - rec.nav.t[0], 1)} s`, title: when.wall ? `${when.text} · ${when.title}` : when.title }),
+        el('span', { class: 'kind', text: phrase(e.kind, e.message) }),
+        el('span', { text: e.message }),
+      );
+    }),
   );
   if (!items.length) list.replaceChildren(el('li', { class: 'muted', text: 'No events yet at this moment.' }));
 }
