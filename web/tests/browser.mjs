@@ -5,11 +5,12 @@
 // scripts/web-deps).
 
 import assert from 'node:assert/strict';
-import { existsSync, mkdirSync, copyFileSync } from 'node:fs';
+import { existsSync, mkdirSync, copyFileSync, rmSync } from 'node:fs';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 
-import { slow, until } from './wait.mjs';
+import { slow, sleep, until } from './wait.mjs';
+import { stopAvkServer } from './avk_server.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 export const webDir = path.resolve(here, '..');
@@ -71,7 +72,23 @@ export async function launchBrowser() {
   };
 }
 
-/** Sets the address's view and checks it is shown, again until it is. */
+/** Closes the browser (bounded), stops the server and removes the test's folder, whatever
+ *  happened; and never leaves the server behind if the runner is interrupted. */
+export async function tearDown({ browser, server, dir }) {
+  await Promise.race([browser?.close(), sleep(10000)]).catch(() => {});
+  await stopAvkServer(server).catch(() => {});
+  if (dir) rmSync(dir, { recursive: true, force: true });
+}
+
+export function killServerOnExit(getServer) {
+  process.on('exit', () => {
+    const s = getServer();
+    if (s && !s.exited) s.child.kill('SIGKILL');
+  });
+}
+
+/** Sets the address's view and checks it is shown, again until it is: under load a selector
+ *  wait (which polls on animation frames) saw the view visible and still timed out. */
 export async function showView(page, view) {
   await until(
     `the ${view} view`,

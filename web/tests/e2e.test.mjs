@@ -15,6 +15,7 @@ import { fileURLToPath, pathToFileURL } from 'node:url';
 
 import { slow, sleep, until } from './wait.mjs';
 import { startAvkServer, stopAvkServer } from './avk_server.mjs';
+import { showView } from './browser.mjs';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const webDir = path.resolve(here, '..');
@@ -59,21 +60,7 @@ async function shot(name, p = page) {
   return file;
 }
 
-// Sets the address's view and checks it is shown, again until it is: under load the
-// selector wait (which polls on animation frames) saw the view visible and still timed out.
-async function goView(view) {
-  await until(
-    `the ${view} view`,
-    () =>
-      page.evaluate((v) => {
-        if (window.location.hash !== `#${v}`) window.location.hash = `#${v}`;
-        const el = document.getElementById(`view-${v}`);
-        return el !== null && !el.hidden;
-      }, view),
-    5000,
-    100,
-  );
-}
+const goView = (view) => showView(page, view);
 
 function runAvk(args, timeoutMs = 30000) {
   return new Promise((resolve) => {

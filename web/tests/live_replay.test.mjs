@@ -9,13 +9,13 @@
 
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { mkdtempSync, rmSync } from 'node:fs';
+import { mkdtempSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 
-import { slow, sleep, until } from './wait.mjs';
-import { startAvkServer, stopAvkServer } from './avk_server.mjs';
-import { AVK, webDir, launchBrowser, goView, screenshot } from './browser.mjs';
+import { slow, until } from './wait.mjs';
+import { startAvkServer } from './avk_server.mjs';
+import { AVK, webDir, launchBrowser, goView, screenshot, tearDown, killServerOnExit } from './browser.mjs';
 import { localGrid, formatLatLon } from '../js/geo.js';
 
 const DATUM = { lat_deg: 42.358456, lon_deg: -71.087589 };
@@ -54,15 +54,8 @@ before(async () => {
   missionId = (await api('/vehicles/sim-usim/missions', { method: 'POST', body: JSON.stringify(MISSION) })).id;
 });
 
-after(async () => {
-  await Promise.race([b?.browser.close(), sleep(10000)]).catch(() => {});
-  await stopAvkServer(server).catch(() => {});
-  rmSync(tmp, { recursive: true, force: true });
-});
-
-process.on('exit', () => {
-  if (server && !server.exited) server.child.kill('SIGKILL');
-});
+after(() => tearDown({ browser: b?.browser, server, dir: tmp }));
+killServerOnExit(() => server);
 
 test('the report names the turn under way, and a page opened mid-turn draws it with its predictions', { timeout: slow(240000) }, async () => {
   // A page is opened while a turn runs; if that turn ends before the page has read the station,

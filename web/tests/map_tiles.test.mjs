@@ -8,14 +8,14 @@
 
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { mkdirSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
+import { mkdirSync, mkdtempSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { deflateSync } from 'node:zlib';
 
-import { sleep, until } from './wait.mjs';
-import { startAvkServer, stopAvkServer } from './avk_server.mjs';
-import { AVK, webDir, launchBrowser, screenshot } from './browser.mjs';
+import { until } from './wait.mjs';
+import { startAvkServer } from './avk_server.mjs';
+import { AVK, webDir, launchBrowser, screenshot, tearDown, killServerOnExit } from './browser.mjs';
 import { localGrid } from '../js/geo.js';
 
 const DATUM = { lat_deg: 42.358456, lon_deg: -71.087589 };
@@ -201,15 +201,8 @@ before(async () => {
   });
 });
 
-after(async () => {
-  await Promise.race([b?.browser.close(), sleep(10000)]).catch(() => {});
-  await stopAvkServer(server).catch(() => {});
-  rmSync(tmp, { recursive: true, force: true });
-});
-
-process.on('exit', () => {
-  if (server && !server.exited) server.child.kill('SIGKILL');
-});
+after(() => tearDown({ browser: b?.browser, server, dir: tmp }));
+killServerOnExit(() => server);
 
 // ---------------------------------------------------------------- the test
 

@@ -8,14 +8,14 @@
 
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { copyFileSync, mkdirSync, mkdtempSync, readFileSync, rmSync } from 'node:fs';
+import { copyFileSync, mkdirSync, mkdtempSync, readFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
 
-import { slow, sleep, until } from './wait.mjs';
-import { startAvkServer, stopAvkServer } from './avk_server.mjs';
-import { AVK, SHOTS, DOC_SHOTS, webDir, repo, checkPrerequisites, launchChromium, openPage, showView } from './browser.mjs';
+import { slow, until } from './wait.mjs';
+import { startAvkServer } from './avk_server.mjs';
+import { AVK, SHOTS, DOC_SHOTS, webDir, repo, checkPrerequisites, launchChromium, openPage, showView, tearDown, killServerOnExit } from './browser.mjs';
 
 const FACTOR = '10';
 const tmp = mkdtempSync(path.join(tmpdir(), 'avk-web-operator-'));
@@ -63,15 +63,8 @@ before(async () => {
   await page.waitForFunction(() => window.Plotly && document.querySelector('#live-plot .main-svg'), null, { timeout: slow(20000) });
 });
 
-after(async () => {
-  await Promise.race([browser?.close(), sleep(10000)]).catch(() => {});
-  await stopAvkServer(server).catch(() => {});
-  rmSync(tmp, { recursive: true, force: true });
-});
-
-process.on('exit', () => {
-  if (server && !server.exited) server.child.kill('SIGKILL');
-});
+after(() => tearDown({ browser, server, dir: tmp }));
+killServerOnExit(() => server);
 
 // ---------------------------------------------------------------- the modules on their own
 
