@@ -89,6 +89,7 @@ async function measure(page) {
       };
       requestAnimationFrame(loop);
       window.avkTest.renderTimes(true);
+      window.avkTest.seriesTimes(true);
       let updates = 0;
       const timer = setInterval(() => {
         window.avkTest.pushNav();
@@ -97,7 +98,7 @@ async function measure(page) {
       await new Promise((r) => setTimeout(r, seconds * 1000));
       clearInterval(timer);
       running = false;
-      return { frames, updates, renders: window.avkTest.renderTimes() };
+      return { frames, updates, renders: window.avkTest.renderTimes(), series: window.avkTest.seriesTimes() };
     },
     { seconds: SECONDS, hz: HZ },
   );
@@ -123,15 +124,19 @@ async function main() {
     await page.waitForFunction(() => window.avkTest && document.querySelector('#live-plot .main-svg'), null, { timeout: 20000 });
     const loaded = await page.evaluate((n) => window.avkTest.loadTrack(n), POINTS);
     if (loaded !== POINTS) throw new Error(`loaded ${loaded} points, not ${POINTS}`);
+    // The widest time-series window: 30 minutes, 18,000 samples a trace before thinning.
+    await page.selectOption('#ts-window', '1800');
     await sleep(1500);
-    console.log(`Live view, ${POINTS}-point track, navigation at ${HZ} Hz for ${SECONDS} s, ${RUNS} run(s); Chromium ${browser.version()}`);
+    console.log(`Live view, ${POINTS}-point track and a 30-minute time series, navigation at ${HZ} Hz for ${SECONDS} s, ${RUNS} run(s); Chromium ${browser.version()}`);
     for (let run = 1; run <= RUNS; run++) {
       const r = await measure(page);
       const f = summary(r.frames);
       const u = summary(r.renders);
+      const s = summary(r.series);
       console.log(
         `run ${run}: frame time p50 ${ms(f.p50)}, p95 ${ms(f.p95)}, max ${ms(f.max)} (${f.n} frames, ${(f.n / SECONDS).toFixed(0)} fps); ` +
-          `plot update p50 ${ms(u.p50)}, p95 ${ms(u.p95)}, max ${ms(u.max)} (${u.n} updates for ${r.updates} nav samples)`,
+          `plot update p50 ${ms(u.p50)}, p95 ${ms(u.p95)}, max ${ms(u.max)} (${u.n} updates for ${r.updates} nav samples); ` +
+          `time series redraw p50 ${ms(s.p50)}, p95 ${ms(s.p95)}, max ${ms(s.max)} (${s.n} redraws)`,
       );
     }
   } finally {

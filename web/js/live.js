@@ -124,6 +124,8 @@ function frame() {
       dirtySeries = false;
       lastSeriesMs = now;
       renderSeries();
+      seriesTimes.push(performance.now() - now);
+      if (seriesTimes.length > 1000) seriesTimes.shift();
     } else if (!seriesTimer) {
       seriesTimer = setTimeout(() => {
         seriesTimer = null;
@@ -135,6 +137,8 @@ function frame() {
 
 // How long the plot updates took (ms), newest last: the test hook reports them.
 export const renderTimes = [];
+// How long the time series' redraws took (ms), newest last (web/bench/frame_time.mjs).
+export const seriesTimes = [];
 // The deviations shown while a turn ran ({text, expected: [x, y]}), newest last, bounded: the test
 // hook reports them (at a high real-time factor a turn is on screen for a moment only).
 export const deviationLog = [];

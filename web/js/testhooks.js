@@ -4,7 +4,7 @@
 
 import { state, on } from './state.js';
 import { applyNav, onMessage } from './sync.js';
-import { renderNow, renderTimes, deviationLog, latLonText } from './live.js';
+import { renderNow, renderTimes, seriesTimes, deviationLog, latLonText } from './live.js';
 import { replayState, seek as replaySeek, poseAt as replayPoseAt } from './replay.js';
 import { logEntries } from './eventlog.js';
 import { alarmsState } from './alarms.js';
@@ -61,9 +61,12 @@ export function installTestHooks() {
     loadTrack(n) {
       state.testFeed = true;
       state.track.clear();
+      state.series.clear();
       for (let i = 0; i < n - 1; i++) {
         const p = pathPoint(i);
         state.track.push(i * 0.1, p.x + jitter(), p.y + jitter());
+        // The time series too (it keeps the newest hour), so a benchmark draws a full window.
+        if (n - 1 - i <= state.series.capacity) state.series.push(i * 0.1, ((p.heading % 360) + 360) % 360, 90, 1.0, 1.0);
       }
       next = n - 1;
       feed(next++); // the last one through applyNav, so the readout and the plot update
@@ -122,6 +125,8 @@ export function installTestHooks() {
     navHistory: () => navHistory,
     /** Durations (ms) of the Live plot updates so far; `reset` empties the list. */
     renderTimes: (reset = false) => (reset ? renderTimes.splice(0) : renderTimes.slice()),
+    /** Durations (ms) of the time series' redraws so far; `reset` empties the list. */
+    seriesTimes: (reset = false) => (reset ? seriesTimes.splice(0) : seriesTimes.slice()),
     trackCapacity: () => state.track.capacity,
     /** The deviations from the prediction the Live view showed while turns ran. */
     deviations: () => deviationLog.slice(),
