@@ -1,5 +1,7 @@
 #include "app/ckt_tables.hpp"
 
+#include <cmath>
+
 #include <algorithm>
 #include <chrono>
 #include <string>
@@ -88,7 +90,9 @@ Result<kin::CktCell> ckt_cell(Context& ctx, const std::string& vehicle_id, doubl
   auto t = vehicle_table(ctx, vehicle_id, include_harvested);
   if (!t) return t.error();
   const auto si = t->table->speed_index(speed_mps);
-  const auto di = t->table->dheading_index(dheading_deg);
+  // Signed like a prediction's: the table stores right turns, so a port (negative) heading
+  // change is the cell of its magnitude, which a front end mirrors to the port side.
+  const auto di = t->table->dheading_index(std::abs(dheading_deg));
   if (!si || !di)
     return not_found("no cell at " + kin::number_text(speed_mps) + " m/s, " +
                      kin::number_text(dheading_deg) + " deg in the table");

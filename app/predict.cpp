@@ -1,6 +1,8 @@
 #include "app/predict.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "app/ckt_tables.hpp"
 #include "app/context.hpp"
@@ -58,11 +60,63 @@ Result<Prediction> from_table(Prediction p, kin::TurnPrediction t);
 
 constexpr double kMaxInitialYawRateDps = 90.0;
 
-std::optional<Error> check(const PredictQuery& q) {
+// One error naming every parameter in `problems` (not empty), the first as its field.
+Error parameters_error(std::vector<FieldError> problems) {
+  Error e = invalid_argument(problems.front().field, problems.front().message);
+  if (problems.size() > 1) e.fields = std::move(problems);
+  return e;
+}
+
+// The speed outside the table's speed range, named with the range; none within it.
+std::optional<FieldError> table_speed_problem(const kin::Ckt& table, double speed_mps) {
+  const auto range = table.speed_range_mps();
+  if (!range || !std::isfinite(speed_mps) ||
+      (speed_mps >= range->first && speed_mps <= range->second))
+    return std::nullopt;
+  return FieldError{"speed", kin::number_text(speed_mps) +
+                                 " m/s is outside the table's speed range [" +
+                                 kin::number_text(range->first) + ", " +
+                                 kin::number_text(range->second) + "] m/s"};
+}
+
+// The table could not answer (kinematics::CktRangeError `what`): each parameter outside the
+// table's range, named with the range, so a client fixes both at once when both are off.
+Error table_range_error(const kin::Ckt& table, const PredictQuery& q, const std::string& what) {
+  std::vector<FieldError> problems;
+  if (auto speed = table_speed_problem(table, q.speed_mps)) problems.push_back(std::move(*speed));
+  if (!(std::abs(q.dheading_deg) <= 180.0))
+    problems.push_back({"dheading", kin::number_text(q.dheading_deg) +
+                                        " deg is outside the table's heading changes [-180, 180] "
+                                        "deg"});
+  if (problems.empty()) problems.push_back({"speed", what});
+  return parameters_error(std::move(problems));
+}
+
+// Speed and heading change are checked together, so an answer names both when both are off.
+std::vector<FieldError> turn_problems(const PredictQuery& q) {
+  std::vector<FieldError> problems;
   if (!std::isfinite(q.speed_mps) || !(q.speed_mps > 0.0))
-    return invalid_argument("speed", "must be a positive speed (m/s)");
+    problems.push_back({"speed", "must be a positive speed (m/s)"});
   if (!std::isfinite(q.dheading_deg) || q.dheading_deg == 0.0 || std::abs(q.dheading_deg) > 180.0)
-    return invalid_argument("dheading", "must be in [-180, 0) or (0, 180] degrees");
+    problems.push_back({"dheading", "must be in [-180, 0) or (0, 180] degrees"});
+  return problems;
+}
+
+// A bad heading change with a speed the table does not cover: both named, the speed with the
+// table's range (the table is looked at only when the request is wrong already).
+Error turn_error(std::vector<FieldError> problems, const kin::Ckt* table, double speed_mps) {
+  const bool speed_named = std::any_of(problems.begin(), problems.end(),
+                                       [](const FieldError& f) { return f.field == "speed"; });
+  if (table && !speed_named) {
+    if (auto speed = table_speed_problem(*table, speed_mps))
+      problems.insert(problems.begin(), std::move(*speed));
+  }
+  return parameters_error(std::move(problems));
+}
+
+std::optional<Error> check(const PredictQuery& q) {
+  if (auto problems = turn_problems(q); !problems.empty())
+    return parameters_error(std::move(problems));
   if (q.pose && !(std::isfinite(q.pose->x_m) && std::isfinite(q.pose->y_m) &&
                   std::isfinite(q.pose->heading_deg)))
     return invalid_argument("x", "a pose needs finite x, y and heading");
@@ -180,7 +234,7 @@ Result<Prediction> predict_speed_change(Context& ctx, const VehicleTable& t, Pre
   try {
     base = t.fine->query(u0, std::abs(q.dheading_deg));
   } catch (const kin::CktRangeError& e) {
-    return invalid_argument("speed", e.what());
+    return table_range_error(*t.table, q, e.what());
   }
   const kin::RetimedTurn r = kin::retime_turn(base, u0, u1, response->response);
   p.speed_change_source = SpeedChangeSource::retimed;
@@ -197,6 +251,8 @@ Result<Prediction> predict_speed_change(Context& ctx, const VehicleTable& t, Pre
 }  // namespace
 
 Result<Prediction> predict_with_table(const kin::Ckt& table, const PredictQuery& query) {
+  if (auto problems = turn_problems(query); !problems.empty())
+    return turn_error(std::move(problems), &table, query.speed_mps);
   if (auto e = check(query)) return *e;
   const PredictQuery q = without_null_change(query);
   if (q.speed_after_mps)
@@ -216,11 +272,18 @@ Result<Prediction> predict_with_table(const kin::Ckt& table, const PredictQuery&
   try {
     return from_table(std::move(p), table.query(q.speed_mps, q.dheading_deg));
   } catch (const kin::CktRangeError& e) {
-    return invalid_argument("speed", e.what());
+    return table_range_error(table, q, e.what());
   }
 }
 
 Result<Prediction> predict(Context& ctx, const PredictQuery& query) {
+  if (auto problems = turn_problems(query); !problems.empty()) {
+    std::shared_ptr<const kin::Ckt> table;
+    if (query.method == PredictionMethod::avk) {
+      if (auto t = vehicle_table(ctx, query.vehicle_id, query.include_harvested)) table = t->table;
+    }
+    return turn_error(std::move(problems), table.get(), query.speed_mps);
+  }
   if (auto e = check(query)) return *e;
   const PredictQuery q = without_null_change(query);
   Prediction p;
@@ -243,7 +306,7 @@ Result<Prediction> predict(Context& ctx, const PredictQuery& query) {
         // The fine table: the answer guidance gets in its hot path, so every front end gets it.
         return from_table(std::move(p), t->fine->query(q.speed_mps, q.dheading_deg));
       } catch (const kin::CktRangeError& e) {
-        return invalid_argument("speed", e.what());
+        return table_range_error(*t->table, q, e.what());
       }
     }
     case PredictionMethod::model: {

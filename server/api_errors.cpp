@@ -23,6 +23,14 @@ ApiResponse problem_of(const app::Error& e, bool document) {
           const std::string pointer = e.field.front() == '/' ? e.field : "/" + e.field;
           extra["pointer"] = pointer;
           detail = pointer + ": " + e.message;
+        } else if (e.fields.size() > 1) {
+          // Several parameters at once (predict's speed and heading change): each named.
+          extra["parameter"] = e.field;
+          detail.clear();
+          for (const auto& f : e.fields) {
+            if (!detail.empty()) detail += "; ";
+            detail += "parameter '" + f.field + "': " + f.message;
+          }
         } else {
           extra["parameter"] = e.field;
           detail = "parameter '" + e.field + "': " + e.message;

@@ -2,7 +2,6 @@
 
 #include <cctype>
 #include <cmath>
-#include <sstream>
 #include <string_view>
 
 #include "server/serialize.hpp"
@@ -37,6 +36,29 @@ double required_number(const ApiRequest& r, const std::string& name, double min,
   const auto v = number_param(r, name, min, max);
   if (!v) throw bad_parameter(name, "missing");
   return *v;
+}
+
+std::vector<double> required_numbers(const ApiRequest& r, const std::vector<NumberSpec>& specs) {
+  std::vector<double> values;
+  std::vector<RequestError> problems;
+  for (const auto& spec : specs) {
+    try {
+      values.push_back(required_number(r, spec.name, spec.min, spec.max));
+    } catch (const RequestError& e) {
+      problems.push_back(e);
+    }
+  }
+  if (problems.empty()) return values;
+  if (problems.size() == 1) throw problems.front();
+  std::string detail;
+  nlohmann::json errors = nlohmann::json::array();
+  for (const auto& p : problems) {
+    if (!detail.empty()) detail += "; ";
+    detail += p.what();
+    errors.push_back({{"field", p.extra()["parameter"]}, {"message", p.what()}});
+  }
+  throw RequestError(400, detail,
+                     {{"parameter", problems.front().extra()["parameter"]}, {"errors", errors}});
 }
 
 std::optional<std::int64_t> whole_param(const ApiRequest& r, const std::string& name,
@@ -110,27 +132,10 @@ std::string media_type(const std::string& header) {
 }  // namespace
 
 Format negotiate(const ApiRequest& r, bool csv_available) {
-  if (const auto it = r.query.find("format"); it != r.query.end()) {
-    if (it->second == "json") return Format::json;
-    if (it->second == "csv" && csv_available) return Format::csv;
-    throw bad_parameter("format", csv_available ? "must be json or csv" : "must be json");
-  }
-  if (r.accept.empty()) return Format::json;
-  bool json_ok = false, csv_ok = false;
-  std::stringstream s(r.accept);
-  std::string item;
-  while (std::getline(s, item, ',')) {
-    const std::string t = media_type(item);
-    if (t == "*/*" || t == "application/*" || t == "application/json" ||
-        t == "application/problem+json")
-      json_ok = true;
-    if (t == "text/csv" || t == "text/*") csv_ok = true;
-  }
-  if (csv_ok && csv_available && !json_ok) return Format::csv;
-  if (json_ok) return Format::json;
-  if (csv_ok && csv_available) return Format::csv;
-  throw RequestError(406, std::string("this resource is available as application/json") +
-                              (csv_available ? " and text/csv" : ""));
+  static const std::vector<Representation> json_only{kJsonRepresentation};
+  static const std::vector<Representation> json_csv{kJsonRepresentation, kCsvRepresentation};
+  const Representation& chosen = choose_representation(r, csv_available ? json_csv : json_only);
+  return chosen.format == "csv" ? Format::csv : Format::json;
 }
 
 void require_media_type(const ApiRequest& r, const std::string& type, const std::string& what) {

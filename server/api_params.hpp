@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "app/predict.hpp"
 #include "server/api_types.hpp"
@@ -16,6 +17,15 @@ namespace avk::server {
 std::optional<double> number_param(const ApiRequest& r, const std::string& name, double min,
                                    double max);
 double required_number(const ApiRequest& r, const std::string& name, double min, double max);
+// Required numbers read together: every one missing, malformed or out of range is named (400
+// with `parameter` the first, `errors` [{field, message}] each, `detail` listing all), not only
+// the first; else their values in the order asked.
+struct NumberSpec {
+  std::string name;
+  double min = 0.0;
+  double max = 0.0;
+};
+std::vector<double> required_numbers(const ApiRequest& r, const std::vector<NumberSpec>& specs);
 // A whole number in [min, max].
 std::optional<std::int64_t> whole_param(const ApiRequest& r, const std::string& name,
                                         std::int64_t min, std::int64_t max);
@@ -39,8 +49,8 @@ CurrentParam current_param(const ApiRequest& r);
 bool include_harvested_param(const ApiRequest& r);
 
 enum class Format { json, csv };
-// ?format= wins; otherwise Accept. Anything the resource cannot produce is 406 (400 for a bad
-// ?format=).
+// JSON or CSV as choose_representation (router.hpp) picks it: ?format= wins, otherwise Accept.
+// Anything the resource cannot produce is 406 (400 for a bad ?format=).
 Format negotiate(const ApiRequest& r, bool csv_available);
 
 // 415 unless the body is sent as the media type (parameters such as charset are ignored).

@@ -44,6 +44,9 @@ nlohmann::json points_json(const kinematics::Polyline& line);  // [[x_m, y_m], .
 // last_error, pydir_sent, failsafe_stops, disconnects, last_link_error.
 nlohmann::json frontseat_json(const vehicle::M200Status& s);
 nlohmann::json vehicle_json(const app::VehicleStatus& v);
+// The vehicles as vehicle_json's scalar fields, the last navigation as nav_t_s, x_m, ... (an
+// M200's frontseat block is JSON only).
+std::string vehicles_csv(const std::vector<app::VehicleStatus>& vehicles);
 // The live stream's nav and helm payloads of one telemetry tick.
 nlohmann::json nav_topic_json(const app::VehicleSnapshot& s);
 nlohmann::json helm_topic_json(const app::VehicleSnapshot& s);
@@ -58,6 +61,9 @@ nlohmann::json report_json(const app::MissionReport& r, bool with_config);
 nlohmann::json event_json(const store::MissionEvent& e);
 nlohmann::json nav_row_json(const store::NavRow& n);
 std::string missions_csv(const std::vector<app::MissionSummary>& missions);
+// The event log and the track as their JSON pages' items, one row each.
+std::string events_csv(const std::vector<store::MissionEvent>& events);
+std::string nav_csv(const std::vector<store::NavPageRow>& rows);
 std::string report_cells_csv(const app::MissionReport& r);
 
 // --- turns ---------------------------------------------------------------------------------
@@ -70,7 +76,10 @@ std::string turns_csv(const std::vector<store::TurnRow>& rows);
 // --- the CKT, predictions ------------------------------------------------------------------
 
 nlohmann::json ckt_summary_json(const app::VehicleTable& t);
-nlohmann::json ckt_cell_json(const kinematics::CktCell& c);
+// A cell on the side asked: for a port turn the cell of |dheading| mirrored (x -> -x), its
+// dheading_deg negative, `side` "port" (else "starboard").
+nlohmann::json ckt_cell_json(const kinematics::CktCell& c,
+                             kinematics::TurnSide side = kinematics::TurnSide::right);
 nlohmann::json prediction_json(const app::Prediction& p);
 // {east_mps, north_mps, speed_mps, toward_deg, source}; null without a current.
 nlohmann::json water_current_json(const std::optional<kinematics::WaterCurrent>& c,
@@ -107,6 +116,8 @@ nlohmann::json simulated_maneuver_json(const app::SimulatedManeuver& s, kinemati
 
 // with_coefficients: the full model document; without, the listing's summary.
 nlohmann::json model_json(const store::StoredModel& m, bool with_coefficients = true);
+// The listing's summary (no coefficients), the speed model as speed_gain, ...
+std::string models_csv(const std::vector<store::StoredModel>& models);
 nlohmann::json model_headings_json(const app::ModelHeadings& h);
 nlohmann::json sweep_json(const std::vector<kinematics::HistorySweepRow>& rows);
 std::string sweep_csv(const std::vector<kinematics::HistorySweepRow>& rows);

@@ -48,6 +48,78 @@ std::string missions_csv(const std::vector<app::MissionSummary>& missions) {
   return csv;
 }
 
+std::string vehicles_csv(const std::vector<app::VehicleStatus>& vehicles) {
+  std::string csv =
+      "id,kind,max_speed_mps,link,helm_mode,desired_heading_deg,desired_speed_mps,mission_id,"
+      "t_s,nav_t_s,x_m,y_m,heading_deg,speed_mps\n";
+  for (const auto& v : vehicles) {
+    csv += csv_cell(v.info.id) + ',' + csv_cell(v.info.kind) + ',' +
+           (v.info.max_speed_mps > 0.0 ? num(v.info.max_speed_mps) : std::string()) + ',';
+    if (!v.live) {
+      csv += vehicle::to_string(vehicle::LinkState::disconnected);
+      csv += ",,,,,,,,,,\n";
+      continue;
+    }
+    const app::VehicleSnapshot& l = *v.live;
+    csv += std::string(vehicle::to_string(l.link)) + ',' +
+           (l.helm_mode ? std::string(mission::to_string(*l.helm_mode)) : std::string()) + ',' +
+           optional_csv(l.desired_heading_deg) + ',' + optional_csv(l.desired_speed_mps) + ',' +
+           (l.mission_id ? std::to_string(*l.mission_id) : std::string()) + ',' + num(l.t_s);
+    if (l.nav)
+      csv += ',' + num(l.nav->t_s) + ',' + num(l.nav->x_m) + ',' + num(l.nav->y_m) + ',' +
+             num(l.nav->heading_deg) + ',' + num(l.nav->speed_mps) + '\n';
+    else
+      csv += ",,,,,\n";
+  }
+  return csv;
+}
+
+std::string events_csv(const std::vector<store::MissionEvent>& events) {
+  std::string csv = "id,t_s,kind,message\n";
+  for (const auto& e : events)
+    csv += std::to_string(e.id) + ',' + num(e.t_s) + ',' + csv_cell(e.kind) + ',' +
+           csv_cell(e.message) + '\n';
+  return csv;
+}
+
+std::string nav_csv(const std::vector<store::NavPageRow>& rows) {
+  std::string csv =
+      "t_s,x_m,y_m,heading_deg,speed_mps,desired_heading_deg,desired_speed_mps,helm_mode\n";
+  for (const auto& r : rows) {
+    const store::NavRow& n = r.row;
+    csv += num(n.t_s) + ',' + num(n.x_m) + ',' + num(n.y_m) + ',' + num(n.heading_deg) + ',' +
+           num(n.speed_mps) + ',' + optional_csv(n.desired_heading_deg) + ',' +
+           optional_csv(n.desired_speed_mps) + ',' + csv_cell(n.helm_mode) + '\n';
+  }
+  return csv;
+}
+
+std::string models_csv(const std::vector<store::StoredModel>& models) {
+  std::string csv =
+      "id,created_utc,vehicle_id,form,history_samples,rate_hz,ridge_lambda,refined,"
+      "training_missions,train_one_step_rms_deg,validation_mse_m2,validation_heading_rms_deg,"
+      "speed_gain,speed_sag_per_deg,speed_bias_mps\n";
+  for (const auto& m : models) {
+    // The training missions in one cell, space-separated: a list is not a CSV column.
+    std::string missions;
+    for (const auto id : m.training_missions) {
+      if (!missions.empty()) missions += ' ';
+      missions += std::to_string(id);
+    }
+    const auto& y = m.model;
+    csv += std::to_string(m.id) + ',' + csv_cell(m.created_utc) + ',' + csv_cell(m.vehicle_id) +
+           ',' + kin::to_string(y.form) + ',' + std::to_string(y.history) + ',' + num(y.rate_hz) +
+           ',' + num(y.ridge_lambda) + ',' + (y.refined ? "true" : "false") + ',' + missions + ',' +
+           optional_csv(m.train_one_step_rms_deg) + ',' + optional_csv(m.validation_mse_m2) + ',' +
+           optional_csv(m.validation_heading_rms_deg) + ',' +
+           (y.speed ? num(y.speed->gain) + ',' + num(y.speed->sag_per_deg) + ',' +
+                          num(y.speed->bias_mps)
+                    : std::string(",,")) +
+           '\n';
+  }
+  return csv;
+}
+
 std::string report_cells_csv(const app::MissionReport& r) {
   std::string csv =
       "speed_mps,dheading_deg,planned,ok,aborted,rejected,advance_mean_m,advance_sd_m,"

@@ -291,17 +291,25 @@ json ckt_summary_json(const app::VehicleTable& t) {
           {"cells", cells}};
 }
 
-json ckt_cell_json(const kin::CktCell& c) {
+json ckt_cell_json(const kin::CktCell& c, kin::TurnSide side) {
+  const bool port = side == kin::TurnSide::left;
+  // The table's right turn seen from the port side: the normalised frame mirrored about its y
+  // axis (the start heading), as a prediction of a left turn is.
+  const auto sided = [port](kin::Polyline line) {
+    return points_json(port ? kin::reflect_x(std::move(line)) : std::move(line));
+  };
   json j = cell_summary_json(c);
+  j["dheading_deg"] = port ? -c.dheading_deg : c.dheading_deg;
+  j["side"] = port ? "port" : "starboard";
   json turns = json::array();
   for (const auto& tr : c.turns)
     turns.push_back({{"mission_id", tr.meta().mission_id},
                      {"initial_heading_deg", tr.meta().initial_heading_deg},
-                     {"points", points_json(tr.points())}});
+                     {"points", sided(tr.points())}});
   j["turns"] = std::move(turns);
-  j["mean"] = points_json(c.mean_turn);
-  j["trajectory"] = points_json(c.trajectory);
-  j["fit"] = c.fit.domain_max > c.fit.domain_min ? points_json(c.fit.sample(0.1)) : json();
+  j["mean"] = sided(c.mean_turn);
+  j["trajectory"] = sided(c.trajectory);
+  j["fit"] = c.fit.domain_max > c.fit.domain_min ? sided(c.fit.sample(0.1)) : json();
   return j;
 }
 

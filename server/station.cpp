@@ -1,6 +1,7 @@
 #include "server/station.hpp"
 
 #include <chrono>
+#include <limits>
 
 #include <nlohmann/json.hpp>
 
@@ -116,8 +117,12 @@ std::vector<std::int64_t> mission_params(const ApiRequest& r) {
 app::PredictQuery predict_query(const ApiRequest& r, const std::string& vid) {
   app::PredictQuery q;
   q.vehicle_id = vid;
-  q.speed_mps = required_number(r, "speed", 0.0, 100.0);
-  q.dheading_deg = required_number(r, "dheading", -180.0, 180.0);
+  // Any finite numbers here: the use case checks speed and heading change together, against
+  // the vehicle's table too, so that an answer names every one that is off and its range.
+  constexpr double kAny = std::numeric_limits<double>::infinity();
+  const auto turn = required_numbers(r, {{"speed", -kAny, kAny}, {"dheading", -kAny, kAny}});
+  q.speed_mps = turn[0];
+  q.dheading_deg = turn[1];
   q.method = method_param(r).value_or(q.method);
   q.model_id = id_param(r, "model");
   const auto x = number_param(r, "x", -1e7, 1e7);
@@ -170,17 +175,34 @@ void Station::shutdown() {
 
 void Station::add_routes() {
   app::Context& ctx = context_;
-  const auto get = [this](std::string pattern, RouteHandler h) {
-    add({"GET", std::move(pattern), Access::read, std::nullopt, std::move(h)});
+  const auto route = [this](std::string method, std::string pattern, Access access, RouteHandler h,
+                            std::optional<std::size_t> limit,
+                            std::vector<Representation> representations) {
+    Route r;
+    r.method = std::move(method);
+    r.pattern = std::move(pattern);
+    r.access = access;
+    r.body_limit_bytes = limit;
+    r.handler = std::move(h);
+    r.representations = std::move(representations);
+    add(std::move(r));
   };
-  const auto post = [this](std::string pattern, RouteHandler h,
-                           std::optional<std::size_t> limit = std::nullopt) {
-    add({"POST", std::move(pattern), Access::control, limit, std::move(h)});
+  const auto get = [route](std::string pattern, RouteHandler h,
+                           std::vector<Representation> representations = {kJsonRepresentation}) {
+    route("GET", std::move(pattern), Access::read, std::move(h), std::nullopt,
+          std::move(representations));
+  };
+  // A collection or table: JSON, or CSV with units in its column names (docs/api.md, "CSV").
+  const std::vector<Representation> json_or_csv{kJsonRepresentation, kCsvRepresentation};
+  const auto post = [route](std::string pattern, RouteHandler h,
+                            std::optional<std::size_t> limit = std::nullopt) {
+    route("POST", std::move(pattern), Access::control, std::move(h), limit, {kJsonRepresentation});
   };
   // A question sent as a document that changes nothing and commands nothing: open on loopback,
   // like the reads.
-  const auto post_question = [this](std::string pattern, RouteHandler h) {
-    add({"POST", std::move(pattern), Access::read, std::nullopt, std::move(h)});
+  const auto post_question = [route](std::string pattern, RouteHandler h) {
+    route("POST", std::move(pattern), Access::read, std::move(h), std::nullopt,
+          {kJsonRepresentation});
   };
 
   // --- the station, vehicles ---------------------------------------------------------------
@@ -207,12 +229,18 @@ void Station::add_routes() {
   // statuses), so a client keeps no copy of its own.
   get("/api/v1/meta",
       [](const ApiRequest&, const PathParams&) { return json_response(vocabulary_json()); });
-  get("/api/v1/vehicles", [&ctx](const ApiRequest&, const PathParams&) {
-    json out = json::array();
-    for (const auto& v : app::list_vehicles(ctx))
-      out.push_back(vehicle_json(v));
-    return json_response(out);
-  });
+  get(
+      "/api/v1/vehicles",
+      [&ctx](const ApiRequest& r, const PathParams&) {
+        const Format f = negotiate(r, true);
+        const auto vehicles = app::list_vehicles(ctx);
+        if (f == Format::csv) return csv_response(vehicles_csv(vehicles));
+        json out = json::array();
+        for (const auto& v : vehicles)
+          out.push_back(vehicle_json(v));
+        return json_response(out);
+      },
+      json_or_csv);
   get("/api/v1/vehicles/{vid}", [&ctx](const ApiRequest&, const PathParams& p) {
     return answer(app::get_vehicle(ctx, p.at("vid")), false,
                   [](const app::VehicleStatus& v) { return json_response(vehicle_json(v)); });
@@ -228,12 +256,18 @@ void Station::add_routes() {
       out.push_back(mission_json(m));
     return json_response(out);
   };
-  get("/api/v1/missions", [list_missions](const ApiRequest& r, const PathParams&) {
-    return list_missions(r, std::nullopt);
-  });
-  get("/api/v1/vehicles/{vid}/missions", [list_missions](const ApiRequest& r, const PathParams& p) {
-    return list_missions(r, p.at("vid"));
-  });
+  get(
+      "/api/v1/missions",
+      [list_missions](const ApiRequest& r, const PathParams&) {
+        return list_missions(r, std::nullopt);
+      },
+      json_or_csv);
+  get(
+      "/api/v1/vehicles/{vid}/missions",
+      [list_missions](const ApiRequest& r, const PathParams& p) {
+        return list_missions(r, p.at("vid"));
+      },
+      json_or_csv);
   post("/api/v1/vehicles/{vid}/missions", [&ctx](const ApiRequest& r, const PathParams& p) {
     require_media_type(r, "application/json", "a mission is a JSON document");
     return answer(app::start_mission(ctx, p.at("vid"), r.body), true, [](std::int64_t id) {
@@ -269,52 +303,72 @@ void Station::add_routes() {
                     return json_response(j);
                   });
   });
-  get("/api/v1/missions/{id}/events", [&ctx](const ApiRequest& r, const PathParams& p) {
-    const auto id = path_id(p, "id", "mission");
-    const auto after = id_param(r, "after").value_or(0);
-    const auto limit = whole_param(r, "limit", 1, 1000).value_or(100);
-    return answer(app::mission_events(ctx, id, after, static_cast<int>(limit)), false,
-                  [](const app::Page<store::MissionEvent>& page) {
-                    json items = json::array();
-                    for (const auto& e : page.items)
-                      items.push_back(event_json(e));
-                    return json_response({{"items", items}, {"next", optional_json(page.next)}});
-                  });
-  });
-  get("/api/v1/missions/{id}/nav", [&ctx](const ApiRequest& r, const PathParams& p) {
-    const auto id = path_id(p, "id", "mission");
-    const auto after = id_param(r, "after").value_or(0);
-    const auto limit = whole_param(r, "limit", 1, 10000).value_or(5000);
-    return answer(app::mission_track(ctx, id, after, static_cast<int>(limit)), false,
-                  [](const app::Page<store::NavPageRow>& page) {
-                    json items = json::array();
-                    for (const auto& row : page.items)
-                      items.push_back(nav_row_json(row.row));
-                    return json_response({{"items", items}, {"next", optional_json(page.next)}});
-                  });
-  });
-  // The mission as an MCAP recording for Foxglove/Lichtblick (docs/foxglove.md).
-  get("/api/v1/missions/{id}/export", [this, &ctx](const ApiRequest& r, const PathParams& p) {
-    const auto id = path_id(p, "id", "mission");
-    const auto format = r.query.find("format");
-    if (format == r.query.end() || format->second != "mcap")
-      throw bad_parameter("format", "must be mcap (the only export format of a mission)");
-    app::McapExportOptions o;
-    // The station's grid on the earth (avk serve --datum), so a recording has its location fixes.
-    o.datum = options_.datum;
-    if (const auto c = r.query.find("compression"); c != r.query.end()) {
-      if (c->second == "none")
-        o.compression = app::mcap::Compression::none;
-      else if (c->second != "zstd")
-        throw bad_parameter("compression", "must be zstd or none");
-    }
-    return answer(app::export_mission_mcap(ctx, id, o), false, [id](const app::McapExport& e) {
-      ApiResponse resp{200, app::kMcapMediaType, e.bytes, {}};
-      resp.headers.push_back({"Content-Disposition",
-                              "attachment; filename=\"mission-" + std::to_string(id) + ".mcap\""});
+  // A page of a mission's log or track; as CSV the cursor travels in X-Next-After, like /turns.
+  const auto page_response = [](Format f, const auto& page, const auto& to_csv,
+                                const auto& item_json) {
+    if (f == Format::csv) {
+      ApiResponse resp = csv_response(to_csv(page.items));
+      if (page.next) resp.headers.push_back({"X-Next-After", std::to_string(*page.next)});
       return resp;
-    });
-  });
+    }
+    json items = json::array();
+    for (const auto& item : page.items)
+      items.push_back(item_json(item));
+    return json_response({{"items", items}, {"next", optional_json(page.next)}});
+  };
+  get(
+      "/api/v1/missions/{id}/events",
+      [&ctx, page_response](const ApiRequest& r, const PathParams& p) {
+        const Format f = negotiate(r, true);
+        const auto id = path_id(p, "id", "mission");
+        const auto after = id_param(r, "after").value_or(0);
+        const auto limit = whole_param(r, "limit", 1, 1000).value_or(100);
+        return answer(app::mission_events(ctx, id, after, static_cast<int>(limit)), false,
+                      [f, page_response](const app::Page<store::MissionEvent>& page) {
+                        return page_response(f, page, events_csv, event_json);
+                      });
+      },
+      json_or_csv);
+  get(
+      "/api/v1/missions/{id}/nav",
+      [&ctx, page_response](const ApiRequest& r, const PathParams& p) {
+        const Format f = negotiate(r, true);
+        const auto id = path_id(p, "id", "mission");
+        const auto after = id_param(r, "after").value_or(0);
+        const auto limit = whole_param(r, "limit", 1, 10000).value_or(5000);
+        return answer(app::mission_track(ctx, id, after, static_cast<int>(limit)), false,
+                      [f, page_response](const app::Page<store::NavPageRow>& page) {
+                        return page_response(f, page, nav_csv, [](const store::NavPageRow& row) {
+                          return nav_row_json(row.row);
+                        });
+                      });
+      },
+      json_or_csv);
+  // The mission as an MCAP recording for Foxglove/Lichtblick (docs/foxglove.md).
+  get("/api/v1/missions/{id}/export",
+      [this, &ctx](const ApiRequest& r, const PathParams& p) {
+        const auto id = path_id(p, "id", "mission");
+        const auto format = r.query.find("format");
+        if (format == r.query.end() || format->second != "mcap")
+          throw bad_parameter("format", "must be mcap (the only export format of a mission)");
+        app::McapExportOptions o;
+        // The station's grid on the earth (avk serve --datum), so a recording has its location
+        // fixes.
+        o.datum = options_.datum;
+        if (const auto c = r.query.find("compression"); c != r.query.end()) {
+          if (c->second == "none")
+            o.compression = app::mcap::Compression::none;
+          else if (c->second != "zstd")
+            throw bad_parameter("compression", "must be zstd or none");
+        }
+        return answer(app::export_mission_mcap(ctx, id, o), false, [id](const app::McapExport& e) {
+          ApiResponse resp{200, app::kMcapMediaType, e.bytes, {}};
+          resp.headers.push_back({"Content-Disposition", "attachment; filename=\"mission-" +
+                                                             std::to_string(id) + ".mcap\""});
+          return resp;
+        });
+      },
+      {{"mcap", app::kMcapMediaType}});
   for (const auto c :
        {app::MissionCommand::pause, app::MissionCommand::resume, app::MissionCommand::abort}) {
     post("/api/v1/missions/{id}/" + std::string(app::to_string(c)),
@@ -331,51 +385,60 @@ void Station::add_routes() {
   });
 
   // --- turns -------------------------------------------------------------------------------
-  get("/api/v1/turns", [&ctx](const ApiRequest& r, const PathParams&) {
-    const Format f = negotiate(r, true);
-    store::TurnFilter filter;
-    filter.mission_id = id_param(r, "mission");
-    filter.speed_mps = number_param(r, "speed", 0.0, 100.0);
-    filter.dheading_deg = number_param(r, "dheading", -180.0, 180.0);
-    if (const auto it = r.query.find("status"); it != r.query.end()) {
-      const auto s = kinematics::turn_status_from_string(it->second);
-      if (!s) throw bad_parameter("status", "must be ok, aborted or rejected");
-      filter.status = *s;
-    }
-    filter.after_id = id_param(r, "after").value_or(0);
-    filter.limit = static_cast<int>(whole_param(r, "limit", 1, 1000).value_or(100));
-    return answer(app::query_turns(ctx, filter), false, [f](const app::Page<store::TurnRow>& page) {
-      if (f == Format::csv) {
-        ApiResponse resp = csv_response(turns_csv(page.items));
-        if (page.next) resp.headers.push_back({"X-Next-After", std::to_string(*page.next)});
-        return resp;
-      }
-      json items = json::array();
-      for (const auto& t : page.items)
-        items.push_back(turn_row_json(t));
-      return json_response({{"items", items}, {"next", optional_json(page.next)}});
-    });
-  });
+  get(
+      "/api/v1/turns",
+      [&ctx](const ApiRequest& r, const PathParams&) {
+        const Format f = negotiate(r, true);
+        store::TurnFilter filter;
+        filter.mission_id = id_param(r, "mission");
+        filter.speed_mps = number_param(r, "speed", 0.0, 100.0);
+        filter.dheading_deg = number_param(r, "dheading", -180.0, 180.0);
+        if (const auto it = r.query.find("status"); it != r.query.end()) {
+          const auto s = kinematics::turn_status_from_string(it->second);
+          if (!s) throw bad_parameter("status", "must be ok, aborted or rejected");
+          filter.status = *s;
+        }
+        filter.after_id = id_param(r, "after").value_or(0);
+        filter.limit = static_cast<int>(whole_param(r, "limit", 1, 1000).value_or(100));
+        return answer(
+            app::query_turns(ctx, filter), false, [f](const app::Page<store::TurnRow>& page) {
+              if (f == Format::csv) {
+                ApiResponse resp = csv_response(turns_csv(page.items));
+                if (page.next) resp.headers.push_back({"X-Next-After", std::to_string(*page.next)});
+                return resp;
+              }
+              json items = json::array();
+              for (const auto& t : page.items)
+                items.push_back(turn_row_json(t));
+              return json_response({{"items", items}, {"next", optional_json(page.next)}});
+            });
+      },
+      json_or_csv);
   get("/api/v1/turns/{id}", [&ctx](const ApiRequest&, const PathParams& p) {
     return answer(app::get_turn(ctx, path_id(p, "id", "turn")), false,
                   [](const store::StoredTurn& t) { return json_response(turn_json(t)); });
   });
 
   // --- the CKT -----------------------------------------------------------------------------
-  get("/api/v1/vehicles/{vid}/ckt", [&ctx](const ApiRequest& r, const PathParams& p) {
-    const Format f = negotiate(r, true);
-    return answer(app::vehicle_table(ctx, p.at("vid"), include_harvested_param(r)), false,
-                  [f](const app::VehicleTable& t) {
-                    if (f == Format::csv) return csv_response(kinematics::ckt_to_csv(*t.table));
-                    return json_response(ckt_summary_json(t));
-                  });
-  });
+  get(
+      "/api/v1/vehicles/{vid}/ckt",
+      [&ctx](const ApiRequest& r, const PathParams& p) {
+        const Format f = negotiate(r, true);
+        return answer(app::vehicle_table(ctx, p.at("vid"), include_harvested_param(r)), false,
+                      [f](const app::VehicleTable& t) {
+                        if (f == Format::csv) return csv_response(kinematics::ckt_to_csv(*t.table));
+                        return json_response(ckt_summary_json(t));
+                      });
+      },
+      json_or_csv);
   get("/api/v1/vehicles/{vid}/ckt/cells", [&ctx](const ApiRequest& r, const PathParams& p) {
     const double speed = required_number(r, "speed", 0.0, 100.0);
-    const double dheading = required_number(r, "dheading", 0.0, 180.0);
+    // Signed like predict's: + starboard, - port (the cell of |dheading|, mirrored).
+    const double dheading = required_number(r, "dheading", -180.0, 180.0);
     return answer(app::ckt_cell(ctx, p.at("vid"), speed, dheading, include_harvested_param(r)),
-                  false,
-                  [](const kinematics::CktCell& c) { return json_response(ckt_cell_json(c)); });
+                  false, [dheading](const kinematics::CktCell& c) {
+                    return json_response(ckt_cell_json(c, kinematics::side_of(dheading)));
+                  });
   });
   get("/api/v1/vehicles/{vid}/ckt/yaw-rate", [&ctx](const ApiRequest& r, const PathParams& p) {
     app::YawRateTableOptions o;
@@ -384,22 +447,24 @@ void Station::add_routes() {
     return answer(app::vehicle_yaw_rate_table(ctx, p.at("vid"), o), false,
                   [](const app::YawRateTable& t) { return json_response(yaw_rate_table_json(t)); });
   });
-  get("/api/v1/vehicles/{vid}/ckt/export", [&ctx](const ApiRequest& r, const PathParams& p) {
-    const auto it = r.query.find("format");
-    const std::string format = it == r.query.end() ? "json" : it->second;
-    if (format != "json" && format != "csv") throw bad_parameter("format", "must be json or csv");
-    const std::string vid = p.at("vid");
-    return answer(
-        app::ckt_for_export(ctx, vid, include_harvested_param(r)), false,
-        [&](const kinematics::Ckt& t) {
-          if (format == "csv")
-            return csv_response(kinematics::ckt_to_csv(t), "ckt-" + vid + ".csv");
-          ApiResponse resp{200, "application/json", kinematics::ckt_to_json_string(t), {}};
-          resp.headers.push_back(
-              {"Content-Disposition", "attachment; filename=\"ckt-" + vid + ".json\""});
-          return resp;
-        });
-  });
+  get(
+      "/api/v1/vehicles/{vid}/ckt/export",
+      [&ctx](const ApiRequest& r, const PathParams& p) {
+        // ?format= as the Export view asks, or Accept like every other route.
+        const std::string format = negotiate(r, true) == Format::csv ? "csv" : "json";
+        const std::string vid = p.at("vid");
+        return answer(
+            app::ckt_for_export(ctx, vid, include_harvested_param(r)), false,
+            [&](const kinematics::Ckt& t) {
+              if (format == "csv")
+                return csv_response(kinematics::ckt_to_csv(t), "ckt-" + vid + ".csv");
+              ApiResponse resp{200, "application/json", kinematics::ckt_to_json_string(t), {}};
+              resp.headers.push_back(
+                  {"Content-Disposition", "attachment; filename=\"ckt-" + vid + ".json\""});
+              return resp;
+            });
+      },
+      json_or_csv);
   post(
       "/api/v1/vehicles/{vid}/ckt/import",
       [&ctx](const ApiRequest& r, const PathParams& p) {
@@ -472,37 +537,46 @@ void Station::add_routes() {
           return json_response(j);
         });
   });
-  get("/api/v1/vehicles/{vid}/compare", [&ctx](const ApiRequest& r, const PathParams& p) {
-    const Format f = negotiate(r, true);
-    app::CompareQuery q;
-    q.vehicle_id = p.at("vid");
-    q.model_id = id_param(r, "model");
-    q.corridor_share = number_param(r, "corridor", 0.5, 0.999).value_or(q.corridor_share);
-    for (auto [it, end] = r.multi_query.equal_range("test_mission"); it != end; ++it) {
-      const json v = json::parse(it->second, nullptr, false);
-      if (!v.is_number_integer() || v.get<std::int64_t>() <= 0)
-        throw bad_parameter("test_mission", "must be a mission id");
-      q.test_missions.push_back(v.get<std::int64_t>());
-    }
-    bool in_sample = false;
-    if (const auto it = r.query.find("scoring"); it != r.query.end()) {
-      if (it->second != "predictive" && it->second != "in_sample")
-        throw bad_parameter("scoring", "must be predictive or in_sample");
-      in_sample = it->second == "in_sample";
-    }
-    return answer(app::compare(ctx, q), false, [f, &q, in_sample](const app::Comparison& c) {
-      if (f == Format::csv)
-        return csv_response(in_sample ? comparison_csv(c) : predictive_csv(c),
-                            "compare-" + q.vehicle_id + ".csv");
-      return json_response(comparison_json(c));
-    });
-  });
-  get("/api/v1/vehicles/{vid}/models", [&ctx](const ApiRequest&, const PathParams& p) {
-    json out = json::array();
-    for (const auto& m : app::list_models(ctx, p.at("vid")))
-      out.push_back(model_json(m, false));
-    return json_response(out);
-  });
+  get(
+      "/api/v1/vehicles/{vid}/compare",
+      [&ctx](const ApiRequest& r, const PathParams& p) {
+        const Format f = negotiate(r, true);
+        app::CompareQuery q;
+        q.vehicle_id = p.at("vid");
+        q.model_id = id_param(r, "model");
+        q.corridor_share = number_param(r, "corridor", 0.5, 0.999).value_or(q.corridor_share);
+        for (auto [it, end] = r.multi_query.equal_range("test_mission"); it != end; ++it) {
+          const json v = json::parse(it->second, nullptr, false);
+          if (!v.is_number_integer() || v.get<std::int64_t>() <= 0)
+            throw bad_parameter("test_mission", "must be a mission id");
+          q.test_missions.push_back(v.get<std::int64_t>());
+        }
+        bool in_sample = false;
+        if (const auto it = r.query.find("scoring"); it != r.query.end()) {
+          if (it->second != "predictive" && it->second != "in_sample")
+            throw bad_parameter("scoring", "must be predictive or in_sample");
+          in_sample = it->second == "in_sample";
+        }
+        return answer(app::compare(ctx, q), false, [f, &q, in_sample](const app::Comparison& c) {
+          if (f == Format::csv)
+            return csv_response(in_sample ? comparison_csv(c) : predictive_csv(c),
+                                "compare-" + q.vehicle_id + ".csv");
+          return json_response(comparison_json(c));
+        });
+      },
+      json_or_csv);
+  get(
+      "/api/v1/vehicles/{vid}/models",
+      [&ctx](const ApiRequest& r, const PathParams& p) {
+        const Format f = negotiate(r, true);
+        const auto models = app::list_models(ctx, p.at("vid"));
+        if (f == Format::csv) return csv_response(models_csv(models));
+        json out = json::array();
+        for (const auto& m : models)
+          out.push_back(model_json(m, false));
+        return json_response(out);
+      },
+      json_or_csv);
   post("/api/v1/vehicles/{vid}/models", [&ctx](const ApiRequest& r, const PathParams& p) {
     const json body = body_object(r, "the fit request");
     const auto missions = mission_ids(body.value("missions", json()));
@@ -512,14 +586,19 @@ void Station::add_routes() {
                                    "/api/v1/models/" + std::to_string(f.stored.id));
                   });
   });
-  get("/api/v1/vehicles/{vid}/models/sweep", [&ctx](const ApiRequest& r, const PathParams& p) {
-    const auto missions = mission_params(r);
-    if (missions.empty()) throw bad_parameter("mission", "missing");
-    return answer(app::sweep_model_history(ctx, p.at("vid"), missions, {}), false,
-                  [](const std::vector<kinematics::HistorySweepRow>& rows) {
-                    return json_response(sweep_json(rows));
-                  });
-  });
+  get(
+      "/api/v1/vehicles/{vid}/models/sweep",
+      [&ctx](const ApiRequest& r, const PathParams& p) {
+        const Format f = negotiate(r, true);
+        const auto missions = mission_params(r);
+        if (missions.empty()) throw bad_parameter("mission", "missing");
+        return answer(app::sweep_model_history(ctx, p.at("vid"), missions, {}), false,
+                      [f](const std::vector<kinematics::HistorySweepRow>& rows) {
+                        if (f == Format::csv) return csv_response(sweep_csv(rows));
+                        return json_response(sweep_json(rows));
+                      });
+      },
+      json_or_csv);
   get("/api/v1/models/{id}", [&ctx](const ApiRequest&, const PathParams& p) {
     return answer(app::get_model(ctx, path_id(p, "id", "model")), false,
                   [](const store::StoredModel& m) { return json_response(model_json(m)); });

@@ -1,6 +1,8 @@
 #include "server/http/router.hpp"
 
 #include <algorithm>
+#include <cctype>
+#include <cstdlib>
 #include <string_view>
 
 #include "server/http/bearer_token.hpp"
@@ -47,7 +49,121 @@ ApiResponse unauthorised(const ApiRequest& r) {
   return res;
 }
 
+ApiResponse method_not_allowed(const ApiRequest& r, const std::string& allow) {
+  ApiResponse res =
+      problem_response(405, r.method + " is not allowed on " + r.path, {{"allow", allow}});
+  res.headers.push_back({"Allow", allow});
+  return res;
+}
+
+std::string lower_trimmed(std::string_view s) {
+  while (!s.empty() && (s.front() == ' ' || s.front() == '\t'))
+    s.remove_prefix(1);
+  while (!s.empty() && (s.back() == ' ' || s.back() == '\t'))
+    s.remove_suffix(1);
+  std::string out(s);
+  for (char& c : out)
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return out;
+}
+
+// One media range of an Accept header: "text/*;q=0.5" -> {"text/*", 0.5}.
+struct MediaRange {
+  std::string range;
+  double q = 1.0;
+};
+
+std::vector<MediaRange> media_ranges(std::string_view accept) {
+  std::vector<MediaRange> out;
+  while (!accept.empty()) {
+    const std::size_t comma = std::min(accept.find(','), accept.size());
+    std::string_view item = accept.substr(0, comma);
+    accept.remove_prefix(std::min(comma + 1, accept.size()));
+    const std::size_t semi = std::min(item.find(';'), item.size());
+    MediaRange m{lower_trimmed(item.substr(0, semi)), 1.0};
+    if (m.range.empty()) continue;
+    std::string_view params = item.substr(semi);
+    while (!params.empty()) {
+      params.remove_prefix(1);  // the ';'
+      const std::size_t next = std::min(params.find(';'), params.size());
+      const std::string param = lower_trimmed(params.substr(0, next));
+      params.remove_prefix(next);
+      if (param.rfind("q=", 0) == 0) {
+        char* end = nullptr;
+        const double q = std::strtod(param.c_str() + 2, &end);
+        // A malformed weight is read as the default rather than as a refusal of the type.
+        if (end != param.c_str() + 2 && q >= 0.0 && q <= 1.0) m.q = q;
+      }
+    }
+    out.push_back(std::move(m));
+  }
+  return out;
+}
+
+// 3 for type/subtype, 2 for type/*, 1 for */*, 0 when the range does not cover the type.
+int specificity(const std::string& range, const std::string& type) {
+  if (range == type) return 3;
+  if (range == "*/*") return 1;
+  const std::size_t slash = type.find('/');
+  if (range.size() == slash + 2 && range.ends_with("/*") &&
+      range.compare(0, slash, type, 0, slash) == 0)
+    return 2;
+  return 0;
+}
+
 }  // namespace
+
+const Representation& choose_representation(const ApiRequest& request,
+                                            const std::vector<Representation>& offered) {
+  if (const auto it = request.query.find("format"); it != request.query.end()) {
+    for (const auto& r : offered)
+      if (r.format == it->second) return r;
+    std::string names;
+    for (std::size_t i = 0; i < offered.size(); ++i) {
+      if (i > 0) names += i + 1 == offered.size() ? " or " : ", ";
+      names += offered[i].format;
+    }
+    std::string detail = "parameter 'format': must be ";
+    detail += names;
+    throw RequestError(400, detail, {{"parameter", "format"}});
+  }
+  if (request.accept.empty()) return offered.front();
+  const auto ranges = media_ranges(request.accept);
+  const Representation* best = nullptr;
+  double best_q = 0.0;
+  int best_specificity = 0;
+  for (const auto& r : offered) {
+    // The most specific range covering the type decides its weight (RFC 9110 12.5.1).
+    int spec = 0;
+    double q = 0.0;
+    for (const auto& m : ranges) {
+      const int s = specificity(m.range, r.media_type);
+      if (s > spec) {
+        spec = s;
+        q = m.q;
+      }
+    }
+    if (q > best_q || (q == best_q && q > 0.0 && spec > best_specificity)) {
+      best = &r;
+      best_q = q;
+      best_specificity = spec;
+    }
+  }
+  if (best) return *best;
+  nlohmann::json acceptable = nlohmann::json::array();
+  std::string types;
+  for (std::size_t i = 0; i < offered.size(); ++i) {
+    acceptable.push_back(offered[i].media_type);
+    if (i > 0) types += i + 1 == offered.size() ? " and " : ", ";
+    types += offered[i].media_type;
+  }
+  std::string detail = "this resource is available as ";
+  detail += types;
+  detail += "; Accept: '";
+  detail += request.accept.substr(0, 80);
+  detail += "' allows none of them";
+  throw RequestError(406, detail, {{"acceptable", acceptable}});
+}
 
 void Router::add(Route route) {
   std::vector<std::string> pattern;
@@ -97,6 +213,12 @@ Admission Router::admit(const ApiRequest& head) {
   const bool read = head.method == "GET" || head.method == "HEAD";
   if (read && head.remote_is_loopback && gets_are_open_reads_) return a;
   const Match m = match(head);
+  // A method the path does not take is refused as such before the token is asked for: no
+  // token would make it succeed, and the route table is public (docs/api.md).
+  if (!m.route && !m.allow.empty()) {
+    a.refusal = method_not_allowed(head, m.allow);
+    return a;
+  }
   // Not a route: only the token's holder learns that, on the body-less 404 after.
   a.refusal = refusal(head, m.route ? m.route->access : Access::read);
   if (m.route) a.body_limit_bytes = m.route->body_limit_bytes;
@@ -109,15 +231,12 @@ bool Router::may_open_stream(const ApiRequest& request) {
 
 ApiResponse Router::handle(const ApiRequest& request) {
   const Match m = match(request);
+  if (!m.route && !m.allow.empty()) return method_not_allowed(request, m.allow);
   if (auto no = refusal(request, m.route ? m.route->access : Access::read)) return *no;
-  if (!m.route) {
-    if (m.allow.empty()) return problem_response(404, "no resource at " + request.path);
-    ApiResponse res = problem_response(405, request.method + " is not allowed on " + request.path,
-                                       {{"allow", m.allow}});
-    res.headers.push_back({"Allow", m.allow});
-    return res;
-  }
+  if (!m.route) return problem_response(404, "no resource at " + request.path);
   try {
+    // Content negotiation is the route table's, so that every route refuses alike.
+    choose_representation(request, m.route->representations);
     return m.route->handler(request, m.params);
   } catch (const RequestError& e) {
     return problem_response(e.status(), e.what(), e.extra());

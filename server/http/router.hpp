@@ -26,12 +26,24 @@ enum class Access { read, control, image };
 using PathParams = std::map<std::string, std::string>;
 using RouteHandler = std::function<ApiResponse(const ApiRequest&, const PathParams&)>;
 
+// A form a route answers in: the name `?format=` gives it and its media type.
+struct Representation {
+  std::string format;      // "json", "csv", "mcap"
+  std::string media_type;  // "application/json", "text/csv", ...
+};
+inline const Representation kJsonRepresentation{"json", "application/json"};
+inline const Representation kCsvRepresentation{"csv", "text/csv"};
+
 struct Route {
   std::string method;   // "GET" (answers HEAD too) or "POST"
   std::string pattern;  // "/api/v1/vehicles/{vid}/ckt/import": {name} matches one segment
   Access access = Access::read;
   std::optional<std::size_t> body_limit_bytes;  // none: the transport's default
   RouteHandler handler;
+  // What the route answers in, the default first. The router refuses a request none of them
+  // suits (406, or 400 for a `?format=` naming none) before the handler runs, so every route
+  // negotiates alike; a handler offering several asks choose_representation which one to write.
+  std::vector<Representation> representations = {kJsonRepresentation};
 };
 
 // What a handler throws for a request it cannot take (a bad parameter, an unacceptable format);
@@ -48,6 +60,15 @@ class RequestError : public std::runtime_error {
   int status_;
   nlohmann::json extra_;
 };
+
+// Which of `offered` (not empty, the default first) the request asks for. `?format=` names one
+// by its short name and wins over Accept. Otherwise Accept's most preferred acceptable type: each
+// offered type is weighed by the q of the most specific range matching it (type/subtype, then
+// type/*, then */*), q=0 excludes it, ties go to the more specific range and then to the earlier
+// offered. No Accept: the first. Throws RequestError: 400 naming `format` for a format not
+// offered, 406 naming the media types offered (`acceptable`) when Accept allows none of them.
+const Representation& choose_representation(const ApiRequest& request,
+                                            const std::vector<Representation>& offered);
 
 class Router : public Api {
  public:

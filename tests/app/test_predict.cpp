@@ -180,6 +180,16 @@ TEST_F(Predict, BadQuestionsNameTheirParameter) {
   EXPECT_EQ(field_of(query("alpha", 1.0, 0.0)), "dheading");
   EXPECT_EQ(field_of(query("alpha", 1.0, 181.0)), "dheading");
   EXPECT_EQ(field_of(query("alpha", 3.5, 40.0)), "speed");  // beyond the table's speeds
+  // Issue 19: a heading change out of range and a speed beyond the table's: both named, the
+  // speed with the table's range.
+  const auto both = app::predict(ctx_, query("alpha", 3.5, 181.0));
+  ASSERT_FALSE(both);
+  ASSERT_EQ(both.error().fields.size(), 2u) << both.error().message;
+  EXPECT_EQ(both.error().fields[0].field, "speed");
+  EXPECT_NE(both.error().fields[0].message.find("outside the table's speed range ["),
+            std::string::npos)
+      << both.error().fields[0].message;
+  EXPECT_EQ(both.error().fields[1].field, "dheading");
   auto m = query("alpha", 1.0, 40.0);
   m.method = app::PredictionMethod::model;
   const auto no_model = app::predict(ctx_, m);

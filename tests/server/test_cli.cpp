@@ -137,7 +137,10 @@ TEST_F(CliFiles, OutOfRangeSpeedIsRefused) {
   const Result r =
       run({"ckt", "query", "--ckt", path("ckt.json"), "--speed", "2", "--dheading", "10"});
   EXPECT_EQ(r.rc, 1);
-  EXPECT_NE(r.err.find("outside the table's range"), std::string::npos) << r.err;
+  // Named with the table's range (issue 19: every parameter out of range, with its range).
+  EXPECT_NE(r.err.find("speed: 2.0 m/s is outside the table's speed range [1.0, 1.0] m/s"),
+            std::string::npos)
+      << r.err;
 }
 
 TEST_F(CliFiles, CorruptCktIsRefusedAndExistingOutputKept) {

@@ -13,6 +13,7 @@ using avk::server::Access;
 using avk::server::ApiRequest;
 using avk::server::ApiResponse;
 using avk::server::PathParams;
+using avk::server::Representation;
 using avk::server::RequestError;
 using avk::server::Router;
 using nlohmann::json;
@@ -107,6 +108,44 @@ TEST(Router, AHandlersRequestErrorIsAProblem) {
   const json p = json::parse(res.body);
   EXPECT_EQ(p["parameter"], "x");
   EXPECT_EQ(p["title"], "Bad Request");
+}
+
+// Content negotiation (issue 19): ?format= wins; q weights count, q=0 excludes; a type is
+// weighed by the most specific range covering it; a tie goes to the more specific range, then
+// to the first offered; nothing acceptable is a 406 naming what is offered.
+TEST(Router, ChoosesARepresentationByFormatThenAccept) {
+  const std::vector<Representation> offered{avk::server::kJsonRepresentation,
+                                            avk::server::kCsvRepresentation};
+  const auto pick = [&](const std::string& accept, const std::string& format = "") {
+    ApiRequest q = request("GET", "/x");
+    q.accept = accept;
+    if (!format.empty()) q.query["format"] = format;
+    return avk::server::choose_representation(q, offered).format;
+  };
+  EXPECT_EQ(pick(""), "json");
+  EXPECT_EQ(pick("*/*"), "json");
+  EXPECT_EQ(pick("text/csv"), "csv");
+  EXPECT_EQ(pick("text/csv, */*"), "csv") << "the named type beats the wildcard";
+  EXPECT_EQ(pick("application/json;q=0.5, text/csv"), "csv");
+  EXPECT_EQ(pick("text/*;q=0.2, application/*;q=0.9"), "json");
+  EXPECT_EQ(pick("*/*, text/csv;q=0"), "json") << "q=0 on the specific range excludes it";
+  EXPECT_EQ(pick("TEXT/CSV ; Q=1"), "csv") << "case-insensitive";
+  EXPECT_EQ(pick("image/png", "csv"), "csv") << "?format= wins over Accept";
+  try {
+    pick("image/png, application/json;q=0");
+    ADD_FAILURE() << "no 406";
+  } catch (const RequestError& e) {
+    EXPECT_EQ(e.status(), 406);
+    EXPECT_EQ(e.extra()["acceptable"], json::array({"application/json", "text/csv"}));
+  }
+  try {
+    pick("", "xml");
+    ADD_FAILURE() << "no 400";
+  } catch (const RequestError& e) {
+    EXPECT_EQ(e.status(), 400);
+    EXPECT_EQ(e.extra()["parameter"], "format");
+    EXPECT_NE(std::string(e.what()).find("json or csv"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

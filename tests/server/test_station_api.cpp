@@ -4,8 +4,12 @@
 
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <regex>
+#include <set>
+#include <sstream>
 #include <thread>
 
 #include "kinematics/ckt_file.hpp"
@@ -62,6 +66,127 @@ json body(const ApiResponse& r) {
   return json::parse(r.body);
 }
 
+std::string header(const ApiResponse& r, const std::string& name) {
+  for (const auto& [k, v] : r.headers)
+    if (k == name) return v;
+  return "";
+}
+
+// --- docs/api.md, read as a client reads it ----------------------------------------------
+
+std::string api_doc() {
+  std::ifstream f(std::string(AVK_SOURCE_DIR) + "/docs/api.md");
+  std::stringstream text;
+  text << f.rdbuf();
+  return text.str();
+}
+
+// A row of a route table: `| GET | `/path?query`, `/other` | what it does |`.
+struct DocRow {
+  std::string method;
+  std::vector<std::string> patterns;  // with /api/v1, without the query
+  std::string description;
+};
+
+std::vector<DocRow> documented_routes() {
+  std::vector<DocRow> rows;
+  std::istringstream lines(api_doc());
+  // The path cell may hold escaped bars (`format=json\|csv`).
+  const std::regex row(R"(^\| *(GET|POST|PUT|PATCH|DELETE) *\| *((?:[^|\\]|\\.)*)\|(.*)$)");
+  const std::regex code("`([^`]*)`");
+  std::string line;
+  while (std::getline(lines, line)) {
+    std::smatch m;
+    if (!std::regex_match(line, m, row)) continue;
+    DocRow r{m[1], {}, m[3]};
+    const std::string cell = m[2];
+    for (auto it = std::sregex_iterator(cell.begin(), cell.end(), code);
+         it != std::sregex_iterator(); ++it) {
+      std::string path = (*it)[1];
+      if (path.empty() || path.front() != '/') continue;
+      path = path.substr(0, path.find_first_of("?["));
+      r.patterns.push_back("/api/v1" + path);
+    }
+    rows.push_back(std::move(r));
+  }
+  return rows;
+}
+
+// The fenced example whose request line starts with `request`: the lines after it up to the
+// closing fence or an empty line.
+std::string doc_example_answer(const std::string& request) {
+  std::istringstream lines(api_doc());
+  std::string line, answer;
+  bool in = false;
+  while (std::getline(lines, line)) {
+    if (!in) {
+      in = line.rfind(request, 0) == 0;
+      continue;
+    }
+    if (line.empty() || line.rfind("```", 0) == 0) break;
+    answer += line + "\n";
+  }
+  return answer;
+}
+
+// Every "key": of an example's text.
+std::set<std::string> example_keys(const std::string& text) {
+  std::set<std::string> keys;
+  const std::regex key(R"re("([A-Za-z_][A-Za-z0-9_]*)"\s*:)re");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), key); it != std::sregex_iterator();
+       ++it)
+    keys.insert((*it)[1]);
+  return keys;
+}
+
+void collect_keys(const json& j, std::set<std::string>& keys) {
+  if (j.is_object()) {
+    for (const auto& [k, v] : j.items()) {
+      keys.insert(k);
+      collect_keys(v, keys);
+    }
+  } else if (j.is_array()) {
+    for (const auto& v : j)
+      collect_keys(v, keys);
+  }
+}
+
+// The request line of an example as an ApiRequest: "GET /api/v1/...?a=1&b=2".
+ApiRequest example_request(const std::string& line) {
+  std::istringstream words(line);
+  std::string method, target;
+  words >> method >> target;
+  ApiRequest r;
+  r.method = method;
+  r.path = target.substr(0, target.find('?'));
+  if (const auto q = target.find('?'); q != std::string::npos) {
+    std::istringstream pairs(target.substr(q + 1));
+    std::string pair;
+    while (std::getline(pairs, pair, '&')) {
+      const auto eq = pair.find('=');
+      r.query[pair.substr(0, eq)] = eq == std::string::npos ? "" : pair.substr(eq + 1);
+      r.multi_query.emplace(pair.substr(0, eq), r.query[pair.substr(0, eq)]);
+    }
+  }
+  return r;
+}
+
+// The doc's example answer and the real one agree: every key the example shows is in the real
+// answer, and every key of the real answer's top level is in the example.
+void expect_example_matches(const std::string& request_line, const json& real) {
+  const std::string example = doc_example_answer(request_line);
+  ASSERT_FALSE(example.empty()) << "docs/api.md has no example '" << request_line << "'";
+  std::set<std::string> real_keys;
+  collect_keys(real, real_keys);
+  for (const auto& k : example_keys(example))
+    EXPECT_TRUE(real_keys.count(k)) << "the example of '" << request_line << "' shows \"" << k
+                                    << "\", which the real answer lacks: " << real.dump();
+  const auto shown = example_keys(example);
+  for (const auto& [k, v] : real.items())
+    EXPECT_TRUE(shown.count(k)) << "the example of '" << request_line << "' lacks \"" << k
+                                << "\" of the real answer";
+}
+
 class StationApi : public ::testing::Test {
  protected:
   void SetUp() override { start(); }
@@ -99,6 +224,141 @@ class StationApi : public ::testing::Test {
   StreamHub hub_;
   std::unique_ptr<Station> station_;
 };
+
+// The station's route table without a vehicle: routes answer before any data exists.
+class RouteTable : public ::testing::Test {
+ protected:
+  RouteTable() {
+    avk::server::StationOptions o;
+    o.db_path = db_.path();
+    o.token = kToken;
+    o.server_version = "test";
+    station_ = std::make_unique<Station>(o, hub_);
+  }
+  // A concrete path of a pattern: {vid} the test vehicle, any other {name} 1.
+  static std::string concrete(const std::string& pattern) {
+    return std::regex_replace(std::regex_replace(pattern, std::regex("\\{vid\\}"), "sim-usim"),
+                              std::regex("\\{[a-z_]+\\}"), "1");
+  }
+  ApiResponse call_station(const ApiRequest& r) { return station_->handle(r); }
+  static bool offers_csv(const avk::server::Route& r) {
+    for (const auto& rep : r.representations)
+      if (rep.media_type == "text/csv") return true;
+    return false;
+  }
+  avk::testing::TempDb db_{"avk_route_table"};
+  StreamHub hub_;
+  std::unique_ptr<Station> station_;
+};
+
+// Issue 19: the API doc and the server disagreed. Every route the server registers is in a
+// route table of docs/api.md, and every route the doc lists is registered (method and pattern).
+TEST_F(RouteTable, EveryRouteIsDocumentedAndEveryDocumentedRouteExists) {
+  std::set<std::pair<std::string, std::string>> served, documented;
+  for (const auto& r : station_->routes())
+    served.insert({r.method, r.pattern});
+  const auto rows = documented_routes();
+  ASSERT_GT(rows.size(), 20u) << "docs/api.md's route tables were not found";
+  for (const auto& row : rows) {
+    EXPECT_FALSE(row.patterns.empty()) << "a row of docs/api.md names no path: " << row.description;
+    for (const auto& p : row.patterns)
+      documented.insert({row.method, p});
+  }
+  for (const auto& [method, pattern] : served)
+    EXPECT_TRUE(documented.count({method, pattern}))
+        << method << " " << pattern << " is served but not in docs/api.md";
+  for (const auto& [method, pattern] : documented)
+    EXPECT_TRUE(served.count({method, pattern}))
+        << method << " " << pattern << " is in docs/api.md but the server has no such route";
+}
+
+// The doc's route tables say "CSV" on exactly the routes that serve it.
+TEST_F(RouteTable, TheDocSaysCsvWhereCsvIsServed) {
+  std::map<std::pair<std::string, std::string>, bool> says_csv;
+  for (const auto& row : documented_routes())
+    for (const auto& p : row.patterns)
+      says_csv[{row.method, p}] =
+          says_csv[{row.method, p}] || row.description.find("CSV") != std::string::npos;
+  for (const auto& r : station_->routes()) {
+    const bool says = says_csv[std::make_pair(r.method, r.pattern)];
+    EXPECT_EQ(says, offers_csv(r)) << r.method << " " << r.pattern
+                                   << (offers_csv(r) ? " serves CSV; its row does not say so"
+                                                     : " serves no CSV; its row says CSV");
+  }
+  // The four that answered JSON to a CSV request before issue 19.
+  for (const std::string p : {"/api/v1/vehicles", "/api/v1/missions/{id}/events",
+                              "/api/v1/missions/{id}/nav", "/api/v1/vehicles/{vid}/models"}) {
+    bool found = false;
+    for (const auto& r : station_->routes())
+      if (r.method == "GET" && r.pattern == p) found = offers_csv(r);
+    EXPECT_TRUE(found) << p << " offers no CSV";
+  }
+}
+
+// Content negotiation is the same on every route: an Accept that excludes everything a route
+// offers is a 406 naming what it offers, decided before the handler (an unknown id included).
+TEST_F(RouteTable, EveryRouteRefusesAnUnacceptableAcceptAlike) {
+  for (const auto& route : station_->routes()) {
+    ApiRequest r =
+        route.method == "GET" ? get(concrete(route.pattern)) : post(concrete(route.pattern), "{}");
+    const std::string what = route.method + " " + route.pattern;
+    r.accept = "image/png";
+    const ApiResponse png = call_station(r);
+    EXPECT_EQ(png.status, 406) << what << ": " << png.body;
+    if (png.status == 406) {
+      json acceptable = json::array();
+      for (const auto& rep : route.representations)
+        acceptable.push_back(rep.media_type);
+      EXPECT_EQ(body(png)["acceptable"], acceptable) << what;
+      EXPECT_EQ(png.content_type, "application/problem+json") << what;
+    }
+    // CSV only: 406 unless the route offers it.
+    r.accept = "text/csv";
+    const ApiResponse csv = call_station(r);
+    EXPECT_EQ(csv.status == 406, !offers_csv(route))
+        << what << ": " << csv.status << " " << csv.body;
+    // JSON refused by weight: the same as not naming it.
+    r.accept = "application/json;q=0, text/csv";
+    EXPECT_EQ(call_station(r).status == 406, !offers_csv(route)) << what;
+    // Anything: never a 406.
+    r.accept = "*/*";
+    EXPECT_NE(call_station(r).status, 406) << what;
+    if (route.method == "GET" && route.representations.front().format == "json") {
+      r.accept.clear();
+      r.query["format"] = "xml";
+      r.multi_query.emplace("format", "xml");
+      const ApiResponse bad = call_station(r);
+      EXPECT_EQ(bad.status, 400) << what;
+      EXPECT_EQ(body(bad)["parameter"], "format") << what;
+    }
+  }
+}
+
+// Issue 19: an unauthenticated DELETE from afar got 401. A method the path does not take is a
+// 405 with Allow from any address, token or not, before the body is read; a path that is no
+// route stays a 401 from afar without the token.
+TEST_F(RouteTable, AMethodNotAllowedIs405BeforeTheTokenIsAskedFor) {
+  for (const bool loopback : {true, false}) {
+    ApiRequest del = get("/api/v1/missions/1");
+    del.method = "DELETE";
+    del.remote_is_loopback = loopback;
+    const ApiResponse res = call_station(del);
+    EXPECT_EQ(res.status, 405) << "loopback " << loopback << ": " << res.body;
+    EXPECT_EQ(header(res, "Allow"), "GET");
+    const auto admission = station_->admit(del);
+    ASSERT_TRUE(admission.refusal) << "refused from the header, before any body";
+    EXPECT_EQ(admission.refusal->status, 405);
+    ApiRequest post_health = post("/api/v1/health", "{}", "");
+    post_health.remote_is_loopback = loopback;
+    EXPECT_EQ(call_station(post_health).status, 405);
+  }
+  ApiRequest nothing = get("/api/v1/nothing");
+  nothing.remote_is_loopback = false;
+  EXPECT_EQ(call_station(nothing).status, 401);
+  ApiRequest control = post("/api/v1/missions/1/abort", "{}", "");
+  control.remote_is_loopback = false;
+  EXPECT_EQ(call_station(control).status, 401) << "the right method still needs the token";
+}
 
 TEST_F(StationApi, HealthAndVehicle) {
   const json h = body(call(get("/api/v1/health")));
@@ -316,6 +576,32 @@ TEST_F(StationApi, CktCellsExportImportPredictModelsCompare) {
       call(get("/api/v1/vehicles/sim-usim/ckt/cells", {{"speed", "0.7"}, {"dheading", "100"}}))
           .status,
       404);
+  // Issue 19: a signed heading change, as predict takes it: the port cell is the cell of |Δψ|
+  // mirrored, and says so.
+  EXPECT_EQ(cell["side"], "starboard");
+  const ApiResponse port_res =
+      call(get("/api/v1/vehicles/sim-usim/ckt/cells", {{"speed", "0.5"}, {"dheading", "-100"}}));
+  ASSERT_EQ(port_res.status, 200) << port_res.body;
+  const json port = body(port_res);
+  EXPECT_EQ(port["side"], "port");
+  EXPECT_EQ(port["dheading_deg"], -100.0);
+  EXPECT_EQ(port["n_turns"], cell["n_turns"]);
+  for (const char* line : {"trajectory", "mean", "fit"}) {
+    ASSERT_EQ(port[line].size(), cell[line].size()) << line;
+    for (std::size_t i = 0; i < cell[line].size(); ++i) {
+      EXPECT_EQ(port[line][i][0].get<double>(), -cell[line][i][0].get<double>()) << line;
+      EXPECT_EQ(port[line][i][1].get<double>(), cell[line][i][1].get<double>()) << line;
+    }
+  }
+  EXPECT_EQ(port["turns"][0]["points"][3][0].get<double>(),
+            -cell["turns"][0]["points"][3][0].get<double>());
+  // A starboard right turn ends to the east, the port one to the west.
+  EXPECT_GT(cell["trajectory"].back()[0].get<double>(), 0.0);
+  EXPECT_LT(port["trajectory"].back()[0].get<double>(), 0.0);
+  EXPECT_EQ(
+      call(get("/api/v1/vehicles/sim-usim/ckt/cells", {{"speed", "0.5"}, {"dheading", "-181"}}))
+          .status,
+      400);
   const ApiResponse exported =
       call(get("/api/v1/vehicles/sim-usim/ckt/export", {{"format", "json"}}));
   ASSERT_EQ(exported.status, 200);
@@ -333,9 +619,36 @@ TEST_F(StationApi, CktCellsExportImportPredictModelsCompare) {
           {{"speed", "0.75"}, {"dheading", "-70"}, {"x", "10"}, {"y", "5"}, {"heading", "90"}})));
   EXPECT_EQ(avk["frame"], "world");
   EXPECT_DOUBLE_EQ(avk["trajectory"][0][0].get<double>(), 10.0);
-  EXPECT_EQ(
-      call(get("/api/v1/vehicles/sim-usim/predict", {{"speed", "3"}, {"dheading", "70"}})).status,
-      400);  // outside the table's speeds
+  const ApiResponse too_fast =
+      call(get("/api/v1/vehicles/sim-usim/predict", {{"speed", "3"}, {"dheading", "70"}}));
+  EXPECT_EQ(too_fast.status, 400);  // outside the table's speeds, named with the range
+  EXPECT_EQ(body(too_fast)["parameter"], "speed");
+  EXPECT_NE(body(too_fast)["detail"].get<std::string>().find("[0.5, 1.0] m/s"), std::string::npos)
+      << too_fast.body;
+  // Issue 19: both off, both named, each with its range; the heading change alone, alone.
+  const ApiResponse both =
+      call(get("/api/v1/vehicles/sim-usim/predict", {{"speed", "3"}, {"dheading", "200"}}));
+  ASSERT_EQ(both.status, 400) << both.body;
+  const json both_p = body(both);
+  ASSERT_EQ(both_p["errors"].size(), 2u) << both.body;
+  EXPECT_EQ(both_p["errors"][0]["field"], "speed");
+  EXPECT_EQ(both_p["errors"][1]["field"], "dheading");
+  const std::string detail = both_p["detail"];
+  for (const char* part : {"'speed'", "[0.5, 1.0] m/s", "'dheading'", "180"})
+    EXPECT_NE(detail.find(part), std::string::npos) << part << " in " << detail;
+  const ApiResponse turn_only =
+      call(get("/api/v1/vehicles/sim-usim/predict", {{"speed", "1"}, {"dheading", "-200"}}));
+  EXPECT_EQ(turn_only.status, 400);
+  EXPECT_EQ(body(turn_only)["parameter"], "dheading") << turn_only.body;
+  EXPECT_FALSE(body(turn_only).contains("errors")) << turn_only.body;
+  const ApiResponse missing_both = call(get("/api/v1/vehicles/sim-usim/predict"));
+  EXPECT_EQ(body(missing_both)["errors"].size(), 2u) << missing_both.body;
+  // Issue 19: the doc's predict example is the real answer's shape.
+  const std::string example =
+      "GET /api/v1/vehicles/sim-usim/predict?speed=1&dheading=-75&x=10&y=20&heading=45";
+  const ApiResponse real = call(example_request(example));
+  ASSERT_EQ(real.status, 200) << real.body;
+  expect_example_matches(example, body(real));
   EXPECT_EQ(call(get("/api/v1/vehicles/sim-usim/predict",
                      {{"speed", "1"}, {"dheading", "70"}, {"method", "model"}}))
                 .status,
@@ -348,6 +661,11 @@ TEST_F(StationApi, CktCellsExportImportPredictModelsCompare) {
   const auto model_id = body(fitted)["id"].get<std::int64_t>();
   EXPECT_EQ(body(call(get("/api/v1/models/" + std::to_string(model_id))))["history"], 12);
   EXPECT_EQ(body(call(get("/api/v1/vehicles/sim-usim/models"))).size(), 1u);
+  const ApiResponse models_csv = call(get("/api/v1/vehicles/sim-usim/models", {{"format", "csv"}}));
+  ASSERT_EQ(models_csv.status, 200);
+  EXPECT_EQ(models_csv.body.rfind("id,created_utc,vehicle_id,form,history_samples,rate_hz,", 0), 0u)
+      << models_csv.body;
+  EXPECT_NE(models_csv.body.find("\n" + std::to_string(model_id) + ","), std::string::npos);
   EXPECT_EQ(call(post("/api/v1/vehicles/sim-usim/models", R"({"missions":[999]})")).status, 422);
   const json model = body(call(get("/api/v1/vehicles/sim-usim/predict",
                                    {{"speed", "1"}, {"dheading", "70"}, {"method", "model"}})));
@@ -409,6 +727,59 @@ TEST_F(StationApi, NavPagesConcatenateToTheStoredTrack) {
          {"y_m", "heading_deg", "speed_mps", "desired_heading_deg", "desired_speed_mps"})
       EXPECT_TRUE(rows[i].contains(k)) << k;
   }
+  // Issue 19: the track as CSV, paged by X-Next-After, is the same rows as the JSON pages.
+  const auto split = [](const std::string& text, char sep) {
+    std::vector<std::string> out;
+    std::string cell;
+    std::istringstream in(text);
+    while (std::getline(in, cell, sep))
+      out.push_back(cell);
+    return out;
+  };
+  std::vector<std::string> csv_rows;
+  std::map<std::string, std::string> cq = {{"limit", "400"}, {"format", "csv"}};
+  for (int page = 0; page < 1000; ++page) {
+    const ApiResponse r = call(get(path, cq));
+    ASSERT_EQ(r.status, 200) << r.body;
+    ASSERT_EQ(r.content_type.rfind("text/csv", 0), 0u);
+    const auto lines = split(r.body, '\n');
+    ASSERT_FALSE(lines.empty());
+    EXPECT_EQ(lines[0],
+              "t_s,x_m,y_m,heading_deg,speed_mps,desired_heading_deg,desired_speed_mps,helm_mode");
+    csv_rows.insert(csv_rows.end(), lines.begin() + 1, lines.end());
+    const std::string next = header(r, "X-Next-After");
+    if (next.empty()) break;
+    cq["after"] = next;
+  }
+  ASSERT_EQ(csv_rows.size(), rows.size());
+  for (std::size_t i = 0; i < rows.size(); i += 97) {
+    const auto cells = split(csv_rows[i], ',');
+    ASSERT_EQ(cells.size(), 8u) << csv_rows[i];
+    EXPECT_EQ(std::stod(cells[0]), rows[i]["t_s"].get<double>());
+    EXPECT_EQ(std::stod(cells[1]), rows[i]["x_m"].get<double>());
+    EXPECT_EQ(std::stod(cells[3]), rows[i]["heading_deg"].get<double>());
+    EXPECT_EQ(cells[5].empty(), rows[i]["desired_heading_deg"].is_null());
+    EXPECT_EQ(cells[7], rows[i]["helm_mode"].get<std::string>());
+  }
+  // The event log likewise, with Accept instead of ?format=.
+  const std::string events_path = "/api/v1/missions/" + std::to_string(id) + "/events";
+  const json events = body(call(get(events_path, {{"limit", "1000"}})));
+  ApiRequest events_csv = get(events_path, {{"limit", "1000"}});
+  events_csv.accept = "text/csv";
+  const auto event_lines = split(call(events_csv).body, '\n');
+  ASSERT_EQ(event_lines.size(), events["items"].size() + 1);
+  EXPECT_EQ(event_lines[0], "id,t_s,kind,message");
+  for (std::size_t i = 0; i < events["items"].size(); ++i) {
+    const json& e = events["items"][i];
+    EXPECT_EQ(event_lines[i + 1].rfind(std::to_string(e["id"].get<std::int64_t>()) + ",", 0), 0u);
+    EXPECT_NE(event_lines[i + 1].find("," + e["kind"].get<std::string>() + ","), std::string::npos);
+  }
+  ApiRequest vehicles_csv = get("/api/v1/vehicles");
+  vehicles_csv.accept = "text/csv";
+  const auto vehicle_lines = split(call(vehicles_csv).body, '\n');
+  ASSERT_EQ(vehicle_lines.size(), 2u);
+  EXPECT_EQ(vehicle_lines[0].rfind("id,kind,max_speed_mps,link,helm_mode,", 0), 0u);
+  EXPECT_EQ(vehicle_lines[1].rfind("sim-usim,usim,", 0), 0u) << vehicle_lines[1];
   // The default page is 5000 rows.
   EXPECT_EQ(body(call(get(path)))["items"].size(), std::min<std::size_t>(stored.size(), 5000));
   EXPECT_EQ(call(get("/api/v1/missions/999/nav")).status, 404);

@@ -3,7 +3,10 @@
 // upgrade. Reproduces the Docker deployment's defect: the stream had no way to carry the token
 // and let any address in.
 
+#include <arpa/inet.h>
 #include <gtest/gtest.h>
+#include <ifaddrs.h>
+#include <netinet/in.h>
 
 #include <boost/asio/connect.hpp>
 #include <boost/asio/ip/tcp.hpp>
@@ -11,6 +14,7 @@
 #include <boost/beast/http.hpp>
 #include <chrono>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,15 +54,18 @@ class TokenApi final : public Api {
   std::vector<std::string> seen;
 };
 
-// One raw upgrade request; the status line of the answer (bounded by a 10 s deadline).
+// One raw upgrade request; the status line of the answer (bounded by a 10 s deadline). From
+// `address` to the server listening there: a non-loopback address of this machine makes the
+// server see a client that is not on loopback.
 http::response<http::string_body> upgrade(unsigned short port, const std::string& target,
-                                          const std::string& authorization = "") {
+                                          const std::string& authorization = "",
+                                          const std::string& address = "127.0.0.1") {
   net::io_context io;
   beast::tcp_stream stream(io);
   stream.expires_after(10s);
-  stream.connect(tcp::endpoint(net::ip::make_address("127.0.0.1"), port));
+  stream.connect(tcp::endpoint(net::ip::make_address(address), port));
   http::request<http::empty_body> req(http::verb::get, target, 11);
-  req.set(http::field::host, "127.0.0.1:" + std::to_string(port));
+  req.set(http::field::host, address + ":" + std::to_string(port));
   req.set(http::field::upgrade, "websocket");
   req.set(http::field::connection, "Upgrade");
   req.set(http::field::sec_websocket_key, "dGhlIHNhbXBsZSBub25jZQ==");
@@ -142,6 +149,55 @@ TEST(StationStreamRule, OffLoopbackTheStreamNeedsTheToken) {
   EXPECT_FALSE(station.may_open_stream(r));
   r.authorization = std::string("Bearer ") + kToken;
   EXPECT_TRUE(station.may_open_stream(r));
+}
+
+// An IPv4 address of this machine that is not loopback (a container's eth0), if it has one.
+std::optional<std::string> non_loopback_ipv4() {
+  ifaddrs* list = nullptr;
+  if (getifaddrs(&list) != 0) return std::nullopt;
+  std::optional<std::string> found;
+  for (ifaddrs* a = list; a && !found; a = a->ifa_next) {
+    if (!a->ifa_addr || a->ifa_addr->sa_family != AF_INET) continue;
+    char text[INET_ADDRSTRLEN] = {};
+    const auto* in = reinterpret_cast<const sockaddr_in*>(a->ifa_addr);
+    if (!inet_ntop(AF_INET, &in->sin_addr, text, sizeof text)) continue;
+    if (!net::ip::make_address_v4(text).is_loopback()) found = text;
+  }
+  freeifaddrs(list);
+  return found;
+}
+
+// The whole way, as a client on another machine meets it: the real station behind the real
+// transport, reached from an address that is not loopback. Issue 19: the doc says every
+// request from afar needs the token; the stream must take it (header or ?token=) and refuse
+// without it.
+TEST(StationStreamRule, FromAnotherAddressTheStreamTakesTheTokenAndRefusesWithoutIt) {
+  const auto address = non_loopback_ipv4();
+  if (!address) GTEST_SKIP() << "this machine has no non-loopback IPv4 address";
+  avk::testing::TempDb db{"avk_stream_token_remote"};
+  StreamHub hub;
+  avk::server::StationOptions so;
+  so.db_path = db.path();
+  so.token = kToken;
+  so.server_version = "test";
+  avk::server::Station station(so, hub);
+  HttpServerOptions o;
+  o.server_version = "test";
+  o.bind_address = *address;
+  HttpServer server(o, station, hub);
+  server.start();
+  const auto port = server.port();
+
+  const auto without = upgrade(port, "/api/v1/stream", "", *address);
+  EXPECT_EQ(without.result_int(), 401);
+  EXPECT_EQ(without[http::field::www_authenticate], "Bearer");
+  EXPECT_EQ(upgrade(port, "/api/v1/stream?token=wrong", "", *address).result_int(), 401);
+  EXPECT_EQ(upgrade(port, "/api/v1/stream", "Bearer wrong", *address).result_int(), 401);
+  EXPECT_EQ(upgrade(port, std::string("/api/v1/stream?token=") + kToken, "", *address).result_int(),
+            101);
+  EXPECT_EQ(upgrade(port, "/api/v1/stream", std::string("Bearer ") + kToken, *address).result_int(),
+            101);
+  server.stop();
 }
 
 }  // namespace

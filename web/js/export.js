@@ -1,8 +1,9 @@
 // The Export view: the CKT (JSON, CSV), the turns (CSV, every page), a mission as an MCAP
-// recording and the comparison (CSV) as downloads, and a PNG of every plot drawn so far.
+// recording, its track (CSV) and event log (CSV, JSON), and the comparison (CSV) as downloads,
+// and a PNG of every plot drawn so far.
 
 import { state, on } from './state.js';
-import { getBlob, getText } from './api.js';
+import { getAllItems, getBlob, getText } from './api.js';
 import { drawnPlots, downloadPng, onPlotsChanged } from './plots.js';
 import { el, setStatus } from './format.js';
 import { refreshTurnCount } from './sync.js';
@@ -49,28 +50,78 @@ async function cktDownload(format) {
   }
 }
 
-/** Turns as CSV: the collection is paged (at most 1000 a page, cursor in X-Next-After), so the
- *  pages are fetched and joined here into one file. */
+/** Every page of a paged CSV collection (at most `limit` rows a page, the cursor in
+ *  X-Next-After) joined into one file: the header once, then every row. */
+async function allCsvPages(path, params, limit) {
+  let after;
+  let header = null;
+  const lines = [];
+  for (let page = 0; page < 10000; page++) {
+    const { text, headers } = await getText(path, { ...params, format: 'csv', limit, after });
+    const rows = text.split('\n').filter((l) => l.length > 0);
+    if (rows.length === 0) break;
+    if (header === null) header = rows[0];
+    lines.push(...rows.slice(1));
+    const next = headers.get('X-Next-After');
+    if (!next) break;
+    after = next;
+  }
+  return { text: `${[header ?? '', ...lines].join('\n')}\n`, rows: lines.length };
+}
+
+/** Turns as CSV: the collection is paged (at most 1000 a page), so the pages are joined. */
 async function turnsCsv() {
   const mission = $('exp-turns-mission').value;
   const status = $('exp-status');
   setStatus(status, 'Collecting turns…');
   try {
-    let after;
-    let header = null;
-    const lines = [];
-    for (let page = 0; page < 1000; page++) {
-      const { text, headers } = await getText('/turns', { format: 'csv', limit: 1000, after, mission: mission || undefined });
-      const rows = text.split('\n').filter((l) => l.length > 0);
-      if (rows.length === 0) break;
-      if (header === null) header = rows[0];
-      lines.push(...rows.slice(1));
-      const next = headers.get('X-Next-After');
-      if (!next) break;
-      after = next;
+    const { text, rows } = await allCsvPages('/turns', { mission: mission || undefined }, 1000);
+    downloadText(text, `turns${mission ? `-mission-${mission}` : ''}.csv`, 'text/csv');
+    setStatus(status, `Turns CSV: ${rows} turns.`, 'ok');
+  } catch (e) {
+    setStatus(status, e.message, 'error');
+  }
+}
+
+/** The chosen mission's id, or null (with the reason shown) when there is none yet. */
+function chosenMission() {
+  const id = $('exp-mcap-mission').value;
+  if (!id) setStatus($('exp-status'), 'No mission yet: there is nothing to export.', 'error');
+  return id || null;
+}
+
+/** The mission's stored track as one CSV file: every page of /missions/{id}/nav. */
+async function trackCsv() {
+  const id = chosenMission();
+  if (!id) return;
+  const status = $('exp-status');
+  setStatus(status, `Collecting the track of mission ${id}…`);
+  try {
+    const { text, rows } = await allCsvPages(`/missions/${encodeURIComponent(id)}/nav`, {}, 10000);
+    downloadText(text, `mission-${id}-track.csv`, 'text/csv');
+    setStatus(status, `Mission ${id} track CSV: ${rows} samples.`, 'ok');
+  } catch (e) {
+    setStatus(status, e.message, 'error');
+  }
+}
+
+/** The mission's event log, every page, as CSV or as a JSON array of the REST items. */
+async function eventsDownload(format) {
+  const id = chosenMission();
+  if (!id) return;
+  const status = $('exp-status');
+  const path = `/missions/${encodeURIComponent(id)}/events`;
+  setStatus(status, `Collecting the event log of mission ${id}…`);
+  try {
+    if (format === 'csv') {
+      const { text, rows } = await allCsvPages(path, {}, 1000);
+      downloadText(text, `mission-${id}-events.csv`, 'text/csv');
+      setStatus(status, `Mission ${id} event log CSV: ${rows} entries.`, 'ok');
+    } else {
+      const items = await getAllItems(path, {}, Number.MAX_SAFE_INTEGER);
+      downloadText(`${JSON.stringify(items, null, 1)}\n`, `mission-${id}-events.json`, 'application/json');
+      setStatus(status, `Mission ${id} event log JSON: ${items.length} entries.`, 'ok');
     }
-    downloadText(`${[header ?? '', ...lines].join('\n')}\n`, `turns${mission ? `-mission-${mission}` : ''}.csv`, 'text/csv');
-    setStatus(status, `Turns CSV: ${lines.length} turns.`, 'ok');
   } catch (e) {
     setStatus(status, e.message, 'error');
   }
@@ -79,12 +130,9 @@ async function turnsCsv() {
 /** A mission as an MCAP recording (GET /missions/{id}/export?format=mcap), fetched with the token
  *  like the other downloads and saved as the server names it. */
 async function missionMcap() {
-  const id = $('exp-mcap-mission').value;
+  const id = chosenMission();
+  if (!id) return;
   const status = $('exp-status');
-  if (!id) {
-    setStatus(status, 'No mission yet: there is nothing to export.', 'error');
-    return;
-  }
   setStatus(status, `Writing mission ${id} as MCAP…`);
   try {
     const { blob } = await getBlob(`/missions/${encodeURIComponent(id)}/export`, { format: 'mcap' }, 'application/vnd.mcap');
@@ -134,6 +182,9 @@ export function initExport() {
   $('exp-ckt-csv').addEventListener('click', () => cktDownload('csv'));
   $('exp-turns-csv').addEventListener('click', turnsCsv);
   $('exp-mission-mcap').addEventListener('click', missionMcap);
+  $('exp-track-csv').addEventListener('click', trackCsv);
+  $('exp-events-csv').addEventListener('click', () => eventsDownload('csv'));
+  $('exp-events-json').addEventListener('click', () => eventsDownload('json'));
   $('exp-compare-csv').addEventListener('click', () => compareCsv('predictive'));
   $('exp-compare-insample-csv').addEventListener('click', () => compareCsv('in_sample'));
   on('missions', renderMissionChoice);
