@@ -85,18 +85,30 @@ Result<VehicleTable> vehicle_table(Context& ctx, const std::string& vehicle_id,
   return ctx.tables().get(ctx, vehicle_id, include_harvested);
 }
 
-Result<kin::CktCell> ckt_cell(Context& ctx, const std::string& vehicle_id, double speed_mps,
-                              double dheading_deg, bool include_harvested) {
+Result<SidedCell> ckt_cell(Context& ctx, const std::string& vehicle_id, double speed_mps,
+                           double dheading_deg, bool include_harvested) {
   auto t = vehicle_table(ctx, vehicle_id, include_harvested);
   if (!t) return t.error();
   const auto si = t->table->speed_index(speed_mps);
-  // Signed like a prediction's: the table stores right turns, so a port (negative) heading
-  // change is the cell of its magnitude, which a front end mirrors to the port side.
   const auto di = t->table->dheading_index(std::abs(dheading_deg));
   if (!si || !di)
     return not_found("no cell at " + kin::number_text(speed_mps) + " m/s, " +
                      kin::number_text(dheading_deg) + " deg in the table");
-  return t->table->cell(*si, *di);
+  SidedCell out;
+  out.cell = t->table->cell(*si, *di);
+  out.side = kin::side_of(dheading_deg);
+  out.dheading_deg =
+      out.side == kin::TurnSide::left ? -out.cell.dheading_deg : out.cell.dheading_deg;
+  const auto sided = [port = out.side == kin::TurnSide::left](kin::Polyline line) {
+    return port ? kin::reflect_x(std::move(line)) : line;
+  };
+  for (const auto& tr : out.cell.turns)
+    out.turns.push_back(sided(tr.points()));
+  out.mean_turn = sided(out.cell.mean_turn);
+  out.trajectory = sided(out.cell.trajectory);
+  if (out.cell.fit.domain_max > out.cell.fit.domain_min)
+    out.fit = sided(out.cell.fit.sample(kFitSampleStepM));
+  return out;
 }
 
 Result<kin::Ckt> ckt_for_export(Context& ctx, const std::string& vehicle_id,

@@ -70,9 +70,24 @@ class TableCache {
 Result<VehicleTable> vehicle_table(Context& ctx, const std::string& vehicle_id,
                                    bool include_harvested = false);
 
-// One cell of the vehicle's table at a grid speed and |heading change| (not_found off the grid).
-Result<kinematics::CktCell> ckt_cell(Context& ctx, const std::string& vehicle_id, double speed_mps,
-                                     double dheading_deg, bool include_harvested = false);
+// A cell on the side asked. The table stores right turns, so a port (negative) heading change is
+// the cell of its magnitude mirrored about the start heading (x -> -x), as a left prediction is;
+// the polylines here are on the side asked, the statistics are the cell's.
+struct SidedCell {
+  kinematics::CktCell cell;
+  kinematics::TurnSide side = kinematics::TurnSide::right;
+  double dheading_deg = 0.0;                // signed, as asked
+  std::vector<kinematics::Polyline> turns;  // each observed turn's normalised points
+  kinematics::Polyline mean_turn;
+  kinematics::Polyline trajectory;
+  std::optional<kinematics::Polyline> fit;  // the fit sampled every kFitSampleStepM
+};
+inline constexpr double kFitSampleStepM = 0.1;
+
+// One cell of the vehicle's table at a grid speed and signed heading change (+ starboard, - port;
+// not_found off the grid).
+Result<SidedCell> ckt_cell(Context& ctx, const std::string& vehicle_id, double speed_mps,
+                           double dheading_deg, bool include_harvested = false);
 
 // The table to hand out as a CKT file: the vehicle's table, named after it.
 Result<kinematics::Ckt> ckt_for_export(Context& ctx, const std::string& vehicle_id,

@@ -76,10 +76,8 @@ std::string turns_csv(const std::vector<store::TurnRow>& rows);
 // --- the CKT, predictions ------------------------------------------------------------------
 
 nlohmann::json ckt_summary_json(const app::VehicleTable& t);
-// A cell on the side asked: for a port turn the cell of |dheading| mirrored (x -> -x), its
-// dheading_deg negative, `side` "port" (else "starboard").
-nlohmann::json ckt_cell_json(const kinematics::CktCell& c,
-                             kinematics::TurnSide side = kinematics::TurnSide::right);
+// A cell on the side asked (app::ckt_cell): `side` "port" or "starboard", dheading_deg signed.
+nlohmann::json ckt_cell_json(const app::SidedCell& s);
 nlohmann::json prediction_json(const app::Prediction& p);
 // {east_mps, north_mps, speed_mps, toward_deg, source}; null without a current.
 nlohmann::json water_current_json(const std::optional<kinematics::WaterCurrent>& c,

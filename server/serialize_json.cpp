@@ -291,25 +291,20 @@ json ckt_summary_json(const app::VehicleTable& t) {
           {"cells", cells}};
 }
 
-json ckt_cell_json(const kin::CktCell& c, kin::TurnSide side) {
-  const bool port = side == kin::TurnSide::left;
-  // The table's right turn seen from the port side: the normalised frame mirrored about its y
-  // axis (the start heading), as a prediction of a left turn is.
-  const auto sided = [port](kin::Polyline line) {
-    return points_json(port ? kin::reflect_x(std::move(line)) : std::move(line));
-  };
+json ckt_cell_json(const app::SidedCell& s) {
+  const kin::CktCell& c = s.cell;
   json j = cell_summary_json(c);
-  j["dheading_deg"] = port ? -c.dheading_deg : c.dheading_deg;
-  j["side"] = port ? "port" : "starboard";
+  j["dheading_deg"] = s.dheading_deg;
+  j["side"] = s.side == kin::TurnSide::left ? "port" : "starboard";
   json turns = json::array();
-  for (const auto& tr : c.turns)
-    turns.push_back({{"mission_id", tr.meta().mission_id},
-                     {"initial_heading_deg", tr.meta().initial_heading_deg},
-                     {"points", sided(tr.points())}});
+  for (std::size_t i = 0; i < c.turns.size() && i < s.turns.size(); ++i)
+    turns.push_back({{"mission_id", c.turns[i].meta().mission_id},
+                     {"initial_heading_deg", c.turns[i].meta().initial_heading_deg},
+                     {"points", points_json(s.turns[i])}});
   j["turns"] = std::move(turns);
-  j["mean"] = sided(c.mean_turn);
-  j["trajectory"] = sided(c.trajectory);
-  j["fit"] = c.fit.domain_max > c.fit.domain_min ? sided(c.fit.sample(0.1)) : json();
+  j["mean"] = points_json(s.mean_turn);
+  j["trajectory"] = points_json(s.trajectory);
+  j["fit"] = s.fit ? points_json(*s.fit) : json();
   return j;
 }
 

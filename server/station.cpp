@@ -436,9 +436,7 @@ void Station::add_routes() {
     // Signed like predict's: + starboard, - port (the cell of |dheading|, mirrored).
     const double dheading = required_number(r, "dheading", -180.0, 180.0);
     return answer(app::ckt_cell(ctx, p.at("vid"), speed, dheading, include_harvested_param(r)),
-                  false, [dheading](const kinematics::CktCell& c) {
-                    return json_response(ckt_cell_json(c, kinematics::side_of(dheading)));
-                  });
+                  false, [](const app::SidedCell& c) { return json_response(ckt_cell_json(c)); });
   });
   get("/api/v1/vehicles/{vid}/ckt/yaw-rate", [&ctx](const ApiRequest& r, const PathParams& p) {
     app::YawRateTableOptions o;

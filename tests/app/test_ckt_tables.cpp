@@ -54,10 +54,27 @@ TEST_F(CktTables, ACellIsFoundOnTheGridOnly) {
   avk::testing::store_arc_turns(ctx_.db(), "alpha");
   const auto cell = app::ckt_cell(ctx_, "alpha", 1.0, 100.0);
   ASSERT_TRUE(cell) << cell.error().message;
-  EXPECT_EQ(cell->n_turns, 2u);
+  EXPECT_EQ(cell->cell.n_turns, 2u);
   // Lead-in 1.5 m, radius 3 m: advance 1.5 + 3 sin(100 deg), transfer 3 (1 - cos(100 deg)).
-  EXPECT_NEAR(cell->advance_m.mean, 1.5 + 3.0 * std::sin(100.0 * M_PI / 180.0), 0.05);
-  EXPECT_NEAR(cell->transfer_m.mean, 3.0 * (1.0 - std::cos(100.0 * M_PI / 180.0)), 0.05);
+  EXPECT_NEAR(cell->cell.advance_m.mean, 1.5 + 3.0 * std::sin(100.0 * M_PI / 180.0), 0.05);
+  EXPECT_NEAR(cell->cell.transfer_m.mean, 3.0 * (1.0 - std::cos(100.0 * M_PI / 180.0)), 0.05);
+  EXPECT_EQ(cell->side, kinematics::TurnSide::right);
+  EXPECT_DOUBLE_EQ(cell->dheading_deg, 100.0);
+  // A port change: the same cell mirrored about the start heading (x -> -x), point for point.
+  const auto port = app::ckt_cell(ctx_, "alpha", 1.0, -100.0);
+  ASSERT_TRUE(port) << port.error().message;
+  EXPECT_EQ(port->side, kinematics::TurnSide::left);
+  EXPECT_DOUBLE_EQ(port->dheading_deg, -100.0);
+  EXPECT_EQ(port->cell.n_turns, cell->cell.n_turns);
+  ASSERT_EQ(port->trajectory.size(), cell->trajectory.size());
+  for (std::size_t i = 0; i < cell->trajectory.size(); ++i) {
+    EXPECT_DOUBLE_EQ(port->trajectory[i].x_m, -cell->trajectory[i].x_m);
+    EXPECT_DOUBLE_EQ(port->trajectory[i].y_m, cell->trajectory[i].y_m);
+  }
+  ASSERT_EQ(port->turns.size(), 2u);
+  ASSERT_TRUE(port->fit && cell->fit);
+  EXPECT_DOUBLE_EQ(port->fit->back().x_m, -cell->fit->back().x_m);
+  EXPECT_GT(cell->trajectory.back().x_m, 0.0);  // the table's turns are to starboard
   const auto off = app::ckt_cell(ctx_, "alpha", 1.1, 100.0);
   ASSERT_FALSE(off);
   EXPECT_EQ(off.error().code, app::ErrorCode::not_found);
