@@ -1,5 +1,6 @@
 #include "server/station.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <limits>
 
@@ -218,8 +219,15 @@ void Station::add_routes() {
     j["utc_ms"] = std::chrono::duration_cast<std::chrono::milliseconds>(
                       std::chrono::system_clock::now().time_since_epoch())
                       .count();
-    j["clock_s"] = loop ? json(loop->snapshot().t_s) : json();
+    // Before the loop's first telemetry tick its snapshot has no time yet: the clock is at its
+    // start then.
+    j["clock_s"] = loop && options_.vehicle
+                       ? json(std::max(loop->snapshot().t_s, options_.vehicle->start_clock_s))
+                       : json();
     j["realtime_factor"] = options_.vehicle ? json(options_.vehicle->realtime_factor) : json();
+    // Where this session's clock began: a mission started before it ran in an earlier session,
+    // whose times the mapping above does not fit.
+    j["session_start_clock_s"] = options_.vehicle ? json(options_.vehicle->start_clock_s) : json();
     j["datum"] = options_.datum ? json{{"lat_deg", options_.datum->lat_deg},
                                        {"lon_deg", options_.datum->lon_deg}}
                                 : json();

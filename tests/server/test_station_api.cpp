@@ -365,6 +365,17 @@ TEST_F(StationApi, HealthAndVehicle) {
   EXPECT_EQ(h["status"], "ok");
   EXPECT_EQ(h["session_id"], hub_.session_id());
   EXPECT_EQ(h["vehicle_id"], "sim-usim");
+  // The station clock beside the wall clock (the dashboard's wall-clock times, issue 19).
+  const auto now_ms = std::chrono::duration_cast<std::chrono::milliseconds>(
+                          std::chrono::system_clock::now().time_since_epoch())
+                          .count();
+  ASSERT_TRUE(h["utc_ms"].is_number_integer()) << h.dump();
+  EXPECT_LE(h["utc_ms"].get<std::int64_t>(), now_ms);
+  EXPECT_GT(h["utc_ms"].get<std::int64_t>(), now_ms - 600'000);  // taken during this test
+  EXPECT_EQ(h["realtime_factor"], 400.0);
+  ASSERT_TRUE(h["clock_s"].is_number() && h["session_start_clock_s"].is_number()) << h.dump();
+  EXPECT_GE(h["clock_s"].get<double>(), h["session_start_clock_s"].get<double>());
+  EXPECT_TRUE(h["datum"].is_null());
   // The simulated vehicle runs from the start: navigation arrives and the link goes live.
   json v;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);

@@ -9,7 +9,7 @@
 
 import { state } from './state.js';
 
-let mapping = null; // {utcMs, clockS, factor}
+let mapping = null; // {utcMs, clockS, factor, sessionStartS}
 
 // How far a mission's mapped start may lie from its created_utc (stored some 20 ms before it
 // started) and still be of this session. The station clock is exact (start + factor × steady time),
@@ -24,7 +24,8 @@ const DRIFT_SHARE = 0.001;
 export function setClockMapping(health) {
   const ok = Number.isFinite(health?.utc_ms) && Number.isFinite(health?.clock_s);
   const factor = Number.isFinite(health?.realtime_factor) && health.realtime_factor > 0 ? health.realtime_factor : 1;
-  mapping = ok ? { utcMs: health.utc_ms, clockS: health.clock_s, factor } : null;
+  const sessionStartS = Number.isFinite(health?.session_start_clock_s) ? health.session_start_clock_s : null;
+  mapping = ok ? { utcMs: health.utc_ms, clockS: health.clock_s, factor, sessionStartS } : null;
 }
 
 export function clockMapping() {
@@ -44,6 +45,9 @@ export function inSession(m) {
   const created = Date.parse(m.created_utc ?? '');
   const start = wallMs(m.started_s);
   if (start === null || !Number.isFinite(created)) return false;
+  // The server says where this session's clock began: exact. Without it (an older server), the
+  // mission's created_utc against its mapped start decides.
+  if (mapping.sessionStartS !== null) return m.started_s >= mapping.sessionStartS && m.started_s <= Math.max(mapping.clockS, state.nav?.t_s ?? -Infinity) + 1;
   // Started after this session's now (the newest station time seen): another clock.
   if (m.started_s > Math.max(mapping.clockS, state.nav?.t_s ?? -Infinity) + 1) return false;
   const age = Math.max(0, mapping.utcMs - created);

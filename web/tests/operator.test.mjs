@@ -113,6 +113,11 @@ test('the station clock maps to wall time by /health, and only for missions of t
   assert.ok(!clock.inSession(old), 'a mission of an earlier session');
   assert.ok(!clock.inSession({ started_s: 1500, created_utc: created }), 'started after this session\'s now: another clock');
   assert.ok(!clock.inSession({ started_s: 990, created_utc: new Date(nowMs - 5_000).toISOString() }), 'created 4 s before the time its start maps to: the station was down meanwhile');
+  // With the session's start clock from the server the answer is exact, whatever created_utc says.
+  clock.setClockMapping({ utc_ms: nowMs, clock_s: 1000, realtime_factor: 10, session_start_clock_s: 700 });
+  assert.ok(clock.inSession({ started_s: 800, created_utc: '2020-01-01T00:00:00.000Z' }), 'started after this session began');
+  assert.ok(!clock.inSession({ started_s: 650, created_utc: created }), 'started before this session began');
+  clock.setClockMapping({ utc_ms: nowMs, clock_s: 1000, realtime_factor: 10 });
   const l = clock.timeLabel(860, old);
   assert.equal(l.wall, false);
   assert.equal(l.text, 'T+01:00', 'an earlier session: the time since the mission started');
