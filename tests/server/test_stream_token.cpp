@@ -127,15 +127,20 @@ TEST_F(StreamToken, AWrongOrMissingTokenIs401WithProblemJsonAndNoUpgrade) {
   }
 }
 
-// The station's rule: the stream is open on loopback, and needs the token from anywhere else.
-TEST(StationStreamRule, OffLoopbackTheStreamNeedsTheToken) {
-  avk::testing::TempDb db{"avk_stream_token"};
-  StreamHub hub;
+// A station with the test's token and no vehicle.
+avk::server::StationOptions station_options(const avk::testing::TempDb& db) {
   avk::server::StationOptions o;
   o.db_path = db.path();
   o.token = kToken;
   o.server_version = "test";
-  avk::server::Station station(o, hub);
+  return o;
+}
+
+// The station's rule: the stream is open on loopback, and needs the token from anywhere else.
+TEST(StationStreamRule, OffLoopbackTheStreamNeedsTheToken) {
+  avk::testing::TempDb db{"avk_stream_token"};
+  StreamHub hub;
+  avk::server::Station station(station_options(db), hub);
 
   ApiRequest r;
   r.method = "GET";
@@ -176,11 +181,7 @@ TEST(StationStreamRule, FromAnotherAddressTheStreamTakesTheTokenAndRefusesWithou
   if (!address) GTEST_SKIP() << "this machine has no non-loopback IPv4 address";
   avk::testing::TempDb db{"avk_stream_token_remote"};
   StreamHub hub;
-  avk::server::StationOptions so;
-  so.db_path = db.path();
-  so.token = kToken;
-  so.server_version = "test";
-  avk::server::Station station(so, hub);
+  avk::server::Station station(station_options(db), hub);
   HttpServerOptions o;
   o.server_version = "test";
   o.bind_address = *address;
