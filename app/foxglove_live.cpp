@@ -40,9 +40,8 @@ class FoxgloveLive::MissionChannels final : public mission::MissionObserver {
   MissionChannels(FoxgloveLive& live, std::int64_t mission_id)
       : live_(live), mission_id_(mission_id) {}
 
-  void on_turn_started(const mission::TurnTask& task, double t_s,
-                       double goal_heading_deg) override {
-    live_.turn_started(task, t_s, goal_heading_deg);
+  void on_turn_started(const mission::TurnTask&, const mission::RunningTurn& turn) override {
+    live_.turn_started(turn);
   }
   void on_turn(mission::TurnOutcome& t) override { live_.turn_ended(t); }
   void on_event(const mission::MissionEventRecord& e) override {
@@ -137,21 +136,17 @@ void FoxgloveLive::withdraw() {
   advertised_.reset();
 }
 
-void FoxgloveLive::turn_started(const mission::TurnTask& task, double t_s,
-                                double goal_heading_deg) {
+void FoxgloveLive::turn_started(const mission::RunningTurn& turn) {
   // The last turn's predictions, long finished in practice; waited for outside the lock they take.
   if (predicting_.valid()) predicting_.wait();
   std::lock_guard lock(mutex_);
-  if (!advertised_ || !last_nav_) return;
+  if (!advertised_) return;
   TurnScene scene;
-  scene.t_s = t_s;
-  scene.start = {last_nav_->x_m, last_nav_->y_m, last_nav_->heading_deg};
-  scene.speed_mps = task.speed_mps;
-  scene.dheading_deg =
-      task.side
-          ? (*task.side == kinematics::TurnSide::left ? -task.dheading_deg : task.dheading_deg)
-          : signed_dheading_deg(last_nav_->heading_deg, goal_heading_deg, task.dheading_deg);
-  scene.goal_heading_deg = goal_heading_deg;
+  scene.t_s = turn.start.t_s;
+  scene.start = {turn.start.x_m, turn.start.y_m, turn.start.heading_deg};
+  scene.speed_mps = turn.speed_mps;
+  scene.dheading_deg = turn.dheading_deg;
+  scene.goal_heading_deg = turn.goal_heading_deg;
   scene.state = "running";
   scene.measured.push_back({scene.start.x_m, scene.start.y_m});
   const bool predict = predictor_ && sink_.wanted(topic(*advertised_, ChannelKind::turn));

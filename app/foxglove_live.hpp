@@ -66,7 +66,7 @@ class FoxgloveLive final : public LiveFeed {
   class MissionChannels;
   friend class MissionChannels;
 
-  void turn_started(const mission::TurnTask& task, double t_s, double goal_heading_deg);
+  void turn_started(const mission::RunningTurn& turn);
   void turn_ended(const mission::TurnOutcome& t);
   void publish_turn_scene();
   void log(double t_s, mission::EventKind kind, const std::string& message);

@@ -1,10 +1,8 @@
 #include "app/foxglove_scene.hpp"
 
-#include <cmath>
 #include <cstdio>
 
 #include "app/predict.hpp"
-#include "kinematics/angles.hpp"
 
 namespace avk::app::foxglove {
 
@@ -42,11 +40,6 @@ ScenePredictions scene_predictions(Context& ctx, const std::string& vehicle_id, 
     out.predictions.push_back({to_string(method), std::move(r->trajectory), r->corridor});
   }
   return out;
-}
-
-double signed_dheading_deg(double heading_deg, double goal_heading_deg, double magnitude_deg) {
-  const double d = kinematics::angle180_deg(goal_heading_deg - heading_deg);
-  return d < 0.0 ? -std::abs(magnitude_deg) : std::abs(magnitude_deg);
 }
 
 }  // namespace avk::app::foxglove

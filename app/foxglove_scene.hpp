@@ -25,8 +25,4 @@ struct ScenePredictions {
 ScenePredictions scene_predictions(Context& ctx, const std::string& vehicle_id, double speed_mps,
                                    double dheading_deg, const kinematics::Pose& start);
 
-// The signed heading change of a turn commanded from `heading_deg` to `goal_heading_deg` whose
-// magnitude the plan gives: the side is where the goal lies (a half turn counts as right).
-double signed_dheading_deg(double heading_deg, double goal_heading_deg, double magnitude_deg);
-
 }  // namespace avk::app::foxglove

@@ -41,9 +41,9 @@ class LiveFeeds final : public LiveFeed {
       for (auto& o : list)
         o->on_nav(r);
     }
-    void on_turn_started(const mission::TurnTask& t, double t_s, double goal_deg) override {
+    void on_turn_started(const mission::TurnTask& t, const mission::RunningTurn& r) override {
       for (auto& o : list)
-        o->on_turn_started(t, t_s, goal_deg);
+        o->on_turn_started(t, r);
     }
     void on_turn(mission::TurnOutcome& t) override {
       for (auto& o : list)

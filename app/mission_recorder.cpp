@@ -48,8 +48,8 @@ void MissionRecorder::on_nav(const mission::NavRecord& r) {
   if (pending_.back().t_s - pending_.front().t_s >= flush_period_s_) flush();
 }
 
-void MissionRecorder::on_turn_started(const mission::TurnTask&, double t_s, double) {
-  current_.turn_commanded(t_s);
+void MissionRecorder::on_turn_started(const mission::TurnTask&, const mission::RunningTurn& turn) {
+  current_.turn_commanded(turn.start.t_s);
 }
 
 void MissionRecorder::flush() {

@@ -23,7 +23,7 @@ class MissionRecorder final : public mission::MissionObserver {
   ~MissionRecorder() override;
 
   void on_nav(const mission::NavRecord& r) override;
-  void on_turn_started(const mission::TurnTask& task, double t_s, double goal_heading_deg) override;
+  void on_turn_started(const mission::TurnTask& task, const mission::RunningTurn& turn) override;
   void on_turn(mission::TurnOutcome& t) override;
   void on_condition_set(const mission::ConditionSetEpisode& e) override;
   void on_event(const mission::MissionEventRecord& e) override;

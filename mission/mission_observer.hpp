@@ -58,13 +58,25 @@ struct MissionEventRecord {
   std::string message;
 };
 
+// The turn under way, as commanded: where and when the new heading was sent, and to which side.
+// Observers take the side from here, never from a heading they saw: a 180° turn's goal is
+// equally far both ways, and a page that opens mid-turn draws the turn from the same record.
+struct RunningTurn {
+  vehicle::NavSample start;   // the sample at which the new heading was commanded
+  double speed_mps = 0.0;     // the cell's speed (u0 of a speed-change turn)
+  double dheading_deg = 0.0;  // signed: + clockwise (starboard)
+  double goal_heading_deg = 0.0;
+  int attempt = 1;                        // 1 for the cell's first try
+  std::optional<double> speed_after_mps;  // a speed-change turn's u1
+};
+
 class MissionObserver {
  public:
   virtual ~MissionObserver() = default;
   virtual void on_nav(const NavRecord&) {}
   // Observers are called in the order they were added; one that stores the turn sets stored_id,
   // so the ones after it can name the stored turn.
-  virtual void on_turn_started(const TurnTask&, double /*t_s*/, double /*goal_heading_deg*/) {}
+  virtual void on_turn_started(const TurnTask&, const RunningTurn&) {}
   virtual void on_turn(TurnOutcome&) {}
   virtual void on_condition_set(const ConditionSetEpisode&) {}
   virtual void on_event(const MissionEventRecord&) {}

@@ -429,7 +429,7 @@ void MissionRunner::start_turn(const vehicle::NavSample& s) {
   if (auto* c = cell_of(task)) c->running = true;
   set_mode(HelmMode::turning, s.t_s);
   for (auto* o : observers_)
-    o->on_turn_started(task, s.t_s, *desired_heading_deg_);
+    o->on_turn_started(task, *running_turn_);
 }
 
 void MissionRunner::finish_turn(const vehicle::NavSample& s, Completion how) {

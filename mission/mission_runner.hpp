@@ -48,17 +48,6 @@ struct CellProgress {
   std::optional<double> speed_after_mps;  // a speed-change cell (speed_mps -> this)
 };
 
-// The turn under way, as commanded: where and when the new heading was sent. A front end that
-// opens mid-turn draws the turn and its predictions from this, not from a stream event it missed.
-struct RunningTurn {
-  vehicle::NavSample start;   // the sample at which the new heading was commanded
-  double speed_mps = 0.0;     // the cell's speed (u0 of a speed-change turn)
-  double dheading_deg = 0.0;  // signed: + clockwise (starboard)
-  double goal_heading_deg = 0.0;
-  int attempt = 1;                        // 1 for the cell's first try
-  std::optional<double> speed_after_mps;  // a speed-change turn's u1
-};
-
 class MissionRunner {
  public:
   // tasks: the turns still to do (plan_turns, or remaining_turns when resuming).

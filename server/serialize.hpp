@@ -58,6 +58,8 @@ nlohmann::json cells_json(const std::vector<app::CellReport>& cells);
 // The mission report: the mission, its status (live or stored), cells, turn totals, ConditionSet
 // statistics; with the mission document when with_config.
 nlohmann::json report_json(const app::MissionReport& r, bool with_config);
+// The turn under way: the report's running_turn and the stream's turn "started" are one shape.
+nlohmann::json running_turn_json(const mission::RunningTurn& t);
 nlohmann::json event_json(const store::MissionEvent& e);
 nlohmann::json nav_row_json(const store::NavRow& n);
 std::string missions_csv(const std::vector<app::MissionSummary>& missions);

@@ -171,24 +171,24 @@ json cells_json(const std::vector<app::CellReport>& cells) {
   return out;
 }
 
+json running_turn_json(const mission::RunningTurn& t) {
+  return {{"t_s", t.start.t_s},
+          {"x_m", t.start.x_m},
+          {"y_m", t.start.y_m},
+          {"heading_deg", t.start.heading_deg},
+          {"speed_mps", t.speed_mps},
+          {"dheading_deg", t.dheading_deg},
+          {"goal_heading_deg", t.goal_heading_deg},
+          {"attempt", t.attempt},
+          {"speed_after_mps", optional_json(t.speed_after_mps)}};
+}
+
 json report_json(const app::MissionReport& r, bool with_config) {
   json j = mission_json(r.summary);
   j["status"] = app::status_text(r);
   j["live"] = r.live;
   j["helm_mode"] = helm_mode_json(r.helm_mode);
-  j["running_turn"] = json();
-  if (r.running_turn) {
-    const mission::RunningTurn& t = *r.running_turn;
-    j["running_turn"] = {{"t_s", t.start.t_s},
-                         {"x_m", t.start.x_m},
-                         {"y_m", t.start.y_m},
-                         {"heading_deg", t.start.heading_deg},
-                         {"speed_mps", t.speed_mps},
-                         {"dheading_deg", t.dheading_deg},
-                         {"goal_heading_deg", t.goal_heading_deg},
-                         {"attempt", t.attempt},
-                         {"speed_after_mps", optional_json(t.speed_after_mps)}};
-  }
+  j["running_turn"] = r.running_turn ? running_turn_json(*r.running_turn) : json();
   if (with_config) j["config"] = json::parse(r.summary.mission.config_json, nullptr, false);
   j["cells"] = cells_json(r.cells);
   j["duration_s"] = optional_json(r.duration_s);

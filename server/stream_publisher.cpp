@@ -9,16 +9,11 @@ namespace avk::server {
 
 using nlohmann::json;
 
-void StreamPublisher::on_turn_started(const mission::TurnTask& task, double t_s,
-                                      double goal_heading_deg) {
-  hub_.publish("turn", t_s,
-               json{{"event", "started"},
-                    {"mission_id", mission_id_},
-                    {"speed_mps", task.speed_mps},
-                    {"dheading_deg", task.dheading_deg},
-                    {"goal_heading_deg", goal_heading_deg},
-                    {"attempt", task.attempts + 1}}
-                   .dump());
+void StreamPublisher::on_turn_started(const mission::TurnTask&, const mission::RunningTurn& turn) {
+  json j = running_turn_json(turn);
+  j["event"] = "started";
+  j["mission_id"] = mission_id_;
+  hub_.publish("turn", turn.start.t_s, j.dump());
 }
 
 void StreamPublisher::on_turn(mission::TurnOutcome& t) {

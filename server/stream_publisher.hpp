@@ -15,7 +15,7 @@ class StreamPublisher final : public mission::MissionObserver {
   StreamPublisher(StreamHub& hub, std::int64_t mission_id, const mission::MissionRunner& runner)
       : hub_(hub), mission_id_(mission_id), runner_(runner) {}
 
-  void on_turn_started(const mission::TurnTask& task, double t_s, double goal_heading_deg) override;
+  void on_turn_started(const mission::TurnTask& task, const mission::RunningTurn& turn) override;
   void on_turn(mission::TurnOutcome& t) override;
   void on_event(const mission::MissionEventRecord& e) override;
   void on_state(mission::MissionState s, const std::string& reason, double t_s) override;

@@ -14,6 +14,13 @@
 #include "app/foxglove_messages.hpp"
 #include "app/foxglove_scene.hpp"
 #include "app/foxglove_schemas.hpp"
+#include "app/mission_plans.hpp"
+#include "mission/mission_config.hpp"
+#include "mission/mission_runner.hpp"
+#include "mission/turn_plan.hpp"
+#include "sim/scheduler.hpp"
+#include "sim/sim_config.hpp"
+#include "sim/sim_mission.hpp"
 
 namespace {
 
@@ -146,12 +153,6 @@ TEST(FoxgloveMessages, ATurnSceneDrawsEveryPredictionTheCorridorAndReplacesThePr
             std::string::npos);
 }
 
-TEST(FoxgloveMessages, TheSideOfATurnIsWhereItsGoalLies) {
-  EXPECT_DOUBLE_EQ(signed_dheading_deg(350.0, 40.0, 50.0), 50.0);
-  EXPECT_DOUBLE_EQ(signed_dheading_deg(40.0, 350.0, 50.0), -50.0);
-  EXPECT_DOUBLE_EQ(signed_dheading_deg(0.0, 180.0, 180.0), 180.0);
-}
-
 // A sink that records what the feed sends, with a chosen set of wanted topics.
 struct RecordingSink final : FoxgloveSink {
   std::vector<std::string> advertised, unadvertised;
@@ -266,3 +267,71 @@ TEST(FoxgloveLiveFeed, StationEventsBecomeStatusAndLogs) {
 }
 
 }  // namespace
+
+namespace {
+
+// What the runner told its observers when each turn began.
+struct StartsSeen final : mission::MissionObserver {
+  void on_turn_started(const mission::TurnTask&, const mission::RunningTurn& t) override {
+    turns.push_back(t);
+  }
+  std::vector<mission::RunningTurn> turns;
+};
+
+}  // namespace
+
+// A half turn's goal is as far one way as the other: the scene must take the side the runner
+// chose (port here), not guess it from headings, and start where the runner started the turn.
+TEST(FoxgloveLiveFeed, AHalfTurnToPortIsDrawnToPortFromWhereItStarted) {
+  constexpr const char* kHalfTurn = R"({
+    "name": "half turn",
+    "turn_array": {"speeds_mps": [1.0], "dheadings_deg": [180], "direction": "left"},
+    "operating_region": {"polygon_m": [[-100,-100],[100,-100],[100,100],[-100,100]],
+                         "buffer_m": 25, "return_point_m": [0, -70]}})";
+  const auto config = mission::parse_mission_config(kHalfTurn, 2.0);
+  sim::SimMissionOptions so;
+  so.setup = sim::default_sim_setup("usim");
+  so.start = app::start_pose(config);
+  sim::SimMission sim(so);
+  mission::RunnerOptions ro;
+  ro.vehicle_id = "usim";
+  mission::MissionRunner runner(config, sim.vehicle(), mission::plan_turns(config), ro);
+
+  RecordingSink sink;
+  FoxgloveLive live(sink, nullptr);
+  live.telemetry(snapshot("usim", vehicle::LinkState::live, 0.0));  // advertises the channels
+  sink.wanted_topics = {topic("usim", ChannelKind::turn)};
+  auto follower = live.follow(7, runner);
+  StartsSeen seen;
+  runner.add_observer(*follower);
+  runner.add_observer(seen);
+  sim::FastPacer pacer;
+  sim.run(runner, pacer);
+  live.withdraw();
+
+  ASSERT_EQ(seen.turns.size(), 1u);
+  const mission::RunningTurn& told = seen.turns.front();
+  EXPECT_DOUBLE_EQ(told.dheading_deg, -180.0);
+  // The first turn scene is the one drawn at the start.
+  const auto range = sink.published.equal_range("/usim/turn");
+  ASSERT_NE(range.first, range.second);
+  const auto scene = json::parse(range.first->second);
+  std::map<std::string, json> by_id;
+  for (const auto& e : scene["entities"])
+    by_id[e["id"].get<std::string>()] = e;
+  ASSERT_TRUE(by_id.contains("turn/cell"));
+  std::map<std::string, std::string> meta;
+  for (const auto& kv : by_id["turn/cell"]["metadata"])
+    meta[kv["key"].get<std::string>()] = kv["value"].get<std::string>();
+  EXPECT_DOUBLE_EQ(std::stod(meta.at("dheading_deg")), -180.0);
+  const auto& at = by_id["turn/cell"]["texts"][0]["pose"]["position"];
+  EXPECT_DOUBLE_EQ(at["x"].get<double>(), told.start.x_m);
+  EXPECT_DOUBLE_EQ(at["y"].get<double>(), told.start.y_m);
+  // The goal ray points along the goal heading, the start heading reversed.
+  const auto& ray = by_id["turn/goal"]["lines"][0]["points"];
+  const double gx = ray[1]["x"].get<double>() - ray[0]["x"].get<double>();
+  const double gy = ray[1]["y"].get<double>() - ray[0]["y"].get<double>();
+  const double start_rad = told.start.heading_deg * std::numbers::pi / 180.0;
+  EXPECT_NEAR(gx / std::hypot(gx, gy), -std::sin(start_rad), 1e-9);
+  EXPECT_NEAR(gy / std::hypot(gx, gy), -std::cos(start_rad), 1e-9);
+}

@@ -26,8 +26,8 @@ using kinematics::TurnStatus;
 // What the runner reported, in order, per status.
 class Reported final : public mission::MissionObserver {
  public:
-  void on_turn_started(const mission::TurnTask&, double t_s, double) override {
-    starts.push_back(t_s);
+  void on_turn_started(const mission::TurnTask&, const mission::RunningTurn& turn) override {
+    starts.push_back(turn.start.t_s);
   }
   void on_turn(mission::TurnOutcome& t) override { reasons[t.status].push_back(t.reason); }
   std::vector<double> starts;

@@ -161,7 +161,7 @@ struct Recorder : MissionObserver {
   };
   struct Started {
     TurnTask task;
-    double t_s;
+    RunningTurn turn;
     double goal_heading_deg;
   };
   std::vector<NavRecord> navs;
@@ -172,8 +172,8 @@ struct Recorder : MissionObserver {
   std::vector<MissionEventRecord> events;
   std::vector<MissionState> states;
   void on_nav(const NavRecord& r) override { navs.push_back(r); }
-  void on_turn_started(const TurnTask& t, double t_s, double goal) override {
-    started.push_back({t, t_s, goal});
+  void on_turn_started(const TurnTask& t, const RunningTurn& turn) override {
+    started.push_back({t, turn, turn.goal_heading_deg});
   }
   void on_turn(TurnOutcome& o) override { turns.push_back(o); }
   void on_condition_set(const ConditionSetEpisode& e) override { episodes.push_back(e); }
@@ -284,6 +284,12 @@ TEST(MissionRunner, TwoTurnMissionGoesThroughTheModes) {
               completion_threshold_deg(r.config.completion, meta.goal_dheading_deg));
     EXPECT_NEAR(r.rec.started[i].goal_heading_deg,
                 k::wrap360_deg(meta.initial_heading_deg + meta.goal_dheading_deg), 1e-9);
+    // What observers are told at the start is the turn as recorded: side, start sample, time.
+    const RunningTurn& told = r.rec.started[i].turn;
+    EXPECT_DOUBLE_EQ(told.dheading_deg, meta.goal_dheading_deg);
+    EXPECT_DOUBLE_EQ(told.start.t_s, t.raw.samples().front().t_s);
+    EXPECT_DOUBLE_EQ(told.start.heading_deg, meta.initial_heading_deg);
+    EXPECT_EQ(told.attempt, 1);
     EXPECT_TRUE(t.advance_m.has_value());
     ASSERT_TRUE(t.condition_set_time_s.has_value());
     EXPECT_GT(*t.condition_set_time_s, 0.0);
@@ -446,7 +452,7 @@ TEST(MissionRunner, CellThatAlwaysHitsTheBufferIsGivenUpAndTheMissionFinishes) {
   const Hook push = [&](double t) {
     const auto& last = r.rec.started;
     if (r.runner.mode() != HelmMode::turning || last.back().task.dheading_deg != 180.0 ||
-        t - last.back().t_s < 1.0 ||
+        t - last.back().turn.start.t_s < 1.0 ||
         r.runner.container().zone({r.vehicle.x(), r.vehicle.y()}) != RegionZone::interior)
       return;
     const double east = std::sin(k::deg_to_rad(r.vehicle.heading()));

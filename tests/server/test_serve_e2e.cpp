@@ -11,6 +11,7 @@
 #include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <regex>
 #include <set>
 #include <sstream>
@@ -72,6 +73,8 @@ TEST(ServeE2E, MissionOverRestFollowedOverTheStreamAndEveryTurnIsServed) {
   std::map<std::string, std::uint64_t> last_seq;
   std::size_t nav = 0;
   std::string state;
+  std::optional<json> started;  // the turn under way, as the stream announced it
+  std::set<double> sides_seen;
   const auto deadline = Clock::now() + std::chrono::seconds(90);
   while (state != "done" && Clock::now() < deadline) {
     const auto text = ws.read(std::chrono::seconds(10));
@@ -83,6 +86,19 @@ TEST(ServeE2E, MissionOverRestFollowedOverTheStreamAndEveryTurnIsServed) {
     EXPECT_GT(seq, last_seq[topic]) << topic;
     last_seq[topic] = seq;
     if (topic == "nav") ++nav;
+    if (topic == "turn" && m["data"]["event"] == "started") {
+      started = m["data"];
+      EXPECT_DOUBLE_EQ((*started)["t_s"].get<double>(), m["t"].get<double>());
+      for (const char* k : {"x_m", "y_m", "heading_deg", "goal_heading_deg"})
+        EXPECT_TRUE((*started)[k].is_number()) << k;
+    } else if (topic == "turn") {
+      // The side announced at the start is the side the turn was recorded with.
+      ASSERT_TRUE(started.has_value()) << "a turn ended that never started: " << m.dump();
+      EXPECT_DOUBLE_EQ((*started)["dheading_deg"].get<double>(),
+                       m["data"]["goal_dheading_deg"].get<double>());
+      sides_seen.insert((*started)["dheading_deg"].get<double>() < 0 ? -1.0 : 1.0);
+      started.reset();
+    }
     if (topic == "turn" && m["data"]["event"] == "finished")
       finished.insert(m["data"]["id"].get<std::int64_t>());
     if (topic == "mission") state = m["data"]["state"];
@@ -90,6 +106,7 @@ TEST(ServeE2E, MissionOverRestFollowedOverTheStreamAndEveryTurnIsServed) {
   ASSERT_EQ(state, "done");
   EXPECT_GT(nav, 10u);
   EXPECT_EQ(finished.size(), 4u);
+  EXPECT_EQ(sides_seen, (std::set<double>{-1.0, 1.0}));  // turns to port and to starboard
   // Every finished turn the stream announced is in /turns and in the table.
   const json turns =
       json::parse(http_call(port, "GET", "/api/v1/turns?mission=1&status=ok&limit=100").body);

@@ -4,7 +4,7 @@
 
 import { state, emit, addEvent } from './state.js';
 import { getJson, getAllItems } from './api.js';
-import { headingDiff, wrap360 } from './format.js';
+import { wrap360 } from './format.js';
 import { simplify } from './decimate.js';
 import { mergeStoredRows } from './timeseries.js';
 import { setClockMapping } from './clock.js';
@@ -496,26 +496,12 @@ function applyMission(d, t) {
 
 function applyTurn(d, t) {
   if (d.event === 'started') {
-    const nav = state.nav;
-    // The event carries the cell's magnitude; the side is where the goal heading lies. The goal
-    // is the initial heading ± Δψ, so the initial heading follows exactly from it.
-    const side = headingDiff(d.goal_heading_deg, nav?.heading_deg ?? 0) < 0 ? -1 : 1;
-    const dheading = side * d.dheading_deg;
-    const heading = wrap360(d.goal_heading_deg - dheading);
-    // The start position: the track at the event's time (a nav frame may lag it).
-    const at = positionAt(t) ?? (nav ? { x: nav.x_m, y: nav.y_m } : null);
-    state.turn = {
-      missionId: d.mission_id,
-      speed: d.speed_mps,
-      dheading,
-      goalHeading: d.goal_heading_deg,
-      attempt: d.attempt,
-      start: at ? { t: typeof t === 'number' ? t : nav.t_s, x: at.x, y: at.y, heading } : null,
-      predictions: {},
-    };
+    // The event is the report's running_turn: the signed Δψ (the side the runner chose; a half
+    // turn's goal lies both ways) and the sample at which the new heading was commanded.
+    state.turn = turnFromServer(d.mission_id, d);
     state.shownTurn = state.turn;
-    if (state.turn.start && state.turnMarksMission === d.mission_id) {
-      state.turnMarks.push({ t: state.turn.start.t, label: markLabel(d.speed_mps, dheading) });
+    if (state.turnMarksMission === d.mission_id) {
+      state.turnMarks.push({ t: state.turn.start.t, label: markLabel(d.speed_mps, d.dheading_deg) });
       emit('series');
     }
     emit('turn', state.turn);
@@ -554,26 +540,6 @@ function applyTurn(d, t) {
       if (state.shownTurn?.ended) fetchPredictions(state.shownTurn);
     }, 1500);
   }
-}
-
-/** The vehicle's position at sim time t, interpolated along the live track; null outside it. */
-function positionAt(t) {
-  const tr = state.track;
-  if (typeof t !== 'number' || tr.length === 0) return null;
-  const i = tr.indexAtOrAfter(t);
-  const at = (k) => {
-    const j = (tr.start + k) % tr.capacity;
-    return { t: tr.t[j], x: tr.x[j], y: tr.y[j] };
-  };
-  if (i >= tr.length) {
-    const last = at(tr.length - 1);
-    return t - last.t < 1 ? last : null; // the newest sample, if it is that recent
-  }
-  const b = at(i);
-  if (i === 0 || b.t === t) return b;
-  const a = at(i - 1);
-  const f = (t - a.t) / (b.t - a.t || 1);
-  return { x: a.x + f * (b.x - a.x), y: a.y + f * (b.y - a.y) };
 }
 
 /** Whether the vehicle's CKT (as last read) answers at this speed: AVK is asked only then, so

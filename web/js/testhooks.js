@@ -97,7 +97,9 @@ export function installTestHooks() {
         applyNav({ vehicle_id: state.vehicleId, link: 'LIVE', t_s: t0 - 2 + i * 0.1, x_m: 0, y_m: -72 + i * 0.1 * speed, heading_deg: 0, speed_mps: speed }, true);
       }
       const goal = ((dheading % 360) + 360) % 360;
-      onMessage({ topic: 'turn', seq: 0, t: t0, data: { event: 'started', mission_id: state.mission?.id ?? 1, speed_mps: speed, dheading_deg: Math.abs(dheading), goal_heading_deg: goal, attempt: 1 } });
+      // As the server sends it: the report's running_turn (signed Δψ, the start sample).
+      const start = { t_s: t0, x_m: 0, y_m: -72 + 2 * speed, heading_deg: 0 };
+      onMessage({ topic: 'turn', seq: 0, t: t0, data: { event: 'started', mission_id: state.mission?.id ?? 1, ...start, speed_mps: speed, dheading_deg: dheading, goal_heading_deg: goal, attempt: 1, speed_after_mps: null } });
       turnRun = { t0, speed, dheading, k: 0 };
       return state.turn !== null;
     },
