@@ -169,6 +169,69 @@ Result<Prediction> from_yaw_rate_table(Context& ctx, Prediction p) {
   }
 }
 
+// avk without a mission: a table of the vehicle's ok turns of its other missions, built for this
+// answer (the cached table holds every turn). The coarse table answers: a fine one is not worth
+// building for one query.
+Result<Prediction> from_held_out_table(Context& ctx, Prediction p) {
+  const PredictQuery& q = p.query;
+  const std::int64_t held_out = *q.without_mission_id;
+  if (q.initial_yaw_rate_dps || q.speed_after_mps)
+    return invalid_argument("without_mission",
+                            "applies to constant-speed turns from a steady course; ask without "
+                            "initial_yaw_rate and speed_after");
+  store::Store& db = ctx.db();
+  if (!db.get_mission(held_out)) return not_found("no mission " + std::to_string(held_out));
+  std::vector<std::int64_t> others;
+  for (const auto& m : db.list_missions())
+    if (m.vehicle_id == q.vehicle_id && m.id != held_out) others.push_back(m.id);
+  std::vector<kin::TurnSequence> turns;
+  if (!others.empty())  // an empty list would mean every mission
+    turns = db.load_normalized_turns(others, q.vehicle_id, q.include_harvested,
+                                     store::TurnFrameChoice::water_where_known);
+  if (turns.empty())
+    return not_found("'" + q.vehicle_id + "' has no ok turns outside mission " +
+                     std::to_string(held_out) + " to build a table from");
+  const kin::Ckt table = kin::Ckt::build(turns);
+  p.table_source = "turns";
+  p.table_frame = kin::to_string(table.frame);
+  try {
+    return from_table(std::move(p), table.query(q.speed_mps, q.dheading_deg));
+  } catch (const kin::CktRangeError& e) {
+    return table_range_error(table, q, e.what());
+  }
+}
+
+// The model that answers: the one asked for, else the vehicle's latest; without a mission, one
+// not trained on it.
+Result<store::StoredModel> answering_model(Context& ctx, const PredictQuery& q) {
+  store::Store& db = ctx.db();
+  const auto trained_on = [&](const store::StoredModel& m) {
+    return q.without_mission_id && std::ranges::find(m.training_missions, *q.without_mission_id) !=
+                                       m.training_missions.end();
+  };
+  if (q.model_id) {
+    auto m = db.get_model(*q.model_id);
+    if (!m) return not_found("no model " + std::to_string(*q.model_id));
+    if (trained_on(*m))
+      return invalid_argument("model", "model " + std::to_string(m->id) +
+                                           " was trained on mission " +
+                                           std::to_string(*q.without_mission_id));
+    return std::move(*m);
+  }
+  if (!q.without_mission_id) {
+    auto m = db.latest_model(q.vehicle_id);
+    if (!m) return not_found("no model of '" + q.vehicle_id + "' is stored");
+    return std::move(*m);
+  }
+  std::optional<store::StoredModel> best;
+  for (auto& m : db.list_models(q.vehicle_id))
+    if (!trained_on(m) && (!best || m.id > best->id)) best = std::move(m);
+  if (!best)
+    return not_found("every stored model of '" + q.vehicle_id + "' was trained on mission " +
+                     std::to_string(*q.without_mission_id));
+  return std::move(*best);
+}
+
 Result<Prediction> finish(Prediction p, const std::optional<kin::Corridor>& corridor = {},
                           const std::optional<kin::TurnTiming>& timing = {}) {
   if (p.current) {
@@ -294,6 +357,7 @@ Result<Prediction> predict(Context& ctx, const PredictQuery& query) {
   p.current_source = current->source;
   switch (q.method) {
     case PredictionMethod::avk: {
+      if (q.without_mission_id) return from_held_out_table(ctx, std::move(p));
       if (q.initial_yaw_rate_dps) return from_yaw_rate_table(ctx, std::move(p));
       auto t = vehicle_table(ctx, q.vehicle_id, q.include_harvested);
       if (!t) return t.error();
@@ -310,11 +374,8 @@ Result<Prediction> predict(Context& ctx, const PredictQuery& query) {
       }
     }
     case PredictionMethod::model: {
-      store::Store& db = ctx.db();
-      const auto m = q.model_id ? db.get_model(*q.model_id) : db.latest_model(q.vehicle_id);
-      if (!m)
-        return not_found(q.model_id ? "no model " + std::to_string(*q.model_id)
-                                    : "no model of '" + q.vehicle_id + "' is stored");
+      const auto m = answering_model(ctx, q);
+      if (!m) return m.error();
       if ((q.use_speed_model || q.speed_after_mps) && !m->model.speed)
         return invalid_argument(q.speed_after_mps ? "speed_after" : "speed_model",
                                 "model " + std::to_string(m->id) + " has no speed model");

@@ -346,6 +346,7 @@ json prediction_json(const app::Prediction& p) {
   if (p.table_frame) j["table_frame"] = *p.table_frame;
   j["current"] = water_current_json(p.current, p.current_source);
   if (q.initial_yaw_rate_dps) j["initial_yaw_rate_dps"] = *q.initial_yaw_rate_dps;
+  if (q.without_mission_id) j["without_mission_id"] = *q.without_mission_id;
   if (q.speed_after_mps) {
     j["speed_after_mps"] = *q.speed_after_mps;
     j["speed_change_source"] =

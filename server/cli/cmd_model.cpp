@@ -308,10 +308,11 @@ int compare(const std::vector<std::string>& rest, Io& io) {
 }
 
 int predict(const std::vector<std::string>& rest, Io& io) {
-  const Args a(rest,
-               {"db", "speed", "dheading", "method", "model", "x", "y", "heading", "format",
-                "vehicle", "threshold", "corridor", "current", "initial-yaw-rate", "speed-after"},
-               {"speed-model"});
+  const Args a(
+      rest,
+      {"db", "speed", "dheading", "method", "model", "x", "y", "heading", "format", "vehicle",
+       "threshold", "corridor", "current", "initial-yaw-rate", "speed-after", "without-mission"},
+      {"speed-model"});
   app::Context ctx(a.require("db"));
   app::PredictQuery q;
   const auto speed = a.number("speed");
@@ -343,6 +344,11 @@ int predict(const std::vector<std::string>& rest, Io& io) {
   q.current = current.current;
   q.live_current = current.live;
   q.initial_yaw_rate_dps = a.number("initial-yaw-rate");
+  if (const auto held_out = a.number("without-mission")) {
+    if (*held_out < 1 || std::floor(*held_out) != *held_out)
+      throw UsageError("--without-mission needs a mission id");
+    q.without_mission_id = static_cast<std::int64_t>(*held_out);
+  }
   q.vehicle_id = vehicle_of(a, ctx.db(), {});
   const app::Prediction p = value_or_fail(app::predict(ctx, q));
   io.out << (format == "csv" ? trajectory_csv(p.trajectory) : prediction_json(p).dump() + "\n");

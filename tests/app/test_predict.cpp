@@ -5,12 +5,14 @@
 
 #include <cmath>
 #include <utility>
+#include <vector>
 
 #include "app/ckt_tables.hpp"
 #include "app/context.hpp"
 #include "app/predict.hpp"
 #include "kinematics/ckt.hpp"
 #include "kinematics/ckt_file.hpp"
+#include "kinematics/yaw_model.hpp"
 #include "support/stored_turns.hpp"
 #include "support/temp_db.hpp"
 
@@ -197,6 +199,89 @@ TEST_F(Predict, BadQuestionsNameTheirParameter) {
   EXPECT_EQ(no_model.error().code, app::ErrorCode::not_found);
   m.model_id = 77;
   EXPECT_NE(app::predict(ctx_, m).error().message.find("no model 77"), std::string::npos);
+}
+
+// Replay's fair prediction: a past turn predicted by what never saw its mission.
+TEST_F(Predict, WithoutAMissionTheTableHoldsOnlyTheOtherMissionsTurns) {
+  const auto tight = avk::testing::store_arc_turns(ctx_.db(), "alpha", 1.0);
+  const auto wide = avk::testing::store_arc_turns(ctx_.db(), "alpha", 2.0);
+  const auto held_out = [&](std::int64_t mission) {
+    auto q = query("alpha", 1.0, -100.0);
+    q.without_mission_id = mission;
+    q.pose = kinematics::Pose{5.0, -3.0, 30.0};
+    return app::predict(ctx_, q);
+  };
+  const auto table_of = [&](std::int64_t mission) {
+    auto q = query("alpha", 1.0, -100.0);
+    q.pose = kinematics::Pose{5.0, -3.0, 30.0};
+    return app::predict_with_table(
+        kinematics::Ckt::build(ctx_.db().load_normalized_turns({mission}, "alpha")), q);
+  };
+  const auto without_tight = held_out(tight);
+  const auto without_wide = held_out(wide);
+  ASSERT_TRUE(without_tight && without_wide) << without_tight.error().message;
+  const auto only_wide = table_of(wide);
+  const auto only_tight = table_of(tight);
+  ASSERT_TRUE(only_wide && only_tight);
+  expect_same_line(without_tight->trajectory, only_wide->trajectory);
+  expect_same_line(without_wide->trajectory, only_tight->trajectory);
+  EXPECT_DOUBLE_EQ(*without_tight->advance_m, *only_wide->advance_m);
+  EXPECT_EQ(without_tight->table_source, "turns");
+  // The two missions turn differently (radii 3 m and 6 m at 1 m/s): leaving one out matters.
+  EXPECT_GT(*without_tight->advance_m - *without_wide->advance_m, 1.0);
+}
+
+TEST_F(Predict, WithoutAMissionNamesWhatIsMissing) {
+  const auto only = avk::testing::store_arc_turns(ctx_.db(), "alpha");
+  auto q = query("alpha", 1.0, 100.0);
+  q.without_mission_id = only;
+  const auto none_left = app::predict(ctx_, q);
+  ASSERT_FALSE(none_left);
+  EXPECT_EQ(none_left.error().code, app::ErrorCode::not_found);
+  EXPECT_NE(none_left.error().message.find("no ok turns outside mission " + std::to_string(only)),
+            std::string::npos)
+      << none_left.error().message;
+  q.without_mission_id = 999;
+  EXPECT_NE(app::predict(ctx_, q).error().message.find("no mission 999"), std::string::npos);
+  q.without_mission_id = only;
+  q.initial_yaw_rate_dps = 5.0;
+  const auto spinning = app::predict(ctx_, q);
+  ASSERT_FALSE(spinning);
+  EXPECT_EQ(spinning.error().field, "without_mission");
+}
+
+TEST_F(Predict, WithoutAMissionTheModelIsOneNotTrainedOnIt) {
+  const auto a = avk::testing::store_arc_turns(ctx_.db(), "alpha");
+  const auto b = avk::testing::store_arc_turns(ctx_.db(), "alpha", 2.0);
+  const auto save = [&](std::vector<std::int64_t> missions) {
+    store::StoredModel m;
+    m.vehicle_id = "alpha";
+    m.training_missions = std::move(missions);
+    m.model.form = kinematics::YawModelForm::invariant;
+    m.model.history = 1;
+    m.model.rate_hz = 4.0;
+    m.model.error_coeffs = {0.1};
+    m.model.heading_coeffs = {0.0};
+    return ctx_.db().save_model(m);
+  };
+  const auto on_b = save({b});
+  const auto on_both = save({a, b});  // the latest
+  auto q = query("alpha", 1.0, 100.0);
+  q.method = app::PredictionMethod::model;
+  ASSERT_EQ(app::predict(ctx_, q)->model_id, on_both);
+  q.without_mission_id = a;
+  const auto fair = app::predict(ctx_, q);
+  ASSERT_TRUE(fair) << fair.error().message;
+  EXPECT_EQ(fair->model_id, on_b);
+  q.model_id = on_both;
+  const auto asked = app::predict(ctx_, q);
+  ASSERT_FALSE(asked);
+  EXPECT_EQ(asked.error().field, "model");
+  q.model_id.reset();
+  q.without_mission_id = b;
+  const auto none = app::predict(ctx_, q);
+  ASSERT_FALSE(none);
+  EXPECT_EQ(none.error().code, app::ErrorCode::not_found);
 }
 
 TEST(PredictMethod, NamesRoundTrip) {

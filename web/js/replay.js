@@ -1,9 +1,8 @@
 // The Replay view: any stored mission played back from its stored navigation (GET
 // /missions/{id}/nav), at any speed or scrubbed by hand. It draws what Live drew at that moment:
 // the track so far, the vehicle, the turn in progress with its predictions placed at its start
-// pose, the events up to then and the time series around it. The predictions are asked of the
-// station's table and model as they are now, not as they were when the mission ran (said in the
-// view).
+// pose, the events up to then and the time series around it. The predictions never saw the
+// replayed mission (`without_mission`): a turn is not shown against a table built from itself.
 
 import { state, on } from './state.js';
 import { getJson } from './api.js';
@@ -13,6 +12,7 @@ import { regionRings, along } from './geometry.js';
 import { el, num, headingDiff, wrap360 } from './format.js';
 import { SeriesBuffer, drawSeries } from './timeseries.js';
 import { simplify } from './decimate.js';
+import { firstAtOrAfter, lastAtOrBefore } from './bisect.js';
 import { phrase } from './eventlog.js';
 import { timeLabel } from './clock.js';
 import { cktCovers, refreshMissions } from './sync.js';
@@ -150,7 +150,7 @@ async function doLoad(id) {
     $('rp-play').disabled = false;
     for (const b of ['rp-back', 'rp-fwd', 'rp-prev-turn', 'rp-next-turn']) $(b).disabled = false;
     setStatus(
-      `Mission ${id} “${report.name}”: ${rows.length} samples, ${num(nav.t[nav.t.length - 1] - nav.t[0], 0)} s, ${turns.length} turns, ${events.length} events. Predictions are the station’s table and model as they are now.`,
+      `Mission ${id} “${report.name}”: ${rows.length} samples, ${num(nav.t[nav.t.length - 1] - nav.t[0], 0)} s, ${turns.length} turns, ${events.length} events. Predictions are made without this mission’s turns, from the station’s other missions and a model not trained on this one.`,
     );
     seek(nav.t[0]);
   } catch (e) {
@@ -209,15 +209,7 @@ function frame(ms) {
 /** Index of the last sample at or before t. */
 function indexAt(t) {
   const ts = rec.nav.t;
-  let lo = 0;
-  let hi = ts.length - 1;
-  if (t <= ts[0]) return 0;
-  while (lo < hi) {
-    const mid = (lo + hi + 1) >> 1;
-    if (ts[mid] <= t) lo = mid;
-    else hi = mid - 1;
-  }
-  return lo;
+  return lastAtOrBefore(ts.length, (i) => ts[i], t);
 }
 
 /** The vehicle at time t, interpolated between the stored samples around it (heading along the
@@ -251,12 +243,30 @@ function turnStart(r) {
   return { x: p.x_m, y: p.y_m, heading: p.heading_deg };
 }
 
+/** Which predictions a stored turn can be shown against fairly: only by what never saw its
+ *  mission (`without_mission`), so a replayed turn is not graded by a table built from it. AVK
+ *  needs another mission of the vehicle with ok turns, the model one not trained on this one. */
+export function fairMethods(missionId, vehicleId, speed) {
+  const methods = ['instantaneous'];
+  const others = state.missions.some((m) => m.vehicle_id === vehicleId && m.id !== missionId && (m.turns?.ok ?? 0) > 0);
+  if (others && cktCovers(speed)) methods.push('avk');
+  if (state.models.some((m) => !(m.training_missions ?? []).includes(missionId))) methods.push('model');
+  return methods;
+}
+
+/** What the drawn predictions are built from, and which are missing for want of one that never
+ *  saw this mission. */
+function fairnessNote(turn) {
+  if (!turn.fair) return '';
+  const missing = [['avk', 'AVK table'], ['model', 'yaw model']].filter(([m]) => !turn.fair.includes(m)).map(([, name]) => name);
+  return `Predictions are made without this mission's turns${missing.length ? `; no ${missing.join(' or ')} without them` : ''}.`;
+}
+
 async function predictTurn(r) {
   r.predictions = {};
   const start = turnStart(r);
-  const methods = ['instantaneous'];
-  if (cktCovers(r.speed_mps)) methods.push('avk');
-  if (state.models.length) methods.push('model');
+  const methods = fairMethods(rec.id, rec.report.vehicle_id, r.speed_mps);
+  r.fair = methods;
   await Promise.all(
     methods.map(async (method) => {
       try {
@@ -267,6 +277,7 @@ async function predictTurn(r) {
           x: start.x,
           y: start.y,
           heading: start.heading,
+          ...(method === 'instantaneous' ? {} : { without_mission: rec.id }),
         });
       } catch (e) {
         console.warn(`replay: no ${method} prediction`, e.message);
@@ -291,7 +302,7 @@ function render() {
   const turn = turnAt(nowT);
   if (turn && turn.predictions === null) predictTurn(turn);
   $('rp-turn').textContent = turn
-    ? `Turn ${rec.turns.indexOf(turn) + 1} of ${rec.turns.length} under way: ${num(turn.speed_mps, 2)} m/s, Δψ ${turn.goal_dheading_deg > 0 ? '+' : ''}${num(turn.goal_dheading_deg, 0)}°, ${num(nowT - turn.start_time_s, 1)} s in; it ended ${turn.status}${typeof turn.advance_m === 'number' ? ` (advance ${num(turn.advance_m, 1)} m, transfer ${num(turn.transfer_m, 1)} m)` : ''}.`
+    ? `Turn ${rec.turns.indexOf(turn) + 1} of ${rec.turns.length} under way: ${num(turn.speed_mps, 2)} m/s, Δψ ${turn.goal_dheading_deg > 0 ? '+' : ''}${num(turn.goal_dheading_deg, 0)}°, ${num(nowT - turn.start_time_s, 1)} s in; it ended ${turn.status}${typeof turn.advance_m === 'number' ? ` (advance ${num(turn.advance_m, 1)} m, transfer ${num(turn.transfer_m, 1)} m)` : ''}. ${fairnessNote(turn)}`
     : 'No turn under way at this moment.';
   renderTrack(p, turn);
   renderEvents();
@@ -309,8 +320,7 @@ function renderTrack(p, turn) {
   const k = p.i + 1;
   // The simplified track up to the sample before now, then the raw samples since its last kept
   // point, then the interpolated pose.
-  let m = 0;
-  while (m < rec.keep.length && rec.keep[m] < k) m++;
+  const m = firstAtOrAfter(rec.keep.length, (i) => rec.keep[i], k); // kept indices ascend
   const lastKept = m > 0 ? rec.keep[m - 1] : 0;
   const past = {
     x: [...rec.whole.x.slice(0, m), ...nav.x.slice(lastKept + 1, k), p.x_m],

@@ -2,6 +2,7 @@
 // only stream.js and sync.js write the live parts, so there is one source of truth per field.
 
 import { SeriesBuffer } from './timeseries.js';
+import { firstAtOrAfter } from './bisect.js';
 
 /** The live track: a fixed-size ring of (t, x, y). A 2-hour track at 10 Hz is 72,000 samples;
  *  beyond the capacity the oldest samples drop out (history is read from REST, not kept here). */
@@ -59,14 +60,7 @@ export class TrackBuffer {
 
   /** Index (0 = oldest) of the first sample at or after time t; length when none. */
   indexAtOrAfter(t) {
-    let lo = 0;
-    let hi = this.length;
-    while (lo < hi) {
-      const mid = (lo + hi) >> 1;
-      if (this.t[(this.start + mid) % this.capacity] < t) lo = mid + 1;
-      else hi = mid;
-    }
-    return lo;
+    return firstAtOrAfter(this.length, (i) => this.t[(this.start + i) % this.capacity], t);
   }
 }
 

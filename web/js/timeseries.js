@@ -5,6 +5,7 @@
 
 import { C, baseLayout, axis, draw } from './plots.js';
 import { headingDiff } from './format.js';
+import { firstAtOrAfter } from './bisect.js';
 
 /** The yaw rate is the heading's change over at least this long: at 10 Hz with a 1° compass a
  *  sample-to-sample difference would be ±14 °/s of noise, over 1 s it is ±1.4 °/s. */
@@ -60,14 +61,7 @@ export class SeriesBuffer {
 
   /** Index of the first sample at or after t. */
   indexAtOrAfter(t) {
-    let lo = 0;
-    let hi = this.length;
-    while (lo < hi) {
-      const mid = (lo + hi) >> 1;
-      if (this.at(mid, 't') < t) lo = mid + 1;
-      else hi = mid;
-    }
-    return lo;
+    return firstAtOrAfter(this.length, (i) => this.at(i, 't'), t);
   }
 
   /** Plain arrays of the samples with from ≤ t ≤ to; with maxPoints, every k-th sample so that

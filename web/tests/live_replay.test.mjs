@@ -217,6 +217,11 @@ test('Replay plays a stored mission back and scrubs through it', { timeout: slow
   // The middle of the first turn: the vehicle where the stored samples around it put it.
   const turn = m.turn_list[0];
   const tMid = (turn.start_time_s + turn.end_time_s) / 2;
+  // From here on the predictions asked for are the replayed turn's (Live asked for its own at load).
+  const predictAsks = [];
+  page.on('request', (q) => {
+    if (q.url().includes('/predict?')) predictAsks.push(new URL(q.url()).searchParams);
+  });
   await page.evaluate((t) => window.avkTest.replaySeek(t), tMid);
   const j = rows.findIndex((r) => r.t_s > tMid);
   const a = rows[j - 1];
@@ -244,6 +249,12 @@ test('Replay plays a stored mission back and scrubs through it', { timeout: slow
   );
   assert.ok(Math.hypot(at.vehicle[0] - expected[0], at.vehicle[1] - expected[1]) < 1e-6, `vehicle ${at.vehicle} vs ${expected}`);
   assert.match(at.turn, new RegExp(`^Turn 1 of ${m.turn_list.length} under way`));
+  // A replayed turn is shown only against predictions that never saw its mission: this vehicle
+  // has no other mission and no model, so only the instantaneous turn is asked for, and the panel
+  // says why the others are missing.
+  assert.match(at.turn, /Predictions are made without this mission's turns; no AVK table or yaw model without them\./);
+  assert.ok(predictAsks.length > 0, 'a prediction was asked for');
+  assert.deepEqual([...new Set(predictAsks.map((q) => q.get('method')))], ['instantaneous']);
   assert.equal(at.events, Math.min(100, events.filter((e) => e.t_s <= tMid).length));
   assert.equal(at.cursor, true, 'the time series marks the replayed moment');
   // The prediction placed at the turn's start, the stored sample at its commanding time.
