@@ -75,6 +75,14 @@ TEST_F(ModelCli, BadOptionsNameTheProblem) {
                                "--method", "model", "--model", "999"});
   EXPECT_EQ(no_model.rc, 1);
   EXPECT_NE(no_model.err.find("no model 999"), std::string::npos);
+  EXPECT_EQ(run({"predict", "--db", db_->path(), "--speed", "1", "--dheading", "90",
+                 "--without-mission", "0.5"})
+                .rc,
+            2);
+  const Result no_mission = run({"predict", "--db", db_->path(), "--speed", "1", "--dheading", "90",
+                                 "--without-mission", "99"});
+  EXPECT_EQ(no_mission.rc, 1);
+  EXPECT_NE(no_mission.err.find("no mission 99"), std::string::npos) << no_mission.err;
 }
 
 TEST_F(ModelCli, CompareScoresEveryCellWithTwoTurns) {

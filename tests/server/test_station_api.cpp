@@ -681,6 +681,24 @@ TEST_F(StationApi, CktCellsExportImportPredictModelsCompare) {
   const json model = body(call(get("/api/v1/vehicles/sim-usim/predict",
                                    {{"speed", "1"}, {"dheading", "70"}, {"method", "model"}})));
   EXPECT_EQ(model["model_id"], model_id);
+  // Replay's fair prediction: without a mission, the table of the other one's turns; the only
+  // model was trained on both, so none answers; a bad id is named.
+  const std::string first = missions[0]["id"].dump();
+  const ApiResponse held_out =
+      call(get("/api/v1/vehicles/sim-usim/predict",
+               {{"speed", "1"}, {"dheading", "70"}, {"without_mission", first}}));
+  ASSERT_EQ(held_out.status, 200) << held_out.body;
+  EXPECT_EQ(body(held_out)["without_mission_id"], missions[0]["id"]);
+  EXPECT_EQ(body(held_out)["table_source"], "turns");
+  const ApiResponse no_fair_model = call(
+      get("/api/v1/vehicles/sim-usim/predict",
+          {{"speed", "1"}, {"dheading", "70"}, {"method", "model"}, {"without_mission", first}}));
+  EXPECT_EQ(no_fair_model.status, 404) << no_fair_model.body;
+  const ApiResponse bad_id =
+      call(get("/api/v1/vehicles/sim-usim/predict",
+               {{"speed", "1"}, {"dheading", "70"}, {"without_mission", "x"}}));
+  EXPECT_EQ(bad_id.status, 400);
+  EXPECT_EQ(body(bad_id)["parameter"], "without_mission") << bad_id.body;
   // Issue 17 part 2: the speed after is a parameter named in its error; equal to the speed it is
   // a constant-speed turn; the model flies a change with its speed model (or says it has none).
   EXPECT_EQ(call(get("/api/v1/vehicles/sim-usim/predict",
