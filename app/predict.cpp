@@ -169,28 +169,64 @@ Result<Prediction> from_yaw_rate_table(Context& ctx, Prediction p) {
   }
 }
 
-// avk without a mission: a table of the vehicle's ok turns of its other missions, built for this
+// What an answer must not have learnt from: a mission, one stored turn (and, for a model, the
+// turn's mission: models are trained on whole missions).
+struct HeldOut {
+  std::optional<std::int64_t> mission_id;
+  std::optional<std::int64_t> turn_id;
+  std::vector<std::int64_t> unseen_missions;  // a model trained on any of these is not fair
+  std::string text;                           // "mission 3", "turn 12", "mission 3 and turn 12"
+};
+
+Result<HeldOut> held_out_of(Context& ctx, const PredictQuery& q) {
+  HeldOut h;
+  h.mission_id = q.without_mission_id;
+  h.turn_id = q.without_turn_id;
+  store::Store& db = ctx.db();
+  if (h.mission_id) {
+    if (!db.get_mission(*h.mission_id))
+      return not_found("no mission " + std::to_string(*h.mission_id));
+    h.unseen_missions.push_back(*h.mission_id);
+    h.text = "mission " + std::to_string(*h.mission_id);
+  }
+  if (h.turn_id) {
+    store::TurnFilter one;
+    one.after_id = *h.turn_id - 1;
+    one.limit = 1;
+    const auto rows = db.list_turns(one);
+    if (rows.empty() || rows.front().id != *h.turn_id)
+      return not_found("no turn " + std::to_string(*h.turn_id));
+    if (rows.front().vehicle_id != q.vehicle_id)
+      return invalid_argument("without_turn", "turn " + std::to_string(*h.turn_id) +
+                                                  " is not one of '" + q.vehicle_id + "''s");
+    h.unseen_missions.push_back(rows.front().mission_id);
+    h.text += (h.text.empty() ? "" : " and ") + ("turn " + std::to_string(*h.turn_id));
+  }
+  return h;
+}
+
+// avk without a mission or a turn: a table of the vehicle's other ok turns, built for this
 // answer (the cached table holds every turn). The coarse table answers: a fine one is not worth
 // building for one query.
-Result<Prediction> from_held_out_table(Context& ctx, Prediction p) {
+Result<Prediction> from_held_out_table(Context& ctx, Prediction p, const HeldOut& h) {
   const PredictQuery& q = p.query;
-  const std::int64_t held_out = *q.without_mission_id;
   if (q.initial_yaw_rate_dps || q.speed_after_mps)
-    return invalid_argument("without_mission",
+    return invalid_argument(h.mission_id ? "without_mission" : "without_turn",
                             "applies to constant-speed turns from a steady course; ask without "
                             "initial_yaw_rate and speed_after");
   store::Store& db = ctx.db();
-  if (!db.get_mission(held_out)) return not_found("no mission " + std::to_string(held_out));
-  std::vector<std::int64_t> others;
-  for (const auto& m : db.list_missions())
-    if (m.vehicle_id == q.vehicle_id && m.id != held_out) others.push_back(m.id);
+  std::vector<std::int64_t> missions;  // empty: every mission
+  if (h.mission_id) {
+    for (const auto& m : db.list_missions())
+      if (m.vehicle_id == q.vehicle_id && m.id != *h.mission_id) missions.push_back(m.id);
+  }
   std::vector<kin::TurnSequence> turns;
-  if (!others.empty())  // an empty list would mean every mission
-    turns = db.load_normalized_turns(others, q.vehicle_id, q.include_harvested,
-                                     store::TurnFrameChoice::water_where_known);
+  if (!h.mission_id || !missions.empty())
+    turns = db.load_normalized_turns(missions, q.vehicle_id, q.include_harvested,
+                                     store::TurnFrameChoice::water_where_known, h.turn_id);
   if (turns.empty())
-    return not_found("'" + q.vehicle_id + "' has no ok turns outside mission " +
-                     std::to_string(held_out) + " to build a table from");
+    return not_found("'" + q.vehicle_id + "' has no ok turns outside " + h.text +
+                     " to build a table from");
   const kin::Ckt table = kin::Ckt::build(turns);
   p.table_source = "turns";
   p.table_frame = kin::to_string(table.frame);
@@ -201,24 +237,25 @@ Result<Prediction> from_held_out_table(Context& ctx, Prediction p) {
   }
 }
 
-// The model that answers: the one asked for, else the vehicle's latest; without a mission, one
-// not trained on it.
-Result<store::StoredModel> answering_model(Context& ctx, const PredictQuery& q) {
+// The model that answers: the one asked for, else the vehicle's latest; one not trained on the
+// held-out missions when there are any.
+Result<store::StoredModel> answering_model(Context& ctx, const PredictQuery& q,
+                                           const std::vector<std::int64_t>& unseen) {
   store::Store& db = ctx.db();
-  const auto trained_on = [&](const store::StoredModel& m) {
-    return q.without_mission_id && std::ranges::find(m.training_missions, *q.without_mission_id) !=
-                                       m.training_missions.end();
+  const auto trained_on = [&](const store::StoredModel& m) -> std::optional<std::int64_t> {
+    for (const auto id : unseen)
+      if (std::ranges::find(m.training_missions, id) != m.training_missions.end()) return id;
+    return std::nullopt;
   };
   if (q.model_id) {
     auto m = db.get_model(*q.model_id);
     if (!m) return not_found("no model " + std::to_string(*q.model_id));
-    if (trained_on(*m))
+    if (const auto seen = trained_on(*m))
       return invalid_argument("model", "model " + std::to_string(m->id) +
-                                           " was trained on mission " +
-                                           std::to_string(*q.without_mission_id));
+                                           " was trained on mission " + std::to_string(*seen));
     return std::move(*m);
   }
-  if (!q.without_mission_id) {
+  if (unseen.empty()) {
     auto m = db.latest_model(q.vehicle_id);
     if (!m) return not_found("no model of '" + q.vehicle_id + "' is stored");
     return std::move(*m);
@@ -226,9 +263,13 @@ Result<store::StoredModel> answering_model(Context& ctx, const PredictQuery& q) 
   std::optional<store::StoredModel> best;
   for (auto& m : db.list_models(q.vehicle_id))
     if (!trained_on(m) && (!best || m.id > best->id)) best = std::move(m);
-  if (!best)
+  if (!best) {
+    std::string missions;
+    for (const auto id : unseen)
+      missions += (missions.empty() ? "" : " or ") + std::to_string(id);
     return not_found("every stored model of '" + q.vehicle_id + "' was trained on mission " +
-                     std::to_string(*q.without_mission_id));
+                     missions);
+  }
   return std::move(*best);
 }
 
@@ -355,9 +396,13 @@ Result<Prediction> predict(Context& ctx, const PredictQuery& query) {
   if (!current) return current.error();
   p.current = current->current;
   p.current_source = current->source;
+  const auto held = held_out_of(ctx, q);
+  if (!held) return held.error();
+  const HeldOut& held_out = *held;
   switch (q.method) {
     case PredictionMethod::avk: {
-      if (q.without_mission_id) return from_held_out_table(ctx, std::move(p));
+      if (held_out.turn_id || held_out.mission_id)
+        return from_held_out_table(ctx, std::move(p), held_out);
       if (q.initial_yaw_rate_dps) return from_yaw_rate_table(ctx, std::move(p));
       auto t = vehicle_table(ctx, q.vehicle_id, q.include_harvested);
       if (!t) return t.error();
@@ -374,7 +419,7 @@ Result<Prediction> predict(Context& ctx, const PredictQuery& query) {
       }
     }
     case PredictionMethod::model: {
-      const auto m = answering_model(ctx, q);
+      const auto m = answering_model(ctx, q, held_out.unseen_missions);
       if (!m) return m.error();
       if ((q.use_speed_model || q.speed_after_mps) && !m->model.speed)
         return invalid_argument(q.speed_after_mps ? "speed_after" : "speed_model",

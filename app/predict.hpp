@@ -46,11 +46,13 @@ struct PredictQuery {
   // Issue 17 part 2: the speed commanded with the new heading (u1); speed_mps is the speed held
   // before the turn (u0). Empty (or equal to speed_mps): a constant-speed turn.
   std::optional<double> speed_after_mps;
-  // A stored mission the answer must not have learnt from: a past turn shown as it would have
-  // been predicted without it (Replay), so it is never graded against a table that holds it.
-  // avk: a table of the vehicle's ok turns of every other mission (constant-speed turns from a
-  // steady course only); model: the given or latest model not trained on it.
+  // A stored mission, or one stored turn, the answer must not have learnt from: a past turn is
+  // shown as it would have been predicted without it (Replay: its mission; Live: the turn just
+  // finished), never against a table that holds it. avk: a table of the vehicle's other ok turns
+  // (constant-speed turns from a steady course only); model: the given or latest model not
+  // trained on that mission (on the turn's mission).
   std::optional<std::int64_t> without_mission_id;
+  std::optional<std::int64_t> without_turn_id;
 };
 
 // How a turn with a speed change was answered: measured cells of that (u0, u1) pair, the

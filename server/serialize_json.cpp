@@ -347,6 +347,7 @@ json prediction_json(const app::Prediction& p) {
   j["current"] = water_current_json(p.current, p.current_source);
   if (q.initial_yaw_rate_dps) j["initial_yaw_rate_dps"] = *q.initial_yaw_rate_dps;
   if (q.without_mission_id) j["without_mission_id"] = *q.without_mission_id;
+  if (q.without_turn_id) j["without_turn_id"] = *q.without_turn_id;
   if (q.speed_after_mps) {
     j["speed_after_mps"] = *q.speed_after_mps;
     j["speed_change_source"] =

@@ -140,6 +140,7 @@ app::PredictQuery predict_query(const ApiRequest& r, const std::string& vid) {
   q.initial_yaw_rate_dps = number_param(r, "initial_yaw_rate", -90.0, 90.0);
   q.speed_after_mps = number_param(r, "speed_after", 0.0, 100.0);
   q.without_mission_id = id_param(r, "without_mission");
+  q.without_turn_id = id_param(r, "without_turn");
   return q;
 }
 

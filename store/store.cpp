@@ -787,7 +787,7 @@ std::vector<CellStats> Store::mission_cell_stats(std::int64_t mission_id) {
 
 std::vector<kinematics::TurnSequence> Store::load_normalized_turns(
     const std::vector<std::int64_t>& mission_ids, const std::optional<std::string>& vehicle_id,
-    bool include_harvested, TurnFrameChoice frame) {
+    bool include_harvested, TurnFrameChoice frame, std::optional<std::int64_t> except_turn_id) {
   // The mission list travels as one bound JSON array, so the statement text stays fixed
   // whatever the number of missions. The water form, when asked for, replaces the normalised
   // form column for column.
@@ -799,12 +799,14 @@ std::vector<kinematics::TurnSequence> Store::load_normalized_turns(
   auto s = db_.prepare(mission_ids.empty()
                            ? columns +
                                  "WHERE status = 'ok' AND (?1 IS NULL OR vehicle_id = ?1) "
-                                 "AND (?3 OR source = 'collection') ORDER BY id"
+                                 "AND (?3 OR source = 'collection') AND (?4 IS NULL OR id != ?4) "
+                                 "ORDER BY id"
                            : columns +
                                  "WHERE status = 'ok' AND (?1 IS NULL OR vehicle_id = ?1) "
-                                 "AND (?3 OR source = 'collection') "
+                                 "AND (?3 OR source = 'collection') AND (?4 IS NULL OR id != ?4) "
                                  "AND mission_id IN (SELECT value FROM json_each(?2)) ORDER BY id");
   if (vehicle_id) s.bind(1, *vehicle_id);
+  if (except_turn_id) s.bind(4, *except_turn_id);
   s.bind(3, static_cast<std::int64_t>(include_harvested));
   if (!mission_ids.empty()) s.bind(2, nlohmann::json(mission_ids).dump());
   std::vector<kinematics::TurnSequence> out;

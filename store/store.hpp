@@ -287,11 +287,13 @@ class Store {
   // missions), optionally of one vehicle. Each equals get_turn(id)->normalized. Reads the packed
   // samples; turns stored before schema 2 have none and are parsed from their JSON instead.
   // Collection turns only, unless include_harvested. With water_where_known, a turn that has a
-  // water-frame form (save_mission_current) is read in it.
+  // water-frame form (save_mission_current) is read in it. except_turn_id: every turn but that
+  // one (a turn shown against predictions that never saw it).
   std::vector<kinematics::TurnSequence> load_normalized_turns(
       const std::vector<std::int64_t>& mission_ids,
       const std::optional<std::string>& vehicle_id = std::nullopt, bool include_harvested = false,
-      TurnFrameChoice frame = TurnFrameChoice::ground);
+      TurnFrameChoice frame = TurnFrameChoice::ground,
+      std::optional<std::int64_t> except_turn_id = std::nullopt);
   // Start times of every turn stored for the mission (any status or source), ascending.
   std::vector<double> turn_start_times(std::int64_t mission_id);
 

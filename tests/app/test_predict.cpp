@@ -284,6 +284,44 @@ TEST_F(Predict, WithoutAMissionTheModelIsOneNotTrainedOnIt) {
   EXPECT_EQ(none.error().code, app::ErrorCode::not_found);
 }
 
+// Live's fair prediction of the turn just finished: every other turn of the vehicle.
+TEST_F(Predict, WithoutATurnTheTableHoldsEveryOtherTurn) {
+  const auto mission = avk::testing::store_arc_turns(ctx_.db(), "alpha", 1.0, 3);
+  avk::testing::store_arc_turns(ctx_.db(), "beta");
+  store::TurnFilter f;
+  f.mission_id = mission;
+  f.speed_mps = 1.0;
+  f.dheading_deg = 100.0;
+  const auto rows = ctx_.db().list_turns(f);
+  ASSERT_FALSE(rows.empty());
+  const std::int64_t turn = rows.front().id;
+  const auto all = ctx_.db().load_normalized_turns({}, "alpha");
+  const auto others = ctx_.db().load_normalized_turns({}, "alpha", false,
+                                                      store::TurnFrameChoice::ground, turn);
+  ASSERT_EQ(others.size() + 1, all.size());
+
+  auto q = query("alpha", 1.0, 100.0);
+  q.without_turn_id = turn;
+  const auto fair = app::predict(ctx_, q);
+  ASSERT_TRUE(fair) << fair.error().message;
+  const auto expected = app::predict_with_table(kinematics::Ckt::build(others), query("alpha", 1.0, 100.0));
+  ASSERT_TRUE(expected);
+  expect_same_line(fair->trajectory, expected->trajectory);
+  // The cell that answers holds one turn fewer: its corridor counts two, not three.
+  ASSERT_TRUE(fair->corridor.has_value());
+  EXPECT_EQ(fair->corridor->n_turns, 2u);
+  const auto full = app::predict(ctx_, query("alpha", 1.0, 100.0));
+  ASSERT_TRUE(full && full->corridor.has_value());
+  EXPECT_EQ(full->corridor->n_turns, 3u);
+
+  q.without_turn_id = 9999;
+  EXPECT_NE(app::predict(ctx_, q).error().message.find("no turn 9999"), std::string::npos);
+  q.without_turn_id = ctx_.db().list_turns({}).back().id;  // beta's
+  const auto foreign = app::predict(ctx_, q);
+  ASSERT_FALSE(foreign);
+  EXPECT_EQ(foreign.error().field, "without_turn");
+}
+
 TEST(PredictMethod, NamesRoundTrip) {
   for (const auto m : {app::PredictionMethod::avk, app::PredictionMethod::model,
                        app::PredictionMethod::instantaneous})

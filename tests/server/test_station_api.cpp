@@ -690,6 +690,13 @@ TEST_F(StationApi, CktCellsExportImportPredictModelsCompare) {
   ASSERT_EQ(held_out.status, 200) << held_out.body;
   EXPECT_EQ(body(held_out)["without_mission_id"], missions[0]["id"]);
   EXPECT_EQ(body(held_out)["table_source"], "turns");
+  const auto a_turn =
+      body(call(get("/api/v1/turns", {{"status", "ok"}, {"limit", "1"}})))["items"][0]["id"];
+  const ApiResponse without_turn =
+      call(get("/api/v1/vehicles/sim-usim/predict",
+               {{"speed", "1"}, {"dheading", "70"}, {"without_turn", a_turn.dump()}}));
+  ASSERT_EQ(without_turn.status, 200) << without_turn.body;
+  EXPECT_EQ(body(without_turn)["without_turn_id"], a_turn);
   const ApiResponse no_fair_model = call(
       get("/api/v1/vehicles/sim-usim/predict",
           {{"speed", "1"}, {"dheading", "70"}, {"method", "model"}, {"without_mission", first}}));

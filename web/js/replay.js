@@ -15,7 +15,7 @@ import { simplify } from './decimate.js';
 import { firstAtOrAfter, lastAtOrBefore } from './bisect.js';
 import { phrase } from './eventlog.js';
 import { timeLabel } from './clock.js';
-import { cktCovers, refreshMissions } from './sync.js';
+import { cktCovers, cellTurns, modelWithout, refreshMissions } from './sync.js';
 import { attachMap, mapImages } from './maptiles.js';
 
 const $ = (id) => document.getElementById(id);
@@ -245,12 +245,16 @@ function turnStart(r) {
 
 /** Which predictions a stored turn can be shown against fairly: only by what never saw its
  *  mission (`without_mission`), so a replayed turn is not graded by a table built from it. AVK
- *  needs another mission of the vehicle with ok turns, the model one not trained on this one. */
-export function fairMethods(missionId, vehicleId, speed) {
+ *  needs the turn's cell to hold a turn of another mission (the table as last read holds more
+ *  there than this mission's ok turns), the model one not trained on this mission. */
+export function fairMethods(turn) {
   const methods = ['instantaneous'];
-  const others = state.missions.some((m) => m.vehicle_id === vehicleId && m.id !== missionId && (m.turns?.ok ?? 0) > 0);
-  if (others && cktCovers(speed)) methods.push('avk');
-  if (state.models.some((m) => !(m.training_missions ?? []).includes(missionId))) methods.push('model');
+  const sameCell = (t) => t.status === 'ok' && Math.abs(t.speed_mps - turn.speed_mps) < 0.05 && Math.abs(Math.abs(t.goal_dheading_deg) - Math.abs(turn.goal_dheading_deg)) < 0.5;
+  const own = rec.turns.filter(sameCell).length;
+  // The table and models read are the live vehicle's: another vehicle's mission gets neither.
+  if (rec.report.vehicle_id !== state.vehicleId) return methods;
+  if (cktCovers(turn.speed_mps) && cellTurns(turn.speed_mps, turn.goal_dheading_deg) > own) methods.push('avk');
+  if (modelWithout(rec.id)) methods.push('model');
   return methods;
 }
 
@@ -265,7 +269,7 @@ function fairnessNote(turn) {
 async function predictTurn(r) {
   r.predictions = {};
   const start = turnStart(r);
-  const methods = fairMethods(rec.id, rec.report.vehicle_id, r.speed_mps);
+  const methods = fairMethods(r);
   r.fair = methods;
   await Promise.all(
     methods.map(async (method) => {

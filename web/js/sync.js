@@ -216,6 +216,7 @@ async function adoptLastTurn(m) {
     ended: true,
     endT: row.end_time_s,
     outcome: state.lastTurn.event,
+    storedId: row.id,
   };
   emit('turn', state.turn);
   fetchPredictions(state.shownTurn);
@@ -515,6 +516,7 @@ function applyTurn(d, t) {
     state.turn.ended = true;
     state.turn.endT = state.nav?.t_s ?? null;
     state.turn.outcome = d.event;
+    state.turn.storedId = d.id ?? null;
   }
   state.turn = null;
   emit('turn', null);
@@ -549,15 +551,30 @@ export function cktCovers(speed) {
   return Boolean(r) && speed >= r[0] - 1e-9 && speed <= r[1] + 1e-9;
 }
 
+/** The turns the vehicle's table (as last read) holds in the cell of a turn of this speed and
+ *  heading change (either side); 0 when it has no such cell. */
+export function cellTurns(speed, dheading) {
+  const cell = state.ckt?.cells?.find((c) => Math.abs(c.speed_mps - speed) < 0.05 && Math.abs(c.dheading_deg - Math.abs(dheading)) < 0.5);
+  return cell?.n_turns ?? 0;
+}
+
+/** Whether a stored model never saw the mission (a prediction fair to that mission's turns). */
+export function modelWithout(missionId) {
+  return state.models.some((m) => !(m.training_missions ?? []).includes(missionId));
+}
+
 /** AVK, model and instantaneous predictions placed at the turn's start pose. Only asked where
- *  they exist (a CKT covering the speed, a stored model), so nothing answers 4xx routinely. */
+ *  they exist (a CKT covering the speed, a stored model), so nothing answers 4xx routinely. A
+ *  stored turn (ended) is asked of a table and model that never saw it, so only where its cell
+ *  holds another turn and a model was trained without its mission. */
 async function fetchPredictions(turn) {
   if (!turn.start || !state.vehicleId) return;
   // Turns finished since the table was last read may cover this speed now: read it again first.
   if (!cktCovers(turn.speed) && state.okTurns > 0) await refreshCktSummary();
   let methods = ['instantaneous'];
-  if (cktCovers(turn.speed)) methods.push('avk');
-  if (state.models.length > 0) methods.push('model');
+  const stored = Boolean(turn.storedId);
+  if (cktCovers(turn.speed) && (!stored || cellTurns(turn.speed, turn.dheading) > 1)) methods.push('avk');
+  if (stored ? modelWithout(turn.missionId) : state.models.length > 0) methods.push('model');
   methods = methods.filter((m) => !turn.predictions[m]);
   await Promise.all(
     methods.map(async (method) => {
@@ -570,6 +587,10 @@ async function fetchPredictions(turn) {
           y: turn.start.y,
           heading: turn.start.heading,
           ...currentParams(),
+          // A stored turn is drawn against predictions that never saw it: asked for after it
+          // ended (a table that had not covered its speed, a page opened later), the table and
+          // model must leave it out.
+          ...(turn.storedId && method !== 'instantaneous' ? { without_turn: turn.storedId } : {}),
         });
         if (state.shownTurn !== turn) return; // a newer turn is drawn now
         turn.predictions[method] = p;

@@ -41,8 +41,9 @@ async function api(pathname, init = {}) {
   return text ? JSON.parse(text) : null;
 }
 
-async function openLive() {
+async function openLive(onRequest = null) {
   const page = await b.newPage();
+  if (onRequest) page.on('request', onRequest);
   await page.goto(`${server.base}/?test=1#live`);
   await until('the page synced', () => page.evaluate(() => window.avkTest?.state().vehicleId ?? null), 20000);
   return page;
@@ -176,7 +177,10 @@ test('a page opened after the mission shows its last turn, not "No turn yet"', {
   const m = await api(`/missions/${missionId}`);
   const last = m.turn_list.at(-1);
   assert.ok(last, 'the mission stored turns');
-  const page = await openLive();
+  const predictAsks = [];
+  const page = await openLive((q) => {
+    if (q.url().includes('/predict?')) predictAsks.push(new URL(q.url()).searchParams);
+  });
   const shown = await until('the last turn drawn', () => page.evaluate(() => window.avkTest.shownTurn()), 20000);
   assert.equal(shown.running, false);
   assert.equal(shown.ended, true);
@@ -191,6 +195,12 @@ test('a page opened after the mission shows its last turn, not "No turn yet"', {
   );
   assert.ok(closeUp.some((n) => /^turn \(/.test(n)), `close-up: ${closeUp}`);
   assert.match(await page.textContent('#turn-status'), /Last turn: /);
+  // The stored turn is drawn only against predictions that never saw it: the table and model are
+  // asked without it (here the instantaneous turn alone may be all there is).
+  await until('its predictions asked for', () => predictAsks.some((q) => q.get('method') === 'instantaneous'), 20000);
+  for (const q of predictAsks) {
+    if (q.get('method') !== 'instantaneous') assert.equal(q.get('without_turn'), String(last.id), `asked ${q}`);
+  }
   await page.close();
 });
 
