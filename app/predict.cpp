@@ -197,8 +197,9 @@ Result<HeldOut> held_out_of(Context& ctx, const PredictQuery& q) {
     if (rows.empty() || rows.front().id != *h.turn_id)
       return not_found("no turn " + std::to_string(*h.turn_id));
     if (rows.front().vehicle_id != q.vehicle_id)
-      return invalid_argument("without_turn", "turn " + std::to_string(*h.turn_id) +
-                                                  " is not one of '" + q.vehicle_id + "''s");
+      return invalid_argument("without_turn",
+                              "turn " + std::to_string(*h.turn_id) + " belongs to vehicle '" +
+                                  rows.front().vehicle_id + "', not '" + q.vehicle_id + "'");
     h.unseen_missions.push_back(rows.front().mission_id);
     h.text += (h.text.empty() ? "" : " and ") + ("turn " + std::to_string(*h.turn_id));
   }

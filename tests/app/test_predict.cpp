@@ -320,6 +320,9 @@ TEST_F(Predict, WithoutATurnTheTableHoldsEveryOtherTurn) {
   const auto foreign = app::predict(ctx_, q);
   ASSERT_FALSE(foreign);
   EXPECT_EQ(foreign.error().field, "without_turn");
+  EXPECT_NE(foreign.error().message.find("belongs to vehicle 'beta', not 'alpha'"),
+            std::string::npos)
+      << foreign.error().message;
 }
 
 TEST(PredictMethod, NamesRoundTrip) {
