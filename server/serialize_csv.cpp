@@ -35,13 +35,14 @@ std::string sd_csv(const std::optional<kin::MeanSd>& v) {
 
 std::string missions_csv(const std::vector<app::MissionSummary>& missions) {
   std::string csv =
-      "id,vehicle_id,name,status,created_utc,started_s,ended_s,turns_ok,turns_aborted,"
-      "turns_rejected\n";
+      "id,vehicle_id,name,status,created_utc,started_s,ended_s,started_utc,ended_utc,turns_ok,"
+      "turns_aborted,turns_rejected\n";
   for (const auto& s : missions) {
     const auto& m = s.mission;
     csv += std::to_string(m.id) + ',' + csv_cell(m.vehicle_id) + ',' + csv_cell(m.name) + ',' +
            store::to_string(s.status) + ',' + csv_cell(m.created_utc) + ',' +
            optional_csv(m.started_s) + ',' + optional_csv(m.ended_s) + ',' +
+           csv_cell(m.started_utc.value_or("")) + ',' + csv_cell(m.ended_utc.value_or("")) + ',' +
            std::to_string(s.turns.ok) + ',' + std::to_string(s.turns.aborted) + ',' +
            std::to_string(s.turns.rejected) + '\n';
   }

@@ -148,6 +148,8 @@ json mission_json(const app::MissionSummary& s) {
           {"created_utc", m.created_utc},
           {"started_s", optional_json(m.started_s)},
           {"ended_s", optional_json(m.ended_s)},
+          {"started_utc", m.started_utc ? json(*m.started_utc) : json()},
+          {"ended_utc", m.ended_utc ? json(*m.ended_utc) : json()},
           {"turns",
            {{"ok", s.turns.ok}, {"aborted", s.turns.aborted}, {"rejected", s.turns.rejected}}}};
 }

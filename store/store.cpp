@@ -22,7 +22,7 @@ namespace {
 
 // Each step moves the schema from version i to i + 1. Steps are append-only: a released step is
 // never edited, because databases in the field have already run it.
-constexpr std::array<const char*, 10> kMigrations = {
+constexpr std::array<const char*, 11> kMigrations = {
     R"sql(
 CREATE TABLE vehicles (
   id            TEXT PRIMARY KEY,
@@ -195,6 +195,13 @@ CREATE TABLE mission_currents (
 ALTER TABLE turns ADD COLUMN water_samples BLOB;
 ALTER TABLE turns ADD COLUMN water_meta_json TEXT;
 )sql",
+    // Issue 19: the wall-clock moments a mission started and ended, so a mission of an earlier
+    // server session (whose station clock no longer maps to wall time) still shows when it ran.
+    // NULL for every mission stored before.
+    R"sql(
+ALTER TABLE missions ADD COLUMN started_utc TEXT;
+ALTER TABLE missions ADD COLUMN ended_utc TEXT;
+)sql",
 };
 
 constexpr const char* kMissionStatusNames[] = {"created", "running", "paused", "interrupted",
@@ -256,12 +263,14 @@ Mission read_mission(const Statement& s) {
   m.ended_s = s.column_optional_double(7);
   m.status_reason = s.column_text(8);
   m.runner_pid = s.column_optional_int64(9);
+  if (!s.is_null(10)) m.started_utc = s.column_text(10);
+  if (!s.is_null(11)) m.ended_utc = s.column_text(11);
   return m;
 }
 
 constexpr const char* kMissionColumns =
     "id, vehicle_id, name, config_json, status, created_utc, started_s, ended_s, status_reason, "
-    "runner_pid";
+    "runner_pid, started_utc, ended_utc";
 
 // A sample is 5 doubles (t_s, x_m, y_m, heading_deg, speed_mps), each 8 bytes little-endian
 // whatever the host, so a database file moves between machines.
@@ -436,7 +445,10 @@ void Store::set_mission_status(std::int64_t mission_id, MissionStatus status,
                     status == MissionStatus::done;
   auto s = db_.prepare(
       "UPDATE missions SET status = ?1, status_reason = ?2, "
+      "started_utc = CASE WHEN ?3 AND started_s IS NULL "
+      "THEN strftime('%Y-%m-%dT%H:%M:%fZ', 'now') ELSE started_utc END, "
       "started_s = CASE WHEN ?3 AND started_s IS NULL THEN ?5 ELSE started_s END, "
+      "ended_utc = CASE WHEN ?4 THEN strftime('%Y-%m-%dT%H:%M:%fZ', 'now') ELSE ended_utc END, "
       "ended_s = CASE WHEN ?4 THEN ?5 ELSE ended_s END WHERE id = ?6");
   s.bind(1, to_string(status)).bind(2, reason).bind(3, starts ? 1 : 0).bind(4, ends ? 1 : 0);
   s.bind(5, t_s).bind(6, mission_id);

@@ -48,6 +48,10 @@ struct Mission {
   std::optional<double> ended_s;    // mission clock of the switch to aborted/halted/done
   std::string status_reason;
   std::optional<std::int64_t> runner_pid;  // the process running the mission, if any
+  // Wall-clock moments (ISO 8601 UTC, set by the database) of the first switch to running and of
+  // the end; none for a mission stored before they were kept (schema 11).
+  std::optional<std::string> started_utc;
+  std::optional<std::string> ended_utc;
 };
 
 // Summary columns of a stored turn, readable without parsing its JSON.

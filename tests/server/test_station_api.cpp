@@ -665,6 +665,22 @@ TEST_F(StationApi, CktCellsExportImportPredictModelsCompare) {
                 .status,
             404);  // no model yet
   const json missions = body(call(get("/api/v1/missions")));
+  // When each ran, in wall-clock time, kept with it (issue 19: for missions of earlier sessions).
+  for (const auto& m : missions) {
+    ASSERT_TRUE(m["started_utc"].is_string()) << m.dump();
+    ASSERT_TRUE(m["ended_utc"].is_string()) << m.dump();
+    EXPECT_LE(m["created_utc"].get<std::string>(), m["started_utc"].get<std::string>());
+    EXPECT_LE(m["started_utc"].get<std::string>(), m["ended_utc"].get<std::string>());
+  }
+  const std::string missions_csv = call(get("/api/v1/missions", {{"format", "csv"}})).body;
+  EXPECT_EQ(
+      missions_csv.rfind("id,vehicle_id,name,status,created_utc,started_s,ended_s,started_utc,"
+                         "ended_utc,turns_ok,",
+                         0),
+      0u)
+      << missions_csv;
+  EXPECT_NE(missions_csv.find("," + missions[0]["started_utc"].get<std::string>() + ","),
+            std::string::npos);
   const ApiResponse fitted = call(
       post("/api/v1/vehicles/sim-usim/models",
            json{{"missions", {missions[0]["id"], missions[1]["id"]}}, {"history_s", 3}}.dump()));

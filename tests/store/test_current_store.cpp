@@ -117,6 +117,8 @@ TEST(CurrentStore, MigratesASchemaNineDatabase) {
     c.exec("DROP TABLE mission_currents");
     c.exec("ALTER TABLE turns DROP COLUMN water_samples");
     c.exec("ALTER TABLE turns DROP COLUMN water_meta_json");
+    c.exec("ALTER TABLE missions DROP COLUMN started_utc");
+    c.exec("ALTER TABLE missions DROP COLUMN ended_utc");
     c.exec("PRAGMA user_version = 9");
   }
   Store s(db.path());

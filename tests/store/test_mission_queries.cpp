@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <limits>
 #include <optional>
+#include <regex>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -73,10 +74,10 @@ void expect_mean_sd(const std::optional<avk::kinematics::MeanSd>& got, double me
 
 }  // namespace
 
-TEST(MissionQueries, SchemaIsVersionTen) {
+TEST(MissionQueries, SchemaIsVersionEleven) {
   Store s(":memory:");
-  EXPECT_EQ(schema_version(), 10);
-  EXPECT_EQ(s.user_version(), 10);
+  EXPECT_EQ(schema_version(), 11);
+  EXPECT_EQ(s.user_version(), 11);
   EXPECT_FALSE(migration_step_sql(0).empty());
   EXPECT_NE(migration_step_sql(1).find("normalized_samples"), std::string_view::npos);
   EXPECT_NE(migration_step_sql(2).find("yaw_models"), std::string_view::npos);
@@ -87,7 +88,8 @@ TEST(MissionQueries, SchemaIsVersionTen) {
   EXPECT_NE(migration_step_sql(7).find("harvests"), std::string_view::npos);
   EXPECT_NE(migration_step_sql(8).find("speed_after_mps"), std::string_view::npos);
   EXPECT_NE(migration_step_sql(9).find("mission_currents"), std::string_view::npos);
-  EXPECT_THROW(migration_step_sql(10), std::out_of_range);
+  EXPECT_NE(migration_step_sql(10).find("started_utc"), std::string_view::npos);
+  EXPECT_THROW(migration_step_sql(11), std::out_of_range);
   EXPECT_THROW(migration_step_sql(-1), std::out_of_range);
 }
 
@@ -608,6 +610,8 @@ TEST(MissionQueries, MigratesSchemaEightDatabaseToSpeedAfter) {
     c.exec("DROP TABLE mission_currents");
     c.exec("ALTER TABLE turns DROP COLUMN water_samples");
     c.exec("ALTER TABLE turns DROP COLUMN water_meta_json");
+    c.exec("ALTER TABLE missions DROP COLUMN started_utc");
+    c.exec("ALTER TABLE missions DROP COLUMN ended_utc");
     c.exec("PRAGMA user_version = 8");
   }
   Store s(db.path());
@@ -634,4 +638,54 @@ TEST(MissionQueries, MigratesSchemaEightDatabaseToSpeedAfter) {
   EXPECT_EQ(cells[2].speed_after_mps, 0.75);
   EXPECT_EQ(cells[2].n_ok, 1);
   EXPECT_TRUE(s.integrity_check());
+}
+
+// Issue 19: when a mission ran, in wall-clock time, kept with it: its first start (a resume keeps
+// it) and its end, so a mission of an earlier server session still says when it ran.
+TEST(MissionQueries, AMissionKeepsTheWallClockMomentsItStartedAndEnded) {
+  Store s(":memory:");
+  s.upsert_vehicle({"usim-1", "usim", 2.0, 1.0});
+  const auto m = s.create_mission("usim-1", "clock", "{}");
+  EXPECT_FALSE(s.get_mission(m)->started_utc);
+  s.set_mission_status(m, MissionStatus::running, "", 100.0);
+  const auto started = s.get_mission(m)->started_utc;
+  ASSERT_TRUE(started);
+  EXPECT_TRUE(std::regex_match(*started, std::regex(R"(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\d\.\d{3}Z)")))
+      << *started;
+  EXPECT_GE(*started, s.get_mission(m)->created_utc);  // ISO 8601 orders as text
+  s.set_mission_status(m, MissionStatus::interrupted, "the server stopped", 150.0);
+  EXPECT_FALSE(s.get_mission(m)->ended_utc);
+  s.set_mission_status(m, MissionStatus::running, "", 400.0);  // resumed in a later session
+  EXPECT_EQ(s.get_mission(m)->started_utc, started);
+  EXPECT_EQ(s.get_mission(m)->started_s, 100.0);
+  s.set_mission_status(m, MissionStatus::done, "", 500.0);
+  const auto done = s.get_mission(m);
+  ASSERT_TRUE(done->ended_utc);
+  EXPECT_GE(*done->ended_utc, *started);
+}
+
+// A schema-10 file: its missions keep everything and have no wall-clock start or end.
+TEST(MissionQueries, ASchemaTenDatabaseUpgradesAndItsMissionsHaveNoWallClockTimes) {
+  TempDb db;
+  std::int64_t m = 0;
+  {
+    Store s(db.path());
+    s.upsert_vehicle({"usim-1", "usim", 2.0, 1.0});
+    m = s.create_mission("usim-1", "old", "{}");
+  }
+  {
+    Connection c(db.path());
+    c.exec("ALTER TABLE missions DROP COLUMN started_utc");
+    c.exec("ALTER TABLE missions DROP COLUMN ended_utc");
+    c.exec("UPDATE missions SET status = 'done', started_s = 10, ended_s = 20");
+    c.exec("PRAGMA user_version = 10");
+  }
+  Store s(db.path());
+  EXPECT_EQ(s.user_version(), schema_version());
+  const auto old = s.get_mission(m);
+  ASSERT_TRUE(old);
+  EXPECT_EQ(old->name, "old");
+  EXPECT_EQ(old->started_s, 10.0);
+  EXPECT_FALSE(old->started_utc);
+  EXPECT_FALSE(old->ended_utc);
 }

@@ -4,8 +4,9 @@
 // beside the wall clock at one moment, so this session's times map to wall-clock time:
 //   wall_ms = utc_ms − (clock_s − t_s) / realtime_factor × 1000.
 // A mission from an earlier session ran before the station was down (and perhaps at another
-// factor): the mapping does not hold for it, and it is shown by its elapsed time, its station
-// clock and its created_utc instead.
+// factor): the mapping does not hold for it. Its start and end are still wall-clock times (the
+// station stores started_utc and ended_utc with it); other times of it are shown by elapsed time
+// and station clock, with its created_utc for a mission stored before those were kept.
 
 import { state } from './state.js';
 
@@ -98,6 +99,12 @@ export function timeLabel(t_s, mission = null) {
   const ms = inSession(mission) ? wallMs(t_s) : null;
   if (ms !== null) {
     return { text: fmtLocal(ms), title: [fmtUtc(ms), station, since && `mission ${since}`].filter(Boolean).join(' · '), wall: true };
+  }
+  // Its start and end were stored in wall-clock time as they happened.
+  const stored = t_s === mission?.started_s ? mission?.started_utc : t_s === mission?.ended_s ? mission?.ended_utc : null;
+  const storedMs = Date.parse(stored ?? '');
+  if (Number.isFinite(storedMs)) {
+    return { text: fmtLocal(storedMs), title: [fmtUtc(storedMs), station, since && `mission ${since}`, 'stored with the mission (an earlier server session)'].filter(Boolean).join(' · '), wall: true };
   }
   const created = mission?.created_utc ? `mission created ${mission.created_utc}` : null;
   return {

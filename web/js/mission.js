@@ -378,8 +378,9 @@ function renderControl() {
   );
 }
 
-/** A station-clock time of a mission: local wall time when this session ran it, else its
- *  created_utc; UTC, the station clock and the session's note on hover. */
+/** A station-clock time of a mission: local wall time when this session ran it or the station
+ *  stored it (a start or end), else its created_utc; UTC, the station clock and the session's
+ *  note on hover. */
 function timeCell(t, m) {
   if (typeof t !== 'number') return '–';
   const l = timeLabel(t, m);

@@ -123,6 +123,14 @@ test('the station clock maps to wall time by /health, and only for missions of t
   assert.equal(l.text, 'T+01:00', 'an earlier session: the time since the mission started');
   assert.match(l.title, /station clock 860\.0 s/);
   assert.match(l.title, /2020-01-01/);
+  // Its start and end were stored in wall-clock time: shown as such, in any session.
+  const stored = { ...old, ended_s: 1400, started_utc: '2020-01-01T00:00:05.000Z', ended_utc: '2020-01-01T00:01:05.000Z' };
+  const s0 = clock.timeLabel(800, stored);
+  assert.equal(s0.wall, true);
+  assert.equal(s0.text, clock.fmtLocal(Date.parse('2020-01-01T00:00:05.000Z')));
+  assert.match(s0.title, /2020-01-01 00:00:05\.0 UTC · station clock 800\.0 s .*earlier server session/);
+  assert.equal(clock.timeLabel(1400, stored).text, clock.fmtLocal(Date.parse('2020-01-01T00:01:05.000Z')));
+  assert.equal(clock.timeLabel(860, stored).text, 'T+01:00', 'other times of it: still the elapsed time');
   const now = clock.timeLabel(1000, null);
   assert.equal(now.wall, true);
   assert.match(now.text, /^\d\d:\d\d:\d\d$/);
@@ -462,7 +470,7 @@ test('the dark theme: toggled by button or t, remembered, the plots follow, the 
   }
 });
 
-test('the link lost while a mission runs is an alarm; after a restart the older missions show elapsed time and created_utc (defects 5, alarms)', { timeout: slow(120000) }, async () => {
+test('the link lost while a mission runs is an alarm; after a restart an older mission shows its stored start in wall-clock time (defects 5, alarms)', { timeout: slow(120000) }, async () => {
   errors.phase = 'restart';
   await showView(page, 'live');
   await page.click('#mb-state');
@@ -493,7 +501,10 @@ test('the link lost while a mission runs is an alarm; after a restart the older 
       return t ? { text: t.textContent, title: t.title } : null;
     }, missionA), 15000);
   const why = JSON.stringify({ clock: await hook('clock'), now: new Date().toISOString(), a: (await api('/missions')).find((m) => m.id === missionA) });
-  assert.match(row.text, /^\d{4}-\d\d-\d\d \d\d:\d\d:\d\dZ$/, `created_utc for a mission of an earlier session: ${row.text} ${why}`);
+  // Its start was stored in wall-clock time: local time, UTC on hover, though another session ran it.
+  const a = (await api('/missions')).find((m) => m.id === missionA);
+  assert.match(row.text, /^\d\d:\d\d:\d\d$|^\d{4}-\d\d-\d\d \d\d:\d\d:\d\d$/, `the stored start of a mission of an earlier session: ${row.text} ${why}`);
+  assert.ok(row.title.startsWith(a.started_utc.replace('T', ' ').slice(0, 19)), `${row.title} vs ${a.started_utc}`);
   assert.match(row.title, /earlier server session/);
   assert.match(row.title, /station clock \d+\.\d s/);
 });
