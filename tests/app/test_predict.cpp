@@ -296,15 +296,16 @@ TEST_F(Predict, WithoutATurnTheTableHoldsEveryOtherTurn) {
   ASSERT_FALSE(rows.empty());
   const std::int64_t turn = rows.front().id;
   const auto all = ctx_.db().load_normalized_turns({}, "alpha");
-  const auto others = ctx_.db().load_normalized_turns({}, "alpha", false,
-                                                      store::TurnFrameChoice::ground, turn);
+  const auto others =
+      ctx_.db().load_normalized_turns({}, "alpha", false, store::TurnFrameChoice::ground, turn);
   ASSERT_EQ(others.size() + 1, all.size());
 
   auto q = query("alpha", 1.0, 100.0);
   q.without_turn_id = turn;
   const auto fair = app::predict(ctx_, q);
   ASSERT_TRUE(fair) << fair.error().message;
-  const auto expected = app::predict_with_table(kinematics::Ckt::build(others), query("alpha", 1.0, 100.0));
+  const auto expected =
+      app::predict_with_table(kinematics::Ckt::build(others), query("alpha", 1.0, 100.0));
   ASSERT_TRUE(expected);
   expect_same_line(fair->trajectory, expected->trajectory);
   // The cell that answers holds one turn fewer: its corridor counts two, not three.
