@@ -190,6 +190,7 @@ Result<HeldOut> held_out_of(Context& ctx, const PredictQuery& q) {
     h.text = "mission " + std::to_string(*h.mission_id);
   }
   if (h.turn_id) {
+    // The turn's row alone (get_turn would parse its documents): the first id after id - 1.
     store::TurnFilter one;
     one.after_id = *h.turn_id - 1;
     one.limit = 1;

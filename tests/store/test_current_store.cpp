@@ -8,6 +8,7 @@
 #include "kinematics/water_frame.hpp"
 #include "store/sqlite.hpp"
 #include "store/store.hpp"
+#include "support/schema_downgrade.hpp"
 #include "support/synthetic_turns.hpp"
 #include "support/temp_db.hpp"
 
@@ -114,12 +115,7 @@ TEST(CurrentStore, MigratesASchemaNineDatabase) {
   {
     // Undo the newest step by hand, as if the file had been written before it existed.
     Connection c(db.path());
-    c.exec("DROP TABLE mission_currents");
-    c.exec("ALTER TABLE turns DROP COLUMN water_samples");
-    c.exec("ALTER TABLE turns DROP COLUMN water_meta_json");
-    c.exec("ALTER TABLE missions DROP COLUMN started_utc");
-    c.exec("ALTER TABLE missions DROP COLUMN ended_utc");
-    c.exec("PRAGMA user_version = 9");
+    avk::testing::downgrade_schema(c, 9);
   }
   Store s(db.path());
   EXPECT_EQ(s.user_version(), schema_version());

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "support/schema_downgrade.hpp"
 #include "support/temp_db.hpp"
 
 #include <algorithm>
@@ -606,13 +607,7 @@ TEST(MissionQueries, MigratesSchemaEightDatabaseToSpeedAfter) {
   {
     // Back to schema 8, as a station before this step (and the currents after it) left it.
     Connection c(db.path());
-    c.exec("ALTER TABLE turns DROP COLUMN speed_after_mps");
-    c.exec("DROP TABLE mission_currents");
-    c.exec("ALTER TABLE turns DROP COLUMN water_samples");
-    c.exec("ALTER TABLE turns DROP COLUMN water_meta_json");
-    c.exec("ALTER TABLE missions DROP COLUMN started_utc");
-    c.exec("ALTER TABLE missions DROP COLUMN ended_utc");
-    c.exec("PRAGMA user_version = 8");
+    avk::testing::downgrade_schema(c, 8);
   }
   Store s(db.path());
   EXPECT_EQ(s.user_version(), schema_version());
@@ -675,10 +670,8 @@ TEST(MissionQueries, ASchemaTenDatabaseUpgradesAndItsMissionsHaveNoWallClockTime
   }
   {
     Connection c(db.path());
-    c.exec("ALTER TABLE missions DROP COLUMN started_utc");
-    c.exec("ALTER TABLE missions DROP COLUMN ended_utc");
+    avk::testing::downgrade_schema(c, 10);
     c.exec("UPDATE missions SET status = 'done', started_s = 10, ended_s = 20");
-    c.exec("PRAGMA user_version = 10");
   }
   Store s(db.path());
   EXPECT_EQ(s.user_version(), schema_version());

@@ -15,7 +15,7 @@ import { simplify } from './decimate.js';
 import { firstAtOrAfter, lastAtOrBefore } from './bisect.js';
 import { phrase } from './eventlog.js';
 import { timeLabel } from './clock.js';
-import { cktCovers, cellTurns, modelWithout, refreshMissions } from './sync.js';
+import { cktCovers, cellTurns, modelWithout, sameCell, refreshMissions } from './sync.js';
 import { attachMap, mapImages } from './maptiles.js';
 
 const $ = (id) => document.getElementById(id);
@@ -249,10 +249,9 @@ function turnStart(r) {
  *  there than this mission's ok turns), the model one not trained on this mission. */
 export function fairMethods(turn) {
   const methods = ['instantaneous'];
-  const sameCell = (t) => t.status === 'ok' && Math.abs(t.speed_mps - turn.speed_mps) < 0.05 && Math.abs(Math.abs(t.goal_dheading_deg) - Math.abs(turn.goal_dheading_deg)) < 0.5;
-  const own = rec.turns.filter(sameCell).length;
   // The table and models read are the live vehicle's: another vehicle's mission gets neither.
   if (rec.report.vehicle_id !== state.vehicleId) return methods;
+  const own = rec.turns.filter((t) => t.status === 'ok' && sameCell(t.speed_mps, t.goal_dheading_deg, turn.speed_mps, turn.goal_dheading_deg)).length;
   if (cktCovers(turn.speed_mps) && cellTurns(turn.speed_mps, turn.goal_dheading_deg) > own) methods.push('avk');
   if (modelWithout(rec.id)) methods.push('model');
   return methods;

@@ -551,11 +551,16 @@ export function cktCovers(speed) {
   return Boolean(r) && speed >= r[0] - 1e-9 && speed <= r[1] + 1e-9;
 }
 
+/** Whether two turns (or a turn and a table cell) are of one cell: the same commanded speed and
+ *  heading change on either side, within the station's own tolerances (GET /turns). */
+export function sameCell(speedA, dheadingA, speedB, dheadingB) {
+  return Math.abs(speedA - speedB) < 0.05 && Math.abs(Math.abs(dheadingA) - Math.abs(dheadingB)) < 0.5;
+}
+
 /** The turns the vehicle's table (as last read) holds in the cell of a turn of this speed and
  *  heading change (either side); 0 when it has no such cell. */
 export function cellTurns(speed, dheading) {
-  const cell = state.ckt?.cells?.find((c) => Math.abs(c.speed_mps - speed) < 0.05 && Math.abs(c.dheading_deg - Math.abs(dheading)) < 0.5);
-  return cell?.n_turns ?? 0;
+  return state.ckt?.cells?.find((c) => sameCell(c.speed_mps, c.dheading_deg, speed, dheading))?.n_turns ?? 0;
 }
 
 /** Whether a stored model never saw the mission (a prediction fair to that mission's turns). */
