@@ -55,7 +55,7 @@ export function acknowledge() {
 }
 
 export function alarmsState() {
-  return { active: active.map((a) => ({ kind: a.kind, title: a.title })), raised: log.map((a) => a.kind), beeps, muted, audio: audio?.state ?? 'none' };
+  return { active: active.map((a) => ({ id: a.id, kind: a.kind, title: a.title })), raised: log.map((a) => a.kind), beeps, muted, audio: audio?.state ?? 'none' };
 }
 
 export function setMuted(m) {
