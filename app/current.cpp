@@ -90,13 +90,10 @@ Result<MissionCurrent> estimate_mission_current_from_turns(Context& ctx, std::in
   store::Store& db = ctx.db();
   const auto mission = db.get_mission(mission_id);
   if (!mission) return not_found("no mission " + std::to_string(mission_id));
-  std::vector<std::int64_t> others;
-  for (const auto& m : db.list_missions())
-    if (m.vehicle_id == mission->vehicle_id && m.id != mission_id) others.push_back(m.id);
-  const auto table_turns =
-      others.empty() ? std::vector<kin::TurnSequence>{}
-                     : db.load_normalized_turns(others, mission->vehicle_id, false,
-                                                store::TurnFrameChoice::water_where_known);
+  store::TurnsLeftOut others;
+  others.mission_id = mission_id;
+  const auto table_turns = db.load_normalized_turns(
+      {}, mission->vehicle_id, false, store::TurnFrameChoice::water_where_known, others);
   if (table_turns.empty())
     return not_found("no other mission of '" + mission->vehicle_id +
                      "' holds turns to predict this one's with");

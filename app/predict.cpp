@@ -172,37 +172,31 @@ Result<Prediction> from_yaw_rate_table(Context& ctx, Prediction p) {
 // What an answer must not have learnt from: a mission, one stored turn (and, for a model, the
 // turn's mission: models are trained on whole missions).
 struct HeldOut {
-  std::optional<std::int64_t> mission_id;
-  std::optional<std::int64_t> turn_id;
+  store::TurnsLeftOut left_out;               // what the table must not be built from
   std::vector<std::int64_t> unseen_missions;  // a model trained on any of these is not fair
   std::string text;                           // "mission 3", "turn 12", "mission 3 and turn 12"
 };
 
 Result<HeldOut> held_out_of(Context& ctx, const PredictQuery& q) {
   HeldOut h;
-  h.mission_id = q.without_mission_id;
-  h.turn_id = q.without_turn_id;
+  h.left_out.mission_id = q.without_mission_id;
+  h.left_out.turn_id = q.without_turn_id;
   store::Store& db = ctx.db();
-  if (h.mission_id) {
-    if (!db.get_mission(*h.mission_id))
-      return not_found("no mission " + std::to_string(*h.mission_id));
-    h.unseen_missions.push_back(*h.mission_id);
-    h.text = "mission " + std::to_string(*h.mission_id);
+  if (h.left_out.mission_id) {
+    if (!db.get_mission(*h.left_out.mission_id))
+      return not_found("no mission " + std::to_string(*h.left_out.mission_id));
+    h.unseen_missions.push_back(*h.left_out.mission_id);
+    h.text = "mission " + std::to_string(*h.left_out.mission_id);
   }
-  if (h.turn_id) {
-    // The turn's row alone (get_turn would parse its documents): the first id after id - 1.
-    store::TurnFilter one;
-    one.after_id = *h.turn_id - 1;
-    one.limit = 1;
-    const auto rows = db.list_turns(one);
-    if (rows.empty() || rows.front().id != *h.turn_id)
-      return not_found("no turn " + std::to_string(*h.turn_id));
-    if (rows.front().vehicle_id != q.vehicle_id)
-      return invalid_argument("without_turn",
-                              "turn " + std::to_string(*h.turn_id) + " belongs to vehicle '" +
-                                  rows.front().vehicle_id + "', not '" + q.vehicle_id + "'");
-    h.unseen_missions.push_back(rows.front().mission_id);
-    h.text += (h.text.empty() ? "" : " and ") + ("turn " + std::to_string(*h.turn_id));
+  if (h.left_out.turn_id) {
+    const auto row = db.get_turn_row(*h.left_out.turn_id);
+    if (!row) return not_found("no turn " + std::to_string(*h.left_out.turn_id));
+    if (row->vehicle_id != q.vehicle_id)
+      return invalid_argument("without_turn", "turn " + std::to_string(*h.left_out.turn_id) +
+                                                  " belongs to vehicle '" + row->vehicle_id +
+                                                  "', not '" + q.vehicle_id + "'");
+    h.unseen_missions.push_back(row->mission_id);
+    h.text += (h.text.empty() ? "" : " and ") + ("turn " + std::to_string(*h.left_out.turn_id));
   }
   return h;
 }
@@ -213,19 +207,11 @@ Result<HeldOut> held_out_of(Context& ctx, const PredictQuery& q) {
 Result<Prediction> from_held_out_table(Context& ctx, Prediction p, const HeldOut& h) {
   const PredictQuery& q = p.query;
   if (q.initial_yaw_rate_dps || q.speed_after_mps)
-    return invalid_argument(h.mission_id ? "without_mission" : "without_turn",
+    return invalid_argument(h.left_out.mission_id ? "without_mission" : "without_turn",
                             "applies to constant-speed turns from a steady course; ask without "
                             "initial_yaw_rate and speed_after");
-  store::Store& db = ctx.db();
-  std::vector<std::int64_t> missions;  // empty: every mission
-  if (h.mission_id) {
-    for (const auto& m : db.list_missions())
-      if (m.vehicle_id == q.vehicle_id && m.id != *h.mission_id) missions.push_back(m.id);
-  }
-  std::vector<kin::TurnSequence> turns;
-  if (!h.mission_id || !missions.empty())
-    turns = db.load_normalized_turns(missions, q.vehicle_id, q.include_harvested,
-                                     store::TurnFrameChoice::water_where_known, h.turn_id);
+  const auto turns = ctx.db().load_normalized_turns(
+      {}, q.vehicle_id, q.include_harvested, store::TurnFrameChoice::water_where_known, h.left_out);
   if (turns.empty())
     return not_found("'" + q.vehicle_id + "' has no ok turns outside " + h.text +
                      " to build a table from");
@@ -403,7 +389,7 @@ Result<Prediction> predict(Context& ctx, const PredictQuery& query) {
   const HeldOut& held_out = *held;
   switch (q.method) {
     case PredictionMethod::avk: {
-      if (held_out.turn_id || held_out.mission_id)
+      if (held_out.left_out.turn_id || held_out.left_out.mission_id)
         return from_held_out_table(ctx, std::move(p), held_out);
       if (q.initial_yaw_rate_dps) return from_yaw_rate_table(ctx, std::move(p));
       auto t = vehicle_table(ctx, q.vehicle_id, q.include_harvested);

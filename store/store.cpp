@@ -650,6 +650,13 @@ std::vector<TurnRow> Store::list_turns(const TurnFilter& filter) {
   return out;
 }
 
+std::optional<TurnRow> Store::get_turn_row(std::int64_t turn_id) {
+  auto s = db_.prepare(std::string("SELECT ") + kTurnColumns + " FROM turns WHERE id = ?");
+  s.bind(1, turn_id);
+  if (!s.step()) return std::nullopt;
+  return read_turn_row(s);
+}
+
 std::optional<StoredTurn> Store::get_turn(std::int64_t turn_id) {
   auto s = db_.prepare(std::string("SELECT ") + kTurnColumns +
                        ", raw_json, normalized_json FROM turns WHERE id = ?");
@@ -799,7 +806,7 @@ std::vector<CellStats> Store::mission_cell_stats(std::int64_t mission_id) {
 
 std::vector<kinematics::TurnSequence> Store::load_normalized_turns(
     const std::vector<std::int64_t>& mission_ids, const std::optional<std::string>& vehicle_id,
-    bool include_harvested, TurnFrameChoice frame, std::optional<std::int64_t> except_turn_id) {
+    bool include_harvested, TurnFrameChoice frame, const TurnsLeftOut& left_out) {
   // The mission list travels as one bound JSON array, so the statement text stays fixed
   // whatever the number of missions. The water form, when asked for, replaces the normalised
   // form column for column.
@@ -812,13 +819,15 @@ std::vector<kinematics::TurnSequence> Store::load_normalized_turns(
                            ? columns +
                                  "WHERE status = 'ok' AND (?1 IS NULL OR vehicle_id = ?1) "
                                  "AND (?3 OR source = 'collection') AND (?4 IS NULL OR id != ?4) "
-                                 "ORDER BY id"
+                                 "AND (?5 IS NULL OR mission_id != ?5) ORDER BY id"
                            : columns +
                                  "WHERE status = 'ok' AND (?1 IS NULL OR vehicle_id = ?1) "
                                  "AND (?3 OR source = 'collection') AND (?4 IS NULL OR id != ?4) "
+                                 "AND (?5 IS NULL OR mission_id != ?5) "
                                  "AND mission_id IN (SELECT value FROM json_each(?2)) ORDER BY id");
   if (vehicle_id) s.bind(1, *vehicle_id);
-  if (except_turn_id) s.bind(4, *except_turn_id);
+  if (left_out.turn_id) s.bind(4, *left_out.turn_id);
+  if (left_out.mission_id) s.bind(5, *left_out.mission_id);
   s.bind(3, static_cast<std::int64_t>(include_harvested));
   if (!mission_ids.empty()) s.bind(2, nlohmann::json(mission_ids).dump());
   std::vector<kinematics::TurnSequence> out;

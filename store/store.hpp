@@ -85,6 +85,12 @@ struct TurnStart {
   std::optional<double> yaw_rate_dps;       // moving average
 };
 
+// Turns a read leaves out: one mission's, one turn.
+struct TurnsLeftOut {
+  std::optional<std::int64_t> mission_id;
+  std::optional<std::int64_t> turn_id;
+};
+
 struct StoredTurn {
   TurnRow row;
   kinematics::TurnSequence raw;
@@ -285,19 +291,20 @@ class Store {
   std::int64_t newest_ok_turn_id(const std::string& vehicle_id, bool include_harvested = false);
   // Oldest first, at most filter.limit rows with id > filter.after_id.
   std::vector<TurnRow> list_turns(const TurnFilter& filter);
+  // The turn's summary columns alone (its documents are not read).
+  std::optional<TurnRow> get_turn_row(std::int64_t turn_id);
   // Throws StoreError naming the turn when its stored JSON is corrupt.
   std::optional<StoredTurn> get_turn(std::int64_t turn_id);
   // Normalised turns of status ok for the CKT, oldest first, from the given missions (empty: all
   // missions), optionally of one vehicle. Each equals get_turn(id)->normalized. Reads the packed
   // samples; turns stored before schema 2 have none and are parsed from their JSON instead.
   // Collection turns only, unless include_harvested. With water_where_known, a turn that has a
-  // water-frame form (save_mission_current) is read in it. except_turn_id: every turn but that
-  // one (a turn shown against predictions that never saw it).
+  // water-frame form (save_mission_current) is read in it. left_out: every turn but those (a
+  // turn shown against predictions that never saw it or its mission).
   std::vector<kinematics::TurnSequence> load_normalized_turns(
       const std::vector<std::int64_t>& mission_ids,
       const std::optional<std::string>& vehicle_id = std::nullopt, bool include_harvested = false,
-      TurnFrameChoice frame = TurnFrameChoice::ground,
-      std::optional<std::int64_t> except_turn_id = std::nullopt);
+      TurnFrameChoice frame = TurnFrameChoice::ground, const TurnsLeftOut& left_out = {});
   // Start times of every turn stored for the mission (any status or source), ascending.
   std::vector<double> turn_start_times(std::int64_t mission_id);
 

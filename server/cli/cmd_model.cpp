@@ -344,11 +344,8 @@ int predict(const std::vector<std::string>& rest, Io& io) {
   q.current = current.current;
   q.live_current = current.live;
   q.initial_yaw_rate_dps = a.number("initial-yaw-rate");
-  if (const auto held_out = a.number("without-mission")) {
-    if (*held_out < 1 || std::floor(*held_out) != *held_out)
-      throw UsageError("--without-mission needs a mission id");
-    q.without_mission_id = static_cast<std::int64_t>(*held_out);
-  }
+  if (const auto held_out = a.get("without-mission"))
+    q.without_mission_id = parse_id(*held_out, "--without-mission");
   q.vehicle_id = vehicle_of(a, ctx.db(), {});
   const app::Prediction p = value_or_fail(app::predict(ctx, q));
   io.out << (format == "csv" ? trajectory_csv(p.trajectory) : prediction_json(p).dump() + "\n");

@@ -296,8 +296,10 @@ TEST_F(Predict, WithoutATurnTheTableHoldsEveryOtherTurn) {
   ASSERT_FALSE(rows.empty());
   const std::int64_t turn = rows.front().id;
   const auto all = ctx_.db().load_normalized_turns({}, "alpha");
+  store::TurnsLeftOut left_out;
+  left_out.turn_id = turn;
   const auto others =
-      ctx_.db().load_normalized_turns({}, "alpha", false, store::TurnFrameChoice::ground, turn);
+      ctx_.db().load_normalized_turns({}, "alpha", false, store::TurnFrameChoice::ground, left_out);
   ASSERT_EQ(others.size() + 1, all.size());
 
   auto q = query("alpha", 1.0, 100.0);

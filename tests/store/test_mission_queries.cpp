@@ -371,6 +371,27 @@ TEST(MissionQueries, LoadNormalizedTurnsEqualsGetTurn) {
   EXPECT_TRUE(s.load_normalized_turns({m1}, "usim-2").empty());
   EXPECT_TRUE(s.load_normalized_turns({}, "ghost").empty());
   EXPECT_TRUE(s.load_normalized_turns({m2 + 10}).empty());
+  // Left out: one mission's turns, one turn, or both; with or without a mission list.
+  TurnsLeftOut no_m1;
+  no_m1.mission_id = m1;
+  expect_turns(s.load_normalized_turns({}, std::nullopt, false, TurnFrameChoice::ground, no_m1),
+               ok_m2);
+  expect_turns(s.load_normalized_turns({m1}, std::nullopt, false, TurnFrameChoice::ground, no_m1),
+               {});
+  TurnsLeftOut no_turn;
+  no_turn.turn_id = ok_m1[1];
+  expect_turns(s.load_normalized_turns({m1}, "usim-1", false, TurnFrameChoice::ground, no_turn),
+               {ok_m1[0], ok_m1[2], ok_m1[3]});
+  no_turn.mission_id = m2;
+  expect_turns(s.load_normalized_turns({}, std::nullopt, false, TurnFrameChoice::ground, no_turn),
+               {ok_m1[0], ok_m1[2], ok_m1[3]});
+  // A turn's row alone equals the row get_turn reads with its documents.
+  const auto row = s.get_turn_row(ok_m2[1]);
+  ASSERT_TRUE(row.has_value());
+  EXPECT_EQ(row->mission_id, m2);
+  EXPECT_EQ(row->vehicle_id, "usim-1");
+  EXPECT_EQ(row->goal_dheading_deg, s.get_turn(ok_m2[1])->row.goal_dheading_deg);
+  EXPECT_FALSE(s.get_turn_row(ok_m2[1] + 100).has_value());
 
   const auto loaded = s.load_normalized_turns({m1});
   EXPECT_EQ(loaded[0], arc(1.0, 90.0, 1).normalized());

@@ -15,7 +15,7 @@ import { simplify } from './decimate.js';
 import { firstAtOrAfter, lastAtOrBefore } from './bisect.js';
 import { phrase } from './eventlog.js';
 import { timeLabel } from './clock.js';
-import { cktCovers, cellTurns, modelWithout, sameCell, refreshMissions } from './sync.js';
+import { answerableMethods, sameCell, refreshMissions } from './sync.js';
 import { attachMap, mapImages } from './maptiles.js';
 
 const $ = (id) => document.getElementById(id);
@@ -244,17 +244,13 @@ function turnStart(r) {
 }
 
 /** Which predictions a stored turn can be shown against fairly: only by what never saw its
- *  mission (`without_mission`), so a replayed turn is not graded by a table built from it. AVK
- *  needs the turn's cell to hold a turn of another mission (the table as last read holds more
- *  there than this mission's ok turns), the model one not trained on this mission. */
-export function fairMethods(turn) {
-  const methods = ['instantaneous'];
+ *  mission (`without_mission`), so a replayed turn is not graded by a table built from it: AVK
+ *  where its cell holds a turn of another mission, the model one not trained on this mission. */
+function fairMethods(turn) {
   // The table and models read are the live vehicle's: another vehicle's mission gets neither.
-  if (rec.report.vehicle_id !== state.vehicleId) return methods;
+  if (rec.report.vehicle_id !== state.vehicleId) return ['instantaneous'];
   const own = rec.turns.filter((t) => t.status === 'ok' && sameCell(t.speed_mps, t.goal_dheading_deg, turn.speed_mps, turn.goal_dheading_deg)).length;
-  if (cktCovers(turn.speed_mps) && cellTurns(turn.speed_mps, turn.goal_dheading_deg) > own) methods.push('avk');
-  if (modelWithout(rec.id)) methods.push('model');
-  return methods;
+  return answerableMethods(turn.speed_mps, turn.goal_dheading_deg, { cellTurns: own, missionId: rec.id });
 }
 
 /** What the drawn predictions are built from, and which are missing for want of one that never

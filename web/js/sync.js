@@ -559,28 +559,30 @@ export function sameCell(speedA, dheadingA, speedB, dheadingB) {
 
 /** The turns the vehicle's table (as last read) holds in the cell of a turn of this speed and
  *  heading change (either side); 0 when it has no such cell. */
-export function cellTurns(speed, dheading) {
+function cellTurns(speed, dheading) {
   return state.ckt?.cells?.find((c) => sameCell(c.speed_mps, c.dheading_deg, speed, dheading))?.n_turns ?? 0;
 }
 
-/** Whether a stored model never saw the mission (a prediction fair to that mission's turns). */
-export function modelWithout(missionId) {
-  return state.models.some((m) => !(m.training_missions ?? []).includes(missionId));
+/** The predictions a turn can be drawn against, asked only where one answers (a CKT covering the
+ *  speed, a stored model), so nothing answers 4xx routinely. A stored turn is drawn only against
+ *  what never saw it (`heldOut`, asked with without_turn or without_mission): a table that keeps
+ *  a turn in its cell once `heldOut.cellTurns` of them are left out (the turn itself; Replay: its
+ *  mission's), a model not trained on `heldOut.missionId`. */
+export function answerableMethods(speed, dheading, heldOut = null) {
+  const methods = ['instantaneous'];
+  if (cktCovers(speed) && (!heldOut || cellTurns(speed, dheading) > heldOut.cellTurns)) methods.push('avk');
+  if (heldOut ? state.models.some((m) => !(m.training_missions ?? []).includes(heldOut.missionId)) : state.models.length > 0) methods.push('model');
+  return methods;
 }
 
-/** AVK, model and instantaneous predictions placed at the turn's start pose. Only asked where
- *  they exist (a CKT covering the speed, a stored model), so nothing answers 4xx routinely. A
- *  stored turn (ended) is asked of a table and model that never saw it, so only where its cell
- *  holds another turn and a model was trained without its mission. */
+/** AVK, model and instantaneous predictions placed at the turn's start pose, where they answer
+ *  (answerableMethods); a stored turn (ended) only against a table and model that never saw it. */
 async function fetchPredictions(turn) {
   if (!turn.start || !state.vehicleId) return;
   // Turns finished since the table was last read may cover this speed now: read it again first.
   if (!cktCovers(turn.speed) && state.okTurns > 0) await refreshCktSummary();
-  let methods = ['instantaneous'];
-  const stored = Boolean(turn.storedId);
-  if (cktCovers(turn.speed) && (!stored || cellTurns(turn.speed, turn.dheading) > 1)) methods.push('avk');
-  if (stored ? modelWithout(turn.missionId) : state.models.length > 0) methods.push('model');
-  methods = methods.filter((m) => !turn.predictions[m]);
+  const heldOut = turn.storedId ? { cellTurns: 1, missionId: turn.missionId } : null;
+  const methods = answerableMethods(turn.speed, turn.dheading, heldOut).filter((m) => !turn.predictions[m]);
   await Promise.all(
     methods.map(async (method) => {
       try {
