@@ -2,7 +2,7 @@
 // enough to open a page in the middle of it), with a datum:
 // - a page opened mid-turn draws the turn under way from the server's state (defect 1), with its
 //   predictions, the close-up's legend, the time series with the turn's start marked, the
-//   latitude/longitude readout and the scale bar;
+//   latitude/longitude readout, the lat/lon grid and the scale bar;
 // - a page opened after the mission shows its last turn (not "No turn yet");
 // - Replay plays a stored mission back from its stored navigation and scrubs through it.
 // Every wait is for a condition (web/tests/wait.mjs); nothing measures time.
@@ -152,6 +152,24 @@ test('the report names the turn under way, and a page opened mid-turn draws it w
   assert.deepEqual(ll.datum, DATUM);
   assert.equal(ll.text, formatLatLon(localGrid(DATUM).toLatLon(ll.nav.x_m, ll.nav.y_m)));
   assert.match(ll.shown, /^\d+\.\d{6}° N, \d+\.\d{6}° W$/);
+
+  // A dotted lat/lon grid over the region: each line one round latitude or longitude.
+  const grat = await until('the lat/lon grid', () =>
+    page.evaluate(() => {
+      const t = document.getElementById('live-plot').data?.find((d) => /^lat\/lon grid/.test(d.name));
+      return t?.visible === true ? { name: t.name, x: Array.from(t.x), y: Array.from(t.y) } : null;
+    }), 10000);
+  const step = Number(/\(([\d.e-]+)°\)/.exec(grat.name)?.[1]);
+  assert.ok(step > 0, grat.name);
+  const lines = [[]];
+  grat.x.forEach((x, i) => (Number.isFinite(x) ? lines.at(-1).push(localGrid(DATUM).toLatLon(x, grat.y[i])) : lines.push([])));
+  const round = (v) => Math.abs(v / step - Math.round(v / step)) < 1e-6;
+  const gridLines = lines.filter((l) => l.length >= 2);
+  assert.ok(gridLines.length >= 2, `${gridLines.length} grid lines`);
+  for (const l of gridLines) {
+    const constant = (k) => l.every((p) => Math.abs(p[k] - l[0][k]) < 1e-9) && round(l[0][k]);
+    assert.ok(constant('lat') || constant('lon'), `a grid line of neither round latitude nor longitude: ${JSON.stringify(l.slice(0, 3))}`);
+  }
 
   // A round scale bar a fifth of the plot wide at most, its pixels the plot's metres.
   const bar = await page.evaluate(() => {
