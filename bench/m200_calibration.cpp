@@ -39,11 +39,15 @@ using avk::kinematics::angle180_deg;
 
 // Overrides of the M200's calibrated numbers from the command line; empty: the built-in ones.
 struct Overrides {
-  std::optional<double> nr_per_speed, jet_lag_s, jet_reverse_fraction;
+  std::optional<double> nr_per_speed, jet_lag_s, jet_reverse_fraction, yaw_ki, yaw_integral_limit;
 } g_overrides;
+bool g_print_events = false;  // --events: every mission event, for diagnosis
 
 void apply_overrides(avk::sim::SimSetup& s) {
   if (s.vehicle.kind != "catamaran:m200" || !s.vehicle.catamaran) return;
+  if (g_overrides.yaw_ki) s.vehicle.pid.yaw.ki = *g_overrides.yaw_ki;
+  if (g_overrides.yaw_integral_limit)
+    s.vehicle.pid.yaw.integral_limit = *g_overrides.yaw_integral_limit;
   auto& p = *s.vehicle.catamaran;
   if (g_overrides.nr_per_speed) p.nr_per_speed = *g_overrides.nr_per_speed;
   if (g_overrides.jet_lag_s) p.lag_s = *g_overrides.jet_lag_s;
@@ -131,14 +135,31 @@ StepResponse step_response(const std::string& kind, bool choppy, double speed_mp
   return r;
 }
 
-// Every turn a mission ends, with its ConditionSet time.
+// Every turn and ConditionSet episode a mission ends, and how long it took.
 struct Collector final : avk::mission::MissionObserver {
   std::vector<avk::mission::TurnOutcome> turns;
+  int interrupted = 0, timeouts = 0, turn_backs = 0;
   void on_turn(avk::mission::TurnOutcome& t) override { turns.push_back(t); }
+  void on_condition_set(const avk::mission::ConditionSetEpisode& e) override {
+    if (e.outcome == avk::mission::ConditionSetEpisode::Outcome::interrupted) ++interrupted;
+    if (e.outcome == avk::mission::ConditionSetEpisode::Outcome::timeout) ++timeouts;
+  }
+  void on_event(const avk::mission::MissionEventRecord& e) override {
+    if (g_print_events)
+      std::printf("      %.1f %s %s\n", e.t_s, std::string(avk::mission::to_string(e.kind)).c_str(),
+                  e.message.c_str());
+    if (e.kind == avk::mission::EventKind::turning_back) ++turn_backs;
+  }
 };
 
-std::vector<avk::mission::TurnOutcome> run_mission(const std::string& kind, bool choppy,
-                                                   std::uint64_t seed, const std::string& text) {
+struct MissionRun {
+  Collector c;
+  double duration_s = 0.0;
+  bool done = false;
+};
+
+MissionRun run_mission(const std::string& kind, bool choppy, std::uint64_t seed,
+                       const std::string& text) {
   const avk::sim::SimSetup setup = setup_for(kind, choppy, seed);
   const auto config = avk::mission::parse_mission_config(text, setup.vehicle_max_speed_mps());
   avk::sim::SimMissionOptions so;
@@ -147,16 +168,18 @@ std::vector<avk::mission::TurnOutcome> run_mission(const std::string& kind, bool
   avk::sim::SimMission sim(so);
   avk::mission::MissionRunner runner(config, sim.vehicle(), avk::mission::plan_turns(config),
                                      {"calibration", std::to_string(seed)});
-  Collector c;
-  runner.add_observer(c);
+  MissionRun out;
+  runner.add_observer(out.c);
   avk::sim::FastPacer pacer;
-  sim.run(runner, pacer);
-  if (runner.state() != avk::mission::MissionState::done) {
+  const auto r = sim.run(runner, pacer);
+  out.duration_s = r.end_time_s - r.start_time_s;
+  out.done = runner.state() == avk::mission::MissionState::done;
+  if (!out.done) {
     std::printf("  (%s seed %llu: mission ended %s)\n", kind.c_str(),
                 static_cast<unsigned long long>(seed),
                 runner.state() ? avk::mission::to_string(*runner.state()) : "never started");
   }
-  return std::move(c.turns);
+  return out;
 }
 
 struct MeanSd {
@@ -179,12 +202,16 @@ MeanSd mean_sd(const std::vector<double>& v) {
   return m;
 }
 
-// The thesis' Figure 4-1 mission with a speed tolerance.
-std::string figure41(double speed_tolerance_mps) {
+// The thesis' Figure 4-1 mission with a speed tolerance, under the mission's steady-course rule
+// (least-squares yaw rate, heading within 2° of the held course) or the thesis' own (eq. 4.2's
+// moving average of five differenced headings, no heading test).
+std::string figure41(double speed_tolerance_mps, bool thesis_rule) {
   std::string text = example("thesis-fig4-1.json");
-  char tol[64];
-  std::snprintf(tol, sizeof tol, "\"speed_tolerance_mps\": %.2f", speed_tolerance_mps);
-  replace_all(text, "\"speed_tolerance_mps\": 0.1", tol);
+  char cs[256];
+  std::snprintf(
+      cs, sizeof cs, "\"speed_tolerance_mps\": %.2f%s", speed_tolerance_mps,
+      thesis_rule ? ", \"yaw_rate\": \"moving_average\", \"max_heading_error_deg\": 180" : "");
+  replace_all(text, "\"speed_tolerance_mps\": 0.1", cs);
   return text;
 }
 
@@ -233,7 +260,7 @@ void report(const std::string& label, const std::string& kind, bool choppy) {
   std::vector<avk::kinematics::Polyline> turns;
   std::vector<double> advance, transfer, duration;
   for (std::uint64_t seed = 1; seed <= 2; ++seed) {
-    for (const auto& t : run_mission(kind, choppy, seed, seventy_degree_cell(4))) {
+    for (const auto& t : run_mission(kind, choppy, seed, seventy_degree_cell(4)).c.turns) {
       if (t.status != avk::kinematics::TurnStatus::ok) continue;
       const auto n = t.raw.normalized();
       turns.push_back(n.points());
@@ -256,20 +283,38 @@ void report(const std::string& label, const std::string& kind, bool choppy) {
         e.instantaneous_mse_m2, e.avk_error_m2);
   }
 
-  std::printf("  ConditionSet time on Figure 4-1 (seeds 1-3; thesis Table 5.2 means 3.8-7.6 s)\n");
-  for (double tol : {0.1, 0.2}) {
-    std::vector<double> cs;
-    std::size_t ok = 0, total = 0;
-    for (std::uint64_t seed = 1; seed <= 3; ++seed) {
-      for (const auto& t : run_mission(kind, choppy, seed, figure41(tol))) {
-        ++total;
-        if (t.status == avk::kinematics::TurnStatus::ok) ++ok;
-        if (t.condition_set_time_s) cs.push_back(*t.condition_set_time_s);
+  std::printf(
+      "  Figure 4-1, seeds 1-5: ConditionSet time per turn (thesis Table 5.2: means 3.8-7.6 s, "
+      "sd 3.9-7.6 s), mission time (target calm <= 1200 s, choppy <= 1500 s), interrupted "
+      "conditioning episodes (target <= 5 a mission)\n");
+  for (const bool thesis_rule : {true, false}) {
+    for (double tol : {0.1, 0.2}) {
+      std::vector<double> cs, duration;
+      std::size_t ok = 0, total = 0;
+      int interrupted_max = 0, timeouts = 0, turn_backs = 0, not_done = 0;
+      for (std::uint64_t seed = 1; seed <= 5; ++seed) {
+        const MissionRun m = run_mission(kind, choppy, seed, figure41(tol, thesis_rule));
+        for (const auto& t : m.c.turns) {
+          ++total;
+          if (t.status == avk::kinematics::TurnStatus::ok) ++ok;
+          if (t.condition_set_time_s) cs.push_back(*t.condition_set_time_s);
+        }
+        duration.push_back(m.duration_s);
+        interrupted_max = std::max(interrupted_max, m.c.interrupted);
+        timeouts += m.c.timeouts;
+        turn_backs += m.c.turn_backs;
+        not_done += m.done ? 0 : 1;
       }
+      const MeanSd m = mean_sd(cs);
+      std::printf(
+          "    %s rule, tolerance %.1f m/s: ConditionSet %.2f ± %.2f s over %zu turns (%zu/%zu "
+          "ok); mission %.0f-%.0f s; interrupted <= %d a mission; %d timeouts, %d turn-backs in "
+          "all%s\n",
+          thesis_rule ? "thesis " : "mission", tol, m.mean, m.sd, m.n, ok, total,
+          *std::min_element(duration.begin(), duration.end()),
+          *std::max_element(duration.begin(), duration.end()), interrupted_max, timeouts,
+          turn_backs, not_done ? " (a mission not done)" : "");
     }
-    const MeanSd m = mean_sd(cs);
-    std::printf("    tolerance %.1f m/s: mean %.2f s, sd %.2f s over %zu turns (%zu/%zu ok)\n", tol,
-                m.mean, m.sd, m.n, ok, total);
   }
 }
 
@@ -288,10 +333,16 @@ int main(int argc, char** argv) {
       g_overrides.jet_lag_s = std::stod(argv[++i]);
     } else if (a == "--jet-reverse" && has_value) {
       g_overrides.jet_reverse_fraction = std::stod(argv[++i]);
+    } else if (a == "--events") {
+      g_print_events = true;
+    } else if (a == "--yaw-ki" && has_value) {
+      g_overrides.yaw_ki = std::stod(argv[++i]);
+    } else if (a == "--yaw-integral-limit" && has_value) {
+      g_overrides.yaw_integral_limit = std::stod(argv[++i]);
     } else {
       std::fprintf(stderr,
                    "usage: bench_m200_calibration [--calm-only] [--nr-per-speed N] [--jet-lag S] "
-                   "[--jet-reverse F]\n");
+                   "[--jet-reverse F] [--yaw-ki K] [--yaw-integral-limit L] [--events]\n");
       return 2;
     }
   }

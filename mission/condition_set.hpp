@@ -1,18 +1,19 @@
 #pragma once
 // ConditionSet (thesis §4.4.1): a turn starts only from a steady course at the target speed.
-// Yaw rate comes from differenced headings (wrap-aware, eq. 4.1) smoothed by a moving average
-// (eq. 4.2), because differenced compass headings are far too noisy on their own.
 //
-// Steady means more than a small moving average at one instant: at the far end of an overshoot
-// swing the average passes through zero while the vehicle is 10° or more off course. So the
-// heading must be within max_heading_error_deg of the held course, and every moving-average
-// value of the last window ticks (not just the newest) must be within the yaw-rate limit. The
-// single differenced samples are not tested one by one: with 1° compass noise at 10 Hz each of
-// them scatters by ~14 °/s, so no window would ever qualify.
+// Steady means: the speed within its tolerance, the yaw rate within its limit, and the heading
+// within max_heading_error_deg of the held course. The yaw rate is estimated as the config says
+// (ConditionSetConfig::yaw_rate_method): by default the least-squares slope of the heading over
+// a time window, whose noise for a compass of σ = 1° at 10 Hz is 0.36 °/s over 2 s; the thesis'
+// moving average of differenced headings (eqs. 4.1, 4.2) scatters by 2.8 °/s there, so with it
+// a 1 °/s limit is met by chance about one sample in four. The heading test is what a rate test
+// alone cannot see: at the far end of an overshoot swing the yaw rate passes through zero while
+// the vehicle is 10° or more off course.
 
 #include <deque>
 #include <optional>
 
+#include "kinematics/yaw_rate_estimator.hpp"
 #include "mission/mission_config.hpp"
 #include "vehicle/vehicle.hpp"
 
@@ -24,13 +25,14 @@ class ConditionSetMonitor {
   ConditionSetMonitor(ConditionSetConfig config, double target_speed_mps,
                       std::optional<double> held_course_deg = std::nullopt);
 
-  // Feeds one navigation sample; true once speed, heading and smoothed yaw rate are all within
-  // their limits.
+  // Feeds one navigation sample; true once speed, heading and yaw rate are all within their
+  // limits.
   bool update(const vehicle::NavSample& nav);
   bool conditions_set() const { return set_; }
   double target_speed_mps() const { return target_speed_mps_; }
   std::optional<double> held_course_deg() const { return held_course_deg_; }
-  std::optional<double> yaw_rate_dps() const;  // moving average; empty until two samples
+  // The yaw-rate estimate (°/s, + clockwise); empty until the estimator has a full window.
+  std::optional<double> yaw_rate_dps() const;
   // Heading of the newest sample minus the held course, in (−180, 180]; empty without either.
   std::optional<double> heading_error_deg() const;
   void reset(double target_speed_mps, std::optional<double> held_course_deg = std::nullopt);
@@ -40,8 +42,8 @@ class ConditionSetMonitor {
   double target_speed_mps_;
   std::optional<double> held_course_deg_;
   std::optional<vehicle::NavSample> previous_;
-  std::deque<double> rates_dps_;     // differenced headings, the newest window
-  std::deque<double> averages_dps_;  // moving averages of full windows, the newest window
+  kinematics::YawRateEstimator slope_;
+  std::deque<double> rates_dps_;  // moving_average: differenced headings, the newest window
   bool set_ = false;
 };
 

@@ -46,6 +46,10 @@ RegionZone Container::zone(kinematics::Point p) const {
                                                                        : RegionZone::interior;
 }
 
+double Container::depth_in_interior_m(kinematics::Point p) const {
+  return distance_to_boundary_m(p, region_.polygon) - region_.buffer_m;
+}
+
 double Container::heading_to_interior_deg(kinematics::Point p) const {
   return kinematics::heading_of_deg(interior_.x_m - p.x_m, interior_.y_m - p.y_m);
 }

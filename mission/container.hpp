@@ -14,6 +14,8 @@ class Container {
   explicit Container(OperatingRegion region);
 
   RegionZone zone(kinematics::Point p) const;
+  // How far p is inside the interior (past the buffer's inner edge); negative in the buffer.
+  double depth_in_interior_m(kinematics::Point p) const;
   // Heading (deg clockwise from north) from p towards the region's interior point.
   double heading_to_interior_deg(kinematics::Point p) const;
   kinematics::Point interior_point() const { return interior_; }

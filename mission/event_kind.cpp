@@ -11,6 +11,8 @@ std::string_view to_string(EventKind k) {
       return "condition_set_timeout";
     case EventKind::containment:
       return "containment";
+    case EventKind::turning_back:
+      return "turning_back";
     case EventKind::turn_rejected:
       return "turn_rejected";
     case EventKind::turn_given_up:
@@ -81,6 +83,7 @@ Severity severity(EventKind k) {
       return Severity::warning;
     case EventKind::excitation:
     case EventKind::returning:
+    case EventKind::turning_back:
     case EventKind::pause:
     case EventKind::resume:
     case EventKind::mission_attached:

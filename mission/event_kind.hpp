@@ -15,6 +15,7 @@ enum class EventKind {
   link,                   // navigation lost or back
   condition_set_timeout,  // the conditions for a turn were not set in time
   containment,            // the vehicle reached the buffer zone: heading for the interior
+  turning_back,           // too little room ahead to set conditions: turning inward first
   turn_rejected,          // a finished turn failed the anomaly checks
   turn_given_up,          // a cell's turn failed for the last allowed time
   turn_aborted,           // a turn ended before its goal heading

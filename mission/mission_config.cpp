@@ -26,6 +26,16 @@ const char* to_string(DirectionPolicy p) {
   return "?";
 }
 
+const char* to_string(YawRateMethod m) {
+  switch (m) {
+    case YawRateMethod::least_squares:
+      return "least_squares";
+    case YawRateMethod::moving_average:
+      return "moving_average";
+  }
+  return "?";
+}
+
 namespace {
 
 std::string describe(const std::vector<FieldError>& errors) {
@@ -234,6 +244,17 @@ MissionConfig parse_mission_config(std::string_view json_text, double max_speed_
     r.number("timeout_s", c.condition_set.timeout_s, 0.0, 3600.0, false, true);
     r.number("max_heading_error_deg", c.condition_set.max_heading_error_deg, 0.0, 180.0, false,
              true);
+    if (const json* m = r.get("yaw_rate", false)) {
+      if (*m == "least_squares") {
+        c.condition_set.yaw_rate_method = YawRateMethod::least_squares;
+      } else if (*m == "moving_average") {
+        c.condition_set.yaw_rate_method = YawRateMethod::moving_average;
+      } else {
+        r.error("/condition_set/yaw_rate", "must be least_squares or moving_average");
+      }
+    }
+    r.number("yaw_rate_window_s", c.condition_set.yaw_rate_window_s, 0.0, 60.0, false, true);
+    r.number("run_ahead_s", c.condition_set.run_ahead_s, 0.0, 600.0);
     r.finish();
   }
   if (const json* ch = root.get("constant_heading", false)) {

@@ -65,6 +65,13 @@ struct TurnArray {
   double initial_yaw_rate_timeout_s = 30.0;  // the band not entered in this long: aborted
 };
 
+// How the ConditionSet estimates the yaw rate from compass headings. least_squares: the slope of
+// the heading over the last yaw_rate_window_s (kinematics/yaw_rate_estimator.hpp), fit for a real
+// compass. moving_average: the thesis' eqs. 4.1-4.2, the mean of the last `window` differenced
+// headings, which only the two end samples decide; kept to reproduce the thesis' figures.
+enum class YawRateMethod { least_squares, moving_average };
+const char* to_string(YawRateMethod m);
+
 struct ConditionSetConfig {
   double speed_tolerance_mps = 0.1;
   double max_yaw_rate_dps = 1.0;
@@ -73,7 +80,17 @@ struct ConditionSetConfig {
   // The heading must also be within this of the course being held: at the far end of an
   // overshoot swing the yaw rate passes through zero while the vehicle is well off course.
   double max_heading_error_deg = 2.0;
+  YawRateMethod yaw_rate_method = YawRateMethod::least_squares;
+  // The least-squares window: with 1° compass noise at 10 Hz the slope over 2 s scatters by
+  // 0.36 °/s, a third of the usual 1 °/s limit, and lags a changing rate by about 1 s.
+  double yaw_rate_window_s = 2.0;
+  // Room ahead to begin: conditions are established only on a course that stays clear of the
+  // buffer for this long at the turn's speed, plus the turn's own room (kConditioningTurnRoomM).
+  // A shorter run would end in containment before or during the turn, wasting the attempt; the
+  // helm turns inward first instead (a turning_back event).
+  double run_ahead_s = 30.0;
 };
+inline constexpr double kConditioningTurnRoomM = 10.0;
 
 // ConstantHeading's completion (thesis §4.4.3), relative to the commanded change: a turn is
 // complete within max(floor, min(threshold, fraction x |goal|)) of its goal heading. A fixed 5 deg

@@ -23,6 +23,14 @@ std::string num(double v, int decimals = 2) {
   return buf;
 }
 
+// Within this of the turn-back course the swing towards it is nearly over, and conditioning takes
+// over holding it (a tighter test would wait out the overshoot twice).
+constexpr double kTurnedBackDeg = 10.0;
+// Containment ends this far past the buffer's inner edge, not on it: a boat still turning inward
+// (or set by a current) would cross the edge back and forth, each crossing an interrupted
+// conditioning episode.
+constexpr double kLeaveContainmentM = 3.0;
+
 std::string cell_name(const TurnTask& t) {
   std::string out = num(t.speed_mps, 2);
   if (t.speed_after_mps) {
@@ -229,7 +237,7 @@ void MissionRunner::tick(double now_s) {
               std::to_string(task.attempts) + ")");
     TurnOutcome no_turn;  // conditions never set: nothing was recorded
     give_up_or_requeue(now_s, no_turn);
-    start_conditioning(*last_nav_);
+    start_conditioning(*last_nav_, held_course_deg_);
   }
   if (config_.kind == MissionKind::persistent_excitation && excite_start_s_ &&
       (mode_ == HelmMode::exciting || mode_ == HelmMode::containing) &&
@@ -256,7 +264,9 @@ void MissionRunner::update_desired(double) {
   const auto& s = *last_nav_;
   switch (mode_) {
     case HelmMode::containing:
-      desired_heading_deg_ = container_.heading_to_interior_deg({s.x_m, s.y_m});
+      desired_heading_deg_ = turn_back_course_deg_
+                                 ? *turn_back_course_deg_
+                                 : container_.heading_to_interior_deg({s.x_m, s.y_m});
       if (!queue_.empty()) {
         desired_speed_mps_ = queue_.front().speed_mps;
       } else if (config_.excitation) {
@@ -293,7 +303,17 @@ void MissionRunner::process(const vehicle::NavSample& s) {
   }
   switch (mode_) {
     case HelmMode::containing:
-      if (zone == RegionZone::interior) leave_containment(s);
+      if (zone == RegionZone::buffer) {
+        turn_back_course_deg_.reset();  // in the buffer the container steers, as always
+      } else if (zone == RegionZone::interior && turn_back_course_deg_) {
+        // Turned back early: conditions start once the heading is near the new course.
+        if (std::abs(kinematics::angle180_deg(s.heading_deg - *turn_back_course_deg_)) <=
+            kTurnedBackDeg)
+          start_conditioning(s, *turn_back_course_deg_, false);
+      } else if (zone == RegionZone::interior &&
+                 container_.depth_in_interior_m({s.x_m, s.y_m}) >= kLeaveContainmentM) {
+        leave_containment(s);
+      }
       break;
     case HelmMode::conditioning:
       if (zone == RegionZone::buffer) {
@@ -309,10 +329,11 @@ void MissionRunner::process(const vehicle::NavSample& s) {
       } else if (const Completion c = turn_->update(s); c != Completion::none) {
         finish_turn(s, c);
       } else if (s.t_s - turn_start_s_ > config_.turn_timeout_s) {
+        const double goal = turn_->goal_heading_deg();
         abort_turn(s.t_s,
                    "the turn did not complete within " + num(config_.turn_timeout_s, 0) + " s",
                    true);
-        start_conditioning(s);
+        start_conditioning(s, goal);
       }
       break;
     case HelmMode::exciting:
@@ -327,6 +348,7 @@ void MissionRunner::process(const vehicle::NavSample& s) {
 }
 
 void MissionRunner::contain(const vehicle::NavSample& s, const std::string& why) {
+  turn_back_course_deg_.reset();
   if (condition_set_) end_condition_set(s.t_s, ConditionSetEpisode::Outcome::interrupted);
   event(s.t_s, EventKind::containment, why + " at " + at(s) + ": heading for the interior");
   set_mode(HelmMode::containing, s.t_s);
@@ -336,18 +358,54 @@ void MissionRunner::leave_containment(const vehicle::NavSample& s) {
   if (config_.kind == MissionKind::persistent_excitation) {
     start_exciting(s, s.t_s);
   } else {
-    start_conditioning(s);
+    // The course the container was steering, not the heading of the moment: the boat is still
+    // swinging towards it.
+    start_conditioning(s, desired_heading_deg_);
   }
 }
 
-void MissionRunner::start_conditioning(const vehicle::NavSample& s) {
+double MissionRunner::free_run_m(kinematics::Point p, double course_deg, double limit_m) const {
+  constexpr double kStep_m = 1.0;
+  const double h = kinematics::deg_to_rad(course_deg);
+  for (double d = kStep_m; d <= limit_m; d += kStep_m) {
+    if (container_.zone({p.x_m + d * std::sin(h), p.y_m + d * std::cos(h)}) != RegionZone::interior)
+      return d - kStep_m;
+  }
+  return limit_m;
+}
+
+void MissionRunner::start_conditioning(const vehicle::NavSample& s,
+                                       std::optional<double> course_deg, bool may_turn_back) {
   if (queue_.empty()) {
     start_returning(s.t_s);
     return;
   }
-  // ConditionSet notes the current course on becoming active and holds it (thesis §4.4.1).
-  held_course_deg_ = s.heading_deg;
-  condition_set_.emplace(config_.condition_set, queue_.front().speed_mps, held_course_deg_);
+  // ConditionSet notes a course on becoming active and holds it (thesis §4.4.1). After a turn
+  // that is the turn's goal, where the boat is still swinging to: the heading at completion is
+  // up to the completion threshold short of it.
+  const double course = kinematics::wrap360_deg(course_deg.value_or(s.heading_deg));
+  const double speed = queue_.front().speed_mps;
+  const double needed_m = speed * config_.condition_set.run_ahead_s + kConditioningTurnRoomM;
+  const kinematics::Point here{s.x_m, s.y_m};
+  const double run_m = may_turn_back && config_.condition_set.run_ahead_s > 0.0
+                           ? free_run_m(here, course, needed_m)
+                           : needed_m;
+  // Inward as the container steers: a course along a boundary leaves no room for a drift.
+  const double back = container_.heading_to_interior_deg(here);
+  // Turning back must buy room: where no course has more, conditions are set where the boat is.
+  if (run_m < needed_m && free_run_m(here, back, needed_m) > run_m + kConditioningTurnRoomM) {
+    turn_back_course_deg_ = back;
+    desired_heading_deg_ = back;
+    desired_speed_mps_ = speed;
+    event(s.t_s, EventKind::turning_back,
+          "less than " + num(needed_m, 0) + " m ahead on " + num(course, 0) +
+              " deg before the buffer at " + at(s) + ": turning to " + num(back, 0) + " deg first");
+    set_mode(HelmMode::containing, s.t_s);
+    return;
+  }
+  turn_back_course_deg_.reset();
+  held_course_deg_ = course;
+  condition_set_.emplace(config_.condition_set, speed, held_course_deg_);
   condition_set_start_s_ = s.t_s;
   desired_heading_deg_ = held_course_deg_;
   desired_speed_mps_ = queue_.front().speed_mps;
@@ -433,6 +491,7 @@ void MissionRunner::start_turn(const vehicle::NavSample& s) {
 }
 
 void MissionRunner::finish_turn(const vehicle::NavSample& s, Completion how) {
+  const double goal_deg = turn_->goal_heading_deg();
   TurnOutcome out;
   out.task = queue_.front();
   out.raw = turn_->build(options_.vehicle_id, options_.mission_label);
@@ -469,8 +528,8 @@ void MissionRunner::finish_turn(const vehicle::NavSample& s, Completion how) {
   out.raw.meta().status_reason = out.reason;
   for (auto* o : observers_)
     o->on_turn(out);
-  // The next ConditionSet starts from here, on the course the turn ended on.
-  start_conditioning(s);
+  // The next ConditionSet holds the goal this turn was commanded to.
+  start_conditioning(s, goal_deg);
 }
 
 void MissionRunner::give_up_or_requeue(double t_s, TurnOutcome& out) {
@@ -576,6 +635,7 @@ bool MissionRunner::resume(double now_s) {
   if (mode_ != HelmMode::paused || finished()) return false;
   event(now_s, EventKind::resume, "resumed");
   set_state(MissionState::running, "", now_s);
+  turn_back_course_deg_.reset();
   if (paused_from_ == HelmMode::returning) {
     start_returning(now_s);
   } else {

@@ -86,7 +86,16 @@ class MissionRunner {
   void event(double t_s, EventKind kind, const std::string& message);
   void contain(const vehicle::NavSample& s, const std::string& why);
   void leave_containment(const vehicle::NavSample& s);
-  void start_conditioning(const vehicle::NavSample& s);
+  // Holds course_deg (the heading now when not given) unless the run along it is too short to
+  // set conditions and turn; then turns inward first (containing, towards turn_back_course_deg_).
+  // A course reached by turning back is held as it is (may_turn_back false), so a region too
+  // small for the run never turns the boat back and forth.
+  void start_conditioning(const vehicle::NavSample& s,
+                          std::optional<double> course_deg = std::nullopt,
+                          bool may_turn_back = true);
+  // The distance from p along course_deg before the buffer, up to limit_m.
+  double free_run_m(kinematics::Point p, double course_deg, double limit_m) const;
+
   void end_condition_set(double t_s, ConditionSetEpisode::Outcome outcome);
   // A turn with a nonzero target yaw rate: once the conditions are set, a heading change that
   // builds up the yaw rate; the turn starts when it enters the target band.
@@ -128,6 +137,7 @@ class MissionRunner {
   std::optional<ConditionSetMonitor> condition_set_;
   double condition_set_start_s_ = 0.0;
   double held_course_deg_ = 0.0;
+  std::optional<double> turn_back_course_deg_;  // containing early, not in the buffer
   std::optional<TurnMonitor> turn_;
   std::optional<RunningTurn> running_turn_;  // with turn_
   double turn_start_s_ = 0.0;

@@ -35,7 +35,7 @@ constexpr double kGravity_mps2 = 9.81;
 
 // The M200's three calibrated numbers (docs/sim-config.md): the hull-lift yaw damping per m/s of
 // speed, the impeller spin-up lag and the reversing bucket's share of ahead thrust.
-constexpr double kM200YawDampingPerSpeed = -16.0;
+constexpr double kM200YawDampingPerSpeed = -14.0;
 constexpr double kM200JetLag_s = 0.3;
 constexpr double kM200JetReverseFraction = 0.35;
 

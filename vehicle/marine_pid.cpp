@@ -73,7 +73,7 @@ MarinePidConfig MarinePidConfig::thesis_sim() {
 
 MarinePidConfig MarinePidConfig::m200_in_water() {
   MarinePidConfig c;
-  c.yaw = PidGains{0.5, 0.0, 0.05, 20.0};
+  c.yaw = PidGains{0.5, 0.0, 0.0, 20.0};
   c.speed = PidGains{1.0, 0.0, 0.0, 0.0};
   return c;
 }

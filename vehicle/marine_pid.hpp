@@ -59,9 +59,12 @@ struct MarinePidConfig {
   // The thesis, Table 5.1 (simulation): yaw and speed P-only with Kp 1, rudder limited to
   // 40 %, incremental speed control. These are the struct defaults.
   static MarinePidConfig thesis_sim();
-  // Thesis Table 3.1 (the Kingfisher M200 in the water): yaw Kp 0.5, Ki 0.05, integral limit 20;
+  // Thesis Table 3.1 (the Kingfisher M200 in the water): yaw Kp 0.5, Ki 0, integral limit 20;
   // speed Kp 1. The thesis gives ranges for the integral settings (Ki 0–0.05, integral limit
-  // 10–20); this preset takes the upper end of each.
+  // 10–20). Ki is the lower end: with any integral the yaw integral winds up during a turn and
+  // swings the boat 7–26° past its goal, where the thesis describes a gradual approach (§4.5) and
+  // establishes the next turn's conditions in 4–8 s (Table 5.2); docs/sim-config.md has the
+  // figures. The limit only matters to a user who sets a Ki.
   static MarinePidConfig m200_in_water();
 };
 

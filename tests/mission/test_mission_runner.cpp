@@ -307,8 +307,10 @@ TEST(MissionRunner, TwoTurnMissionGoesThroughTheModes) {
   for (const auto& c : r.runner.cells())
     EXPECT_EQ(c.ok, 1);
 
-  // The guidance in force with every sample: the noted course while conditioning, the goal
-  // heading while turning, always at the cell speed.
+  // The guidance in force with every sample, always at the cell speed: while turning the goal
+  // heading; while conditioning the course the helm was steering before, held as it is: the
+  // container's heading to the interior at first, then the previous turn's goal (not the heading
+  // at its completion, short of the goal the boat is still swinging to).
   std::size_t turn_no = 0;
   const auto& navs = r.rec.navs;
   for (std::size_t m = 0; m < r.rec.modes.size(); ++m) {
@@ -316,8 +318,19 @@ TEST(MissionRunner, TwoTurnMissionGoesThroughTheModes) {
     const std::size_t end = m + 1 < r.rec.modes.size() ? r.rec.modes[m + 1].nav_index : navs.size();
     if (mc.to != M::conditioning && mc.to != M::turning) continue;
     ASSERT_GT(mc.nav_index, 0u);
-    const double expected = mc.to == M::conditioning ? navs[mc.nav_index - 1].nav.heading_deg
-                                                     : r.rec.started[turn_no++].goal_heading_deg;
+    const auto& before = navs[mc.nav_index - 1];
+    if (mc.to == M::conditioning && turn_no > 0) {
+      ASSERT_TRUE(before.desired_heading_deg.has_value());
+      EXPECT_DOUBLE_EQ(*navs[mc.nav_index - 1].desired_heading_deg,
+                       r.rec.started[turn_no - 1].goal_heading_deg);
+      EXPECT_GT(std::abs(k::angle180_deg(navs[mc.nav_index - 1].nav.heading_deg -
+                                         r.rec.started[turn_no - 1].goal_heading_deg)),
+                0.0);
+    }
+    // Starting inside the region with nothing commanded yet, the heading of the moment.
+    const double expected = mc.to == M::conditioning
+                                ? before.desired_heading_deg.value_or(before.nav.heading_deg)
+                                : r.rec.started[turn_no++].goal_heading_deg;
     ASSERT_LT(mc.nav_index, end);
     for (std::size_t i = mc.nav_index; i < end; ++i) {
       ASSERT_EQ(navs[i].mode, mc.to);
@@ -412,9 +425,11 @@ TEST(MissionRunner, HeadingJumpingPastTheGoalCompletesTheTurn) {
 // ---- 4. Containment abort and re-queue ------------------------------------------------------
 
 TEST(MissionRunner, TurnIntoTheBufferIsAbortedRequeuedAndRetried) {
-  // Heading east 10 m from the buffer; a right turn of radius 11.5 m runs into it.
-  Sim r(turns_config({1.0}, {90}, DirectionPolicy::right, square_region(50, 10)),
-        FakeVehicle(30, 0, 90, 1.0));
+  // Heading east 10 m from the buffer; a right turn of radius 11.5 m runs into it. The helm's
+  // foresight (turning back when the run ahead is short) is off, so that the turn is tried.
+  MissionConfig c = turns_config({1.0}, {90}, DirectionPolicy::right, square_region(50, 10));
+  c.condition_set.run_ahead_s = 0.0;
+  Sim r(c, FakeVehicle(30, 0, 90, 1.0));
   r.vehicle.yaw_rate_dps = 5.0;
   ASSERT_TRUE(r.finish());
   EXPECT_EQ(r.runner.state(), MissionState::done);
@@ -439,6 +454,29 @@ TEST(MissionRunner, TurnIntoTheBufferIsAbortedRequeuedAndRetried) {
   EXPECT_EQ(r.rec.count(TurnStatus::ok), static_cast<int>(plan_turns(r.config).size()));
   EXPECT_EQ(r.runner.cells()[0].aborted, 1);
   EXPECT_EQ(r.runner.turns_given_up(), 0u);
+}
+
+// The same start with the foresight on: 10 m of room ahead is less than the 40 m that 30 s at
+// 1 m/s and the turn's room need, so the helm turns inward before it sets conditions, and the
+// turn never meets the buffer.
+TEST(MissionRunner, TooLittleRoomAheadTurnsBackBeforeConditioning) {
+  MissionConfig c = turns_config({1.0}, {90}, DirectionPolicy::right, square_region(50, 10));
+  ASSERT_DOUBLE_EQ(c.condition_set.run_ahead_s, 30.0);
+  Sim r(c, FakeVehicle(30, 0, 90, 1.0));
+  r.vehicle.yaw_rate_dps = 5.0;
+  ASSERT_TRUE(r.finish());
+  EXPECT_EQ(r.runner.state(), MissionState::done);
+  const auto* back = r.rec.event(EventKind::turning_back, "turning to");
+  ASSERT_NE(back, nullptr);
+  EXPECT_EQ(r.rec.event(EventKind::containment, ""), nullptr);
+  EXPECT_EQ(r.rec.count(TurnStatus::aborted), 0);
+  EXPECT_EQ(r.rec.count(TurnStatus::ok), 1);
+  for (const auto& e : r.rec.episodes)
+    EXPECT_NE(e.outcome, ConditionSetEpisode::Outcome::interrupted);
+  // Conditions were set on the inward course: the turn started heading west-ish (the interior
+  // point is the origin, the boat was at x = 30 heading east).
+  ASSERT_EQ(r.rec.started.size(), 1u);
+  EXPECT_GT(std::abs(k::angle180_deg(r.rec.started[0].turn.start.heading_deg - 90.0)), 90.0);
 }
 
 // ---- 5. max_attempts ------------------------------------------------------------------------

@@ -18,6 +18,7 @@ export const PHRASES = {
   link: 'Navigation link',
   condition_set_timeout: 'Conditions not set in time',
   containment: 'Containment: heading back inside',
+  turning_back: 'Turning back before the buffer',
   turn_rejected: 'Turn rejected',
   turn_given_up: 'Cell given up',
   turn_aborted: 'Turn aborted',
