@@ -26,11 +26,15 @@ HelmLoopResult run_helm_loop(MissionRunner& runner, const vehicle::ScaledClock& 
   HelmLoopResult result;
   const double period = 1.0 / helm_hz;
   result.start_time_s = clock.now_s();
-  const double end = result.start_time_s + max_duration_s;
+  double previous = result.start_time_s;
   double due = result.start_time_s;
   while (!runner.finished()) {
     clock.sleep_until(due);
-    helm_tick(runner, clock.now_s(), end, stop, before_tick, result);
+    const double now = clock.now_s();
+    if (now - previous > kStarvedAfterTicks * period) result.starved_s += now - previous - period;
+    previous = now;
+    helm_tick(runner, now, result.start_time_s + max_duration_s + result.starved_s, stop,
+              before_tick, result);
     due += period;
     if (due < clock.now_s()) due = std::ceil(clock.now_s() / period) * period;
   }

@@ -46,6 +46,8 @@ constexpr std::size_t kReceiveLimitBytes = 4096;
 // reading: its oldest unsent lines are dropped rather than the client closed, since stale
 // navigation is worthless to a backseat anyway, and a serial frontseat link overruns the same way.
 constexpr std::size_t kMaxQueuedLines = 512;
+// A burst longer than this would be most of the queue, and seconds of navigation held back.
+constexpr int kMaxBurstLines = 100;
 // After the thread was starved (a debugger, a loaded machine) the plant catches up at most this
 // much of its own time per wake and skips the rest, rather than spinning to replay it.
 constexpr double kMaxCatchUpS = 1.0;
@@ -73,6 +75,8 @@ void check_faults(const FrontseatFaults& f) {
   require(f.corrupt_fraction >= 0.0 && f.corrupt_fraction <= 1.0,
           "corrupt_fraction must be in [0, 1]");
   require(f.nav_delay_s >= 0.0 && f.nav_delay_s <= 3600.0, "nav_delay_s must be in [0, 3600]");
+  require(f.burst_max_lines >= 0 && f.burst_max_lines <= kMaxBurstLines,
+          "burst_max_lines must be in [0, " + std::to_string(kMaxBurstLines) + "]");
 }
 
 FrontseatEmulatorOptions checked(FrontseatEmulatorOptions o) {
@@ -311,18 +315,35 @@ struct FrontseatEmulator::Impl {
       }
     }
     ++sentences_sent;
-    for (const auto& c : clients)
-      enqueue(c, line);
+    held.push_back(std::move(line));
+    if (faults.burst_max_lines < 2) {
+      release_held();
+      return;
+    }
+    if (burst_lines == 0)
+      burst_lines = std::uniform_int_distribution<int>(2, faults.burst_max_lines)(fault_rng);
+    if (static_cast<int>(held.size()) >= burst_lines) {
+      ++bursts;
+      burst_lines = 0;
+      release_held();
+    }
+  }
+
+  // Every held sentence to every client, queued before any is written so that a burst goes out
+  // in one write.
+  void release_held() {
+    for (const auto& c : clients) {
+      if (!c->open) continue;
+      for (const std::string& l : held) {
+        c->pending.push_back(l);
+        if (c->pending.size() > kMaxQueuedLines) c->pending.pop_front();
+      }
+      if (!c->busy) start_write(c);
+    }
+    held.clear();
   }
 
   // ---- Clients (io thread) ------------------------------------------------------------------
-
-  void enqueue(const std::shared_ptr<Client>& c, const std::string& line) {
-    if (!c->open) return;
-    c->pending.push_back(line);
-    if (c->pending.size() > kMaxQueuedLines) c->pending.pop_front();
-    if (!c->busy) start_write(c);
-  }
 
   void start_write(const std::shared_ptr<Client>& c) {
     // Everything queued goes out in one write: one system call per wake, not per sentence.
@@ -469,9 +490,11 @@ struct FrontseatEmulator::Impl {
   std::optional<double> last_watchdog_trip_s;
   std::optional<double> cut_until_s;
   std::deque<Delayed> delayed;
+  std::vector<std::string> held;  // sentences sent but not yet written: a burst in the making
+  int burst_lines = 0;            // the size of the burst in the making; 0 until drawn
   std::list<std::shared_ptr<Client>> clients;
   std::uint64_t connections = 0;
-  std::uint64_t sentences_sent = 0, sentences_dropped = 0, sentences_corrupted = 0;
+  std::uint64_t sentences_sent = 0, sentences_dropped = 0, sentences_corrupted = 0, bursts = 0;
   std::uint64_t lines_received = 0, bad_lines_received = 0, pydir_received = 0;
 };
 
@@ -523,6 +546,7 @@ FrontseatStatus FrontseatEmulator::status() const {
   s.sentences_sent = i.sentences_sent;
   s.sentences_dropped = i.sentences_dropped;
   s.sentences_corrupted = i.sentences_corrupted;
+  s.bursts = i.bursts;
   s.lines_received = i.lines_received;
   s.bad_lines_received = i.bad_lines_received;
   s.pydir_received = i.pydir_received;

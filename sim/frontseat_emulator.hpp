@@ -5,7 +5,7 @@
 // battery_hz to every connected client, drives the plant from the $PYDIR it receives (the newest
 // valid one from any client), and zeroes the motors when no valid $PYDIR arrived for
 // watchdog_s, as the real frontseat does. Faults can be injected for tests: dropped and corrupted
-// sentences, delayed navigation, link cuts. Asio stays inside frontseat_emulator.cpp.
+// sentences, delayed navigation, bursts, link cuts. Asio stays inside frontseat_emulator.cpp.
 //
 // The plant runs on its own clock at realtime_factor x the wall clock; every time in this
 // interface (watchdog, cuts, events) is on that clock, seconds from the emulator's start.
@@ -25,6 +25,10 @@ struct FrontseatFaults {
   double drop_fraction = 0.0;     // of outgoing sentences, each independently
   double corrupt_fraction = 0.0;  // of outgoing sentences: one checksum digit altered
   double nav_delay_s = 0.0;       // navigation sentences leave this much later than measured
+  // A link that delivers in bursts (a radio modem, a serial bridge): sentences are held back and
+  // written together, each burst 2 to burst_max_lines of them (drawn uniformly). 0 or 1: every
+  // sentence is written when it is sent.
+  int burst_max_lines = 0;
 };
 
 struct FrontseatEmulatorOptions {
@@ -63,6 +67,7 @@ struct FrontseatStatus {
   std::uint64_t sentences_sent = 0;            // put on the link, once however many clients listen
   std::uint64_t sentences_dropped = 0;
   std::uint64_t sentences_corrupted = 0;
+  std::uint64_t bursts = 0;  // groups of held-back sentences written at once
   std::uint64_t lines_received = 0;
   std::uint64_t pydir_received = 0;      // valid $PYDIR: commands taken
   std::uint64_t bad_lines_received = 0;  // failed to parse (typed error counted, line ignored)

@@ -13,6 +13,7 @@
 #include <condition_variable>
 #include <mutex>
 #include <stdexcept>
+#include <string_view>
 #include <thread>
 
 namespace avk::vehicle {
@@ -37,10 +38,6 @@ M200Endpoint parse_m200_endpoint(const std::string& text) {
 }
 
 struct M200::Impl {
-  // A line longer than this is hostile or garbage: it is counted as oversized and skipped up to
-  // its newline rather than buffered.
-  static constexpr std::size_t kMaxBufferedLine = 1024;
-
   M200Options options;
   const ScaledClock& clock;
 
@@ -56,8 +53,6 @@ struct M200::Impl {
   asio::steady_timer control_timer{io};
   asio::steady_timer reconnect_timer{io};
   std::array<char, 4096> read_buffer{};
-  std::string partial;
-  bool discarding = false;
   bool link_up = false;
   bool writing = false;
   std::string in_flight;
@@ -97,8 +92,6 @@ struct M200::Impl {
     boost::system::error_code ignored;
     socket.set_option(tcp::no_delay(true), ignored);
     link_up = true;
-    partial.clear();
-    discarding = false;
     {
       std::lock_guard lock(mutex);
       session.on_connected(clock.now_s());
@@ -125,21 +118,7 @@ struct M200::Impl {
     const double now = clock.now_s();
     std::lock_guard lock(mutex);
     const std::uint64_t before = session.counters().nav_samples;
-    for (std::size_t i = 0; i < n; ++i) {
-      const char c = read_buffer[i];
-      if (c == '\n') {
-        if (!discarding) session.on_line(partial, now);
-        partial.clear();
-        discarding = false;
-      } else if (!discarding) {
-        partial.push_back(c);
-        if (partial.size() > kMaxBufferedLine) {
-          session.on_line(partial, now);  // counted as oversized
-          partial.clear();
-          discarding = true;
-        }
-      }
-    }
+    session.on_received(std::string_view(read_buffer.data(), n), now);
     if (session.counters().nav_samples != before) {
       // Only navigation proves the link healthy: a frontseat that accepts and drops us at once
       // (rebooting, or refusing while its radio is down) keeps the backoff growing.

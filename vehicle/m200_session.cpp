@@ -1,5 +1,6 @@
 #include "vehicle/m200_session.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <type_traits>
@@ -40,63 +41,158 @@ VehicleInfo m200_info(const M200Config& config) {
   return {config.id, "m200", config.max_speed_mps, config.length_m};
 }
 
-void M200Session::on_line(std::string_view line, double now_s) {
-  ++counters_.lines;
-  const NmeaParseResult r = parse_sentence(line, NmeaDirection::frontseat_to_backseat);
-  if (const NmeaError* e = r.error()) {
-    ++counters_.errors;
-    ++counters_.errors_by_code[to_string(e->code)];
-    counters_.last_error = e->message;
-    return;
+namespace {
+
+enum class TimeSource { none, frontseat, gps };
+
+struct SentenceTime {
+  TimeSource source = TimeSource::none;
+  double time_of_day_s = 0.0;
+};
+
+// The time a sentence carries, and whose clock it is on. The other sentence types the driver
+// uses none of, so their times do not steer its clock.
+SentenceTime time_of(const NmeaSentence& sentence) {
+  return std::visit(
+      [](const auto& s) -> SentenceTime {
+        using T = std::decay_t<decltype(s)>;
+        if constexpr (std::is_same_v<T, Cpnvg> || std::is_same_v<T, Cpnvr> ||
+                      std::is_same_v<T, Cprbs>) {
+          return {TimeSource::frontseat, s.time_s};
+        } else if constexpr (std::is_same_v<T, Gprmc> || std::is_same_v<T, Gpgga>) {
+          if (s.time_s) return {TimeSource::gps, *s.time_s};
+          return {};
+        } else {
+          return {};
+        }
+      },
+      sentence);
+}
+
+}  // namespace
+
+void M200Session::on_received(std::string_view bytes, double now_s) {
+  std::vector<std::string> lines;
+  for (const char c : bytes) {
+    if (c == '\n') {
+      if (!discarding_) lines.push_back(std::move(partial_));
+      partial_.clear();
+      discarding_ = false;
+    } else if (!discarding_) {
+      partial_.push_back(c);
+      if (partial_.size() > kMaxBufferedLine) {
+        lines.push_back(std::move(partial_));  // the parser counts it as oversized
+        partial_.clear();
+        discarding_ = true;
+      }
+    }
   }
-  ++counters_.sentences;
-  if (r.checksum == NmeaChecksum::lower_case) ++counters_.lower_case_checksums;
+  on_lines(std::vector<std::string_view>(lines.begin(), lines.end()), now_s);
+}
+
+void M200Session::on_line(std::string_view line, double now_s) {
+  on_lines({line}, now_s);
+}
+
+void M200Session::on_lines(const std::vector<std::string_view>& lines, double now_s) {
+  if (lines.empty()) return;
+  // The read's lines came in at some time since the previous read: without a time of their
+  // own, the k-th of n is put k/n of the way from that read to this one.
+  const double from_s = std::min(previous_read_s_, now_s);
+  previous_read_s_ = now_s;
+  struct Read {
+    NmeaSentence sentence;
+    double arrival_s;
+    SentenceTime time;
+    bool time_ok = false;
+  };
+  std::vector<Read> read;
+  read.reserve(lines.size());
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    ++counters_.lines;
+    NmeaParseResult r = parse_sentence(lines[i], NmeaDirection::frontseat_to_backseat);
+    if (const NmeaError* e = r.error()) {
+      ++counters_.errors;
+      ++counters_.errors_by_code[to_string(e->code)];
+      counters_.last_error = e->message;
+      continue;
+    }
+    ++counters_.sentences;
+    if (r.checksum == NmeaChecksum::lower_case) ++counters_.lower_case_checksums;
+    const double arrival_s =
+        from_s + (now_s - from_s) * static_cast<double>(i + 1) / static_cast<double>(lines.size());
+    NmeaSentence& sentence = std::get<NmeaSentence>(r.value);
+    const SentenceTime time = time_of(sentence);
+    read.push_back({std::move(sentence), arrival_s, time});
+  }
+  const auto clock_for = [this](TimeSource source) -> SentenceClock* {
+    if (source == TimeSource::frontseat) return &frontseat_clock_;
+    if (source == TimeSource::gps) return &gps_clock_;
+    return nullptr;
+  };
+  // Every time of the read is seen before any is mapped, so that the whole read is mapped with
+  // one offset and its stamps keep the spacing of its sentence times.
+  for (Read& r : read) {
+    if (SentenceClock* clock = clock_for(r.time.source)) {
+      r.time_ok = clock->observe(r.time.time_of_day_s, now_s);
+      if (!r.time_ok) ++counters_.sentence_times_rejected;
+    }
+  }
+  for (const Read& r : read) {
+    const SentenceClock* clock = clock_for(r.time.source);
+    on_sentence(r.sentence, r.time_ok ? clock->map(r.time.time_of_day_s, now_s) : r.arrival_s);
+  }
+}
+
+void M200Session::on_sentence(const NmeaSentence& sentence, double t_s) {
   std::visit(
       [&](const auto& s) {
         using T = std::decay_t<decltype(s)>;
         if constexpr (std::is_same_v<T, Cpnvg>) {
-          on_cpnvg(s, now_s);
+          on_cpnvg(s, t_s);
         } else if constexpr (std::is_same_v<T, Cpnvr>) {
-          speed_mps_ = Stamped{now_s, std::hypot(s.v_east_mps, s.v_north_mps)};
-          yaw_rate_dps_ = Stamped{now_s, s.yaw_rate_dps};
+          speed_mps_ = Stamped{t_s, std::hypot(s.v_east_mps, s.v_north_mps)};
+          yaw_rate_dps_ = Stamped{t_s, s.yaw_rate_dps};
         } else if constexpr (std::is_same_v<T, Gprmc>) {
           if (!s.valid) return;
           if (s.lat_deg && s.lon_deg) {
             const GridPoint p = grid_.to_grid(*s.lat_deg, *s.lon_deg);
-            gps_fix_ = Fix{now_s, p.x_m, p.y_m, *s.lat_deg, *s.lon_deg};
+            gps_fix_ = Fix{t_s, p.x_m, p.y_m, *s.lat_deg, *s.lon_deg};
           }
-          if (const auto v = s.speed_mps()) speed_mps_ = Stamped{now_s, *v};
+          if (const auto v = s.speed_mps()) speed_mps_ = Stamped{t_s, *v};
         } else if constexpr (std::is_same_v<T, Gpgga>) {
           if (s.quality > 0 && s.lat_deg && s.lon_deg) {
             const GridPoint p = grid_.to_grid(*s.lat_deg, *s.lon_deg);
-            gps_fix_ = Fix{now_s, p.x_m, p.y_m, *s.lat_deg, *s.lon_deg};
+            gps_fix_ = Fix{t_s, p.x_m, p.y_m, *s.lat_deg, *s.lon_deg};
           }
         } else if constexpr (std::is_same_v<T, Gpvtg>) {
-          if (const auto v = s.speed_mps()) speed_mps_ = Stamped{now_s, *v};
+          if (const auto v = s.speed_mps()) speed_mps_ = Stamped{t_s, *v};
         } else if constexpr (std::is_same_v<T, Cprbs>) {
-          battery_ = M200Battery{now_s, s.stack_v, s.min_v, s.max_v, s.temperature_c};
+          battery_ = M200Battery{t_s, s.stack_v, s.min_v, s.max_v, s.temperature_c};
         } else {
           // Compass, IMU, CPALT, backseat sentences echoed back and unknown types carry
           // nothing the navigation solution needs.
           ++counters_.unknown_sentences;
         }
       },
-      *r.sentence());
+      sentence);
 }
 
-void M200Session::on_cpnvg(const Cpnvg& s, double now_s) {
+void M200Session::on_cpnvg(const Cpnvg& s, double t_s) {
   // The heading is the frontseat's (CPNVG). Its position is used when it has GPS quality; else
   // a fresh GPRMC/GPGGA fix. Speed over ground comes from the newest GPRMC, GPVTG or CPNVR.
+  // Freshness is judged on the sample's own stamp, the clock every sentence was stamped on.
   NavSample n;
-  n.t_s = now_s;
+  n.t_s = last_nav_ ? std::max(t_s, last_nav_->t_s + kMinNavStep_s) : t_s;
   n.heading_deg = s.heading_deg;
+  const auto fresh = [&](double stamp_s) { return n.t_s - stamp_s <= config_.fix_max_age_s; };
   if (s.position_ok) {
     const GridPoint p = grid_.to_grid(s.lat_deg, s.lon_deg);
     n.x_m = p.x_m;
     n.y_m = p.y_m;
     n.lat_deg = s.lat_deg;
     n.lon_deg = s.lon_deg;
-  } else if (gps_fix_ && now_s - gps_fix_->t_s <= config_.fix_max_age_s) {
+  } else if (gps_fix_ && fresh(gps_fix_->t_s)) {
     n.x_m = gps_fix_->x_m;
     n.y_m = gps_fix_->y_m;
     n.lat_deg = gps_fix_->lat_deg;
@@ -105,15 +201,14 @@ void M200Session::on_cpnvg(const Cpnvg& s, double now_s) {
     ++counters_.nav_without_position;
     return;
   }
-  if (speed_mps_ && now_s - speed_mps_->t_s <= config_.fix_max_age_s) {
+  if (speed_mps_ && fresh(speed_mps_->t_s)) {
     n.speed_mps = speed_mps_->value;
-  } else if (last_nav_ && n.t_s > last_nav_->t_s) {
+  } else if (last_nav_) {
     // No speed sentence: the track's own rate, as a last resort.
     n.speed_mps =
         std::hypot(n.x_m - last_nav_->x_m, n.y_m - last_nav_->y_m) / (n.t_s - last_nav_->t_s);
   }
-  if (yaw_rate_dps_ && now_s - yaw_rate_dps_->t_s <= config_.fix_max_age_s)
-    n.yaw_rate_dps = yaw_rate_dps_->value;
+  if (yaw_rate_dps_ && fresh(yaw_rate_dps_->t_s)) n.yaw_rate_dps = yaw_rate_dps_->value;
   ++counters_.nav_samples;
   last_nav_ = n;
   mailbox_.push_back(n);
@@ -151,7 +246,9 @@ std::string M200Session::control_tick(double now_s) {
   return format_pydir(lr.left_pct, lr.right_pct);
 }
 
-void M200Session::on_connected(double) {
+void M200Session::on_connected(double now_s) {
+  forget_link();
+  previous_read_s_ = now_s;
   connected_ = true;
   ++counters_.connects;
 }
@@ -160,11 +257,20 @@ void M200Session::on_disconnected(double) {
   if (!connected_) return;
   connected_ = false;
   ++counters_.disconnects;
-  // Partial state from the old link must not be combined with the new one's.
+  forget_link();
+}
+
+void M200Session::forget_link() {
+  // Partial state from the old link must not be combined with the new one's, and the new link
+  // may reach a frontseat whose clock is another.
   gps_fix_.reset();
   speed_mps_.reset();
   yaw_rate_dps_.reset();
   pid_.reset();
+  frontseat_clock_.reset();
+  gps_clock_.reset();
+  partial_.clear();
+  discarding_ = false;
 }
 
 std::vector<NavSample> M200Session::take_nav() {

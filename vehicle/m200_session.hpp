@@ -5,6 +5,17 @@
 // when the helm's commands or the navigation have gone stale. The transport (vehicle/m200.hpp)
 // feeds it bytes and sends what it returns, so everything here is tested without a socket.
 // Not thread-safe: the transport serialises access.
+//
+// Every sentence is stamped on the mission clock. Navigation that arrives in a burst (a loaded
+// backseat, a radio link that holds lines back) must not get one time for the whole burst: a
+// turn needs strictly increasing times. So a sentence that carries a time (CPNVG, CPNVR, CPRBS,
+// GPRMC, GPGGA) is stamped with it, mapped onto the mission clock by a SentenceClock (one for
+// the frontseat's clock, one for the GPS receiver's, which need not agree). A sentence without
+// one, or whose time is garbage, is stamped with its estimated arrival: a read's k-th of n lines
+// arrived at prev + (now - prev) * k / n, spread between the previous read and this one. GPS
+// fixes and speeds are aged against the navigation sample's stamp, on the same clock. Samples
+// out of the session are strictly increasing in time, at least kMinNavStep_s apart: a sample
+// whose stamp is not after the previous one's (a repeated or garbage time) is put just after it.
 
 #include <cstdint>
 #include <map>
@@ -16,6 +27,7 @@
 #include "vehicle/local_grid.hpp"
 #include "vehicle/marine_pid.hpp"
 #include "vehicle/nmea.hpp"
+#include "vehicle/sentence_clock.hpp"
 #include "vehicle/thrust_mixing.hpp"
 #include "vehicle/vehicle.hpp"
 
@@ -67,22 +79,34 @@ struct M200Counters {
   std::uint64_t unknown_sentences = 0;  // well formed, of a type not used
   std::uint64_t nav_samples = 0;
   std::uint64_t nav_without_position = 0;  // CPNVG with no usable position anywhere
+  // Sentence times far from the clock's (SentenceClock): stamped with the arrival instead.
+  std::uint64_t sentence_times_rejected = 0;
   std::uint64_t pydir_sent = 0;
   std::uint64_t failsafe_stops = 0;  // $PYDIR 0,0 sent because of stale commands or navigation
   std::uint64_t connects = 0;
   std::uint64_t disconnects = 0;
 };
 
+// The least time between two navigation samples out of a session.
+inline constexpr double kMinNavStep_s = 1e-3;
+
 class M200Session {
  public:
+  // A line longer than this without a newline is hostile or garbage: on_received counts it as
+  // oversized and skips it up to its newline rather than buffering it.
+  static constexpr std::size_t kMaxBufferedLine = 1024;
+
   // Throws std::invalid_argument for a datum off the earth or rates that are not positive.
   explicit M200Session(M200Config config);
 
   const M200Config& config() const { return config_; }
   const VehicleInfo& info() const { return info_; }
 
-  // One line from the frontseat, received at now_s on the mission clock. Whatever the bytes, it
-  // never throws: a line that does not parse is counted with its error.
+  // The bytes one read from the link returned, at now_s on the mission clock: split into lines
+  // here (a partial last line waits for the next read), and the read's lines stamped together.
+  // Whatever the bytes, it never throws: a line that does not parse is counted with its error.
+  void on_received(std::string_view bytes, double now_s);
+  // One line from the frontseat, read alone at now_s.
   void on_line(std::string_view line, double now_s);
 
   // The sentence to send at a controller tick (with its CRLF), or empty when not connected.
@@ -107,14 +131,17 @@ class M200Session {
 
  private:
   struct Fix {
-    double t_s;  // received
+    double t_s;  // the sentence's stamp
     double x_m, y_m, lat_deg, lon_deg;
   };
   struct Stamped {
-    double t_s;  // received
+    double t_s;  // the sentence's stamp
     double value;
   };
-  void on_cpnvg(const Cpnvg& s, double now_s);
+  void on_lines(const std::vector<std::string_view>& lines, double now_s);
+  void on_sentence(const NmeaSentence& sentence, double t_s);
+  void on_cpnvg(const Cpnvg& s, double t_s);
+  void forget_link();
   std::string send_stop(Failsafe why);
 
   M200Config config_;
@@ -123,6 +150,11 @@ class M200Session {
   MarinePid pid_;
   bool connected_ = false;
   bool stopped_ = false;
+  SentenceClock frontseat_clock_;
+  SentenceClock gps_clock_;
+  double previous_read_s_ = 0.0;
+  std::string partial_;  // the start of a line the next read completes
+  bool discarding_ = false;
   std::optional<Fix> gps_fix_;
   std::optional<Stamped> speed_mps_;
   std::optional<Stamped> yaw_rate_dps_;

@@ -129,7 +129,7 @@ void usage(std::ostream& out) {
          "  avk frontseat-emulator [--port 29500] [--bind 127.0.0.1] [--vehicle catamaran:m200]\n"
          "                  [--sim-config FILE] [--datum LAT,LON] [--seed N]\n"
          "                  [--realtime-factor K] [--start X,Y,HEADING] [--drop F]\n"
-         "                  [--corrupt F] [--nav-delay S] [--watchdog S]\n"
+         "                  [--corrupt F] [--nav-delay S] [--burst N] [--watchdog S]\n"
          "      a Kingfisher M200 frontseat (Clearpath protocol over TCP) on the simulated\n"
          "      catamaran, for trying a backseat without a boat; runs until SIGINT/SIGTERM\n"
          "  avk import alog FILE --db FILE [--vehicle NAME] [--names NAV_X=X,NAV_Y=Y,...]\n"

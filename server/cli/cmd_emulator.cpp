@@ -25,7 +25,7 @@ double fraction(const Args& a, const std::string& name) {
 
 int cmd_frontseat_emulator(const std::vector<std::string>& args, Io& io) {
   const Args a(args, {"port", "bind", "vehicle", "sim-config", "datum", "seed", "realtime-factor",
-                      "start", "drop", "corrupt", "nav-delay", "watchdog"});
+                      "start", "drop", "corrupt", "nav-delay", "burst", "watchdog"});
   if (!a.positional().empty()) throw UsageError("unexpected argument '" + a.positional()[0] + "'");
   const sim::SimSetup setup = sim_setup_from(a, io, "catamaran:m200");
   if (setup.vehicle.kind == "usim") {
@@ -55,6 +55,10 @@ int cmd_frontseat_emulator(const std::vector<std::string>& args, Io& io) {
   o.faults.nav_delay_s = a.number("nav-delay").value_or(0.0);
   if (!(o.faults.nav_delay_s >= 0.0 && o.faults.nav_delay_s <= 3600.0))
     throw UsageError("--nav-delay must be in [0, 3600] seconds");
+  const double burst = a.number("burst").value_or(0.0);
+  if (!(burst >= 0.0 && burst <= 100.0 && burst == std::floor(burst)))
+    throw UsageError("--burst must be a whole number of sentences from 0 to 100");
+  o.faults.burst_max_lines = static_cast<int>(burst);
   o.watchdog_s = a.number("watchdog").value_or(o.watchdog_s);
   if (!(o.watchdog_s > 0.0)) throw UsageError("--watchdog must be positive (seconds)");
 

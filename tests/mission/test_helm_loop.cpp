@@ -65,6 +65,30 @@ TEST(HelmLoop, TicksAtTheHelmRateUntilTheTimeLimit) {
   EXPECT_GE(ticks, 1);
 }
 
+TEST(HelmLoop, TimeTheLoopWasStarvedOfIsNotChargedToTheLimit) {
+  SilentVehicle v;
+  const auto c = config();
+  mission::MissionRunner runner(c, v, mission::plan_turns(c), {});
+  const vehicle::ScaledClock clock(1000.0);
+  int ticks = 0;
+  double stalled_from = 0.0, stalled_to = 0.0;
+  // The third tick holds the thread for 30 s of the clock (30 ms of wall time): a stall that
+  // takes three times the whole 10 s limit.
+  const auto r = mission::run_helm_loop(runner, clock, 4.0, 10.0, nullptr, [&](double now) {
+    if (++ticks != 3) return;
+    stalled_from = now;
+    while (clock.now_s() < now + 30.0) {
+    }
+    stalled_to = clock.now_s();
+  });
+  EXPECT_TRUE(r.horizon_reached);
+  // The stall less the one tick it replaced is not charged; the limit still ends the loop.
+  EXPECT_GE(r.starved_s, stalled_to - stalled_from - 0.25 - 1e-9);
+  EXPECT_GE(r.end_time_s - r.start_time_s, 10.0 + r.starved_s - 1e-9);
+  EXPECT_GT(ticks, 3);
+  EXPECT_EQ(*runner.state(), mission::MissionState::interrupted);
+}
+
 TEST(HelmLoop, TheStopFlagInterruptsAtTheNextTick) {
   SilentVehicle v;
   const auto c = config();

@@ -12,6 +12,7 @@
 #include <functional>
 #include <iostream>
 #include <map>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -479,6 +480,38 @@ TEST(FrontseatEmulator, NavDelayHoldsNavigationBackButNotTheBattery) {
     EXPECT_GT(time_field(*p.sentence()), last);
     last = time_field(*p.sentence());
   }
+}
+
+TEST(FrontseatEmulator, BurstsHoldSentencesBackAndWriteTwoToTwentyAtOnce) {
+  FrontseatEmulatorOptions o = fast_options(20.0);
+  o.faults.burst_max_lines = 20;
+  FrontseatEmulator emu(o);
+  RawClient c(emu.port());
+  ASSERT_TRUE(run_until_clock(emu, {&c}, 30.0));
+  const FrontseatStatus s = emu.status();
+  ASSERT_GT(c.lines().size(), 300u);
+  // Bursts of 2 to 20: between a twentieth and a half as many bursts as sentences.
+  EXPECT_GE(s.bursts * 20, s.sentences_sent);
+  EXPECT_LE(s.bursts * 2, s.sentences_sent);
+  // A burst is one write, so it is read whole: never more reads than bursts, where a sentence
+  // at a time would take a read for each plant step.
+  std::set<double> reads;
+  for (const auto& r : c.lines())
+    reads.insert(r.at_s);
+  EXPECT_LE(reads.size(), s.bursts);
+  // Held back, not reordered: the time fields of each kind still increase.
+  std::map<std::string, double> last;
+  for (const auto& r : c.lines()) {
+    const auto p = parse_fs(r.line);
+    ASSERT_TRUE(p.ok()) << r.line;
+    const std::string type = type_of(*p.sentence());
+    const double t = time_field(*p.sentence());
+    if (last.count(type)) {
+      EXPECT_GT(t, last[type]) << type;
+    }
+    last[type] = t;
+  }
+  EXPECT_THROW(emu.set_faults(FrontseatFaults{0.0, 0.0, 0.0, 101}), std::invalid_argument);
 }
 
 TEST(FrontseatEmulator, CutLinkClosesAndRefusesUntilItEnds) {

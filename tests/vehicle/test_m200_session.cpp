@@ -15,6 +15,8 @@ namespace {
 using namespace avk::vehicle;
 
 constexpr double kLat0 = 42.358456, kLon0 = -71.087589;
+// The frontseat's time of day at mission clock 0: a sentence sent at t carries kNoon + t.
+constexpr double kNoon = 43200.0;
 
 M200Config config() {
   M200Config c;
@@ -49,6 +51,20 @@ Gprmc gprmc_at(double x_m, double y_m, double speed_mps) {
   return s;
 }
 
+// The sentence as the frontseat sends it at mission time t_s, read at once.
+std::string sent_at(Cpnvg s, double t_s) {
+  s.time_s = s.nav_time_s = kNoon + t_s;
+  return format_cpnvg(s);
+}
+std::string sent_at(Cpnvr s, double t_s) {
+  s.time_s = kNoon + t_s;
+  return format_cpnvr(s);
+}
+std::string sent_at(Gprmc s, double t_s) {
+  s.time_s = kNoon + t_s;
+  return format_gprmc(s);
+}
+
 Pydir sent_pydir(const std::string& line) {
   const auto r = parse_sentence(line, NmeaDirection::backseat_to_frontseat);
   EXPECT_TRUE(r.ok()) << line;
@@ -58,16 +74,17 @@ Pydir sent_pydir(const std::string& line) {
 TEST(M200Session, NavigationOnTheLocalGridWithSpeedAndYawRate) {
   M200Session s(config());
   s.on_connected(0.0);
-  s.on_line(format_gprmc(gprmc_at(30.0, 40.0, 1.2)), 9.9);
+  s.on_line(sent_at(gprmc_at(30.0, 40.0, 1.2), 9.9), 9.9);
   Cpnvr r;
   r.v_east_mps = 0.6;
   r.v_north_mps = 0.8;
   r.yaw_rate_dps = -4.5;
-  s.on_line(format_cpnvr(r), 9.95);
-  s.on_line(format_cpnvg(cpnvg_at(120.0, -250.0, 33.25)), 10.0);
+  s.on_line(sent_at(r, 9.95), 9.95);
+  s.on_line(sent_at(cpnvg_at(120.0, -250.0, 33.25), 10.0), 10.0);
   const auto nav = s.take_nav();
   ASSERT_EQ(nav.size(), 1u);
-  EXPECT_DOUBLE_EQ(nav[0].t_s, 10.0);  // stamped on receipt, on the mission clock
+  // Stamped with its own time on the mission clock: read at once, that is when it was read.
+  EXPECT_DOUBLE_EQ(nav[0].t_s, 10.0);
   // Six decimals of minutes on the wire: about 2 mm.
   EXPECT_NEAR(nav[0].x_m, 120.0, 0.01);
   EXPECT_NEAR(nav[0].y_m, -250.0, 0.01);
@@ -84,15 +101,15 @@ TEST(M200Session, NavigationOnTheLocalGridWithSpeedAndYawRate) {
 TEST(M200Session, WithoutGpsQualityThePositionComesFromAFreshFix) {
   M200Session s(config());
   s.on_connected(0.0);
-  s.on_line(format_gprmc(gprmc_at(5.0, 6.0, 0.5)), 1.0);
-  s.on_line(format_cpnvg(cpnvg_at(999.0, 999.0, 90.0, false)), 1.2);
+  s.on_line(sent_at(gprmc_at(5.0, 6.0, 0.5), 1.0), 1.0);
+  s.on_line(sent_at(cpnvg_at(999.0, 999.0, 90.0, false), 1.2), 1.2);
   auto nav = s.take_nav();
   ASSERT_EQ(nav.size(), 1u);
   EXPECT_NEAR(nav[0].x_m, 5.0, 0.01);
   EXPECT_NEAR(nav[0].y_m, 6.0, 0.01);
   EXPECT_NEAR(nav[0].speed_mps, 0.5, 1e-6);
   // Two seconds later the fix is too old to pair with a new heading: no sample at all.
-  s.on_line(format_cpnvg(cpnvg_at(999.0, 999.0, 90.0, false)), 3.2);
+  s.on_line(sent_at(cpnvg_at(999.0, 999.0, 90.0, false), 3.2), 3.2);
   EXPECT_TRUE(s.take_nav().empty());
   EXPECT_EQ(s.counters().nav_without_position, 1u);
 }
@@ -108,6 +125,7 @@ TEST(M200Session, BatteryWithAndWithoutTheBatteryId) {
   b.min_v = 3.3;
   b.max_v = 3.4;
   b.temperature_c = 30;
+  b.time_s = kNoon + 1.0;
   s.on_line(format_cprbs(b), 2.0);
   EXPECT_DOUBLE_EQ(s.battery()->stack_v, 13.2);
   EXPECT_DOUBLE_EQ(s.battery()->t_s, 2.0);
@@ -150,7 +168,7 @@ TEST(M200Session, PidAndMixingTurnTowardTheDesiredHeading) {
   s.on_connected(0.0);
   EXPECT_EQ(sent_pydir(s.control_tick(0.1)), (Pydir{0, 0}));
   EXPECT_EQ(s.failsafe(), Failsafe::no_command);
-  s.on_line(format_cpnvg(cpnvg_at(0, 0, 10.0)), 0.2);
+  s.on_line(sent_at(cpnvg_at(0, 0, 10.0), 0.2), 0.2);
   s.command({0.2, 60.0, 1.0});  // to starboard
   const Pydir p = sent_pydir(s.control_tick(0.3));
   EXPECT_EQ(s.failsafe(), Failsafe::none);
@@ -159,7 +177,7 @@ TEST(M200Session, PidAndMixingTurnTowardTheDesiredHeading) {
   ASSERT_TRUE(s.last_actuators() && s.last_actuators()->left_pct);
   EXPECT_NEAR(*s.last_actuators()->left_pct, p.left_pct, 1e-6);
   // And to port, across north.
-  s.on_line(format_cpnvg(cpnvg_at(0, 0, 10.0)), 0.4);
+  s.on_line(sent_at(cpnvg_at(0, 0, 10.0), 0.4), 0.4);
   s.command({0.4, 330.0, 1.0});
   const Pydir q = sent_pydir(s.control_tick(0.5));
   EXPECT_LT(q.left_pct, q.right_pct);
@@ -168,13 +186,13 @@ TEST(M200Session, PidAndMixingTurnTowardTheDesiredHeading) {
 TEST(M200Session, AllStopWhenCommandsOrNavigationGoStale) {
   M200Session s(config());
   s.on_connected(0.0);
-  s.on_line(format_cpnvg(cpnvg_at(0, 0, 0)), 1.0);
+  s.on_line(sent_at(cpnvg_at(0, 0, 0), 1.0), 1.0);
   s.command({1.0, 0.0, 1.0});
   EXPECT_NE(sent_pydir(s.control_tick(1.1)), (Pydir{0, 0}));
   // The helm went quiet for more than 1.5 s while navigation kept coming.
-  s.on_line(format_cpnvg(cpnvg_at(0, 0, 0)), 2.4);
+  s.on_line(sent_at(cpnvg_at(0, 0, 0), 2.4), 2.4);
   EXPECT_NE(sent_pydir(s.control_tick(2.45)), (Pydir{0, 0}));
-  s.on_line(format_cpnvg(cpnvg_at(0, 0, 0)), 2.6);
+  s.on_line(sent_at(cpnvg_at(0, 0, 0), 2.6), 2.6);
   EXPECT_EQ(sent_pydir(s.control_tick(2.6)), (Pydir{0, 0}));
   EXPECT_EQ(s.failsafe(), Failsafe::command_stale);
   EXPECT_EQ(s.counters().failsafe_stops, 1u);
@@ -188,7 +206,7 @@ TEST(M200Session, AllStopWhenCommandsOrNavigationGoStale) {
   EXPECT_EQ(s.failsafe(), Failsafe::nav_stale);
   EXPECT_EQ(s.counters().failsafe_stops, 2u);
   // all_stop holds until the next command.
-  s.on_line(format_cpnvg(cpnvg_at(0, 0, 0)), 4.3);
+  s.on_line(sent_at(cpnvg_at(0, 0, 0), 4.3), 4.3);
   s.all_stop(4.3);
   EXPECT_EQ(sent_pydir(s.control_tick(4.35)), (Pydir{0, 0}));
   EXPECT_EQ(s.failsafe(), Failsafe::stopped);
@@ -199,8 +217,8 @@ TEST(M200Session, AllStopWhenCommandsOrNavigationGoStale) {
 TEST(M200Session, ADroppedLinkIsDisconnectedAndForgetsPartialState) {
   M200Session s(config());
   s.on_connected(0.0);
-  s.on_line(format_gprmc(gprmc_at(5.0, 6.0, 0.5)), 1.0);
-  s.on_line(format_cpnvg(cpnvg_at(5, 6, 0)), 1.0);
+  s.on_line(sent_at(gprmc_at(5.0, 6.0, 0.5), 1.0), 1.0);
+  s.on_line(sent_at(cpnvg_at(5, 6, 0), 1.0), 1.0);
   EXPECT_EQ(s.link_state(1.1), LinkState::live);
   s.on_disconnected(1.2);
   EXPECT_EQ(s.link_state(1.2), LinkState::disconnected);
@@ -209,7 +227,7 @@ TEST(M200Session, ADroppedLinkIsDisconnectedAndForgetsPartialState) {
   EXPECT_EQ(s.counters().connects, 2u);
   EXPECT_EQ(s.counters().disconnects, 1u);
   // The fix from the old link is not paired with the new link's first heading.
-  s.on_line(format_cpnvg(cpnvg_at(0, 0, 0, false)), 2.1);
+  s.on_line(sent_at(cpnvg_at(0, 0, 0, false), 2.1), 2.1);
   s.take_nav();
   EXPECT_EQ(s.counters().nav_without_position, 1u);
 }
