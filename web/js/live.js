@@ -520,6 +520,10 @@ function renderTurnPanel() {
   if (state.conditioningSinceT !== null && nav) parts.push(`conditioning for ${num(nav.t_s - state.conditioningSinceT, 1)} s`);
   if (typeof last?.condition_set_time_s === 'number') parts.push(`last ${num(last.condition_set_time_s, 1)} s`);
   if (state.mission?.condition_set_time_s) parts.push(`mission mean ${meanSd(state.mission.condition_set_time_s, 1, ' s', state.mission.condition_set?.episodes?.set)}`);
+  // Attempts the mission wasted: conditioning cut short by containment (or a pause, a link loss)
+  // and conditions not set in time. A healthy mission shows few of either.
+  const episodes = state.mission?.condition_set?.episodes;
+  if (episodes) parts.push(`${episodes.interrupted ?? 0} interrupted, ${episodes.timeout ?? 0} timed out`);
   text('live-cst', parts.length ? parts.join(' · ') : '–');
 }
 
