@@ -213,6 +213,10 @@ test('a page opened after the mission shows its last turn, not "No turn yet"', {
   );
   assert.ok(closeUp.some((n) => /^turn \(/.test(n)), `close-up: ${closeUp}`);
   assert.match(await page.textContent('#turn-status'), /Last turn: /);
+  // The mission's wasted conditioning episodes, counted as the report counts them.
+  const episodes = m.condition_set.episodes;
+  const wasted = `${episodes.interrupted ?? 0} interrupted, ${episodes.timeout ?? 0} timed out`;
+  await until(`"${wasted}" shown`, async () => (await page.textContent('#live-cst')).includes(wasted), 20000);
   // The stored turn is drawn only against predictions that never saw it: the table and model are
   // asked without it (here the instantaneous turn alone may be all there is).
   await until('its predictions asked for', () => predictAsks.some((q) => q.get('method') === 'instantaneous'), 20000);
