@@ -37,24 +37,10 @@ void YawRateEstimator::add(double t_s, double heading_deg) {
     samples_.pop_front();
 }
 
-bool YawRateEstimator::full() const {
-  return samples_.size() >= 2 && first_t_s_ &&
-         samples_.back().t_s - *first_t_s_ >= window_s_ - kTimeSlack_s;
-}
-
-double YawRateEstimator::spread_s2() const {
-  double mean_t = 0.0;
-  for (const Sample& s : samples_)
-    mean_t += s.t_s;
-  mean_t /= static_cast<double>(samples_.size());
-  double sxx = 0.0;
-  for (const Sample& s : samples_)
-    sxx += (s.t_s - mean_t) * (s.t_s - mean_t);
-  return sxx;
-}
-
-std::optional<double> YawRateEstimator::rate_dps() const {
-  if (!full()) return std::nullopt;
+std::optional<YawRateEstimator::Fit> YawRateEstimator::fit() const {
+  if (samples_.size() < 2 || !first_t_s_ ||
+      samples_.back().t_s - *first_t_s_ < window_s_ - kTimeSlack_s)
+    return std::nullopt;
   // Centred on the newest sample, so the sums stay small whatever the clock and heading.
   const double t0 = samples_.back().t_s, h0 = samples_.back().heading_deg;
   const double n = static_cast<double>(samples_.size());
@@ -71,14 +57,19 @@ std::optional<double> YawRateEstimator::rate_dps() const {
     sxy += dt * (s.heading_deg - h0 - mean_h);
   }
   if (!(sxx > 0.0)) return std::nullopt;
-  return sxy / sxx;
+  return Fit{sxy / sxx, sxx};
+}
+
+std::optional<double> YawRateEstimator::rate_dps() const {
+  const auto f = fit();
+  if (!f) return std::nullopt;
+  return f->slope_dps;
 }
 
 std::optional<double> YawRateEstimator::noise_sd_dps(double heading_sigma_deg) const {
-  if (!full()) return std::nullopt;
-  const double sxx = spread_s2();
-  if (!(sxx > 0.0)) return std::nullopt;
-  return heading_sigma_deg / std::sqrt(sxx);
+  const auto f = fit();
+  if (!f) return std::nullopt;
+  return heading_sigma_deg / std::sqrt(f->spread_s2);
 }
 
 double least_squares_rate_sd_dps(double heading_sigma_deg, double dt_s, std::size_t n) {

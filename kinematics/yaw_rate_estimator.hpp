@@ -43,8 +43,12 @@ class YawRateEstimator {
     double t_s;
     double heading_deg;  // unwrapped
   };
-  bool full() const;
-  double spread_s2() const;  // Σ (t_i − t̄)²
+  struct Fit {
+    double slope_dps;
+    double spread_s2;  // Σ (t_i − t̄)²
+  };
+  // The least-squares line through the window, once it is full and its times are distinct.
+  std::optional<Fit> fit() const;
 
   double window_s_;
   std::deque<Sample> samples_;

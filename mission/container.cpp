@@ -50,6 +50,18 @@ double Container::depth_in_interior_m(kinematics::Point p) const {
   return distance_to_boundary_m(p, region_.polygon) - region_.buffer_m;
 }
 
+double Container::run_before_buffer_m(kinematics::Point p, double course_deg,
+                                      double limit_m) const {
+  constexpr double kStep_m = 1.0;
+  const kinematics::Point step = kinematics::rotate_by_heading({0.0, kStep_m}, course_deg);
+  for (double d = kStep_m; d <= limit_m; d += kStep_m) {
+    const double k = d / kStep_m;
+    if (zone({p.x_m + k * step.x_m, p.y_m + k * step.y_m}) != RegionZone::interior)
+      return d - kStep_m;
+  }
+  return limit_m;
+}
+
 double Container::heading_to_interior_deg(kinematics::Point p) const {
   return kinematics::heading_of_deg(interior_.x_m - p.x_m, interior_.y_m - p.y_m);
 }

@@ -16,6 +16,9 @@ class Container {
   RegionZone zone(kinematics::Point p) const;
   // How far p is inside the interior (past the buffer's inner edge); negative in the buffer.
   double depth_in_interior_m(kinematics::Point p) const;
+  // How far a straight run from p on course_deg stays in the interior, in 1 m steps, up to
+  // limit_m (returned when it never leaves it).
+  double run_before_buffer_m(kinematics::Point p, double course_deg, double limit_m) const;
   // Heading (deg clockwise from north) from p towards the region's interior point.
   double heading_to_interior_deg(kinematics::Point p) const;
   kinematics::Point interior_point() const { return interior_; }

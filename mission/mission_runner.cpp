@@ -364,16 +364,6 @@ void MissionRunner::leave_containment(const vehicle::NavSample& s) {
   }
 }
 
-double MissionRunner::free_run_m(kinematics::Point p, double course_deg, double limit_m) const {
-  constexpr double kStep_m = 1.0;
-  const double h = kinematics::deg_to_rad(course_deg);
-  for (double d = kStep_m; d <= limit_m; d += kStep_m) {
-    if (container_.zone({p.x_m + d * std::sin(h), p.y_m + d * std::cos(h)}) != RegionZone::interior)
-      return d - kStep_m;
-  }
-  return limit_m;
-}
-
 void MissionRunner::start_conditioning(const vehicle::NavSample& s,
                                        std::optional<double> course_deg, bool may_turn_back) {
   if (queue_.empty()) {
@@ -388,12 +378,13 @@ void MissionRunner::start_conditioning(const vehicle::NavSample& s,
   const double needed_m = speed * config_.condition_set.run_ahead_s + kConditioningTurnRoomM;
   const kinematics::Point here{s.x_m, s.y_m};
   const double run_m = may_turn_back && config_.condition_set.run_ahead_s > 0.0
-                           ? free_run_m(here, course, needed_m)
+                           ? container_.run_before_buffer_m(here, course, needed_m)
                            : needed_m;
   // Inward as the container steers: a course along a boundary leaves no room for a drift.
   const double back = container_.heading_to_interior_deg(here);
   // Turning back must buy room: where no course has more, conditions are set where the boat is.
-  if (run_m < needed_m && free_run_m(here, back, needed_m) > run_m + kConditioningTurnRoomM) {
+  if (run_m < needed_m &&
+      container_.run_before_buffer_m(here, back, needed_m) > run_m + kConditioningTurnRoomM) {
     turn_back_course_deg_ = back;
     desired_heading_deg_ = back;
     desired_speed_mps_ = speed;

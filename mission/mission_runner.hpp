@@ -93,8 +93,6 @@ class MissionRunner {
   void start_conditioning(const vehicle::NavSample& s,
                           std::optional<double> course_deg = std::nullopt,
                           bool may_turn_back = true);
-  // The distance from p along course_deg before the buffer, up to limit_m.
-  double free_run_m(kinematics::Point p, double course_deg, double limit_m) const;
 
   void end_condition_set(double t_s, ConditionSetEpisode::Outcome outcome);
   // A turn with a nonzero target yaw rate: once the conditions are set, a heading change that

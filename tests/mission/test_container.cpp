@@ -35,3 +35,16 @@ TEST(Container, ConcaveRegionFallsBackToTheReturnPoint) {
   EXPECT_EQ(c.zone(c.interior_point()), RegionZone::interior);
   EXPECT_DOUBLE_EQ(c.interior_point().x_m, 15.0);
 }
+
+// The straight run before the buffer (the interior is |x|, |y| <= 40): the same on the four
+// symmetric courses, longer on the diagonal, capped at the limit, and none from inside the buffer.
+TEST(Container, TheRunBeforeTheBufferFollowsTheCourse) {
+  const Container c(square());
+  for (const double course : {0.0, 90.0, 180.0, 270.0})
+    EXPECT_DOUBLE_EQ(c.run_before_buffer_m({0, 0}, course, 100.0), 40.0) << course;
+  EXPECT_DOUBLE_EQ(c.run_before_buffer_m({0, 0}, 45.0, 100.0), 56.0);  // 40 √2 = 56.6
+  EXPECT_DOUBLE_EQ(c.run_before_buffer_m({30, 0}, 90.0, 100.0), 10.0);  // east, 10 m to go
+  EXPECT_DOUBLE_EQ(c.run_before_buffer_m({30, 0}, 270.0, 100.0), 70.0);
+  EXPECT_DOUBLE_EQ(c.run_before_buffer_m({0, 0}, 0.0, 25.0), 25.0);
+  EXPECT_DOUBLE_EQ(c.run_before_buffer_m({45, 0}, 90.0, 100.0), 0.0);
+}
