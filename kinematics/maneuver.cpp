@@ -7,6 +7,7 @@
 #include <tuple>
 #include <utility>
 
+#include "kinematics/approach_risk.hpp"
 #include "kinematics/water_frame.hpp"
 
 namespace avk::kinematics {
@@ -42,24 +43,43 @@ PredictedManeuver timed_maneuver(double dheading_deg, double speed_mps, const Po
   return m;
 }
 
-PredictedManeuver extended_to_horizon(PredictedManeuver m, double horizon_s) {
-  if (m.path.empty()) throw std::invalid_argument("a maneuver needs a path");
-  if (!(horizon_s > 0.0) || !std::isfinite(horizon_s))
-    throw std::invalid_argument("the horizon must be a positive time");
-  const bool widths = !m.half_width_m.empty();
-  // Cut at the horizon.
+namespace {
+
+// Per-point values (corridor half widths, band spreads) follow the path's cut and run-on.
+void cut_values(std::vector<double>& v, std::size_t i, double w) {
+  if (v.empty()) return;
+  v[i] = v[i - 1] + w * (v[i] - v[i - 1]);
+  v.resize(i + 1);
+}
+
+void hold_last(std::vector<double>& v) {
+  if (!v.empty()) v.push_back(v.back());
+}
+
+// The path cut at the horizon, with its per-point values; false when it ends before it.
+bool cut_at(PredictedManeuver& m, double horizon_s) {
   for (std::size_t i = 1; i < m.path.size(); ++i) {
     if (m.path[i].t_s < horizon_s) continue;
     const TimedPoint a = m.path[i - 1], b = m.path[i];
     const double w = b.t_s > a.t_s ? (horizon_s - a.t_s) / (b.t_s - a.t_s) : 1.0;
     m.path[i] = {horizon_s, a.x_m + w * (b.x_m - a.x_m), a.y_m + w * (b.y_m - a.y_m)};
     m.path.resize(i + 1);
-    if (widths) {
-      m.half_width_m[i] = m.half_width_m[i - 1] + w * (m.half_width_m[i] - m.half_width_m[i - 1]);
-      m.half_width_m.resize(i + 1);
-    }
-    return m;
+    cut_values(m.half_width_m, i, w);
+    cut_values(m.along_sd_m, i, w);
+    cut_values(m.cross_sd_m, i, w);
+    m.turn_points = std::min(m.turn_points, m.path.size());
+    return true;
   }
+  return false;
+}
+
+}  // namespace
+
+PredictedManeuver extended_to_horizon(PredictedManeuver m, double horizon_s) {
+  if (m.path.empty()) throw std::invalid_argument("a maneuver needs a path");
+  if (!(horizon_s > 0.0) || !std::isfinite(horizon_s))
+    throw std::invalid_argument("the horizon must be a positive time");
+  if (cut_at(m, horizon_s)) return m;
   const TimedPoint last = m.path.back();
   // A path that ends within rounding of the horizon needs no run-on of a nanometre.
   if (last.t_s >= horizon_s - 1e-9) return m;
@@ -68,7 +88,9 @@ PredictedManeuver extended_to_horizon(PredictedManeuver m, double horizon_s) {
   const double run = (horizon_s - last.t_s) * m.speed_mps;
   const Point d = rotate_by_heading({0.0, run}, m.dheading_deg);
   m.path.push_back({horizon_s, last.x_m + d.x_m, last.y_m + d.y_m});
-  if (widths) m.half_width_m.push_back(m.half_width_m.back());
+  hold_last(m.half_width_m);
+  hold_last(m.along_sd_m);
+  hold_last(m.cross_sd_m);
   return m;
 }
 
@@ -161,24 +183,48 @@ Approach closest_approach_of_corridor(const TimedPath& own, const std::vector<do
   return *approaches(own, &half_width_m, contact).second;
 }
 
+PredictedManeuver placed_over_ground(const PredictedManeuver& normalized, const Pose& pose,
+                                     const std::optional<WaterCurrent>& current,
+                                     bool speed_over_ground, double horizon_s) {
+  const bool retime =
+      current && speed_over_ground && (current->east_mps != 0.0 || current->north_mps != 0.0);
+  // Re-timing stretches or shrinks time by at most the over-ground scale's bounds, so a water
+  // path that long reaches the horizon over ground too.
+  PredictedManeuver m =
+      extended_to_horizon(normalized, retime ? horizon_s * kMaxOverGroundScale : horizon_s);
+  m.path = placed(m.path, pose);
+  if (!current) return m;
+  const Point c{current->east_mps, current->north_mps};
+  if (!retime) {
+    m.path = drifted(std::move(m.path), c);
+    return m;
+  }
+  m.path = retimed_over_ground(m.path, c);
+  cut_at(m, horizon_s);
+  return m;
+}
+
 CandidateEvaluation evaluate_candidate(const ManeuverProblem& problem,
                                        const PredictedManeuver& normalized) {
-  const PredictedManeuver m = extended_to_horizon(normalized, problem.horizon_s);
+  const PredictedManeuver m = placed_over_ground(normalized, problem.own, problem.current,
+                                                 problem.speed_over_ground, problem.horizon_s);
   CandidateEvaluation e;
   e.dheading_deg = m.dheading_deg;
   e.speed_mps = m.speed_mps;
-  e.path = placed(m.path, problem.own);
-  if (problem.current)
-    e.path = drifted(std::move(e.path), {problem.current->east_mps, problem.current->north_mps});
+  e.path = m.path;
   e.half_width_m = m.half_width_m;
+  e.covariance_m2 = position_band(e.path, m.along_sd_m, m.cross_sd_m, m.turn_points, problem.band);
   e.min_cpa_m = std::numeric_limits<double>::infinity();
   const bool corridor = !e.half_width_m.empty();
   if (corridor) e.min_edge_cpa_m = std::numeric_limits<double>::infinity();
   e.clears = true;
   e.contacts.reserve(problem.contacts.size());
+  double safe = 1.0;
   for (const Contact& c : problem.contacts) {
     ContactApproach a;
     std::tie(a.cpa, a.edge_cpa) = approaches(e.path, corridor ? &e.half_width_m : nullptr, c);
+    a.risk = approach_risk(e.path, e.covariance_m2, c, problem.standoff_m);
+    safe *= 1.0 - a.risk;
     e.min_cpa_m = std::min(e.min_cpa_m, a.cpa.distance_m);
     if (corridor) e.min_edge_cpa_m = std::min(*e.min_edge_cpa_m, a.edge_cpa->distance_m);
     const double judged =
@@ -186,6 +232,7 @@ CandidateEvaluation evaluate_candidate(const ManeuverProblem& problem,
     if (judged < problem.standoff_m) e.clears = false;
     e.contacts.push_back(a);
   }
+  e.risk = 1.0 - safe;
   return e;
 }
 

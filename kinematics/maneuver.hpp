@@ -11,38 +11,46 @@
 #include <vector>
 
 #include "kinematics/geometry.hpp"
+#include "kinematics/position_band.hpp"
+#include "kinematics/timed_path.hpp"
 #include "kinematics/turn_timing.hpp"
 #include "kinematics/water_current.hpp"
 
 namespace avk::kinematics {
 
-struct TimedPoint {
-  double t_s = 0.0;
-  double x_m = 0.0;
-  double y_m = 0.0;
-  friend bool operator==(const TimedPoint&, const TimedPoint&) = default;
-};
-// Times non-decreasing; between two points the vehicle moves linearly in time.
-using TimedPath = std::vector<TimedPoint>;
-
-// A contact on a straight line at constant speed; its position at t = 0.
+// A contact on a straight line at constant speed; its position at t = 0. The 1-sigma
+// uncertainties of what is known of it (0: exact) widen the risk of a close approach.
 struct Contact {
   double x_m = 0.0;
   double y_m = 0.0;
   double course_deg = 0.0;  // clockwise from north
   double speed_mps = 0.0;
+  double position_sd_m = 0.0;
+  double course_sd_deg = 0.0;
+  double speed_sd_mps = 0.0;
 };
 Point contact_position(const Contact& c, double t_s);
 
 // A predicted maneuver in the normalised frame (start at the origin heading north; a left turn
 // already reflected): the path in time until it has settled on its new heading, and the lateral
 // half width of the uncertainty corridor at each point (empty: no corridor).
+//
+// The spread of the recorded turns about the prediction at equal time, per path point: along
+// the path (being early or late: the turns' timing spread) and across it (the corridor's lateral
+// spread), 1 sigma, already widened for the few turns it is known from. Empty: none known (the
+// model, the ray). Past the turn (points from turn_points on) the spread is held and the
+// vehicle's straight-leg scatter grows on top of it (position_band.hpp).
 struct PredictedManeuver {
   double dheading_deg = 0.0;  // signed: + starboard
   double speed_mps = 0.0;
   TimedPath path;
   std::vector<double> half_width_m;  // empty, or one per path point
   bool timed_by_turns = false;       // the times come from recorded turns, not constant speed
+  std::vector<double> along_sd_m;    // empty, or one per path point
+  std::vector<double> cross_sd_m;    // empty, or one per path point
+  // How many leading points are the turn itself; the growth of the straight-leg scatter starts
+  // at the last of them. 1: from the command (a prediction without recorded turns).
+  std::size_t turn_points = 1;
 };
 
 // A normalised trajectory given times along it: from the timing when there is one, else at
@@ -53,7 +61,8 @@ PredictedManeuver timed_maneuver(double dheading_deg, double speed_mps, const Po
 
 // The path continued from its last point along its final heading (dheading in the normalised
 // frame) at speed_mps up to horizon_s, so a CPA looks as far ahead as asked. The corridor's last
-// half width is carried along. Paths already reaching the horizon are cut there.
+// half width and the last spreads are carried along. Paths already reaching the horizon are cut
+// there.
 PredictedManeuver extended_to_horizon(PredictedManeuver m, double horizon_s);
 
 // The normalised path placed at a pose (rotated to its heading, translated to its position).
@@ -79,6 +88,7 @@ Approach closest_approach_of_corridor(const TimedPath& own, const std::vector<do
 struct ContactApproach {
   Approach cpa;                      // of the predicted path
   std::optional<Approach> edge_cpa;  // of the corridor's nearer edge, when there is a corridor
+  double risk = 0.0;                 // P(CPA < standoff) under the band (approach_risk)
 };
 
 struct ManeuverProblem {
@@ -86,11 +96,18 @@ struct ManeuverProblem {
   std::vector<Contact> contacts;
   double standoff_m = 10.0;
   double horizon_s = 120.0;
-  // Judge a candidate by its corridor's nearer edge when it has a corridor.
+  // Judge a candidate by its corridor's nearer edge when it has a corridor (the corridor rule).
   bool use_corridor = true;
   // The current the own vehicle turns in (grid frame): each candidate, predicted through the
   // water, drifts with it; the contacts' courses and speeds are over ground already.
   std::optional<WaterCurrent> current;
+  // How the current carries a candidate: a vehicle whose speed loop holds the commanded speed
+  // over ground flies each part of the path at the speed over ground it would make in still
+  // water (its speed through the water changes); one holding speed through the water is carried
+  // by c·t on top of its still-water path.
+  bool speed_over_ground = true;
+  // The sources of the position band beyond the turns' own spread (position_band.hpp).
+  BandSources band;
 };
 
 struct CandidateEvaluation {
@@ -102,7 +119,18 @@ struct CandidateEvaluation {
   double min_cpa_m = 0.0;                // over contacts
   std::optional<double> min_edge_cpa_m;  // over contacts, with a corridor
   bool clears = false;  // the judged figure (edge when used and present) >= standoff for all
+  std::vector<Covariance2> covariance_m2;  // the position band, per path point
+  // P(the CPA to some contact < standoff): 1 − Π(1 − risk of each contact), the contacts taken
+  // as independent of each other.
+  double risk = 0.0;
 };
+
+// The normalised prediction placed at the pose and carried by the current as the vehicle's speed
+// loop flies it (water_frame.hpp: drifted through the water, retimed_over_ground over ground),
+// to the horizon, with its per-point values.
+PredictedManeuver placed_over_ground(const PredictedManeuver& normalized, const Pose& pose,
+                                     const std::optional<WaterCurrent>& current,
+                                     bool speed_over_ground, double horizon_s);
 
 // One candidate against the problem's contacts.
 CandidateEvaluation evaluate_candidate(const ManeuverProblem& problem,

@@ -1,5 +1,6 @@
 #include "kinematics/water_frame.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -42,6 +43,42 @@ TimedPath drifted(TimedPath path, Point velocity_mps) {
     p.y_m += velocity_mps.y_m * p.t_s;
   }
   return path;
+}
+
+double over_ground_scale(Point u, Point c) {
+  const double uu = u.x_m * u.x_m + u.y_m * u.y_m;
+  if (!(uu > 0.0)) return 1.0;
+  const double uc = u.x_m * c.x_m + u.y_m * c.y_m;
+  const double cc = c.x_m * c.x_m + c.y_m * c.y_m;
+  // k² uu + 2k uc + cc − uu = 0
+  const double disc = uc * uc - uu * (cc - uu);
+  // Without a root the cross current alone is faster than the speed: the best the loop can do
+  // is the k that brings the speed over ground nearest, −uc/uu.
+  const double k = disc >= 0.0 ? (-uc + std::sqrt(disc)) / uu : -uc / uu;
+  return std::clamp(k, kMinOverGroundScale, kMaxOverGroundScale);
+}
+
+TimedPath retimed_over_ground(const TimedPath& water_path, Point c) {
+  TimedPath out;
+  out.reserve(water_path.size());
+  if (water_path.empty()) return out;
+  out.push_back(water_path.front());
+  double t = water_path.front().t_s;
+  double x = water_path.front().x_m, y = water_path.front().y_m;
+  for (std::size_t i = 1; i < water_path.size(); ++i) {
+    const TimedPoint& a = water_path[i - 1];
+    const TimedPoint& b = water_path[i];
+    const double dt = b.t_s - a.t_s;
+    const double dx = b.x_m - a.x_m, dy = b.y_m - a.y_m;
+    // A segment at rest (or without time) is not re-timed: the vehicle waits there as long.
+    const double k = dt > 0.0 ? over_ground_scale({dx / dt, dy / dt}, c) : 1.0;
+    const double dt_ground = dt / k;
+    t += dt_ground;
+    x += dx + c.x_m * dt_ground;
+    y += dy + c.y_m * dt_ground;
+    out.push_back({t, x, y});
+  }
+  return out;
 }
 
 Polyline drifted_trajectory(const Polyline& trajectory, const std::optional<TurnTiming>& timing,

@@ -32,7 +32,23 @@ TurnSequence in_water_frame(const TurnSequence& raw, WaterCurrent c);
 Point current_in_normalized_frame(WaterCurrent c, double initial_heading_deg, TurnSide side);
 
 // A path carried by a uniform velocity (m/s, in the path's frame): each point moved by v·t.
+// What a vehicle whose speed loop holds its speed through the water does in a current.
 TimedPath drifted(TimedPath path, Point velocity_mps);
+
+// The scale k of a velocity through the water u at which a vehicle in current c makes good
+// |u| over ground: |k·u + c| = |u|, the larger root. A current too strong for that (no root,
+// or a root that would need more than kMaxOverGroundScale times the speed) gives the bound
+// nearest to a solution: the vehicle's speed loop saturates.
+inline constexpr double kMinOverGroundScale = 0.25;
+inline constexpr double kMaxOverGroundScale = 4.0;
+double over_ground_scale(Point water_velocity_mps, Point current_mps);
+
+// What a vehicle whose speed loop holds its speed OVER GROUND does in a current (the M200's
+// pMarinePID on GNSS speed): it flies the same path through the water, but each segment at the
+// speed through the water that makes the segment's still-water speed good over ground, so the
+// segment takes dt/k (over_ground_scale) and is carried by c over that time. Points stay one
+// for one with the input; times are re-timed from the first point's.
+TimedPath retimed_over_ground(const TimedPath& water_path, Point current_mps);
 
 // A trajectory through the water (the normalised frame of a prediction) carried by a current
 // given in that frame: each vertex moved by v·t, with t from the timing when there is one, else

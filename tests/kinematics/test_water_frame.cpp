@@ -164,7 +164,9 @@ TEST(WaterFrame, CurrentFromTurnResidualsGrowingLinearly) {
 }
 
 // A candidate through the water drifts with the current: heading north at 1 m/s in 0.5 m/s
-// toward east, the vehicle is at (5, 10) after 10 s, where a stationary contact sits.
+// toward east, the vehicle is at (5, 10) after 10 s, where a stationary contact sits. A vehicle
+// holding 1 m/s over ground instead makes good sqrt(0.75) m/s north: it passes that contact's
+// latitude later and further east.
 TEST(WaterFrame, ManeuverCandidatesDriftWithTheCurrent) {
   const Polyline straight{{0.0, 0.0}, {0.0, 40.0}};
   const PredictedManeuver m = timed_maneuver(0.0, 1.0, straight, std::nullopt);
@@ -174,8 +176,18 @@ TEST(WaterFrame, ManeuverCandidatesDriftWithTheCurrent) {
   const CandidateEvaluation still = evaluate_candidate(p, m);
   EXPECT_NEAR(still.min_cpa_m, 5.0, 1e-9);
   p.current = WaterCurrent{0.5, 0.0};
+  p.speed_over_ground = false;
   const CandidateEvaluation drifting = evaluate_candidate(p, m);
   EXPECT_NEAR(drifting.min_cpa_m, 0.0, 1e-9);
+  p.speed_over_ground = true;
+  const CandidateEvaluation held = evaluate_candidate(p, m);
+  const TimedPoint& end = held.path.back();
+  EXPECT_NEAR(end.t_s, 30.0, 1e-9);
+  EXPECT_NEAR(end.x_m, 15.0, 1e-9);
+  EXPECT_NEAR(end.y_m, 30.0 * std::sqrt(0.75), 1e-9);
+  // At the contact's latitude (t = 10/sqrt(0.75) s) it is 5.77 m east: the CPA is across.
+  EXPECT_NEAR(held.min_cpa_m, std::hypot(10.0 / std::sqrt(0.75) * 0.5 - 5.0, 0.0) * std::sqrt(0.75),
+              1e-6);
 }
 
 TEST(WaterFrame, TableFrameFollowsItsTurnsAndTravelsInTheFile) {
