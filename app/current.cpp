@@ -191,19 +191,37 @@ std::optional<Error> check_current(const kin::WaterCurrent& c, const std::string
 
 Result<QueryCurrent> query_current(Context& ctx, const std::string& vehicle_id,
                                    const std::optional<kin::WaterCurrent>& given, bool live,
-                                   const std::string& field) {
+                                   const std::string& field, bool none) {
   QueryCurrent out;
-  if (given && live)
-    return invalid_argument(field, "either a current or the live estimate, not both");
+  if ((given ? 1 : 0) + (live ? 1 : 0) + (none ? 1 : 0) > 1)
+    return invalid_argument(field, "one of a current, live or none");
   if (given) {
     if (auto e = check_current(*given, field)) return *e;
     out.current = given;
     out.source = "query";
+    out.frame = "ground";
   } else if (live) {
     auto c = vehicle_current(ctx, vehicle_id);
     if (!c) return c.error();
     out.current = water_current(c->estimate);
+    out.covariance = c->estimate.covariance;
     out.source = "live";
+    out.frame = "ground";
+  } else if (none) {
+    out.source = "none";
+    out.frame = "water";
+  } else if (const auto c = ctx.db().latest_vehicle_current(vehicle_id)) {
+    out.frame = "ground";
+    out.covariance = c->estimate.covariance;
+    if (current_is_significant(c->estimate)) {
+      out.current = water_current(c->estimate);
+      out.source = "live";
+    } else {
+      out.source = "still_water";
+    }
+  } else {
+    out.source = "unknown";
+    out.frame = "water";
   }
   return out;
 }

@@ -3,6 +3,7 @@
 // piece): the steady legs before each turn, where the ConditionSet held course and speed, give the
 // velocity over ground on many headings (kinematics/current_estimate.hpp).
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -94,13 +95,26 @@ Result<AppliedCurrent> apply_mission_current(Context& ctx, std::int64_t mission_
 // invalid_argument naming `field` unless the current is finite and at most kMaxCurrentMps.
 std::optional<Error> check_current(const kinematics::WaterCurrent& c, const std::string& field);
 
+// The current an answer drifts with, and the frame the answer is in.
+// - Asked for (`given`): that current; over ground.
+// - `live`: the station's latest estimate for the vehicle, significant or not; not_found when
+//   there is none.
+// - `none`: nothing added: the path through the water (for a table of water-frame turns).
+// - Not asked (the default): over ground wherever the station can say so: the latest estimate
+//   when it is significant (source "live"); still water when the estimate is not told apart from
+//   it (source "still_water", nothing added, over ground all the same); through the water when
+//   the vehicle has no estimate at all (source "unknown", frame "water"), which is said.
 struct QueryCurrent {
   std::optional<kinematics::WaterCurrent> current;
-  std::optional<std::string> source;  // "query" or "live"
+  std::optional<std::string> source;  // "query", "live", "still_water", "unknown", "none"
+  std::string frame = "water";        // "ground" or "water"
+  // The estimate's covariance of (east, north) in (m/s)², [ee, en, nn]: live and automatic
+  // answers carry the uncertainty of the current they drift with.
+  std::optional<std::array<double, 3>> covariance;
 };
 Result<QueryCurrent> query_current(Context& ctx, const std::string& vehicle_id,
                                    const std::optional<kinematics::WaterCurrent>& given, bool live,
-                                   const std::string& field);
+                                   const std::string& field, bool none = false);
 
 // The station's estimate for a vehicle: the newest stored estimate of any of its missions (the
 // running one's is updated at every turn). not_found when it has none.

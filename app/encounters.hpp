@@ -82,6 +82,15 @@ struct EncounterBenchQuery {
   // vehicle in that sea has. Off: predictions through the water (or over ground, from a table of
   // ground turns) without drift.
   bool use_estimated_current = true;
+  // Sea realisations: every candidate of every scenario is flown once per seed (the same
+  // choices, different gusts, waves and sensor noise); each (scenario, seed) is one row of the
+  // results. Empty: `seed` alone.
+  std::vector<std::uint64_t> sea_seeds;
+  // The choice rule every method uses (maneuvers.hpp).
+  double max_risk = kinematics::kDefaultMaxRisk;
+  bool prefer_starboard = false;
+  bool corridor_rule = false;
+  std::optional<bool> speed_over_ground;  // none: the vehicle's
 };
 
 struct EncounterMethodResult {
@@ -94,10 +103,17 @@ struct EncounterMethodResult {
   bool violation = false;                      // actual < standoff
   bool no_maneuver_while_one_existed = false;  // none chosen, yet some candidate flew clear
   bool unsafe_while_safe_existed = false;      // chose one that violated, yet one flew clear
+  std::optional<double> chosen_risk;           // the chosen candidate's predicted risk
+  std::string colregs_rule;                    // "14" / "15" when the choice kept to starboard
+  // Where the flown vehicle was at its CPA against where the chosen prediction put it at that
+  // time: along the predicted path's direction (+ ahead) and across it (+ right), m.
+  std::optional<double> along_error_m;
+  std::optional<double> cross_error_m;
 };
 
 struct EncounterScenarioResult {
-  std::string name;
+  std::string name;  // the scenario's, with " @sea N" when several sea seeds are flown
+  std::uint64_t sea_seed = 1;
   double standoff_m = 0.0;
   std::vector<double> candidates_deg;
   std::vector<double> flown_cpa_m;             // per candidate: the actual CPA over contacts
@@ -105,6 +121,16 @@ struct EncounterScenarioResult {
   bool safe_existed = false;                   // some candidate's flown CPA >= standoff
   std::vector<EncounterMethodResult> methods;  // one per available method, in the query's order
 };
+
+struct RiskBin {
+  double lo = 0.0, hi = 0.0;  // predicted risk in [lo, hi)
+  int candidates = 0;
+  double mean_predicted = 0.0;
+  double observed_rate = 0.0;  // share of those candidates that flew inside the standoff
+};
+// The bins' edges: fine at the small risks a choice is made at.
+inline constexpr double kRiskBinEdges[] = {0.0, 0.01, 0.05, 0.1, 0.2, 0.3,  0.4,
+                                           0.5, 0.6,  0.7,  0.8, 0.9, 0.99, 1.0000001};
 
 struct EncounterMethodSummary {
   PredictionMethod method = PredictionMethod::avk;
@@ -120,6 +146,12 @@ struct EncounterMethodSummary {
   // Predicted minus actual CPA of the chosen candidates.
   std::optional<double> mean_cpa_error_m;
   std::optional<double> mean_abs_cpa_error_m;
+  // The position error at the flown CPA of the chosen candidates (mean absolute, m).
+  std::optional<double> mean_abs_along_error_m;
+  std::optional<double> mean_abs_cross_error_m;
+  // The predicted risk against the observed violation rate over every flown candidate (all
+  // scenarios, all sea seeds): is a 10 % risk violated one time in ten?
+  std::vector<RiskBin> calibration;
   std::optional<std::int64_t> model_id;  // model: the model that answered
 };
 

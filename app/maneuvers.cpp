@@ -10,6 +10,7 @@
 #include "kinematics/ckt.hpp"
 #include "kinematics/ckt3.hpp"
 #include "kinematics/corridor.hpp"
+#include "kinematics/position_band.hpp"
 #include "kinematics/water_frame.hpp"
 #include "kinematics/yaw_model.hpp"
 
@@ -75,6 +76,41 @@ Result<Predictor> predictor_for(Context& ctx, const std::string& vehicle_id,
   return p;
 }
 
+// What the answer assumes of the vehicle's motion: the request's speed reference, else the
+// vehicle's; its straight-leg scatter.
+AnswerMotion answer_motion(Context& ctx, const std::string& vehicle_id,
+                           std::optional<bool> speed_over_ground) {
+  (void)ctx;
+  (void)vehicle_id;
+  AnswerMotion m;
+  m.scatter = {0.03, 0.03};
+  if (speed_over_ground) {
+    m.speed_over_ground = *speed_over_ground;
+    m.speed_reference_source = "query";
+  }
+  return m;
+}
+
+// The spread of the table's turns at equal time, 1 sigma, per trajectory vertex: across from
+// the corridor, along from the turns' timing spread at the commanded speed; both widened for the
+// few turns they are known from, as the corridor is (t quantile and sqrt(1 + 1/n) over the normal
+// quantile at the same share).
+void with_turn_spread(kin::PredictedManeuver& m, const kin::TurnPrediction& t) {
+  m.turn_points = m.path.size();
+  if (!t.corridor || t.corridor->n_turns < 2) return;
+  constexpr double kZ90 = 1.6448536269514722;  // two-sided 90 % normal quantile
+  const double widen = kin::corridor_factor(t.corridor->n_turns, 0.9) / kZ90;
+  m.cross_sd_m = kin::corridor_half_widths_m(t.trajectory, *t.corridor, 0.9);
+  for (double& w : m.cross_sd_m)
+    w /= kZ90;
+  if (!t.timing || t.timing->time_sd_s.size() != kin::kTimingStations) return;
+  const std::vector<double> s = kin::cumulative_arc_length_m(t.trajectory);
+  const double to_timing = s.back() > 0.0 ? t.timing->length_m / s.back() : 1.0;
+  m.along_sd_m.resize(s.size());
+  for (std::size_t i = 0; i < s.size(); ++i)
+    m.along_sd_m[i] = widen * m.speed_mps * kin::time_sd_at_length_s(*t.timing, s[i] * to_timing);
+}
+
 // One candidate in the normalised frame, timed. `speed_field` names the parameter a speed the
 // table cannot answer is reported against.
 Result<kin::PredictedManeuver> predict_one(const Predictor& p, double speed_mps,
@@ -95,8 +131,10 @@ Result<kin::PredictedManeuver> predict_one(const Predictor& p, double speed_mps,
       std::vector<double> widths;
       if (t.corridor && t.corridor->n_turns >= 2)
         widths = kin::corridor_half_widths_m(t.trajectory, *t.corridor, p.corridor_share);
-      return kin::timed_maneuver(dheading_deg, speed_mps, t.trajectory, t.timing,
-                                 std::move(widths));
+      kin::PredictedManeuver m =
+          kin::timed_maneuver(dheading_deg, speed_mps, t.trajectory, t.timing, widths);
+      with_turn_spread(m, t);
+      return m;
     }
     case PredictionMethod::model: {
       // The model flown for the whole horizon: its own dynamics settle it on the new heading, and
@@ -176,9 +214,20 @@ std::optional<Error> check(const ManeuverQuery& q) {
 
 }  // namespace
 
+kin::BandSources band_sources(const AnswerMotion& motion,
+                              const std::optional<std::array<double, 3>>& current_covariance) {
+  kin::BandSources b;
+  b.scatter = motion.scatter;
+  if (current_covariance) b.current_covariance_m2ps2 = *current_covariance;
+  return b;
+}
+
 Result<ManeuverEvaluation> evaluate_maneuvers(Context& ctx, const ManeuverQuery& q) {
   if (auto e = check(q)) return *e;
-  auto current = query_current(ctx, q.vehicle_id, q.current, q.live_current, "/current");
+  if (!(q.max_risk >= 0.0 && q.max_risk <= 1.0))
+    return invalid_argument("/max_risk", "must be a probability within [0, 1]");
+  auto current =
+      query_current(ctx, q.vehicle_id, q.current, q.live_current, "/current", q.no_current);
   if (!current) return current.error();
   if (q.initial_yaw_rate_dps &&
       (!finite(*q.initial_yaw_rate_dps) || std::abs(*q.initial_yaw_rate_dps) > 90.0))
@@ -190,6 +239,9 @@ Result<ManeuverEvaluation> evaluate_maneuvers(Context& ctx, const ManeuverQuery&
   out.query = q;
   out.current = current->current;
   out.current_source = current->source;
+  out.frame = current->frame;
+  out.current_covariance = current->covariance;
+  out.motion = answer_motion(ctx, q.vehicle_id, q.speed_over_ground);
   out.table_source = pred->table_source;
   if (pred->model) out.model_id = pred->model->id;
   const double speed = q.candidate_speed_mps.value_or(q.speed_mps);
@@ -197,8 +249,15 @@ Result<ManeuverEvaluation> evaluate_maneuvers(Context& ctx, const ManeuverQuery&
   const std::vector<double> candidates = q.candidates_deg.empty()
                                              ? kin::candidate_dheadings_deg(q.candidate_step_deg)
                                              : q.candidates_deg;
-  const kin::ManeuverProblem problem{q.own,       q.contacts,     q.standoff_m,
-                                     q.horizon_s, q.use_corridor, current->current};
+  kin::ManeuverProblem problem;
+  problem.own = q.own;
+  problem.contacts = q.contacts;
+  problem.standoff_m = q.standoff_m;
+  problem.horizon_s = q.horizon_s;
+  problem.use_corridor = q.use_corridor;
+  problem.current = current->current;
+  problem.speed_over_ground = out.motion.speed_over_ground;
+  problem.band = band_sources(out.motion, current->covariance);
   out.candidates.reserve(candidates.size());
   out.timed_by_turns = q.method == PredictionMethod::avk;
   for (const double d : candidates) {
@@ -207,7 +266,21 @@ Result<ManeuverEvaluation> evaluate_maneuvers(Context& ctx, const ManeuverQuery&
     if (q.method == PredictionMethod::avk && !m->timed_by_turns) out.timed_by_turns = false;
     out.candidates.push_back(kin::evaluate_candidate(problem, *m));
   }
-  out.chosen = kin::choose_maneuver(out.candidates);
+  if (q.corridor_rule) {
+    out.chosen = kin::choose_maneuver(out.candidates);
+    out.choice.index = out.chosen;
+    out.choice.explanation = "the smallest heading change whose corridor edge clears";
+    if (out.chosen) {
+      const auto& c = out.candidates[*out.chosen];
+      out.choice.risk = c.risk;
+      out.choice.within_limit = c.risk <= q.max_risk;
+      out.choice.margin_m = c.min_cpa_m - q.standoff_m;
+    }
+  } else {
+    out.choice =
+        kin::choose_by_risk(problem, q.speed_mps, out.candidates, {q.max_risk, q.prefer_starboard});
+    out.chosen = out.choice.index;
+  }
   return out;
 }
 
@@ -226,21 +299,26 @@ Result<OngoingManeuver> evaluate_ongoing(Context& ctx, const OngoingQuery& q) {
     return invalid_argument("mx", "the measured position must be finite (m)");
   if (!(q.corridor_share > 0.0 && q.corridor_share < 1.0))
     return invalid_argument("corridor", "must be a share within (0, 1)");
-  auto current = query_current(ctx, q.vehicle_id, q.current, q.live_current, "current");
+  auto current =
+      query_current(ctx, q.vehicle_id, q.current, q.live_current, "current", q.no_current);
   if (!current) return current.error();
   auto pred = predictor_for(ctx, q.vehicle_id, q.method, q.model_id, q.corridor_share);
   if (!pred) return pred.error();
   auto m = predict_one(*pred, q.speed_mps, q.dheading_deg, q.horizon_s, "speed");
   if (!m) return m.error();
-  const kin::PredictedManeuver whole = kin::extended_to_horizon(std::move(*m), q.horizon_s);
   OngoingManeuver out;
   out.query = q;
   out.current = current->current;
   out.current_source = current->source;
-  out.prediction = kin::placed(whole.path, q.start);
-  if (out.current)
-    out.prediction =
-        kin::drifted(std::move(out.prediction), {out.current->east_mps, out.current->north_mps});
+  out.frame = current->frame;
+  out.current_covariance = current->covariance;
+  out.motion = answer_motion(ctx, q.vehicle_id, q.speed_over_ground);
+  const kin::PredictedManeuver whole =
+      kin::placed_over_ground(*m, q.start, out.current, out.motion.speed_over_ground, q.horizon_s);
+  out.prediction = whole.path;
+  out.covariance_m2 =
+      kin::position_band(whole.path, whole.along_sd_m, whole.cross_sd_m, whole.turn_points,
+                         band_sources(out.motion, current->covariance));
   out.evaluation =
       kin::evaluate_ongoing(out.prediction, whole.half_width_m, q.elapsed_s, q.measured);
   out.half_width_m = whole.half_width_m;

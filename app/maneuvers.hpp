@@ -4,6 +4,7 @@
 // assumption), placed at the vehicle's pose, scored by closest point of approach to each contact,
 // and the choice. Also the evaluation of a maneuver in progress. Commands nothing.
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -12,10 +13,21 @@
 #include "app/predict.hpp"
 #include "app/result.hpp"
 #include "kinematics/maneuver.hpp"
+#include "kinematics/maneuver_choice.hpp"
+#include "kinematics/position_band.hpp"
 
 namespace avk::app {
 
 class Context;
+
+// What an answer assumed of the vehicle's motion: the speed its loop holds and how a straight
+// prediction's error grows, and where each came from ("identified", "default", "query").
+struct AnswerMotion {
+  bool speed_over_ground = true;
+  std::string speed_reference_source = "default";
+  kinematics::MotionScatter scatter;
+  std::string scatter_source = "default";
+};
 
 struct ManeuverQuery {
   std::string vehicle_id;
@@ -33,10 +45,21 @@ struct ManeuverQuery {
   std::optional<std::int64_t> model_id;  // model: this one; none: the vehicle's newest
   double corridor_share = kinematics::kDefaultCorridorShare;
   bool use_corridor = true;  // avk: judge by the corridor's nearer edge
-  // The current (grid frame): every candidate drifts with it (app/predict.hpp's rule); or the
-  // station's live estimate.
+  // The current (grid frame): every candidate drifts with it; or the station's live estimate;
+  // or none (through the water). Neither: over ground wherever the station knows the current
+  // (app/current.hpp query_current).
   std::optional<kinematics::WaterCurrent> current;
   bool live_current = false;
+  bool no_current = false;
+  // Which speed the vehicle's loop holds, over ground (true) or through the water; none: the
+  // vehicle's, as the station identified it (app/vehicle_motion.hpp).
+  std::optional<bool> speed_over_ground;
+  // The choice: by risk (the default) with this limit, optionally keeping to starboard where
+  // COLREGS rules 14 and 15 ask it; or the corridor rule (the smallest |dheading| whose corridor
+  // edge clears the standoff).
+  double max_risk = kinematics::kDefaultMaxRisk;
+  bool prefer_starboard = false;
+  bool corridor_rule = false;
   // The yaw rate now (deg/s, + clockwise): each candidate starts turning at it (into a starboard
   // candidate when +, against it when -). avk: the table over initial yaw rate
   // (yaw_rate_table.hpp); model: the model started at that rate. None: from a steady course.
@@ -54,6 +77,10 @@ struct ManeuverEvaluation {
   bool timed_by_turns = false;
   std::optional<kinematics::WaterCurrent> current;  // the drift added, and where it came from
   std::optional<std::string> current_source;
+  std::string frame = "water";  // of every candidate's path: "ground" or "water"
+  std::optional<std::array<double, 3>> current_covariance;  // (m/s)², [ee, en, nn]
+  AnswerMotion motion;                // the speed reference and scatter the answer used
+  kinematics::ManeuverChoice choice;  // the rule's account of the choice (risk rule)
 };
 
 // invalid_argument names the field as a JSON pointer of the request document (/own/speed_mps,
@@ -75,6 +102,8 @@ struct OngoingQuery {
   double horizon_s = 120.0;  // how far the prediction runs
   std::optional<kinematics::WaterCurrent> current;
   bool live_current = false;
+  bool no_current = false;
+  std::optional<bool> speed_over_ground;
 };
 
 struct OngoingManeuver {
@@ -84,8 +113,17 @@ struct OngoingManeuver {
   kinematics::OngoingEvaluation evaluation;
   kinematics::TimedPath prediction;  // the whole placed prediction, to the horizon
   std::vector<double> half_width_m;  // the corridor per prediction point; empty without one
+  std::vector<kinematics::Covariance2> covariance_m2;  // the position band per point
+  std::string frame = "water";
+  std::optional<std::array<double, 3>> current_covariance;
+  AnswerMotion motion;
   std::optional<std::int64_t> model_id;
 };
+
+// The band's sources for an answer: the vehicle's straight-leg scatter and the current
+// estimate's covariance.
+kinematics::BandSources band_sources(
+    const AnswerMotion& motion, const std::optional<std::array<double, 3>>& current_covariance);
 
 // invalid_argument names the query parameter (x, dheading, speed, elapsed, horizon, mx,
 // corridor, current); not_found as evaluate_maneuvers.

@@ -380,7 +380,8 @@ Result<Prediction> predict(Context& ctx, const PredictQuery& query) {
   const PredictQuery q = without_null_change(query);
   Prediction p;
   p.query = q;
-  auto current = query_current(ctx, q.vehicle_id, q.current, q.live_current, "current");
+  auto current =
+      query_current(ctx, q.vehicle_id, q.current, q.live_current, "current", q.no_current);
   if (!current) return current.error();
   p.current = current->current;
   p.current_source = current->source;

@@ -36,6 +36,7 @@ struct PredictQuery {
   // pose) the start heading is north, so the current is read as if the turn began heading north.
   std::optional<kinematics::WaterCurrent> current;
   bool live_current = false;  // the current: the station's latest estimate for the vehicle
+  bool no_current = false;    // nothing added: the path through the water
   // avk: the vehicle's table of collection and harvested turns, not collection turns alone.
   bool include_harvested = false;
   // The yaw rate when the turn is commanded (deg/s, + clockwise, as headings turn; for a right

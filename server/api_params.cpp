@@ -89,6 +89,10 @@ CurrentParam current_param(const ApiRequest& r) {
     out.live = true;
     return out;
   }
+  if (it->second == "none") {
+    out.none = true;
+    return out;
+  }
   const auto comma = it->second.find(',');
   const auto part = [&](std::string_view text) -> std::optional<double> {
     const nlohmann::json v = nlohmann::json::parse(text, nullptr, false);
@@ -103,7 +107,15 @@ CurrentParam current_param(const ApiRequest& r) {
       return out;
     }
   }
-  throw bad_parameter("current", "must be live or EAST,NORTH in m/s (e.g. 0.1,-0.2)");
+  throw bad_parameter("current", "must be live, none or EAST,NORTH in m/s (e.g. 0.1,-0.2)");
+}
+
+std::optional<bool> speed_reference_param(const ApiRequest& r) {
+  const auto it = r.query.find("speed_reference");
+  if (it == r.query.end()) return std::nullopt;
+  if (it->second == "over_ground") return true;
+  if (it->second == "through_water") return false;
+  throw bad_parameter("speed_reference", "must be over_ground or through_water");
 }
 
 bool include_harvested_param(const ApiRequest& r) {

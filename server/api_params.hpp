@@ -36,13 +36,19 @@ std::int64_t path_id(const PathParams& p, const std::string& key, const std::str
 // ?method=avk|model|instantaneous; none when absent.
 std::optional<app::PredictionMethod> method_param(const ApiRequest& r);
 
-// ?current=live (the station's estimate) or ?current=EAST,NORTH (m/s toward east and north);
-// none when absent. 400 naming `current` for anything else.
+// ?current=live (the station's estimate), ?current=none (through the water) or
+// ?current=EAST,NORTH (m/s toward east and north); absent: over ground wherever the station
+// knows the current. 400 naming `current` for anything else.
 struct CurrentParam {
   std::optional<kinematics::WaterCurrent> current;
   bool live = false;
+  bool none = false;
 };
 CurrentParam current_param(const ApiRequest& r);
+
+// ?speed_reference=over_ground|through_water: which speed the vehicle's loop holds, overriding
+// the station's; none when absent. 400 for anything else.
+std::optional<bool> speed_reference_param(const ApiRequest& r);
 
 // ?include=harvested: the vehicle's table of collection and harvested turns; absent or
 // ?include=collection: collection turns only. Anything else is 400.

@@ -46,6 +46,15 @@ std::optional<bool> boolean(Reader& r, const char* key) {
   return v->get<bool>();
 }
 
+// "over_ground" (true) or "through_water" (false).
+std::optional<bool> speed_reference(Reader& r, const char* key) {
+  const json* v = present(r, key, false);
+  if (!v) return std::nullopt;
+  if (v->is_string() && (*v == "over_ground" || *v == "through_water")) return *v == "over_ground";
+  r.error(std::string("/") + key, R"(expected "over_ground" or "through_water")");
+  return std::nullopt;
+}
+
 std::optional<app::PredictionMethod> method(Reader& r, const char* key) {
   const json* v = present(r, key, false);
   if (!v) return std::nullopt;
@@ -163,18 +172,30 @@ app::Result<ManeuverRequest> maneuver_request(const json& body, const std::strin
   q.model_id = id(r, "model_id");
   q.corridor_share = number(r, "corridor", 0.5, 0.999, false).value_or(q.corridor_share);
   q.use_corridor = boolean(r, "use_corridor").value_or(q.use_corridor);
-  // "current": "live" (the station's estimate) or {"east_mps": E, "north_mps": N}.
+  // "current": "live" (the station's estimate), "none" (through the water) or
+  // {"east_mps": E, "north_mps": N}; absent: over ground wherever the station knows the current.
   if (const json* c = present(r, "current", false)) {
     if (c->is_string() && c->get<std::string>() == "live") {
       q.live_current = true;
+    } else if (c->is_string() && c->get<std::string>() == "none") {
+      q.no_current = true;
     } else if (c->is_object() && c->size() == 2 && c->contains("east_mps") &&
                c->contains("north_mps") && (*c)["east_mps"].is_number() &&
                (*c)["north_mps"].is_number()) {
       q.current =
           kinematics::WaterCurrent{(*c)["east_mps"].get<double>(), (*c)["north_mps"].get<double>()};
     } else {
-      r.error("/current", R"(expected "live" or {"east_mps": E, "north_mps": N} (m/s))");
+      r.error("/current", R"(expected "live", "none" or {"east_mps": E, "north_mps": N} (m/s))");
     }
+  }
+  if (const auto ref = speed_reference(r, "speed_reference")) q.speed_over_ground = *ref;
+  q.max_risk = number(r, "max_risk", 0.0, 1.0, false).value_or(q.max_risk);
+  q.prefer_starboard = boolean(r, "colregs").value_or(q.prefer_starboard);
+  if (const json* rule = present(r, "rule", false)) {
+    if (rule->is_string() && (*rule == "risk" || *rule == "corridor"))
+      q.corridor_rule = *rule == "corridor";
+    else
+      r.error("/rule", R"(expected "risk" or "corridor")");
   }
   q.initial_yaw_rate_dps = number(r, "initial_yaw_rate_dps", -90.0, 90.0, false);
   out.path_step_s = number(r, "path_step_s", 0.0, 60.0, false).value_or(out.path_step_s);
@@ -234,6 +255,8 @@ app::OngoingQuery ongoing_query(const ApiRequest& r, const std::string& vehicle_
   const CurrentParam current = current_param(r);
   q.current = current.current;
   q.live_current = current.live;
+  q.no_current = current.none;
+  q.speed_over_ground = speed_reference_param(r);
   return q;
 }
 

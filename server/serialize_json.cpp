@@ -3,7 +3,9 @@
 
 #include "kinematics/angles.hpp"
 #include "kinematics/ckt3_file.hpp"
+#include "kinematics/colregs.hpp"
 #include "kinematics/number_text.hpp"
+#include "kinematics/position_band.hpp"
 #include "kinematics/turn_json.hpp"
 #include "kinematics/yaw_model_json.hpp"
 #include "server/serialize.hpp"
@@ -461,7 +463,20 @@ json optional_approach_json(const std::optional<kin::Approach>& a) {
   return a ? approach_json(*a) : json();
 }
 
-json candidate_json(const kin::CandidateEvaluation& c, double path_step_s) {
+// The position band at the kept points: the ellipse of the share about each point.
+json band_json(const std::vector<kin::Covariance2>& cov, const std::vector<std::size_t>& keep,
+               double share) {
+  json out = json::array();
+  for (const std::size_t i : keep) {
+    if (i >= cov.size()) break;
+    const kin::BandEllipse e = kin::band_ellipse(cov[i], share);
+    out.push_back(
+        {{"major_m", e.major_m}, {"minor_m", e.minor_m}, {"major_axis_deg", e.major_axis_deg}});
+  }
+  return out;
+}
+
+json candidate_json(const kin::CandidateEvaluation& c, double path_step_s, double share) {
   const std::vector<std::size_t> keep = thinned_indices(c.path, path_step_s);
   json widths = json::array();
   if (c.half_width_m.size() == c.path.size())
@@ -469,16 +484,42 @@ json candidate_json(const kin::CandidateEvaluation& c, double path_step_s) {
       widths.push_back(c.half_width_m[i]);
   json contacts = json::array();
   for (const auto& a : c.contacts)
-    contacts.push_back(
-        {{"cpa", approach_json(a.cpa)}, {"edge_cpa", optional_approach_json(a.edge_cpa)}});
+    contacts.push_back({{"cpa", approach_json(a.cpa)},
+                        {"edge_cpa", optional_approach_json(a.edge_cpa)},
+                        {"risk", a.risk}});
   return {{"dheading_deg", c.dheading_deg},
           {"speed_mps", c.speed_mps},
           {"path", timed_points_json(c.path, keep)},
           {"half_width_m", c.half_width_m.empty() ? json() : widths},
+          {"band", band_json(c.covariance_m2, keep, share)},
           {"contacts", std::move(contacts)},
           {"min_cpa_m", c.min_cpa_m},
           {"min_edge_cpa_m", optional_json(c.min_edge_cpa_m)},
-          {"clears", c.clears}};
+          {"clears", c.clears},
+          {"risk", c.risk}};
+}
+
+// What an answer's paths are relative to: the frame, the current and its uncertainty, and what
+// it assumed of the vehicle's speed loop and scatter.
+void put_answer_frame(json& j, const std::string& frame,
+                      const std::optional<kin::WaterCurrent>& current,
+                      const std::optional<std::string>& source,
+                      const std::optional<std::array<double, 3>>& covariance,
+                      const app::AnswerMotion& motion) {
+  j["frame"] = frame;
+  json c = water_current_json(current, source);
+  if (c.is_null() && source) c = {{"source", *source}};
+  if (covariance && c.is_object()) {
+    c["covariance_m2ps2"] = *covariance;
+    c["east_sd_mps"] = std::sqrt(std::max(0.0, (*covariance)[0]));
+    c["north_sd_mps"] = std::sqrt(std::max(0.0, (*covariance)[2]));
+  }
+  j["current"] = std::move(c);
+  j["speed_reference"] = {{"value", motion.speed_over_ground ? "over_ground" : "through_water"},
+                          {"source", motion.speed_reference_source}};
+  j["scatter"] = {{"along_mps", motion.scatter.along_mps},
+                  {"cross_mps", motion.scatter.cross_mps},
+                  {"source", motion.scatter_source}};
 }
 
 }  // namespace
@@ -502,40 +543,70 @@ json maneuver_evaluation_json(const app::ManeuverEvaluation& e, double path_step
     contacts.push_back(contact_json(c));
   json candidates = json::array();
   for (const auto& c : e.candidates)
-    candidates.push_back(candidate_json(c, path_step_s));
+    candidates.push_back(candidate_json(c, path_step_s, q.corridor_share));
   json chosen;
   if (e.chosen) {
     const kin::CandidateEvaluation& c = e.candidates.at(*e.chosen);
-    chosen = {{"index", *e.chosen},
-              {"dheading_deg", c.dheading_deg},
-              {"min_cpa_m", c.min_cpa_m},
-              {"min_edge_cpa_m", optional_json(c.min_edge_cpa_m)}};
+    json situations = json::array();
+    for (const auto s : e.choice.situations)
+      situations.push_back(kin::to_string(s));
+    chosen = {
+        {"index", *e.chosen},
+        {"dheading_deg", c.dheading_deg},
+        {"min_cpa_m", c.min_cpa_m},
+        {"min_edge_cpa_m", optional_json(c.min_edge_cpa_m)},
+        {"risk", c.risk},
+        {"margin_m", e.choice.margin_m},
+        {"within_limit", e.choice.within_limit},
+        {"colregs_rule", e.choice.colregs_rule.empty() ? json() : json(e.choice.colregs_rule)},
+        {"situations", std::move(situations)},
+        {"explanation", e.choice.explanation}};
   }
-  return {{"vehicle_id", q.vehicle_id},
-          {"method", app::to_string(q.method)},
-          {"model_id", optional_json(e.model_id)},
-          {"table_source", e.table_source ? json(*e.table_source) : json()},
-          {"timed_by_turns", e.timed_by_turns},
-          {"current", water_current_json(e.current, e.current_source)},
-          {"own",
-           {{"x_m", q.own.x_m},
-            {"y_m", q.own.y_m},
-            {"heading_deg", q.own.heading_deg},
-            {"speed_mps", q.speed_mps}}},
-          {"contacts", std::move(contacts)},
-          {"standoff_m", q.standoff_m},
-          {"horizon_s", q.horizon_s},
-          {"corridor", q.corridor_share},
-          {"use_corridor", q.use_corridor},
-          {"path_step_s", path_step_s},
-          {"candidates", std::move(candidates)},
-          {"chosen", std::move(chosen)}};
+  json out = {{"vehicle_id", q.vehicle_id},
+              {"method", app::to_string(q.method)},
+              {"model_id", optional_json(e.model_id)},
+              {"table_source", e.table_source ? json(*e.table_source) : json()},
+              {"timed_by_turns", e.timed_by_turns},
+              {"own",
+               {{"x_m", q.own.x_m},
+                {"y_m", q.own.y_m},
+                {"heading_deg", q.own.heading_deg},
+                {"speed_mps", q.speed_mps}}},
+              {"contacts", std::move(contacts)},
+              {"standoff_m", q.standoff_m},
+              {"horizon_s", q.horizon_s},
+              {"corridor", q.corridor_share},
+              {"use_corridor", q.use_corridor},
+              {"path_step_s", path_step_s},
+              {"rule", q.corridor_rule ? "corridor" : "risk"},
+              {"max_risk", q.max_risk},
+              {"prefer_starboard", q.prefer_starboard},
+              {"band_share", q.corridor_share},
+              {"candidates", std::move(candidates)},
+              {"chosen", std::move(chosen)}};
+  put_answer_frame(out, e.frame, e.current, e.current_source, e.current_covariance, e.motion);
+  return out;
 }
 
 json ongoing_maneuver_json(const app::OngoingManeuver& o) {
   const app::OngoingQuery& q = o.query;
   const kin::OngoingEvaluation& e = o.evaluation;
-  return {
+  // The band where the vehicle should be now, at the corridor's share.
+  json band_now;
+  if (!o.covariance_m2.empty()) {
+    std::size_t i = 0;
+    while (i + 1 < o.prediction.size() && o.prediction[i + 1].t_s <= e.elapsed_s)
+      ++i;
+    const kin::BandEllipse b = kin::band_ellipse(o.covariance_m2[i], q.corridor_share);
+    band_now = {
+        {"major_m", b.major_m}, {"minor_m", b.minor_m}, {"major_axis_deg", b.major_axis_deg}};
+    if (q.measured) {
+      const double k = kin::band_radius_factor(q.corridor_share);
+      const kin::Point d{q.measured->x_m - e.expected.x_m, q.measured->y_m - e.expected.y_m};
+      band_now["inside"] = kin::mahalanobis2(o.covariance_m2[i], d) <= k * k;
+    }
+  }
+  json out = {
       {"vehicle_id", q.vehicle_id},
       {"method", app::to_string(q.method)},
       {"model_id", optional_json(o.model_id)},
@@ -550,9 +621,11 @@ json ongoing_maneuver_json(const app::OngoingManeuver& o) {
       {"deviation_m", optional_json(e.deviation_m)},
       {"cross_track_m", optional_json(e.cross_track_m)},
       {"inside_corridor", e.inside_corridor ? json(*e.inside_corridor) : json()},
-      {"current", water_current_json(o.current, o.current_source)},
+      {"band_now", std::move(band_now)},
       {"remaining", timed_path_json(e.remaining)},
       {"prediction", timed_path_json(o.prediction)}};
+  put_answer_frame(out, o.frame, o.current, o.current_source, o.current_covariance, o.motion);
+  return out;
 }
 
 json simulated_maneuver_json(const app::SimulatedManeuver& s, kin::Point origin,

@@ -59,6 +59,17 @@ std::string flags_text(const app::EncounterMethodResult& r) {
   return f;
 }
 
+json calibration_json(const std::vector<app::RiskBin>& bins) {
+  json out = json::array();
+  for (const auto& b : bins)
+    out.push_back({{"lo", b.lo},
+                   {"hi", b.hi},
+                   {"candidates", b.candidates},
+                   {"mean_predicted", b.mean_predicted},
+                   {"observed_rate", b.observed_rate}});
+  return out;
+}
+
 json bench_json(const app::EncounterBench& b, const app::EncounterBenchQuery& q) {
   json scenarios = json::array();
   for (const auto& s : b.scenarios) {
@@ -71,9 +82,14 @@ json bench_json(const app::EncounterBench& b, const app::EncounterBenchQuery& q)
                          {"actual_cpa_m", r.actual_cpa_m},
                          {"violation", r.violation},
                          {"no_maneuver_while_one_existed", r.no_maneuver_while_one_existed},
-                         {"unsafe_while_safe_existed", r.unsafe_while_safe_existed}});
+                         {"unsafe_while_safe_existed", r.unsafe_while_safe_existed},
+                         {"chosen_risk", optional_json(r.chosen_risk)},
+                         {"colregs_rule", r.colregs_rule.empty() ? json() : json(r.colregs_rule)},
+                         {"along_error_m", optional_json(r.along_error_m)},
+                         {"cross_error_m", optional_json(r.cross_error_m)}});
     }
     scenarios.push_back({{"name", s.name},
+                         {"sea_seed", s.sea_seed},
                          {"standoff_m", s.standoff_m},
                          {"safe_existed", s.safe_existed},
                          {"course_held_cpa_m", s.course_held_cpa_m},
@@ -95,11 +111,18 @@ json bench_json(const app::EncounterBench& b, const app::EncounterBenchQuery& q)
                        {"unsafe_while_safe_existed", m.unsafe_while_safe_existed},
                        {"mean_abs_dheading_deg", optional_json(m.mean_abs_dheading_deg)},
                        {"mean_cpa_error_m", optional_json(m.mean_cpa_error_m)},
-                       {"mean_abs_cpa_error_m", optional_json(m.mean_abs_cpa_error_m)}});
+                       {"mean_abs_cpa_error_m", optional_json(m.mean_abs_cpa_error_m)},
+                       {"mean_abs_along_error_m", optional_json(m.mean_abs_along_error_m)},
+                       {"mean_abs_cross_error_m", optional_json(m.mean_abs_cross_error_m)},
+                       {"calibration", calibration_json(m.calibration)}});
   }
   return {{"vehicle_id", q.vehicle_id},
           {"plant", q.setup.vehicle.kind},
           {"seed", q.seed},
+          {"sea_seeds", q.sea_seeds},
+          {"max_risk", q.max_risk},
+          {"rule", q.corridor_rule ? "corridor" : "risk"},
+          {"colregs", q.prefer_starboard},
           {"candidate_step_deg", q.candidate_step_deg},
           {"current", water_current_json(b.current, "estimated")},
           {"flights", b.flights},
@@ -126,7 +149,7 @@ void print_csv(const app::EncounterBench& b, Io& io) {
 
 void print_summary(const app::EncounterBench& b, std::ostream& out) {
   out << "method         scenarios  violations   rate  no-maneuver  none-while-safe  "
-         "unsafe-while-safe  mean|dpsi|  cpa-err  |cpa-err|\n";
+         "unsafe-while-safe  mean|dpsi|  cpa-err  |cpa-err|  |along|  |cross|\n";
   for (const auto& m : b.summary) {
     out << std::left << std::setw(15) << app::to_string(m.method) << std::right;
     if (!m.available) {
@@ -138,7 +161,21 @@ void print_summary(const app::EncounterBench& b, std::ostream& out) {
         << m.no_maneuver_while_one_existed << std::setw(19) << m.unsafe_while_safe_existed
         << std::setw(12) << opt_text(m.mean_abs_dheading_deg, 1) << std::setw(9)
         << opt_text(m.mean_cpa_error_m, 2, true) << std::setw(11)
-        << opt_text(m.mean_abs_cpa_error_m, 2) << "\n";
+        << opt_text(m.mean_abs_cpa_error_m, 2) << std::setw(9)
+        << opt_text(m.mean_abs_along_error_m, 2) << std::setw(9)
+        << opt_text(m.mean_abs_cross_error_m, 2) << "\n";
+  }
+  // Is a predicted risk of p violated a share p of the time? Every flown candidate counts.
+  for (const auto& m : b.summary) {
+    if (!m.available || m.calibration.empty()) continue;
+    out << "\nrisk calibration, " << app::to_string(m.method)
+        << " (every flown candidate)\n  predicted risk   candidates  mean predicted  observed\n";
+    for (const auto& bin : m.calibration) {
+      if (bin.candidates == 0) continue;
+      out << "  [" << fixed(bin.lo, 2) << ", " << fixed(bin.hi, 2) << ")" << std::setw(13)
+          << bin.candidates << std::setw(16) << fixed(bin.mean_predicted, 3) << std::setw(10)
+          << fixed(bin.observed_rate, 3) << "\n";
+    }
   }
 }
 
@@ -178,10 +215,11 @@ void print_table(const app::EncounterBench& b, Io& io) {
 }
 
 int encounter_run(const std::vector<std::string>& rest, Io& io) {
-  const Args a(rest,
-               {"scenarios", "db", "vehicle-id", "vehicle", "sim-config", "method", "seed", "ticks",
-                "format", "step", "threads", "current"},
-               {"jitter"});
+  const Args a(
+      rest,
+      {"scenarios", "db", "vehicle-id", "vehicle", "sim-config", "method", "seed", "ticks",
+       "format", "step", "threads", "current", "sea-seeds", "max-risk", "rule", "speed-reference"},
+      {"jitter", "colregs"});
   const std::string format = a.get("format").value_or("table");
   if (format != "table" && format != "json" && format != "csv")
     throw UsageError("--format must be table, json or csv");
@@ -199,6 +237,26 @@ int encounter_run(const std::vector<std::string>& rest, Io& io) {
   if (current != "estimated" && current != "none")
     throw UsageError("--current must be estimated or none");
   q.use_estimated_current = current == "estimated";
+  if (const auto seeds = a.get("sea-seeds")) {
+    std::stringstream list(*seeds);
+    for (std::string item; std::getline(list, item, ',');) {
+      const auto v = nlohmann::json::parse(item, nullptr, false);
+      if (!v.is_number_unsigned()) throw UsageError("--sea-seeds needs whole numbers, e.g. 1,2");
+      q.sea_seeds.push_back(v.get<std::uint64_t>());
+    }
+    if (q.sea_seeds.empty()) throw UsageError("--sea-seeds needs at least one seed");
+  }
+  q.max_risk = a.number("max-risk").value_or(q.max_risk);
+  if (!(q.max_risk >= 0.0 && q.max_risk <= 1.0)) throw UsageError("--max-risk must be in [0, 1]");
+  const std::string rule = a.get("rule").value_or("risk");
+  if (rule != "risk" && rule != "corridor") throw UsageError("--rule must be risk or corridor");
+  q.corridor_rule = rule == "corridor";
+  q.prefer_starboard = a.flag("colregs");
+  if (const auto ref = a.get("speed-reference")) {
+    if (*ref != "over_ground" && *ref != "through_water")
+      throw UsageError("--speed-reference must be over_ground or through_water");
+    q.speed_over_ground = *ref == "over_ground";
+  }
   q.vehicle_id = vehicle_of(a, ctx.db(), {}, "vehicle-id");
   const app::EncounterFile file =
       value_or_fail(app::parse_encounter_file(read_file(scenarios_path, io.in)));

@@ -10,6 +10,7 @@
 
 #include "app/context.hpp"
 #include "app/maneuvers.hpp"
+#include "kinematics/angles.hpp"
 #include "server/cli/app_error.hpp"
 #include "server/cli/args.hpp"
 #include "server/cli/commands.hpp"
@@ -69,9 +70,14 @@ json evaluate_body(const Args& a) {
   if (a.flag("no-corridor")) body["use_corridor"] = false;
   const CurrentOption current = current_option(a);
   if (current.live) body["current"] = "live";
+  if (current.none) body["current"] = "none";
   if (current.current)
     body["current"] = {{"east_mps", current.current->east_mps},
                        {"north_mps", current.current->north_mps}};
+  if (const auto v = a.number("max-risk")) body["max_risk"] = *v;
+  if (a.flag("colregs")) body["colregs"] = true;
+  if (const auto r = a.get("rule")) body["rule"] = *r;
+  if (const auto r = a.get("speed-reference")) body["speed_reference"] = *r;
   return body;
 }
 
@@ -86,31 +92,41 @@ void print_evaluation(const app::ManeuverEvaluation& e, std::ostream& out) {
       << " · standoff " << fixed(q.standoff_m, 1) << " m · horizon " << fixed(q.horizon_s, 0)
       << " s\n";
   // Plain ASCII in the columns: setw counts bytes.
+  out << "frame " << e.frame << " · current ";
+  if (e.current)
+    out << fixed(std::hypot(e.current->east_mps, e.current->north_mps), 2) << " m/s toward "
+        << fixed(kinematics::heading_of_deg(e.current->east_mps, e.current->north_mps), 0) << "°";
+  else
+    out << "none";
+  out << " (" << e.current_source.value_or("none") << ") · speed held "
+      << (e.motion.speed_over_ground ? "over ground" : "through the water") << " ("
+      << e.motion.speed_reference_source << ")\n";
   out << std::setw(7) << "dpsi" << std::setw(13) << "min CPA (m)" << std::setw(14) << "edge CPA (m)"
-      << std::setw(8) << "clears"
+      << std::setw(8) << "clears" << std::setw(9) << "risk"
       << "\n";
   for (std::size_t i = 0; i < e.candidates.size(); ++i) {
     const auto& c = e.candidates[i];
     out << std::setw(7) << signed_deg(c.dheading_deg) << std::setw(13) << fixed(c.min_cpa_m, 1)
         << std::setw(14) << (c.min_edge_cpa_m ? fixed(*c.min_edge_cpa_m, 1) : std::string("–"))
-        << std::setw(8) << (c.clears ? "yes" : "no") << (e.chosen == i ? "   <- chosen" : "")
-        << "\n";
+        << std::setw(8) << (c.clears ? "yes" : "no") << std::setw(9) << fixed(c.risk, 3)
+        << (e.chosen == i ? "   <- chosen" : "") << "\n";
   }
   if (!e.chosen) {
-    out << "chosen: none (no candidate clears " << fixed(q.standoff_m, 1) << " m)\n";
+    out << "chosen: none\n";
     return;
   }
   const auto& c = e.candidates[*e.chosen];
   out << "chosen: " << signed_deg(c.dheading_deg) << "° (CPA " << fixed(c.min_cpa_m, 1) << " m";
   if (c.min_edge_cpa_m) out << ", edge " << fixed(*c.min_edge_cpa_m, 1) << " m";
-  out << ")\n";
+  out << ", risk " << fixed(c.risk, 3) << ", margin " << fixed(e.choice.margin_m, 1)
+      << " m): " << e.choice.explanation << "\n";
 }
 
 int evaluate(const std::vector<std::string>& rest, Io& io) {
   const Args a(rest,
                {"db", "vehicle", "own", "standoff", "horizon", "method", "model", "step", "speed",
-                "corridor", "format", "current"},
-               {"no-corridor"}, {"contact"});
+                "corridor", "format", "current", "max-risk", "rule", "speed-reference"},
+               {"no-corridor", "colregs"}, {"contact"});
   const std::string format = format_option(a);
   const json body = evaluate_body(a);
   app::Context ctx(a.require("db"));
@@ -167,6 +183,7 @@ int ongoing(const std::vector<std::string>& rest, Io& io) {
   const CurrentOption current = current_option(a);
   q.current = current.current;
   q.live_current = current.live;
+  q.no_current = current.none;
   app::Context ctx(a.require("db"));
   q.vehicle_id = vehicle_of(a, ctx.db(), {});
   const app::OngoingManeuver o = value_or_fail(app::evaluate_ongoing(ctx, q));

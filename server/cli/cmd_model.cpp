@@ -343,6 +343,7 @@ int predict(const std::vector<std::string>& rest, Io& io) {
   const CurrentOption current = current_option(a);
   q.current = current.current;
   q.live_current = current.live;
+  q.no_current = current.none;
   q.initial_yaw_rate_dps = a.number("initial-yaw-rate");
   if (const auto held_out = a.get("without-mission"))
     q.without_mission_id = parse_id(*held_out, "--without-mission");

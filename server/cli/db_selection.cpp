@@ -38,7 +38,11 @@ CurrentOption current_option(const Args& a, bool allow_live) {
     out.live = true;
     return out;
   }
-  const auto v = a.number_list("current", 2, "EAST,NORTH (m/s) or live");
+  if (*text == "none") {
+    out.none = true;
+    return out;
+  }
+  const auto v = a.number_list("current", 2, "EAST,NORTH (m/s), live or none");
   out.current = kinematics::WaterCurrent{(*v)[0], (*v)[1]};
   return out;
 }

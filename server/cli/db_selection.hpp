@@ -21,11 +21,13 @@ std::optional<std::int64_t> model_option(const Args& a);
 // --method avk|model|instantaneous (default avk), else a UsageError.
 app::PredictionMethod method_option(const Args& a);
 
-// --current live (the station's estimate) or --current EAST,NORTH (m/s toward east and north);
-// none when absent. A UsageError for anything else, or for live when allow_live is false.
+// --current live (the station's estimate), --current none (through the water) or --current
+// EAST,NORTH (m/s toward east and north); absent: the station's default (over ground where it
+// knows the current). A UsageError for anything else, or for live when allow_live is false.
 struct CurrentOption {
   std::optional<kinematics::WaterCurrent> current;
   bool live = false;
+  bool none = false;
 };
 CurrentOption current_option(const Args& a, bool allow_live = true);
 
