@@ -76,41 +76,6 @@ Result<Predictor> predictor_for(Context& ctx, const std::string& vehicle_id,
   return p;
 }
 
-// What the answer assumes of the vehicle's motion: the request's speed reference, else the
-// vehicle's; its straight-leg scatter.
-AnswerMotion answer_motion(Context& ctx, const std::string& vehicle_id,
-                           std::optional<bool> speed_over_ground) {
-  (void)ctx;
-  (void)vehicle_id;
-  AnswerMotion m;
-  m.scatter = {0.03, 0.03};
-  if (speed_over_ground) {
-    m.speed_over_ground = *speed_over_ground;
-    m.speed_reference_source = "query";
-  }
-  return m;
-}
-
-// The spread of the table's turns at equal time, 1 sigma, per trajectory vertex: across from
-// the corridor, along from the turns' timing spread at the commanded speed; both widened for the
-// few turns they are known from, as the corridor is (t quantile and sqrt(1 + 1/n) over the normal
-// quantile at the same share).
-void with_turn_spread(kin::PredictedManeuver& m, const kin::TurnPrediction& t) {
-  m.turn_points = m.path.size();
-  if (!t.corridor || t.corridor->n_turns < 2) return;
-  constexpr double kZ90 = 1.6448536269514722;  // two-sided 90 % normal quantile
-  const double widen = kin::corridor_factor(t.corridor->n_turns, 0.9) / kZ90;
-  m.cross_sd_m = kin::corridor_half_widths_m(t.trajectory, *t.corridor, 0.9);
-  for (double& w : m.cross_sd_m)
-    w /= kZ90;
-  if (!t.timing || t.timing->time_sd_s.size() != kin::kTimingStations) return;
-  const std::vector<double> s = kin::cumulative_arc_length_m(t.trajectory);
-  const double to_timing = s.back() > 0.0 ? t.timing->length_m / s.back() : 1.0;
-  m.along_sd_m.resize(s.size());
-  for (std::size_t i = 0; i < s.size(); ++i)
-    m.along_sd_m[i] = widen * m.speed_mps * kin::time_sd_at_length_s(*t.timing, s[i] * to_timing);
-}
-
 // One candidate in the normalised frame, timed. `speed_field` names the parameter a speed the
 // table cannot answer is reported against.
 Result<kin::PredictedManeuver> predict_one(const Predictor& p, double speed_mps,
@@ -128,13 +93,7 @@ Result<kin::PredictedManeuver> predict_one(const Predictor& p, double speed_mps,
       } catch (const kin::CktRangeError& e) {
         return invalid_argument(speed_field, e.what());
       }
-      std::vector<double> widths;
-      if (t.corridor && t.corridor->n_turns >= 2)
-        widths = kin::corridor_half_widths_m(t.trajectory, *t.corridor, p.corridor_share);
-      kin::PredictedManeuver m =
-          kin::timed_maneuver(dheading_deg, speed_mps, t.trajectory, t.timing, widths);
-      with_turn_spread(m, t);
-      return m;
+      return table_maneuver(t, speed_mps, dheading_deg, p.corridor_share);
     }
     case PredictionMethod::model: {
       // The model flown for the whole horizon: its own dynamics settle it on the new heading, and
@@ -214,10 +173,54 @@ std::optional<Error> check(const ManeuverQuery& q) {
 
 }  // namespace
 
+// The spread of the table's turns at equal time, 1 sigma, per trajectory vertex: across from
+// the corridor, along from the turns' timing spread at the commanded speed; both widened for the
+// few turns they are known from, as the corridor is (t quantile and sqrt(1 + 1/n) over the normal
+// quantile at the same share).
+// What the answer assumes of the vehicle's motion: the request's speed reference, else the
+// vehicle's; its straight-leg scatter.
+AnswerMotion answer_motion(Context& ctx, const std::string& vehicle_id,
+                           std::optional<bool> speed_over_ground) {
+  (void)ctx;
+  (void)vehicle_id;
+  AnswerMotion m;
+  m.scatter = {0.03, 0.03};
+  m.position_sd_m = 0.3;
+  if (speed_over_ground) {
+    m.speed_over_ground = *speed_over_ground;
+    m.speed_reference_source = "query";
+  }
+  return m;
+}
+
+kin::PredictedManeuver table_maneuver(const kin::TurnPrediction& t, double speed_mps,
+                                      double dheading_deg, double corridor_share) {
+  std::vector<double> widths;
+  if (t.corridor && t.corridor->n_turns >= 2)
+    widths = kin::corridor_half_widths_m(t.trajectory, *t.corridor, corridor_share);
+  kin::PredictedManeuver m =
+      kin::timed_maneuver(dheading_deg, speed_mps, t.trajectory, t.timing, std::move(widths));
+  m.turn_points = m.path.size();
+  if (!t.corridor || t.corridor->n_turns < 2) return m;
+  constexpr double kZ90 = 1.6448536269514722;  // two-sided 90 % normal quantile
+  const double widen = kin::corridor_factor(t.corridor->n_turns, 0.9) / kZ90;
+  m.cross_sd_m = kin::corridor_half_widths_m(t.trajectory, *t.corridor, 0.9);
+  for (double& w : m.cross_sd_m)
+    w /= kZ90;
+  if (!t.timing || t.timing->time_sd_s.size() != kin::kTimingStations) return m;
+  const std::vector<double> s = kin::cumulative_arc_length_m(t.trajectory);
+  const double to_timing = s.back() > 0.0 ? t.timing->length_m / s.back() : 1.0;
+  m.along_sd_m.resize(s.size());
+  for (std::size_t i = 0; i < s.size(); ++i)
+    m.along_sd_m[i] = widen * m.speed_mps * kin::time_sd_at_length_s(*t.timing, s[i] * to_timing);
+  return m;
+}
+
 kin::BandSources band_sources(const AnswerMotion& motion,
                               const std::optional<std::array<double, 3>>& current_covariance) {
   kin::BandSources b;
   b.scatter = motion.scatter;
+  b.position_sd_m = motion.position_sd_m;
   if (current_covariance) b.current_covariance_m2ps2 = *current_covariance;
   return b;
 }
@@ -257,7 +260,10 @@ Result<ManeuverEvaluation> evaluate_maneuvers(Context& ctx, const ManeuverQuery&
   problem.use_corridor = q.use_corridor;
   problem.current = current->current;
   problem.speed_over_ground = out.motion.speed_over_ground;
-  problem.band = band_sources(out.motion, current->covariance);
+  // The instantaneous assumption is that the vehicle is on the ray, exactly: it has no band
+  // unless asked for one (ray_band), so its risk is 0 or 1 by its CPA.
+  if (q.method != PredictionMethod::instantaneous || q.ray_band)
+    problem.band = band_sources(out.motion, current->covariance);
   out.candidates.reserve(candidates.size());
   out.timed_by_turns = q.method == PredictionMethod::avk;
   for (const double d : candidates) {

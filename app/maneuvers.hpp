@@ -12,6 +12,7 @@
 
 #include "app/predict.hpp"
 #include "app/result.hpp"
+#include "kinematics/ckt.hpp"
 #include "kinematics/maneuver.hpp"
 #include "kinematics/maneuver_choice.hpp"
 #include "kinematics/position_band.hpp"
@@ -26,6 +27,7 @@ struct AnswerMotion {
   bool speed_over_ground = true;
   std::string speed_reference_source = "default";
   kinematics::MotionScatter scatter;
+  double position_sd_m = 0.0;  // the navigation's position noise
   std::string scatter_source = "default";
 };
 
@@ -60,6 +62,9 @@ struct ManeuverQuery {
   double max_risk = kinematics::kDefaultMaxRisk;
   bool prefer_starboard = false;
   bool corridor_rule = false;
+  // The instantaneous method with the vehicle's band (scatter and current) about its ray; off:
+  // the assumption as stated, the vehicle exactly on the ray.
+  bool ray_band = false;
   // The yaw rate now (deg/s, + clockwise): each candidate starts turning at it (into a starboard
   // candidate when +, against it when -). avk: the table over initial yaw rate
   // (yaw_rate_table.hpp); model: the model started at that rate. None: from a steady course.
@@ -119,6 +124,19 @@ struct OngoingManeuver {
   AnswerMotion motion;
   std::optional<std::int64_t> model_id;
 };
+
+// What an answer assumes of the vehicle's motion: the request's speed reference, else the
+// vehicle's; its straight-leg scatter.
+AnswerMotion answer_motion(Context& ctx, const std::string& vehicle_id,
+                           std::optional<bool> speed_over_ground);
+
+// A table's answer as a timed maneuver in the normalised frame, with the corridor's half widths
+// at corridor_share and the turns' spread at equal time (PredictedManeuver::along_sd_m,
+// cross_sd_m): across from the corridor, along from the turns' timing spread at the commanded
+// speed; both 1 sigma, widened for the few turns they are known from as the corridor is (the t
+// quantile and sqrt(1 + 1/n) over the normal quantile, at 90 %).
+kinematics::PredictedManeuver table_maneuver(const kinematics::TurnPrediction& t, double speed_mps,
+                                             double dheading_deg, double corridor_share);
 
 // The band's sources for an answer: the vehicle's straight-leg scatter and the current
 // estimate's covariance.

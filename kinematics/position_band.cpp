@@ -56,9 +56,10 @@ std::vector<Covariance2> position_band(const TimedPath& path, const std::vector<
     const Point u = dir[i];        // along
     const Point n{u.y_m, -u.x_m};  // across (to the right)
     const double t = path[i].t_s - t0;
-    out[i] = {va * u.x_m * u.x_m + vc * n.x_m * n.x_m + cc[0] * t * t,
+    const double p2 = sources.position_sd_m * sources.position_sd_m;
+    out[i] = {p2 + va * u.x_m * u.x_m + vc * n.x_m * n.x_m + cc[0] * t * t,
               va * u.x_m * u.y_m + vc * n.x_m * n.y_m + cc[1] * t * t,
-              va * u.y_m * u.y_m + vc * n.y_m * n.y_m + cc[2] * t * t};
+              p2 + va * u.y_m * u.y_m + vc * n.y_m * n.y_m + cc[2] * t * t};
   }
   return out;
 }

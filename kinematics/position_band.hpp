@@ -2,7 +2,8 @@
 // Where the vehicle will be at each time of a prediction: a 2-D normal band about the predicted
 // point at that time, not only a lateral corridor about the path.
 //
-// Three independent sources, added as covariances:
+// Four independent sources, added as covariances:
+// - the navigation's position noise, constant: the prediction starts from a measured position;
 // - the spread of the recorded turns about their mean at equal time, along the path (timing)
 //   and across it (PredictedManeuver::along_sd_m, cross_sd_m), held past the turn's end: a turn
 //   that came out late stays late;
@@ -33,6 +34,9 @@ struct MotionScatter {
 
 struct BandSources {
   MotionScatter scatter;
+  // The navigation's position noise (1 sigma, each axis): the prediction is anchored on a
+  // measured position, so the band never narrows below it, even at the command.
+  double position_sd_m = 0.0;
   Covariance2 current_covariance_m2ps2{};  // of the current estimate, (m/s)²; zero: none
 };
 

@@ -123,6 +123,12 @@ void usage(std::ostream& out) {
          "      current: path error with the current compensated and without\n"
          "  avk encounter generate [--seed N] [--count 60]\n"
          "      a reproducible scenario file (head-on, crossing, overtaking, several contacts)\n"
+         "  avk band coverage --db FILE --test-mission ID... [--mission ID]... [--vehicle ID]\n"
+         "                  [--share 0.9] [--after 60] [--speed-reference "
+         "over_ground|through_water]\n"
+         "                  [--format text|json]\n"
+         "      is the position band honest: the share of the test missions' positions, at equal\n"
+         "      time, inside the band predicted by the table of the other missions\n"
          "  avk serve [--db FILE] [--sim [--vehicle KIND] [--sim-config FILE]\n"
          "                  | --m200 HOST:PORT [--pid P]] [--datum LAT,LON] [--realtime-factor K]\n"
          "                  [--bind 127.0.0.1] [--port 8080] [--web DIR] [--token T]\n"
@@ -168,6 +174,7 @@ int run_cli(const std::vector<std::string>& args, std::istream& in, std::ostream
     if (args[0] == "maneuver") return cmd_maneuver(rest, io);
     if (args[0] == "import") return cmd_import(rest, io);
     if (args[0] == "encounter") return cmd_encounter(rest, io);
+    if (args[0] == "band") return cmd_band(rest, io);
     if (args[0] == "current") return cmd_current(rest, io);
     if (args[0] == "serve") return cmd_serve(rest, io);
     if (args[0] == "frontseat-emulator") return cmd_frontseat_emulator(rest, io);

@@ -36,6 +36,7 @@ int mission_export(const std::vector<std::string>& args, Io& io);
 int import_mcap(const std::vector<std::string>& args, Io& io);
 int cmd_serve(const std::vector<std::string>& args, Io& io);
 int cmd_encounter(const std::vector<std::string>& args, Io& io);
+int cmd_band(const std::vector<std::string>& args, Io& io);  // avk band coverage
 int cmd_current(const std::vector<std::string>& args, Io& io);
 int cmd_frontseat_emulator(const std::vector<std::string>& args, Io& io);
 

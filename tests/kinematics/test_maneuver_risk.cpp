@@ -140,6 +140,10 @@ TEST(PositionBand, EachSourceGrowsAsItShould) {
     EXPECT_NEAR(b[i][0], 0.0004 * t * t, 1e-9);  // across = east
     EXPECT_NEAR(b[i][1], 0.0, 1e-9);
   }
+  BandSources floor;
+  floor.position_sd_m = 0.3;
+  for (const auto& c : position_band(p, {}, {}, 1, floor))
+    EXPECT_EQ(c, (Covariance2{0.09, 0.0, 0.09}));
   BandSources current;
   current.current_covariance_m2ps2 = {0.0004, 0.0001, 0.0009};
   const auto cc = position_band(p, {}, {}, 1, current);
