@@ -313,6 +313,8 @@ Ckt Ckt::build(const std::vector<TurnSequence>& turns, const CktOptions& options
     }
     c.profile = heading_profile(c.trajectory, c.dheading_deg);
     c.timing = timing_of(arc_mean, c.speed_mps, c.trajectory);
+    // How far ahead or behind the mean the turns ran: the same projection, turn by turn.
+    if (c.timing) c.timing->time_sd_s = timing_spread_s(stationed, c.speed_mps, c.trajectory);
   }
   return table;
 }

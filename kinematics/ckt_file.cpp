@@ -154,7 +154,7 @@ MeanSd mean_sd_from_json(const json& j, const std::string& path) {
 
 TurnTiming timing_from_json(const json& j, const std::string& path) {
   if (!j.is_object()) Reader::fail(path, "expected an object");
-  Reader::only_keys(j, path, {"length_m", "time_s"});
+  Reader::only_keys(j, path, {"length_m", "time_s", "time_sd_s"});
   TurnTiming t;
   t.length_m = Reader::number(j, path, "length_m");
   if (!(t.length_m > 0.0)) Reader::fail(path + "/length_m", "must be positive");
@@ -165,6 +165,15 @@ TurnTiming timing_from_json(const json& j, const std::string& path) {
   for (std::size_t i = 1; i < t.time_s.size(); ++i)
     if (!(t.time_s[i] >= t.time_s[i - 1]))
       Reader::fail(path + "/time_s/" + std::to_string(i), "times must not decrease");
+  // The along-track spread is optional: a file written before it was recorded has none.
+  if (j.contains("time_sd_s")) {
+    t.time_sd_s = Reader::numbers(j["time_sd_s"], path + "/time_sd_s");
+    if (t.time_sd_s.size() != kTimingStations)
+      Reader::fail(path + "/time_sd_s", "expected " + std::to_string(kTimingStations) + " values");
+    for (std::size_t i = 0; i < t.time_sd_s.size(); ++i)
+      if (t.time_sd_s[i] < 0.0)
+        Reader::fail(path + "/time_sd_s/" + std::to_string(i), "must not be negative");
+  }
   return t;
 }
 
@@ -206,6 +215,7 @@ json ckt_to_json(const Ckt& table) {
     }
     if (c.timing) {
       cell["timing"] = {{"length_m", c.timing->length_m}, {"time_s", c.timing->time_s}};
+      if (!c.timing->time_sd_s.empty()) cell["timing"]["time_sd_s"] = c.timing->time_sd_s;
     }
     cells.push_back(std::move(cell));
   }

@@ -48,8 +48,10 @@ Polyline analytic(const ArcTurnSpec& s) {
 // the heading of each leg.
 TurnSequence polyline_turn(const Polyline& pts, double goal_deg, double speed_mps = 1.0) {
   TurnMeta meta;
-  meta.vehicle_id = "test";
-  meta.mission_id = "m";
+  // Strings moved in, not assigned from literals: GCC 12 at -O3 warns falsely (-Wrestrict) on
+  // assigning a short literal here.
+  meta.vehicle_id = std::string("test");
+  meta.mission_id = std::string("m");
   meta.commanded_speed_mps = speed_mps;
   meta.goal_dheading_deg = goal_deg;
   std::vector<TurnSample> samples;
