@@ -135,16 +135,17 @@ HeadingProfile heading_profile(const Polyline& trajectory, double goal_dheading_
     hp.fraction = {0.0};
     return hp;
   }
-  double previous = 0.0;  // unwrapped heading change, starting north
+  // Each segment's heading is taken within 180 deg of the turn's mid-heading (see the header),
+  // on its own: no segment's choice depends on another's, so a noisy one cannot shift the rest.
+  const double mid_deg = 0.5 * goal_dheading_deg;
   hp.breaks.push_back(0.0);
   for (std::size_t i = 1; i < trajectory.size(); ++i) {
     const double len = s[i] - s[i - 1];
     if (len <= 0.0) continue;
     const double h = heading_of_deg(trajectory[i].x_m - trajectory[i - 1].x_m,
                                     trajectory[i].y_m - trajectory[i - 1].y_m);
-    const double unwrapped = previous + angle180_deg(h - previous);
-    previous = unwrapped;
-    hp.fraction.push_back(unwrapped / goal_dheading_deg);
+    const double change = mid_deg + angle180_deg(h - mid_deg);
+    hp.fraction.push_back(change / goal_dheading_deg);
     hp.breaks.push_back(s[i] / hp.length_m);
   }
   hp.breaks.back() = 1.0;

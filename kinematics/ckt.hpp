@@ -62,7 +62,8 @@ struct CktGrid {
 
 // Heading change as a step function of fraction of arc length: on [breaks[j], breaks[j+1]) the
 // heading is fraction[j] * goal. Derived from a cell's trajectory; reconstructing it reproduces
-// the trajectory exactly.
+// the trajectory exactly (any heading plus a multiple of 360 draws the same segment), and which
+// multiple of 360 a segment is given only matters to a blend (heading_profile).
 struct HeadingProfile {
   double length_m = 0.0;
   std::vector<double> breaks;    // size m + 1, from 0 to 1
@@ -179,7 +180,16 @@ class Ckt {
 // heading changes (0.1 deg) of the ok turns.
 CktGrid grid_of(const std::vector<TurnSequence>& turns);
 
-// Derives the step-function heading profile of a normalised trajectory.
+// Derives the step-function heading profile of a normalised trajectory of a turn of
+// goal_dheading_deg (D). A right turn by D runs from heading 0 to D, so each segment's heading
+// change is taken within 180 deg of the turn's mid-heading, in (D/2 - 180, D/2 + 180]: the whole
+// turn, with at least 90 deg to spare for an overshoot past D or a wobble before 0, and never
+// beyond D + 180 or -180. Every segment is placed on its own, not unwrapped from the one before:
+// the mean of noisy turns can start with a short segment pointing backwards (position noise near
+// the origin at low speed), and unwrapping from it carried a 360 deg wrap into the rest of the
+// profile, so a turn ended on D - 360 (or D + 360) and its blends with neighbours were rotated by
+// up to 180 deg. A trajectory that ends on its goal heading, as every cell's and every answer's
+// does, ends on exactly D (fraction 1), and so does every blend of such profiles.
 HeadingProfile heading_profile(const Polyline& trajectory, double goal_dheading_deg);
 
 // A heading profile with its weight in a blend.

@@ -244,3 +244,103 @@ TEST(Ckt, CellTrajectoryFollowsTheAnalyticPath) {
     EXPECT_EQ(c.trajectory.front(), (Point{0.0, 0.0}));
   }
 }
+
+namespace {
+
+// A normalised right turn to dheading_deg of radius 3 m after a 2 m lead-in, then 1 m along the
+// goal heading, drawn from `start` (the lead-in runs north from it).
+Polyline right_turn_from(Point start, double dheading_deg) {
+  Polyline line{start};
+  for (const Point& p : avk::testing::circular_arc(3.0, dheading_deg, 0.3))
+    line.push_back({start.x_m + p.x_m, start.y_m + 2.0 + p.y_m});
+  const double g = deg_to_rad(dheading_deg);
+  line.push_back({line.back().x_m + std::sin(g), line.back().y_m + std::cos(g)});
+  return line;
+}
+
+// The profile's heading changes, deg.
+std::vector<double> changes_deg(const HeadingProfile& hp, double dheading_deg) {
+  std::vector<double> out;
+  for (double f : hp.fraction)
+    out.push_back(f * dheading_deg);
+  return out;
+}
+
+// Each heading change of the profile lies within 180 deg of the turn's mid-heading.
+void expect_within_half_turn_of_mid(const HeadingProfile& hp, double dheading_deg) {
+  for (double c : changes_deg(hp, dheading_deg)) {
+    EXPECT_GT(c, dheading_deg / 2 - 180.0);
+    EXPECT_LE(c, dheading_deg / 2 + 180.0);
+  }
+}
+
+// The trajectory the profile draws on its own (weight 1), at vertex resolution.
+void expect_reproduces(const HeadingProfile& hp, const Polyline& line, double dheading_deg) {
+  const Polyline drawn = blended_trajectory({{&hp, 1.0}}, hp.length_m, dheading_deg, 1e-9);
+  for (const Point& p : line)
+    EXPECT_LT(distance_to_polyline_m(p, drawn), 1e-9);
+  EXPECT_LT(distance_m(drawn.back(), line.back()), 1e-9);
+}
+
+}  // namespace
+
+// GNSS noise at the start of a slow turn: the mean path first steps 0.3 m backwards. That step
+// points south, and the turn that follows is still a turn from north to 160 deg, not to 520.
+TEST(HeadingProfile, AShortBackwardFirstSegmentDoesNotWrapTheTurn) {
+  Polyline line{{0.0, 0.0}};
+  for (const Point& p : right_turn_from({0.0, -0.3}, 160.0))
+    line.push_back(p);
+  const HeadingProfile hp = heading_profile(line, 160.0);
+  const std::vector<double> c = changes_deg(hp, 160.0);
+  EXPECT_NEAR(c.front(), 180.0, 1e-9);  // south, on the turn's side of its mid-heading
+  EXPECT_NEAR(c[1], 0.0, 1e-9);         // the lead-in runs north again: 0, not 360
+  EXPECT_NEAR(c.back(), 160.0, 1e-9);
+  expect_within_half_turn_of_mid(hp, 160.0);
+  expect_reproduces(hp, line, 160.0);
+  // Blended with a clean 130 deg neighbour, it answers 145 deg on 145 deg.
+  const Polyline clean = right_turn_from({0.0, 0.0}, 130.0);
+  const HeadingProfile hc = heading_profile(clean, 130.0);
+  const Polyline mid =
+      blended_trajectory({{&hp, 0.5}, {&hc, 0.5}}, 0.5 * (hp.length_m + hc.length_m), 145.0, 0.05);
+  EXPECT_NEAR(final_heading_deg(mid), 145.0, 1e-6);
+}
+
+// A segment that doubles back in the middle of a turn (heading 70 deg, then 251 deg, then on at
+// 110 deg) stays one segment: the turn after it keeps its headings.
+TEST(HeadingProfile, ASegmentDoublingBackMidTurnLeavesTheRestInPlace) {
+  const auto dir = [](double heading_deg, double length_m) {
+    const double h = deg_to_rad(heading_deg);
+    return Point{length_m * std::sin(h), length_m * std::cos(h)};
+  };
+  Polyline line{{0.0, 0.0}};
+  for (const auto& [h, len] : std::vector<std::pair<double, double>>{
+           {0.0, 2.0}, {35.0, 1.0}, {70.0, 1.0}, {251.0, 0.2}, {110.0, 1.0}, {160.0, 2.0}}) {
+    const Point d = dir(h, len);
+    line.push_back({line.back().x_m + d.x_m, line.back().y_m + d.y_m});
+  }
+  const HeadingProfile hp = heading_profile(line, 160.0);
+  const std::vector<double> c = changes_deg(hp, 160.0);
+  ASSERT_EQ(c.size(), 6u);
+  const std::vector<double> expected{0.0, 35.0, 70.0, 251.0, 110.0, 160.0};
+  for (std::size_t i = 0; i < c.size(); ++i)
+    EXPECT_NEAR(c[i], expected[i], 1e-9) << i;
+  expect_reproduces(hp, line, 160.0);
+}
+
+// A turn that wobbles left before it turns, or overshoots its goal, keeps the signs of both: the
+// window about the mid-heading leaves 90 deg and more on either side of the turn.
+TEST(HeadingProfile, AWobbleBeforeAndAnOvershootAfterKeepTheirSigns) {
+  for (double d : {10.0, 90.0, 180.0}) {
+    Polyline line{{0.0, 0.0}, {-0.5, 1.0}};  // about -27 deg
+    for (const Point& p : right_turn_from({-0.5, 1.0}, d + 30.0))
+      line.push_back(p);
+    const double g = deg_to_rad(d);
+    line.push_back({line.back().x_m + std::sin(g), line.back().y_m + std::cos(g)});
+    const HeadingProfile hp = heading_profile(line, d);
+    const std::vector<double> c = changes_deg(hp, d);
+    EXPECT_NEAR(c.front(), rad_to_deg(std::atan2(-0.5, 1.0)), 1e-9) << d;
+    EXPECT_NEAR(c[c.size() - 2], d + 30.0, 1e-9) << d;
+    EXPECT_NEAR(c.back(), d, 1e-9) << d;
+    expect_within_half_turn_of_mid(hp, d);
+  }
+}
