@@ -101,22 +101,28 @@ TEST(TimingSpread, TurnsDelayedByConstantTimesSpreadByTheDelays) {
     EXPECT_NEAR(sd[i], sample_sd(delays), 1e-9) << i;
 }
 
-TEST(TimingSpread, TurnsAtDifferentSpeedsSpreadInProportionToLength) {
-  // Commanded 1 m/s, flown at 0.8, 1 and 1.25 m/s: a turn passes length l at l / v.
-  const Polyline traj = test_trajectory();
+// Turns along the trajectory at constant speeds other than the commanded one, each running
+// run_on_m past its end, sampled every dt_s: a turn passes length l at l / v, so the spread is
+// l times the sample sd of 1 / v at every station.
+void expect_spread_in_proportion(const Polyline& traj, double commanded_mps,
+                                 const std::vector<double>& speeds, double run_on_m, double dt_s) {
   const double length = arc_length_m(traj);
-  const std::vector<double> speeds{0.8, 1.0, 1.25};
   std::vector<StationedPath> turns;
   std::vector<double> inverse;
   for (const double v : speeds) {
-    // Each runs 2 m past the trajectory's end: it reaches the end when it first gets there.
-    turns.push_back(along_trajectory(traj, 1.0, v, 0, length + 2.0));
+    turns.push_back(along_trajectory(traj, commanded_mps, v, 0, length + run_on_m, dt_s));
     inverse.push_back(1.0 / v);
   }
-  const std::vector<double> sd = timing_spread_s(turns, 1.0, traj);
+  const std::vector<double> sd = timing_spread_s(turns, commanded_mps, traj);
   ASSERT_EQ(sd.size(), kTimingStations);
   for (std::size_t i = 0; i < kTimingStations; ++i)
     EXPECT_NEAR(sd[i], station_length(length, i) * sample_sd(inverse), 1e-9) << i;
+}
+
+TEST(TimingSpread, TurnsAtDifferentSpeedsSpreadInProportionToLength) {
+  // Commanded 1 m/s, flown at 0.8, 1 and 1.25 m/s. Each runs 2 m past the trajectory's end: it
+  // reaches the end when it first gets there, not when it stops.
+  expect_spread_in_proportion(test_trajectory(), 1.0, {0.8, 1.0, 1.25}, 2.0, 0.02);
 }
 
 TEST(TimingSpread, SparseFixesAreFollowedAlongAFinelyDividedTrajectory) {
@@ -126,17 +132,7 @@ TEST(TimingSpread, SparseFixesAreFollowedAlongAFinelyDividedTrajectory) {
   Polyline traj;
   for (int k = 0; k <= 100; ++k)
     traj.push_back({0.0, 0.1 * k});
-  const double length = arc_length_m(traj);
-  std::vector<StationedPath> turns;
-  std::vector<double> inverse;
-  for (const double v : {1.6, 2.0, 2.5}) {
-    turns.push_back(along_trajectory(traj, 2.0, v, 0, length + 3.0, 1.0));
-    inverse.push_back(1.0 / v);
-  }
-  const std::vector<double> sd = timing_spread_s(turns, 2.0, traj);
-  ASSERT_EQ(sd.size(), kTimingStations);
-  for (std::size_t i = 0; i < kTimingStations; ++i)
-    EXPECT_NEAR(sd[i], station_length(length, i) * sample_sd(inverse), 1e-9) << i;
+  expect_spread_in_proportion(traj, 2.0, {1.6, 2.0, 2.5}, 3.0, 1.0);
 }
 
 TEST(TimingSpread, ATurnThatEndsEarlyRunsOnAtTheCommandedSpeed) {
