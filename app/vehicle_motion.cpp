@@ -2,6 +2,7 @@
 
 #include "app/context.hpp"
 #include "app/current.hpp"
+#include "app/vehicles.hpp"
 
 namespace avk::app {
 
@@ -22,7 +23,8 @@ LegMotion leg_motion(const std::vector<kin::SteadyLeg>& legs,
 
 Result<VehicleMotion> vehicle_motion(Context& ctx, const std::string& vehicle_id) {
   store::Store& db = ctx.db();
-  if (!db.get_vehicle(vehicle_id)) return not_found("no vehicle '" + vehicle_id + "'");
+  // The station's own vehicle counts before it has stored anything.
+  if (auto known = get_vehicle(ctx, vehicle_id); !known) return known.error();
   VehicleMotion out;
   out.vehicle_id = vehicle_id;
   std::vector<kin::DriftScatter> scatters;

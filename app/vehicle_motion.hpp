@@ -76,7 +76,8 @@ struct VehicleMotion {
 
 // The newest identification wins (conditions and the vehicle's setup change; the counts show
 // whether missions agree); the drift scatter is pooled over every mission that measured one (RMS
-// pooled by legs: more legs, steadier rates). not_found for a vehicle the station does not know.
+// pooled by legs: more legs, steadier rates). not_found for a vehicle the station neither drives
+// nor has stored.
 Result<VehicleMotion> vehicle_motion(Context& ctx, const std::string& vehicle_id);
 
 }  // namespace avk::app
