@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "app/context.hpp"
+#include "app/vehicle_motion.hpp"
 #include "kinematics/angles.hpp"
 #include "kinematics/ckt.hpp"
 #include "kinematics/maneuver.hpp"
@@ -30,41 +31,132 @@ void for_each_mission_turn(store::Store& db, std::int64_t mission_id,
   }
 }
 
+namespace {
+
+using NavIt = std::vector<store::NavRow>::const_iterator;
+
+// The row after the last one before the command (nav.begin() when there is none).
+NavIt command_end(const std::vector<store::NavRow>& nav, double start_s) {
+  return std::lower_bound(nav.begin(), nav.end(), start_s,
+                          [](const store::NavRow& r, double t) { return r.t_s < t; });
+}
+
+// Guidance held a speed > 0 at the command.
+bool guided(const store::NavRow& last) {
+  return last.desired_heading_deg && last.desired_speed_mps && *last.desired_speed_mps > 0.0;
+}
+
+// The same guidance as at the command; anything else is the leg's beginning.
+bool same_guidance(const store::NavRow& r, const store::NavRow& last) {
+  return r.desired_heading_deg && r.desired_speed_mps &&
+         std::abs(kin::angle180_deg(*r.desired_heading_deg - *last.desired_heading_deg)) <= 1e-6 &&
+         std::abs(*r.desired_speed_mps - *last.desired_speed_mps) <= 1e-9;
+}
+
+// The first row of the stretch before `end` (the command) during which the guidance was the one
+// in force at the command, from since_s at the earliest.
+NavIt held_since(const std::vector<store::NavRow>& nav, NavIt end, double since_s) {
+  const store::NavRow& last = *(end - 1);
+  auto first = end;
+  while (first != nav.begin() && (first - 1)->t_s >= since_s && same_guidance(*(first - 1), last))
+    --first;
+  return first;
+}
+
+// Sums of the unit vectors of headings: their circular mean is heading_of_deg(s, c).
+struct HeadingSum {
+  double s = 0.0, c = 0.0;
+  void add(double heading_deg) {
+    s += std::sin(kin::deg_to_rad(heading_deg));
+    c += std::cos(kin::deg_to_rad(heading_deg));
+  }
+  void remove(double heading_deg) {
+    s -= std::sin(kin::deg_to_rad(heading_deg));
+    c -= std::cos(kin::deg_to_rad(heading_deg));
+  }
+  double mean_deg() const { return kin::heading_of_deg(s, c); }
+};
+
+kin::SteadyLeg leg_of(NavIt first, NavIt end, double speed_mps) {
+  kin::SteadyLeg leg;
+  HeadingSum h;
+  for (auto it = first; it != end; ++it) {
+    leg.t_s.push_back(it->t_s);
+    leg.x_m.push_back(it->x_m);
+    leg.y_m.push_back(it->y_m);
+    h.add(it->heading_deg);
+  }
+  leg.heading_deg = h.mean_deg();
+  leg.water_speed_mps = speed_mps;
+  return leg;
+}
+
+}  // namespace
+
 std::vector<kin::SteadyLeg> steady_legs_before(const std::vector<double>& turn_starts_s,
                                                const std::vector<store::NavRow>& nav,
                                                double leg_s) {
   std::vector<kin::SteadyLeg> legs;
   for (const double start : turn_starts_s) {
     // The last row before the command: what was in force while conditions were set.
-    const auto end = std::lower_bound(nav.begin(), nav.end(), start,
-                                      [](const store::NavRow& r, double t) { return r.t_s < t; });
+    const auto end = command_end(nav, start);
     if (end == nav.begin()) continue;
     const store::NavRow& last = *(end - 1);
-    if (!last.desired_heading_deg || !last.desired_speed_mps || !(*last.desired_speed_mps > 0.0))
-      continue;
-    kin::SteadyLeg leg;
-    double s = 0.0, c = 0.0;
-    for (auto it = end; it != nav.begin();) {
-      const store::NavRow& r = *--it;
-      if (r.t_s < start - leg_s) break;
-      // The same guidance as at the command; anything else is the leg's beginning.
-      if (!r.desired_heading_deg || !r.desired_speed_mps ||
-          std::abs(kin::angle180_deg(*r.desired_heading_deg - *last.desired_heading_deg)) > 1e-6 ||
-          std::abs(*r.desired_speed_mps - *last.desired_speed_mps) > 1e-9)
-        break;
-      leg.t_s.push_back(r.t_s);
-      leg.x_m.push_back(r.x_m);
-      leg.y_m.push_back(r.y_m);
-      s += std::sin(kin::deg_to_rad(r.heading_deg));
-      c += std::cos(kin::deg_to_rad(r.heading_deg));
+    if (!guided(last)) continue;
+    const auto first = held_since(nav, end, start - leg_s);
+    if (end - first < 3 || (end - 1)->t_s - first->t_s < kMinSteadyLegS) continue;
+    legs.push_back(leg_of(first, end, *last.desired_speed_mps));
+  }
+  return legs;
+}
+
+std::vector<kin::SteadyLeg> steady_stretches_before(const std::vector<double>& turn_starts_s,
+                                                    const std::vector<store::NavRow>& nav) {
+  std::vector<kin::SteadyLeg> legs;
+  for (const double start : turn_starts_s) {
+    const auto end = command_end(nav, start);
+    if (end == nav.begin()) continue;
+    const store::NavRow& last = *(end - 1);
+    if (!guided(last)) continue;
+    const auto first = held_since(nav, end, start - kMotionLegMaxS);
+    // The reference: the means over the last seconds, which the ConditionSet judged steady.
+    HeadingSum ref_heading;
+    double ref_speed = 0.0;
+    std::size_t ref_rows = 0;
+    for (auto it = end; it != first && (it - 1)->t_s >= start - kSteadyReferenceS;) {
+      --it;
+      ref_heading.add(it->heading_deg);
+      ref_speed += it->speed_mps;
+      ++ref_rows;
     }
-    if (leg.t_s.size() < 3 || leg.t_s.front() - leg.t_s.back() < kMinSteadyLegS) continue;
-    std::reverse(leg.t_s.begin(), leg.t_s.end());
-    std::reverse(leg.x_m.begin(), leg.x_m.end());
-    std::reverse(leg.y_m.begin(), leg.y_m.end());
-    leg.heading_deg = kin::heading_of_deg(s, c);
-    leg.water_speed_mps = *last.desired_speed_mps;
-    legs.push_back(std::move(leg));
+    if (ref_rows < 3) continue;
+    ref_speed /= static_cast<double>(ref_rows);
+    // Back from the command while each row's smoothed heading and speed stay near the reference.
+    // The window [lo, hi) holds the rows within half the smoothing time of the row judged.
+    auto lo = end, hi = end, kept = end;
+    HeadingSum win_heading;
+    double win_speed = 0.0;
+    for (auto it = end; it != first;) {
+      --it;
+      while (lo != first && (lo - 1)->t_s >= it->t_s - 0.5 * kSteadySmoothingS) {
+        --lo;
+        win_heading.add(lo->heading_deg);
+        win_speed += lo->speed_mps;
+      }
+      while (hi != lo && (hi - 1)->t_s > it->t_s + 0.5 * kSteadySmoothingS) {
+        --hi;
+        win_heading.remove(hi->heading_deg);
+        win_speed -= hi->speed_mps;
+      }
+      const auto n = static_cast<double>(hi - lo);
+      if (std::abs(kin::angle180_deg(win_heading.mean_deg() - ref_heading.mean_deg())) >
+              kSteadyHeadingTolDeg ||
+          std::abs(win_speed / n - ref_speed) > kSteadySpeedTolMps)
+        break;
+      kept = it;
+    }
+    if (end - kept < 3 || (end - 1)->t_s - kept->t_s < kMotionLegMinS) continue;
+    legs.push_back(leg_of(kept, end, *last.desired_speed_mps));
   }
   return legs;
 }
@@ -80,9 +172,15 @@ Result<MissionCurrent> estimate_mission_current(Context& ctx, std::int64_t missi
                         [&](const store::TurnRow& t) { starts.push_back(t.start_time_s); });
   out.turns = starts.size();
   std::sort(starts.begin(), starts.end());
-  const auto legs = steady_legs_before(starts, db.nav_for_mission(mission_id), leg_s);
+  const auto nav = db.nav_for_mission(mission_id);
+  const auto legs = steady_legs_before(starts, nav, leg_s);
   out.legs_used = legs.size();
   out.result = kin::estimate_current(legs);
+  const auto stretches = steady_stretches_before(starts, nav);
+  out.motion_legs = stretches.size();
+  LegMotion motion = leg_motion(stretches, out.result.estimate);
+  out.speed_reference = motion.speed_reference;
+  out.drift_scatter = motion.drift_scatter;
   return out;
 }
 
@@ -175,6 +273,8 @@ Result<AppliedCurrent> apply_mission_current(Context& ctx, std::int64_t mission_
   sc.t_s = db.mission_clock_end_s(mission_id).value_or(0.0);
   sc.method = "legs";
   sc.estimate = *est->result.estimate;
+  sc.speed_reference = est->speed_reference;
+  sc.drift_scatter = est->drift_scatter;
   sc.revision = db.save_mission_current(sc, water);
   out.stored = sc;
   out.water_turns = water.size();

@@ -13,6 +13,8 @@
 
 #include "app/result.hpp"
 #include "kinematics/current_estimate.hpp"
+#include "kinematics/drift_scatter.hpp"
+#include "kinematics/speed_reference.hpp"
 #include "kinematics/turn_sequence.hpp"
 #include "kinematics/water_current.hpp"
 #include "store/store.hpp"
@@ -37,6 +39,12 @@ struct MissionCurrent {
   std::size_t turns = 0;      // turns of the mission
   std::size_t legs_used = 0;  // steady legs found before them
   kinematics::CurrentEstimateResult result;
+  // From the longer steady stretches (steady_stretches_before), legs only: which speed the loop
+  // held, judged in the estimated current (none without an estimate), and the drift scatter of the
+  // predictions a guidance would have made (app/vehicle_motion.hpp).
+  std::size_t motion_legs = 0;
+  std::optional<kinematics::SpeedReferenceEvidence> speed_reference;
+  std::optional<kinematics::DriftScatter> drift_scatter;
 };
 
 // not_found for an unknown mission.
@@ -50,6 +58,24 @@ Result<MissionCurrent> estimate_mission_current(Context& ctx, std::int64_t missi
 std::vector<kinematics::SteadyLeg> steady_legs_before(const std::vector<double>& turn_starts_s,
                                                       const std::vector<store::NavRow>& nav,
                                                       double leg_s = kSteadyLegS);
+
+// The legs that measure the vehicle's motion (which speed its loop holds and how its straight-line
+// predictions scatter, app/vehicle_motion.hpp) are longer than the current's: the whole stretch
+// before each command during which the guidance held (as for steady_legs_before) and the vehicle
+// was steady, at most kMotionLegMaxS and at least kMotionLegMinS. Steady: its heading and its
+// speed over ground, each averaged over kSteadySmoothingS, within kSteadyHeadingTolDeg and
+// kSteadySpeedTolMps of their means over the last kSteadyReferenceS before the command. The first
+// seconds after a heading change are the last turn's tail and the speed loop's recovery, and are
+// left out so. On a steady leg the speed over ground is constant whichever speed the loop holds,
+// so the test favours neither.
+inline constexpr double kMotionLegMaxS = 60.0;
+inline constexpr double kMotionLegMinS = 5.0;
+inline constexpr double kSteadyReferenceS = 3.0;
+inline constexpr double kSteadySmoothingS = 1.0;
+inline constexpr double kSteadyHeadingTolDeg = 8.0;
+inline constexpr double kSteadySpeedTolMps = 0.05;
+std::vector<kinematics::SteadyLeg> steady_stretches_before(const std::vector<double>& turn_starts_s,
+                                                           const std::vector<store::NavRow>& nav);
 
 // The current from the mission's turns (thesis §6.3): each ok turn over ground against the
 // prediction through the water of a table built from the vehicle's OTHER missions (their turns in

@@ -1,6 +1,9 @@
 #include "app/current_tracker.hpp"
 
+#include <algorithm>
+
 #include "app/current.hpp"
+#include "app/vehicle_motion.hpp"
 
 namespace avk::app {
 
@@ -16,18 +19,24 @@ CurrentTracker::CurrentTracker(store::Store& store, std::int64_t mission_id, Pub
 
 void CurrentTracker::nav(const store::NavRow& row) {
   recent_.push_back(row);
-  while (!recent_.empty() && recent_.front().t_s < row.t_s - kSteadyLegS - kRecentSlackS)
+  while (!recent_.empty() &&
+         recent_.front().t_s < row.t_s - std::max(kSteadyLegS, kMotionLegMaxS) - kRecentSlackS)
     recent_.pop_front();
 }
 
 void CurrentTracker::turn_commanded(double t_s) {
   const std::vector<store::NavRow> rows(recent_.begin(), recent_.end());
+  auto stretch = steady_stretches_before({t_s}, rows);
+  if (!stretch.empty()) motion_legs_.push_back(std::move(stretch.front()));
   auto leg = steady_legs_before({t_s}, rows);
   if (leg.empty()) return;
   legs_.push_back(std::move(leg.front()));
   const auto r = kin::estimate_current(legs_);
   if (!r.estimate) return;
   estimate_ = r.estimate;
+  const LegMotion motion = leg_motion(motion_legs_, estimate_);
+  speed_reference_ = motion.speed_reference;
+  drift_scatter_ = motion.drift_scatter;
   save(t_s);
 }
 
@@ -45,6 +54,8 @@ void CurrentTracker::save(double t_s) {
   sc.t_s = t_s;
   sc.method = "legs";
   sc.estimate = *estimate_;
+  sc.speed_reference = speed_reference_;
+  sc.drift_scatter = drift_scatter_;
   const auto water = current_is_significant(*estimate_)
                          ? water_frame_turns(ok_turns_, water_current(*estimate_))
                          : std::vector<std::pair<std::int64_t, kin::TurnSequence>>{};

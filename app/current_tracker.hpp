@@ -3,7 +3,9 @@
 // leg before each turn's command joins the evidence and the current is estimated again
 // (kinematics/current_estimate.hpp); the estimate is stored with the water-frame form of the
 // mission's ok turns so far (when it is significant, app/current.hpp) and handed to whoever shows
-// it live. Owned by the mission's recorder, so a mission run from the command line keeps its
+// it live. The longer steady stretches before the commands are judged in it too: which speed the
+// loop holds and how straight-line predictions scatter (app/vehicle_motion.hpp), stored with it.
+// Owned by the mission's recorder, so a mission run from the command line keeps its
 // estimate as one run by the server does.
 
 #include <cstdint>
@@ -14,6 +16,8 @@
 #include <vector>
 
 #include "kinematics/current_estimate.hpp"
+#include "kinematics/drift_scatter.hpp"
+#include "kinematics/speed_reference.hpp"
 #include "kinematics/turn_sequence.hpp"
 #include "store/store.hpp"
 
@@ -32,6 +36,10 @@ class CurrentTracker {
                    kinematics::TurnStatus status);
 
   const std::optional<kinematics::CurrentEstimate>& estimate() const { return estimate_; }
+  const std::optional<kinematics::SpeedReferenceEvidence>& speed_reference() const {
+    return speed_reference_;
+  }
+  const std::optional<kinematics::DriftScatter>& drift_scatter() const { return drift_scatter_; }
   std::size_t legs() const { return legs_.size(); }
 
  private:
@@ -42,6 +50,9 @@ class CurrentTracker {
   Publish publish_;
   std::deque<store::NavRow> recent_;  // the navigation of the last few seconds
   std::vector<kinematics::SteadyLeg> legs_;
+  std::vector<kinematics::SteadyLeg> motion_legs_;  // the longer steady stretches
+  std::optional<kinematics::SpeedReferenceEvidence> speed_reference_;
+  std::optional<kinematics::DriftScatter> drift_scatter_;
   std::vector<std::pair<std::int64_t, kinematics::TurnSequence>> ok_turns_;
   std::optional<kinematics::CurrentEstimate> estimate_;
 };

@@ -118,16 +118,31 @@ std::map<std::string, std::string> condition_set_entries(
 
 std::map<std::string, std::string> current_entries(const store::StoredCurrent& c) {
   const kin::CurrentEstimate& e = c.estimate;
-  return {{"t_s", number_text(c.t_s)},
-          {"method", c.method},
-          {"east_mps", number_text(e.east_mps)},
-          {"north_mps", number_text(e.north_mps)},
-          {"cov_ee", number_text(e.covariance[0])},
-          {"cov_en", number_text(e.covariance[1])},
-          {"cov_nn", number_text(e.covariance[2])},
-          {"speed_scale", number_text(e.speed_scale)},
-          {"residual_rms_mps", number_text(e.residual_rms_mps)},
-          {"evidence", std::to_string(e.legs)}};
+  std::map<std::string, std::string> out = {{"t_s", number_text(c.t_s)},
+                                            {"method", c.method},
+                                            {"east_mps", number_text(e.east_mps)},
+                                            {"north_mps", number_text(e.north_mps)},
+                                            {"cov_ee", number_text(e.covariance[0])},
+                                            {"cov_en", number_text(e.covariance[1])},
+                                            {"cov_nn", number_text(e.covariance[2])},
+                                            {"speed_scale", number_text(e.speed_scale)},
+                                            {"residual_rms_mps", number_text(e.residual_rms_mps)},
+                                            {"evidence", std::to_string(e.legs)}};
+  // The vehicle's motion judged in this current, when it was (files of older stations lack it).
+  if (const auto& r = c.speed_reference) {
+    out["speed_reference_legs"] = std::to_string(r->legs);
+    out["rms_over_ground_mps"] = number_text(r->rms_over_ground_mps);
+    out["rms_through_water_mps"] = number_text(r->rms_through_water_mps);
+    out["speed_reference_separation_mps"] = number_text(r->separation_mps);
+    out["speed_reference"] = r->identified ? kin::to_string(*r->identified) : "";
+  }
+  if (const auto& d = c.drift_scatter) {
+    out["drift_legs"] = std::to_string(d->legs);
+    out["drift_along_mps"] = number_text(d->along_mps);
+    out["drift_cross_mps"] = number_text(d->cross_mps);
+    out["drift_mean_leg_s"] = number_text(d->mean_leg_s);
+  }
+  return out;
 }
 
 // The turn as stored: the row's columns, the raw turn and its normalised form.
@@ -509,6 +524,30 @@ store::StoredCurrent current_row(const std::map<std::string, std::string>& r) {
   const std::int64_t evidence = integer_entry(r, rec, "evidence");
   if (evidence < 0) throw FileError(rec + " metadata 'evidence' is negative");
   c.estimate.legs = static_cast<std::size_t>(evidence);
+  const auto count = [&](const char* key) {
+    const std::int64_t n = integer_entry(r, rec, key);
+    if (n < 0) throw FileError(rec + " metadata '" + key + "' is negative");
+    return static_cast<std::size_t>(n);
+  };
+  if (r.count("speed_reference_legs")) {
+    kin::SpeedReferenceEvidence e;
+    e.legs = count("speed_reference_legs");
+    e.rms_over_ground_mps = number_entry(r, rec, "rms_over_ground_mps");
+    e.rms_through_water_mps = number_entry(r, rec, "rms_through_water_mps");
+    e.separation_mps = number_entry(r, rec, "speed_reference_separation_mps");
+    const std::string& name = entry(r, rec, "speed_reference");
+    if (!name.empty()) {
+      e.identified = kin::parse_speed_reference(name);
+      if (!e.identified)
+        throw FileError(rec + " metadata 'speed_reference' is not over_ground or through_water: '" +
+                        name + "'");
+    }
+    c.speed_reference = e;
+  }
+  if (r.count("drift_legs"))
+    c.drift_scatter = kin::DriftScatter{
+        number_entry(r, rec, "drift_along_mps"), number_entry(r, rec, "drift_cross_mps"),
+        count("drift_legs"), number_entry(r, rec, "drift_mean_leg_s")};
   return c;
 }
 

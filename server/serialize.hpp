@@ -17,6 +17,7 @@
 #include "app/missions.hpp"
 #include "app/models.hpp"
 #include "app/predict.hpp"
+#include "app/vehicle_motion.hpp"
 #include "app/vehicles.hpp"
 #include "app/yaw_rate_table.hpp"
 #include "kinematics/yaw_identification.hpp"
@@ -90,6 +91,14 @@ nlohmann::json current_json(const std::string& vehicle_id, const store::StoredCu
 // An estimate from a mission's navigation, with the stored one (null when none).
 nlohmann::json mission_current_json(const app::MissionCurrent& c,
                                     const std::optional<store::StoredCurrent>& stored);
+// {legs, rms_over_ground_mps, rms_through_water_mps, separation_mps, identified}; identified is
+// "over_ground", "through_water" or null (undetermined); null when not evaluated.
+nlohmann::json speed_reference_evidence_json(
+    const std::optional<kinematics::SpeedReferenceEvidence>& e);
+// {along_mps, cross_mps, legs, mean_leg_s}; null when not measured.
+nlohmann::json drift_scatter_json(const std::optional<kinematics::DriftScatter>& d);
+// GET /vehicles/{vid}/motion and `avk vehicle motion --format json`.
+nlohmann::json vehicle_motion_json(const app::VehicleMotion& m);
 // The table over initial yaw rate: its coverage per slice, the model's scores where cells were
 // measured, and the schema-4 CKT document (`ckt`).
 nlohmann::json yaw_rate_table_json(const app::YawRateTable& t);

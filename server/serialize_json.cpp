@@ -396,7 +396,10 @@ json mission_current_json(const app::MissionCurrent& c,
           {"significant", e ? json(app::current_is_significant(*e)) : json()},
           {"why_not", e ? json() : json(c.result.why_not)},
           {"stored", stored ? current_estimate_json(stored->estimate) : json()},
-          {"stored_revision", stored ? json(stored->revision) : json()}};
+          {"stored_revision", stored ? json(stored->revision) : json()},
+          {"motion_legs", c.motion_legs},
+          {"speed_reference", speed_reference_evidence_json(c.speed_reference)},
+          {"drift_scatter", drift_scatter_json(c.drift_scatter)}};
 }
 
 json current_json(const std::string& vehicle_id, const store::StoredCurrent& c) {
@@ -408,7 +411,56 @@ json current_json(const std::string& vehicle_id, const store::StoredCurrent& c) 
   j["method"] = c.method;
   j["revision"] = c.revision;
   j["significant"] = app::current_is_significant(c.estimate);
+  j["speed_reference"] = speed_reference_evidence_json(c.speed_reference);
+  j["drift_scatter"] = drift_scatter_json(c.drift_scatter);
   return j;
+}
+
+json speed_reference_evidence_json(const std::optional<kin::SpeedReferenceEvidence>& e) {
+  if (!e) return nullptr;
+  return {{"legs", e->legs},
+          {"rms_over_ground_mps", e->rms_over_ground_mps},
+          {"rms_through_water_mps", e->rms_through_water_mps},
+          {"separation_mps", e->separation_mps},
+          {"identified", e->identified ? json(kin::to_string(*e->identified)) : json()}};
+}
+
+json drift_scatter_json(const std::optional<kin::DriftScatter>& d) {
+  if (!d) return nullptr;
+  return {{"along_mps", d->along_mps},
+          {"cross_mps", d->cross_mps},
+          {"legs", d->legs},
+          {"mean_leg_s", d->mean_leg_s}};
+}
+
+json vehicle_motion_json(const app::VehicleMotion& m) {
+  const app::MotionSpeedReference& r = m.speed_reference;
+  const auto& e = r.evidence;
+  json reference = {{"value", kin::to_string(r.value)},
+                    {"source", r.source},
+                    {"mission_id", optional_json(r.mission_id)},
+                    {"rms_over_ground_mps", e ? json(e->rms_over_ground_mps) : json()},
+                    {"rms_through_water_mps", e ? json(e->rms_through_water_mps) : json()},
+                    {"separation_mps", e ? json(e->separation_mps) : json()},
+                    {"legs", e ? json(e->legs) : json()},
+                    {"missions",
+                     {{"over_ground", r.missions_over_ground},
+                      {"through_water", r.missions_through_water},
+                      {"undetermined", r.missions_undetermined}}}};
+  json scatter = drift_scatter_json(m.drift_scatter.scatter);
+  scatter["source"] = m.drift_scatter.source;
+  scatter["missions"] = m.drift_scatter.missions;
+  json current = nullptr;
+  if (m.current) {
+    current = current_estimate_json(m.current->estimate);
+    current["mission_id"] = m.current->mission_id;
+    current["t_s"] = m.current->t_s;
+    current["revision"] = m.current->revision;
+  }
+  return {{"vehicle_id", m.vehicle_id},
+          {"speed_reference", reference},
+          {"drift_scatter", scatter},
+          {"current", current}};
 }
 
 json yaw_rate_table_json(const app::YawRateTable& t) {

@@ -18,6 +18,7 @@
 #include "app/models.hpp"
 #include "app/predict.hpp"
 #include "app/turns.hpp"
+#include "app/vehicle_motion.hpp"
 #include "app/vehicles.hpp"
 #include "kinematics/ckt_file.hpp"
 #include "server/api_errors.hpp"
@@ -497,6 +498,13 @@ void Station::add_routes() {
       return json_response({{"vehicle_id", vid}, {"estimated", false}});
     return answer(std::move(c), false, [&vid](const store::StoredCurrent& cur) {
       return json_response(current_json(vid, cur));
+    });
+  });
+  // What the station has learned of how the vehicle moves on a held heading: which speed its loop
+  // holds, how fast a straight-line prediction's error grows, the current it was last seen in.
+  get("/api/v1/vehicles/{vid}/motion", [&ctx](const ApiRequest&, const PathParams& p) {
+    return answer(app::vehicle_motion(ctx, p.at("vid")), false, [](const app::VehicleMotion& m) {
+      return json_response(vehicle_motion_json(m));
     });
   });
   get("/api/v1/vehicles/{vid}/predict", [&ctx](const ApiRequest& r, const PathParams& p) {

@@ -22,7 +22,7 @@ namespace {
 
 // Each step moves the schema from version i to i + 1. Steps are append-only: a released step is
 // never edited, because databases in the field have already run it.
-constexpr std::array<const char*, 11> kMigrations = {
+constexpr std::array<const char*, 12> kMigrations = {
     R"sql(
 CREATE TABLE vehicles (
   id            TEXT PRIMARY KEY,
@@ -201,6 +201,23 @@ ALTER TABLE turns ADD COLUMN water_meta_json TEXT;
     R"sql(
 ALTER TABLE missions ADD COLUMN started_utc TEXT;
 ALTER TABLE missions ADD COLUMN ended_utc TEXT;
+)sql",
+    // Which speed the vehicle's loop holds (over ground or through the water) and how fast a
+    // straight-line prediction's error grows, from the mission's steady legs
+    // (kinematics/speed_reference.hpp, kinematics/drift_scatter.hpp), kept with the current they
+    // were judged in. NULL where not evaluated (every estimate stored before); reference_legs set
+    // with speed_reference NULL: evaluated and undetermined.
+    R"sql(
+ALTER TABLE mission_currents ADD COLUMN reference_legs INTEGER;
+ALTER TABLE mission_currents ADD COLUMN rms_over_ground_mps REAL;
+ALTER TABLE mission_currents ADD COLUMN rms_through_water_mps REAL;
+ALTER TABLE mission_currents ADD COLUMN reference_separation_mps REAL;
+ALTER TABLE mission_currents ADD COLUMN speed_reference TEXT
+  CHECK (speed_reference IN ('over_ground', 'through_water'));
+ALTER TABLE mission_currents ADD COLUMN drift_legs INTEGER;
+ALTER TABLE mission_currents ADD COLUMN drift_along_mps REAL;
+ALTER TABLE mission_currents ADD COLUMN drift_cross_mps REAL;
+ALTER TABLE mission_currents ADD COLUMN drift_mean_leg_s REAL;
 )sql",
 };
 
@@ -542,12 +559,25 @@ std::int64_t write_current(Connection& db, const StoredCurrent& current,
   const std::int64_t revision = rev.column_int64(0);
   auto s = db.prepare(
       "INSERT OR REPLACE INTO mission_currents (mission_id, t_s, method, east_mps, north_mps, "
-      "cov_ee, cov_en, cov_nn, speed_scale, residual_rms_mps, evidence, revision) "
-      "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
+      "cov_ee, cov_en, cov_nn, speed_scale, residual_rms_mps, evidence, revision, "
+      "reference_legs, rms_over_ground_mps, rms_through_water_mps, reference_separation_mps, "
+      "speed_reference, drift_legs, drift_along_mps, drift_cross_mps, drift_mean_leg_s) "
+      "VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?)");
   s.bind(1, current.mission_id).bind(2, current.t_s).bind(3, current.method);
   s.bind(4, e.east_mps).bind(5, e.north_mps).bind(6, e.covariance[0]).bind(7, e.covariance[1]);
   s.bind(8, e.covariance[2]).bind(9, e.speed_scale).bind(10, e.residual_rms_mps);
   s.bind(11, static_cast<std::int64_t>(e.legs)).bind(12, revision);
+  for (int i = 13; i <= 21; ++i)
+    s.bind_null(i);
+  if (const auto& r = current.speed_reference) {
+    s.bind(13, static_cast<std::int64_t>(r->legs)).bind(14, r->rms_over_ground_mps);
+    s.bind(15, r->rms_through_water_mps).bind(16, r->separation_mps);
+    if (r->identified) s.bind(17, kinematics::to_string(*r->identified));
+  }
+  if (const auto& d = current.drift_scatter) {
+    s.bind(18, static_cast<std::int64_t>(d->legs)).bind(19, d->along_mps);
+    s.bind(20, d->cross_mps).bind(21, d->mean_leg_s);
+  }
   s.run();
   auto clear = db.prepare(
       "UPDATE turns SET water_samples = NULL, water_meta_json = NULL WHERE mission_id = ?");
@@ -868,7 +898,10 @@ namespace {
 
 constexpr const char* kCurrentColumns =
     "SELECT c.mission_id, c.t_s, c.method, c.east_mps, c.north_mps, c.cov_ee, c.cov_en, c.cov_nn, "
-    "c.speed_scale, c.residual_rms_mps, c.evidence, c.revision FROM mission_currents c ";
+    "c.speed_scale, c.residual_rms_mps, c.evidence, c.revision, c.reference_legs, "
+    "c.rms_over_ground_mps, c.rms_through_water_mps, c.reference_separation_mps, "
+    "c.speed_reference, c.drift_legs, c.drift_along_mps, c.drift_cross_mps, c.drift_mean_leg_s "
+    "FROM mission_currents c ";
 
 StoredCurrent current_from_row(Statement& s) {
   StoredCurrent c;
@@ -882,6 +915,25 @@ StoredCurrent current_from_row(Statement& s) {
   c.estimate.residual_rms_mps = s.column_double(9);
   c.estimate.legs = static_cast<std::size_t>(s.column_int64(10));
   c.revision = s.column_int64(11);
+  if (!s.is_null(12)) {
+    kinematics::SpeedReferenceEvidence r;
+    r.legs = static_cast<std::size_t>(s.column_int64(12));
+    r.rms_over_ground_mps = s.column_double(13);
+    r.rms_through_water_mps = s.column_double(14);
+    r.separation_mps = s.column_double(15);
+    if (!s.is_null(16)) {
+      const std::string name = s.column_text(16);
+      r.identified = kinematics::parse_speed_reference(name);
+      if (!r.identified)
+        throw StoreError("mission " + std::to_string(c.mission_id) +
+                         " has unknown speed reference '" + name + "'");
+    }
+    c.speed_reference = r;
+  }
+  if (!s.is_null(17))
+    c.drift_scatter =
+        kinematics::DriftScatter{s.column_double(18), s.column_double(19),
+                                 static_cast<std::size_t>(s.column_int64(17)), s.column_double(20)};
   return c;
 }
 
@@ -901,6 +953,17 @@ std::optional<StoredCurrent> Store::latest_vehicle_current(const std::string& ve
   s.bind(1, vehicle_id);
   if (!s.step()) return std::nullopt;
   return current_from_row(s);
+}
+
+std::vector<StoredCurrent> Store::vehicle_currents(const std::string& vehicle_id) {
+  auto s = db_.prepare(std::string(kCurrentColumns) +
+                       "JOIN missions m ON m.id = c.mission_id WHERE m.vehicle_id = ? "
+                       "ORDER BY c.revision");
+  s.bind(1, vehicle_id);
+  std::vector<StoredCurrent> out;
+  while (s.step())
+    out.push_back(current_from_row(s));
+  return out;
 }
 
 std::int64_t Store::current_revision(const std::string& vehicle_id) {

@@ -18,6 +18,8 @@
 
 #include "kinematics/ckt.hpp"
 #include "kinematics/current_estimate.hpp"
+#include "kinematics/drift_scatter.hpp"
+#include "kinematics/speed_reference.hpp"
 #include "kinematics/turn_sequence.hpp"
 #include "kinematics/yaw_model.hpp"
 #include "store/sqlite.hpp"
@@ -199,6 +201,10 @@ struct StoredCurrent {
   std::string method = "legs";  // legs (steady legs before turns) or turns (turn residuals)
   kinematics::CurrentEstimate estimate;
   std::int64_t revision = 0;  // grows with every save in the database: tells a cache it changed
+  // Judged from the mission's steady legs in this current (app/vehicle_motion.hpp); none when not
+  // evaluated (estimates stored before schema 12) or, for the scatter, too few legs.
+  std::optional<kinematics::SpeedReferenceEvidence> speed_reference;
+  std::optional<kinematics::DriftScatter> drift_scatter;
 };
 
 // Which form of a turn the table reads.
@@ -322,6 +328,8 @@ class Store {
   std::optional<StoredCurrent> mission_current(std::int64_t mission_id);
   // The newest estimate (by revision) of any of the vehicle's missions.
   std::optional<StoredCurrent> latest_vehicle_current(const std::string& vehicle_id);
+  // Every stored estimate of the vehicle's missions, oldest revision first.
+  std::vector<StoredCurrent> vehicle_currents(const std::string& vehicle_id);
   // The newest revision among the vehicle's missions (0: none): tells a cache whether the water
   // frame of its turns changed.
   std::int64_t current_revision(const std::string& vehicle_id);

@@ -121,6 +121,10 @@ void usage(std::ostream& out) {
          "text|json]\n"
          "      the table of some missions predicting the turns of others flown in another\n"
          "      current: path error with the current compensated and without\n"
+         "  avk vehicle motion --db FILE [--vehicle ID] [--format text|json]\n"
+         "      what the vehicle's steady legs say: which speed its loop holds (over ground or\n"
+         "      through the water), how fast a straight-line prediction's error grows, and the\n"
+         "      current it was last seen in\n"
          "  avk encounter generate [--seed N] [--count 60]\n"
          "      a reproducible scenario file (head-on, crossing, overtaking, several contacts)\n"
          "  avk band coverage --db FILE --test-mission ID... [--mission ID]... [--vehicle ID]\n"
@@ -176,6 +180,7 @@ int run_cli(const std::vector<std::string>& args, std::istream& in, std::ostream
     if (args[0] == "encounter") return cmd_encounter(rest, io);
     if (args[0] == "band") return cmd_band(rest, io);
     if (args[0] == "current") return cmd_current(rest, io);
+    if (args[0] == "vehicle") return cmd_vehicle(rest, io);
     if (args[0] == "serve") return cmd_serve(rest, io);
     if (args[0] == "frontseat-emulator") return cmd_frontseat_emulator(rest, io);
   } catch (const UsageError& e) {

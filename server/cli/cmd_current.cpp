@@ -22,13 +22,6 @@ std::string format_of(const Args& a) {
   return f;
 }
 
-void print_estimate(const kinematics::CurrentEstimate& e, std::ostream& out) {
-  out << std::fixed << std::setprecision(3) << e.speed_mps() << " ± " << e.speed_sd_mps()
-      << " m/s toward " << std::setprecision(1) << e.toward_deg() << " ± " << e.toward_sd_deg()
-      << "° (east " << std::setprecision(3) << e.east_mps << ", north " << e.north_mps << " m/s; "
-      << e.legs << " pieces of evidence, residual " << e.residual_rms_mps << " m/s)";
-}
-
 int estimate(const std::vector<std::string>& rest, Io& io) {
   const Args a(rest, {"db", "mission", "format", "leg", "from"}, {"store"});
   const std::string from = a.get("from").value_or("legs");
@@ -72,11 +65,24 @@ int estimate(const std::vector<std::string>& rest, Io& io) {
     return 1;
   }
   io.out << "current ";
-  print_estimate(*c.result.estimate, io.out);
+  print_current_estimate(*c.result.estimate, io.out);
   io.out << "\n"
          << (app::current_is_significant(*c.result.estimate)
                  ? "told apart from still water\n"
                  : "not told apart from still water: the turns stay over ground\n");
+  if (from == "legs") {
+    io.out << c.motion_legs << " steady stretches: the speed loop holds ";
+    if (c.speed_reference)
+      print_speed_reference(*c.speed_reference, io.out);
+    else
+      io.out << "(not judged)";
+    io.out << "\ndrift scatter: ";
+    if (c.drift_scatter)
+      print_drift_scatter(*c.drift_scatter, io.out);
+    else
+      io.out << "fewer than 3 steady stretches";
+    io.out << "\n";
+  }
   if (a.flag("store")) io.out << "stored; " << water_turns << " turns in the water frame\n";
   return 0;
 }
@@ -131,7 +137,7 @@ int compare(const std::vector<std::string>& rest, Io& io) {
   io.out << "\n";
   for (const auto& [mission, e] : c.test_currents) {
     io.out << "test mission " << mission << " current ";
-    print_estimate(e, io.out);
+    print_current_estimate(e, io.out);
     io.out << "\n";
   }
   io.out << std::fixed << std::setprecision(2) << "path error (mean distance at equal clock "
@@ -153,12 +159,19 @@ int show(const std::vector<std::string>& rest, Io& io) {
   }
   io.out << "vehicle " << vid << ", mission " << c.mission_id << " at " << std::fixed
          << std::setprecision(1) << c.t_s << " s: ";
-  print_estimate(c.estimate, io.out);
+  print_current_estimate(c.estimate, io.out);
   io.out << "\n";
   return 0;
 }
 
 }  // namespace
+
+void print_current_estimate(const kinematics::CurrentEstimate& e, std::ostream& out) {
+  out << std::fixed << std::setprecision(3) << e.speed_mps() << " ± " << e.speed_sd_mps()
+      << " m/s toward " << std::setprecision(1) << e.toward_deg() << " ± " << e.toward_sd_deg()
+      << "° (east " << std::setprecision(3) << e.east_mps << ", north " << e.north_mps << " m/s; "
+      << e.legs << " pieces of evidence, residual " << e.residual_rms_mps << " m/s)";
+}
 
 int cmd_current(const std::vector<std::string>& args, Io& io) {
   if (args.empty())

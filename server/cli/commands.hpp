@@ -10,6 +10,11 @@
 namespace avk::app {
 struct HarvestReport;
 }
+namespace avk::kinematics {
+struct CurrentEstimate;
+struct SpeedReferenceEvidence;
+struct DriftScatter;
+}  // namespace avk::kinematics
 
 namespace avk::server {
 
@@ -38,6 +43,14 @@ int cmd_serve(const std::vector<std::string>& args, Io& io);
 int cmd_encounter(const std::vector<std::string>& args, Io& io);
 int cmd_band(const std::vector<std::string>& args, Io& io);  // avk band coverage
 int cmd_current(const std::vector<std::string>& args, Io& io);
+int cmd_vehicle(const std::vector<std::string>& args, Io& io);  // avk vehicle motion
+// "0.20 ± 0.01 m/s toward 182.0 ± 3.0° (east …, north … m/s; N pieces of evidence, residual …)"
+void print_current_estimate(const kinematics::CurrentEstimate& e, std::ostream& out);
+// "over_ground (rms over ground …, through the water …, separation … m/s over N legs)" or
+// "undetermined (…)"; the line's end is the caller's.
+void print_speed_reference(const kinematics::SpeedReferenceEvidence& e, std::ostream& out);
+// "along … m/s, across … m/s (N legs of … s on average)"
+void print_drift_scatter(const kinematics::DriftScatter& d, std::ostream& out);
 int cmd_frontseat_emulator(const std::vector<std::string>& args, Io& io);
 
 }  // namespace avk::server

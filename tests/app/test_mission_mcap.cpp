@@ -43,6 +43,9 @@ class MissionMcapTest : public ::testing::Test {
     c.estimate.speed_scale = 0.987654321;
     c.estimate.residual_rms_mps = 0.0123;
     c.estimate.legs = 7;
+    c.speed_reference = kinematics::SpeedReferenceEvidence{
+        9, 0.0123456789, 0.2, 0.15, kinematics::SpeedReference::through_water};
+    c.drift_scatter = kinematics::DriftScatter{0.0456, 0.0321, 8, 11.25};
     ASSERT_TRUE(app::current_is_significant(c.estimate));
     std::vector<std::pair<std::int64_t, kinematics::TurnSequence>> ok;
     app::for_each_mission_turn(
@@ -223,6 +226,9 @@ TEST_F(MissionMcapTest, ExportThenImportGivesTheSameMissionFieldByField) {
   EXPECT_EQ(cb->estimate.speed_scale, ca.estimate.speed_scale);
   EXPECT_EQ(cb->estimate.residual_rms_mps, ca.estimate.residual_rms_mps);
   EXPECT_EQ(cb->estimate.legs, ca.estimate.legs);
+  ASSERT_TRUE(ca.speed_reference && ca.drift_scatter);
+  EXPECT_EQ(cb->speed_reference, ca.speed_reference);
+  EXPECT_EQ(cb->drift_scatter, ca.drift_scatter);
   // What the table is built from: the turns in the water frame.
   const auto wa = a.load_normalized_turns({mission_}, std::nullopt, false,
                                           store::TurnFrameChoice::water_where_known);

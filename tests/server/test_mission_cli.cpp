@@ -206,6 +206,26 @@ TEST_F(MissionCli, CatamaranInCurrentAndWindIsContainedAndLosesNoTurn) {
   EXPECT_EQ(ok_turns, 18);
   const Result text = run({"mission", "report", "1", "--db", db_.path()});
   EXPECT_NE(text.out.find("start heading err"), std::string::npos) << text.out;
+  // The recorder judged the steady stretches in the current as the mission ran: the M200's loop
+  // holds the speed over ground (identified, or the default when the legs could not tell).
+  const Result motion = run({"vehicle", "motion", "--db", db_.path(), "--format", "json"});
+  ASSERT_EQ(motion.rc, 0) << motion.err;
+  const json m = json::parse(motion.out);
+  EXPECT_EQ(m["speed_reference"]["value"], "over_ground") << m.dump();
+  EXPECT_EQ(m["drift_scatter"]["source"], "measured") << m.dump();
+  EXPECT_GT(m["drift_scatter"]["legs"].get<int>(), 0);
+  EXPECT_TRUE(m["current"].is_object()) << m.dump();
+  const Result estimate =
+      run({"current", "estimate", "--db", db_.path(), "--mission", "1", "--format", "json"});
+  ASSERT_EQ(estimate.rc, 0) << estimate.err;
+  const json e = json::parse(estimate.out);
+  EXPECT_TRUE(e["speed_reference"].is_object()) << e.dump();
+  EXPECT_GT(e["motion_legs"].get<int>(), 0);
+  const Result motion_text = run({"vehicle", "motion", "--db", db_.path()});
+  EXPECT_NE(motion_text.out.find("speed reference: over_ground"), std::string::npos)
+      << motion_text.out;
+  EXPECT_EQ(run({"vehicle"}).rc, 2);
+  EXPECT_EQ(run({"vehicle", "motion", "--db", db_.path(), "--vehicle", "nobody"}).rc, 1);
 }
 
 TEST_F(MissionCli, ExportedTableGrowsWithSpeedAndHeadingChangeAsPhysicsSays) {

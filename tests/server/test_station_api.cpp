@@ -389,6 +389,15 @@ TEST_F(StationApi, HealthAndVehicle) {
   EXPECT_TRUE(v["helm_mode"].is_null()) << v.dump();  // no mission drives the helm
   EXPECT_EQ(call(get("/api/v1/vehicles/nobody")).status, 404);
   EXPECT_EQ(body(call(get("/api/v1/vehicles"))).size(), 1u);
+  // Before any mission the vehicle's motion is the defaults.
+  const json motion = body(call(get("/api/v1/vehicles/sim-usim/motion")));
+  EXPECT_EQ(motion["speed_reference"]["value"], "over_ground");
+  EXPECT_EQ(motion["speed_reference"]["source"], "default");
+  EXPECT_TRUE(motion["speed_reference"]["mission_id"].is_null());
+  EXPECT_EQ(motion["drift_scatter"]["source"], "default");
+  EXPECT_EQ(motion["drift_scatter"]["along_mps"], 0.10);
+  EXPECT_TRUE(motion["current"].is_null());
+  EXPECT_EQ(call(get("/api/v1/vehicles/nobody/motion")).status, 404);
 }
 
 TEST_F(StationApi, ControlNeedsTheTokenAndReadsFromAfarToo) {

@@ -130,4 +130,79 @@ TEST(CurrentStore, MigratesASchemaNineDatabase) {
   EXPECT_FALSE(s.latest_vehicle_current("usim-1"));
 }
 
+// The speed reference and drift scatter judged in a current travel with it; an estimate without
+// them reads back without them, and an undetermined reference stays undetermined.
+TEST(CurrentStore, SpeedReferenceAndDriftScatterRoundTrip) {
+  Store s(":memory:");
+  s.upsert_vehicle({"usim-1", "usim", 2.0, 1.2});
+  const auto a = s.create_mission("usim-1", "a", "{}");
+  const auto b = s.create_mission("usim-1", "b", "{}");
+  const auto other = s.create_mission("usim-1", "c", "{}");
+  StoredCurrent ca = current_of(a, 0.2, 0.1);
+  ca.speed_reference = avk::kinematics::SpeedReferenceEvidence{
+      7, 0.012, 0.15, 0.14, avk::kinematics::SpeedReference::through_water};
+  ca.drift_scatter = avk::kinematics::DriftScatter{0.04, 0.03, 6, 12.5};
+  s.save_mission_current(ca, {});
+  StoredCurrent cb = current_of(b, 0.01, 0.0);
+  cb.speed_reference = avk::kinematics::SpeedReferenceEvidence{4, 0.05, 0.051, 0.004, {}};
+  s.save_mission_current(cb, {});
+  s.save_mission_current(current_of(other, 0.0, 0.02), {});
+
+  const auto got_a = s.mission_current(a);
+  ASSERT_TRUE(got_a);
+  EXPECT_EQ(got_a->speed_reference, ca.speed_reference);
+  EXPECT_EQ(got_a->drift_scatter, ca.drift_scatter);
+  const auto got_b = s.mission_current(b);
+  ASSERT_TRUE(got_b && got_b->speed_reference);
+  EXPECT_EQ(got_b->speed_reference, cb.speed_reference);
+  EXPECT_FALSE(got_b->speed_reference->identified);
+  EXPECT_FALSE(got_b->drift_scatter);
+  const auto got_other = s.mission_current(other);
+  EXPECT_FALSE(got_other->speed_reference);
+  EXPECT_FALSE(got_other->drift_scatter);
+
+  const auto all = s.vehicle_currents("usim-1");
+  ASSERT_EQ(all.size(), 3u);
+  EXPECT_EQ(all[0].mission_id, a);
+  EXPECT_EQ(all[2].mission_id, other);
+  EXPECT_LT(all[0].revision, all[1].revision);
+  EXPECT_TRUE(s.vehicle_currents("nobody").empty());
+}
+
+// A file as schema 11 left it, with an estimate stored then: it upgrades, the estimate reads back
+// without a speed reference or scatter, and a new save carries them.
+TEST(CurrentStore, MigratesASchemaElevenDatabase) {
+  avk::testing::TempDb db("avk_store_motion_migration");
+  std::int64_t m = 0;
+  {
+    Store s(db.path());
+    s.upsert_vehicle({"usim-1", "usim", 2.0, 1.2});
+    m = s.create_mission("usim-1", "old", "{}");
+  }
+  {
+    Connection c(db.path());
+    avk::testing::downgrade_schema(c, 11);
+    c.exec(
+        "INSERT INTO mission_currents (mission_id, t_s, method, east_mps, north_mps, cov_ee, "
+        "cov_en, cov_nn, speed_scale, residual_rms_mps, evidence, revision) VALUES "
+        "(1, 5.0, 'legs', 0.2, -0.1, 1e-4, 0, 1e-4, 1.0, 0.01, 12, 3)");
+  }
+  Store s(db.path());
+  EXPECT_EQ(s.user_version(), schema_version());
+  EXPECT_TRUE(s.integrity_check());
+  const auto old = s.mission_current(m);
+  ASSERT_TRUE(old);
+  EXPECT_EQ(old->estimate.east_mps, 0.2);
+  EXPECT_EQ(old->estimate.legs, 12u);
+  EXPECT_FALSE(old->speed_reference);
+  EXPECT_FALSE(old->drift_scatter);
+  StoredCurrent fresh = *old;
+  fresh.speed_reference = avk::kinematics::SpeedReferenceEvidence{
+      5, 0.02, 0.2, 0.15, avk::kinematics::SpeedReference::over_ground};
+  fresh.drift_scatter = avk::kinematics::DriftScatter{0.08, 0.05, 5, 7.0};
+  EXPECT_GT(s.save_mission_current(fresh, {}), 3);
+  EXPECT_EQ(s.mission_current(m)->speed_reference, fresh.speed_reference);
+  EXPECT_EQ(s.mission_current(m)->drift_scatter, fresh.drift_scatter);
+}
+
 }  // namespace

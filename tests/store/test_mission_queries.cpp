@@ -75,10 +75,10 @@ void expect_mean_sd(const std::optional<avk::kinematics::MeanSd>& got, double me
 
 }  // namespace
 
-TEST(MissionQueries, SchemaIsVersionEleven) {
+TEST(MissionQueries, SchemaIsVersionTwelve) {
   Store s(":memory:");
-  EXPECT_EQ(schema_version(), 11);
-  EXPECT_EQ(s.user_version(), 11);
+  EXPECT_EQ(schema_version(), 12);
+  EXPECT_EQ(s.user_version(), 12);
   EXPECT_FALSE(migration_step_sql(0).empty());
   EXPECT_NE(migration_step_sql(1).find("normalized_samples"), std::string_view::npos);
   EXPECT_NE(migration_step_sql(2).find("yaw_models"), std::string_view::npos);
@@ -90,7 +90,8 @@ TEST(MissionQueries, SchemaIsVersionEleven) {
   EXPECT_NE(migration_step_sql(8).find("speed_after_mps"), std::string_view::npos);
   EXPECT_NE(migration_step_sql(9).find("mission_currents"), std::string_view::npos);
   EXPECT_NE(migration_step_sql(10).find("started_utc"), std::string_view::npos);
-  EXPECT_THROW(migration_step_sql(11), std::out_of_range);
+  EXPECT_NE(migration_step_sql(11).find("speed_reference"), std::string_view::npos);
+  EXPECT_THROW(migration_step_sql(12), std::out_of_range);
   EXPECT_THROW(migration_step_sql(-1), std::out_of_range);
 }
 

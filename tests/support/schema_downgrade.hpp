@@ -17,6 +17,12 @@ inline void downgrade_schema(store::Connection& c, int version) {
     throw std::invalid_argument("downgrade_schema: no undo for schema " + std::to_string(version));
   for (int v = store::schema_version(); v > version; --v) {
     switch (v) {
+      case 12:  // the speed reference and drift scatter kept with a current
+        for (const char* column : {"reference_legs", "rms_over_ground_mps", "rms_through_water_mps",
+                                   "reference_separation_mps", "speed_reference", "drift_legs",
+                                   "drift_along_mps", "drift_cross_mps", "drift_mean_leg_s"})
+          c.exec(("ALTER TABLE mission_currents DROP COLUMN " + std::string(column)).c_str());
+        break;
       case 11:  // when missions ran, in wall-clock time
         c.exec("ALTER TABLE missions DROP COLUMN started_utc");
         c.exec("ALTER TABLE missions DROP COLUMN ended_utc");
