@@ -6,6 +6,7 @@
 #include "app/ckt_tables.hpp"
 #include "app/context.hpp"
 #include "app/current.hpp"
+#include "app/vehicle_motion.hpp"
 #include "app/yaw_rate_table.hpp"
 #include "kinematics/ckt.hpp"
 #include "kinematics/ckt3.hpp"
@@ -181,11 +182,16 @@ std::optional<Error> check(const ManeuverQuery& q) {
 // vehicle's; its straight-leg scatter.
 AnswerMotion answer_motion(Context& ctx, const std::string& vehicle_id,
                            std::optional<bool> speed_over_ground) {
-  (void)ctx;
-  (void)vehicle_id;
   AnswerMotion m;
-  m.scatter = {0.03, 0.03};
-  m.position_sd_m = 0.3;
+  m.speed_over_ground = kDefaultSpeedReference == kin::SpeedReference::over_ground;
+  m.scatter = {kDefaultDriftScatter.along_mps, kDefaultDriftScatter.cross_mps};
+  m.position_sd_m = kNavigationPositionSdM;
+  if (auto v = vehicle_motion(ctx, vehicle_id)) {
+    m.speed_over_ground = v->speed_reference.value == kin::SpeedReference::over_ground;
+    m.speed_reference_source = v->speed_reference.source;
+    m.scatter = {v->drift_scatter.scatter.along_mps, v->drift_scatter.scatter.cross_mps};
+    m.scatter_source = v->drift_scatter.source;
+  }
   if (speed_over_ground) {
     m.speed_over_ground = *speed_over_ground;
     m.speed_reference_source = "query";

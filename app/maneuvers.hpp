@@ -21,6 +21,10 @@ namespace avk::app {
 
 class Context;
 
+// The navigation's position noise the band never narrows below (1 sigma, each axis): a GNSS fix
+// of the class the M200 carries, and the simulator's default. Not yet measured per vehicle.
+inline constexpr double kNavigationPositionSdM = 0.3;
+
 // What an answer assumed of the vehicle's motion: the speed its loop holds and how a straight
 // prediction's error grows, and where each came from ("identified", "default", "query").
 struct AnswerMotion {
