@@ -76,8 +76,8 @@ Result<Predictor> predictor_for(Context& ctx, const std::string& vehicle_id,
   return p;
 }
 
-// What the answer assumes of the vehicle's motion: the request's speed reference, else the
-// vehicle's; its straight-leg scatter.
+}  // namespace
+
 AnswerMotion answer_motion(Context& ctx, const std::string& vehicle_id,
                            std::optional<bool> speed_over_ground) {
   (void)ctx;
@@ -90,6 +90,8 @@ AnswerMotion answer_motion(Context& ctx, const std::string& vehicle_id,
   }
   return m;
 }
+
+namespace {
 
 // The spread of the table's turns at equal time, 1 sigma, per trajectory vertex: across from
 // the corridor, along from the turns' timing spread at the commanded speed; both widened for the

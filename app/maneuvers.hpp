@@ -20,15 +20,6 @@ namespace avk::app {
 
 class Context;
 
-// What an answer assumed of the vehicle's motion: the speed its loop holds and how a straight
-// prediction's error grows, and where each came from ("identified", "default", "query").
-struct AnswerMotion {
-  bool speed_over_ground = true;
-  std::string speed_reference_source = "default";
-  kinematics::MotionScatter scatter;
-  std::string scatter_source = "default";
-};
-
 struct ManeuverQuery {
   std::string vehicle_id;
   kinematics::Pose own;    // position (local grid) and heading now
@@ -119,6 +110,11 @@ struct OngoingManeuver {
   AnswerMotion motion;
   std::optional<std::int64_t> model_id;
 };
+
+// What an answer assumes of the vehicle's motion (AnswerMotion, app/predict.hpp): the asked
+// speed reference (`speed_over_ground`), else the vehicle's; its straight-leg scatter.
+AnswerMotion answer_motion(Context& ctx, const std::string& vehicle_id,
+                           std::optional<bool> speed_over_ground);
 
 // The band's sources for an answer: the vehicle's straight-leg scatter and the current
 // estimate's covariance.
