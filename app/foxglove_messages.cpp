@@ -206,20 +206,30 @@ std::string turn_scene_message(const TurnScene& scene) {
       lines.push_back(line(p.corridor->left, kAvkCorridor, 1.0));
       lines.push_back(line(p.corridor->right, kAvkCorridor, 1.0));
     }
+    json metadata = json::array({key_value("method", p.method)});
+    if (!p.frame.empty()) metadata.push_back(key_value("frame", p.frame));
+    if (!p.current.empty()) metadata.push_back(key_value("current", p.current));
     entities.push_back(entity(scene.t_s, "turn/" + p.method, std::move(lines), json::array(),
-                              json::array({key_value("method", p.method)})));
+                              std::move(metadata)));
   }
   if (!scene.measured.empty())
     entities.push_back(
         entity(scene.t_s, "turn/measured", json::array({line(scene.measured, kMeasured, 2.5)})));
-  const std::string label = scene.cell_label.value_or("no CKT cell");
-  entities.push_back(entity(
-      scene.t_s, "turn/cell", json::array(),
-      json::array(
-          {text({scene.start.x_m, scene.start.y_m}, label + " — " + scene.state, kMeasured)}),
-      json::array({key_value("state", scene.state),
-                   key_value("speed_mps", json(scene.speed_mps).dump()),
-                   key_value("dheading_deg", json(scene.dheading_deg).dump())})));
+  std::string label = scene.cell_label.value_or("no CKT cell");
+  json cell_metadata = json::array({key_value("state", scene.state),
+                                    key_value("speed_mps", json(scene.speed_mps).dump()),
+                                    key_value("dheading_deg", json(scene.dheading_deg).dump())});
+  // Every prediction of a scene is asked the same way, so the first says what they move against.
+  if (!scene.predictions.empty() && !scene.predictions.front().frame.empty()) {
+    const ScenePrediction& p = scene.predictions.front();
+    label += p.frame == "ground" ? ", predicted over ground" : ", predicted through the water";
+    cell_metadata.push_back(key_value("frame", p.frame));
+    if (!p.current.empty()) cell_metadata.push_back(key_value("current", p.current));
+  }
+  entities.push_back(entity(scene.t_s, "turn/cell", json::array(),
+                            json::array({text({scene.start.x_m, scene.start.y_m},
+                                              label + " — " + scene.state, kMeasured)}),
+                            std::move(cell_metadata)));
   // Entities of the previous turn that this one lacks (a prediction that failed) must not linger.
   json deletions =
       json::array({{{"timestamp", timestamp(scene.t_s)}, {"type", 1}, {"id", ""}}});  // 1: ALL

@@ -65,6 +65,10 @@ struct ScenePrediction {
   std::string method;  // "avk", "model", "instantaneous"
   kinematics::Polyline trajectory;
   std::optional<kinematics::CorridorBand> corridor;
+  // What the trajectory moves against, "ground" or "water" (GET /predict's relative_to), and the
+  // current it was carried by, as read ("0.20 m/s toward 180 deg (live)"), else why none was.
+  std::string frame;
+  std::string current;
 };
 
 // The turn being flown (or the last one): where it started, what it was asked, what each

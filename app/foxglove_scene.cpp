@@ -1,8 +1,10 @@
 #include "app/foxglove_scene.hpp"
 
+#include <cmath>
 #include <cstdio>
 
 #include "app/predict.hpp"
+#include "kinematics/angles.hpp"
 
 namespace avk::app::foxglove {
 
@@ -21,6 +23,18 @@ std::string cell_label(const Prediction& p) {
   return label;
 }
 
+// The current a prediction was carried by, as read; else why it was not.
+std::string current_text(const Prediction& p) {
+  const std::string source = p.current_source.value_or("none");
+  if (!p.current) return source == "still_water" ? "still water" : source;
+  const double speed = std::hypot(p.current->east_mps, p.current->north_mps);
+  char text[120];
+  std::snprintf(text, sizeof text, "%.2f m/s toward %.0f deg (%s)", speed,
+                kinematics::heading_of_deg(p.current->east_mps, p.current->north_mps),
+                source.c_str());
+  return text;
+}
+
 }  // namespace
 
 ScenePredictions scene_predictions(Context& ctx, const std::string& vehicle_id, double speed_mps,
@@ -37,7 +51,9 @@ ScenePredictions scene_predictions(Context& ctx, const std::string& vehicle_id, 
     auto r = predict(ctx, q);
     if (!r) continue;
     if (method == PredictionMethod::avk) out.cell_label = cell_label(*r);
-    out.predictions.push_back({to_string(method), std::move(r->trajectory), r->corridor});
+    // The station's default, as every front end asks it: over ground where the current is known.
+    out.predictions.push_back(
+        {to_string(method), std::move(r->trajectory), r->corridor, r->frame, current_text(*r)});
   }
   return out;
 }

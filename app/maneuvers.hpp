@@ -25,16 +25,6 @@ class Context;
 // of the class the M200 carries, and the simulator's default. Not yet measured per vehicle.
 inline constexpr double kNavigationPositionSdM = 0.3;
 
-// What an answer assumed of the vehicle's motion: the speed its loop holds and how a straight
-// prediction's error grows, and where each came from ("identified", "default", "query").
-struct AnswerMotion {
-  bool speed_over_ground = true;
-  std::string speed_reference_source = "default";
-  kinematics::MotionScatter scatter;
-  double position_sd_m = 0.0;  // the navigation's position noise
-  std::string scatter_source = "default";
-};
-
 struct ManeuverQuery {
   std::string vehicle_id;
   kinematics::Pose own;    // position (local grid) and heading now

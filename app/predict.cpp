@@ -7,6 +7,7 @@
 #include "app/ckt_tables.hpp"
 #include "app/context.hpp"
 #include "app/current.hpp"
+#include "app/maneuvers.hpp"
 #include "app/yaw_rate_table.hpp"
 #include "kinematics/ckt.hpp"
 #include "kinematics/number_text.hpp"
@@ -261,15 +262,35 @@ Result<store::StoredModel> answering_model(Context& ctx, const PredictQuery& q,
   return std::move(*best);
 }
 
+// The trajectory through the water carried by a current (in its frame) as the vehicle's speed
+// loop flies it, point for point: a loop holding the speed over ground flies each segment at the
+// speed through the water that makes its still-water speed good over ground, so the segment is
+// re-timed and carried for that time (kinematics::retimed_over_ground); a loop holding the speed
+// through the water keeps the timing and is carried by c·t. Times from the table's recorded
+// timing, else constant speed.
+kin::Polyline carried_by_current(const kin::Polyline& trajectory,
+                                 const std::optional<kin::TurnTiming>& timing, double speed_mps,
+                                 kin::Point current_mps, bool speed_over_ground) {
+  if (!speed_over_ground)
+    return kin::drifted_trajectory(trajectory, timing, speed_mps, current_mps);
+  kin::Polyline out;
+  out.reserve(trajectory.size());
+  const kin::TimedPath water = kin::timed_maneuver(0.0, speed_mps, trajectory, timing).path;
+  for (const kin::TimedPoint& p : kin::retimed_over_ground(water, current_mps))
+    out.push_back({p.x_m, p.y_m});
+  return out;
+}
+
 Result<Prediction> finish(Prediction p, const std::optional<kin::Corridor>& corridor = {},
                           const std::optional<kin::TurnTiming>& timing = {}) {
   if (p.current) {
-    // The drift is added in the normalised frame, before placing, so a pose turns it with the
-    // trajectory; the normalised frame's north is the start heading.
+    // The current is applied in the normalised frame, before placing, so a pose turns it with
+    // the trajectory; the normalised frame's north is the start heading.
     const double heading = p.query.pose ? p.query.pose->heading_deg : 0.0;
-    p.trajectory = kin::drifted_trajectory(
+    p.trajectory = carried_by_current(
         p.trajectory, timing, p.query.speed_mps,
-        kin::current_in_normalized_frame(*p.current, heading, kin::TurnSide::right));
+        kin::current_in_normalized_frame(*p.current, heading, kin::TurnSide::right),
+        p.motion.speed_over_ground);
   }
   if (p.query.pose)
     p.trajectory = kin::place_normalized(p.trajectory, *p.query.pose, kin::TurnSide::right);
@@ -360,7 +381,15 @@ Result<Prediction> predict_with_table(const kin::Ckt& table, const PredictQuery&
   p.query = q;
   p.table_frame = kin::to_string(table.frame);
   p.current = q.current;
-  if (q.current) p.current_source = "query";
+  if (q.current) {
+    p.current_source = "query";
+    p.frame = "ground";
+  }
+  // A table file knows nothing of the vehicle's speed loop: the asked reference, else the default.
+  if (q.speed_over_ground) {
+    p.motion.speed_over_ground = *q.speed_over_ground;
+    p.motion.speed_reference_source = "query";
+  }
   try {
     return from_table(std::move(p), table.query(q.speed_mps, q.dheading_deg));
   } catch (const kin::CktRangeError& e) {
@@ -385,6 +414,9 @@ Result<Prediction> predict(Context& ctx, const PredictQuery& query) {
   if (!current) return current.error();
   p.current = current->current;
   p.current_source = current->source;
+  p.frame = current->frame;
+  p.current_covariance = current->covariance;
+  p.motion = answer_motion(ctx, q.vehicle_id, q.speed_over_ground);
   const auto held = held_out_of(ctx, q);
   if (!held) return held.error();
   const HeldOut& held_out = *held;

@@ -3,6 +3,7 @@
 // model, or the instantaneous-turn assumption, in the normalised frame or placed at a pose.
 // Every front end answers through here, so the same database and question give one trajectory.
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -10,6 +11,7 @@
 #include "app/result.hpp"
 #include "kinematics/ckt.hpp"
 #include "kinematics/geometry.hpp"
+#include "kinematics/position_band.hpp"
 #include "kinematics/water_current.hpp"
 
 namespace avk::app {
@@ -19,6 +21,16 @@ class Context;
 enum class PredictionMethod { avk, model, instantaneous };
 const char* to_string(PredictionMethod m);
 std::optional<PredictionMethod> prediction_method_from_string(const std::string& s);
+
+// What an answer assumed of the vehicle's motion: the speed its loop holds and how a straight
+// prediction's error grows, and where each came from ("identified", "default", "query").
+struct AnswerMotion {
+  bool speed_over_ground = true;
+  std::string speed_reference_source = "default";
+  kinematics::MotionScatter scatter;
+  double position_sd_m = 0.0;  // the navigation's position noise
+  std::string scatter_source = "default";
+};
 
 struct PredictQuery {
   std::string vehicle_id;
@@ -37,6 +49,10 @@ struct PredictQuery {
   std::optional<kinematics::WaterCurrent> current;
   bool live_current = false;  // the current: the station's latest estimate for the vehicle
   bool no_current = false;    // nothing added: the path through the water
+  // Which speed the vehicle's loop holds in the current, over ground (true: the turn is re-timed,
+  // kinematics::retimed_over_ground) or through the water (false: the path through the water
+  // carried by c·t); none: the vehicle's, as the station knows it (AnswerMotion).
+  std::optional<bool> speed_over_ground;
   // avk: the vehicle's table of collection and harvested turns, not collection turns alone.
   bool include_harvested = false;
   // The yaw rate when the turn is commanded (deg/s, + clockwise, as headings turn; for a right
@@ -82,9 +98,16 @@ struct Prediction {
   // avk: the frame of the turns the table was built from (kinematics::TableFrame): a water-frame
   // table predicts through the water, so the current belongs in the query.
   std::optional<std::string> table_frame;
-  // The current whose drift was added, and where it came from ("query" or "live").
+  // The current whose drift was added, and where it came from (app/current.hpp query_current:
+  // "query", "live", "still_water", "unknown", "none"); the frame the trajectory is in ("ground":
+  // over ground, where the station knows the current; "water": through the water), the
+  // estimate's covariance of (east, north) in (m/s)² [ee, en, nn], and the speed reference the
+  // current was applied with.
   std::optional<kinematics::WaterCurrent> current;
   std::optional<std::string> current_source;
+  std::string frame = "water";
+  std::optional<std::array<double, 3>> current_covariance;
+  AnswerMotion motion;
   // avk with an initial yaw rate: where the answer came from (measured, model or interpolated)
   // and whether the rate lay outside the table's yaw-rate range (answered by the nearest slice).
   std::optional<std::string> cell_source;

@@ -278,6 +278,34 @@ json cell_summary_json(const kin::CktCell& c) {
           {"avk_error_m2", optional_json(c.avk_error_m2)}};
 }
 
+// The current an answer applied, with its source, and the 1-sigma uncertainty of the estimate
+// it came from: of each component, and of its speed and direction when there is a current.
+json answer_current_json(const std::optional<kin::WaterCurrent>& current,
+                         const std::optional<std::string>& source,
+                         const std::optional<std::array<double, 3>>& covariance) {
+  json c = water_current_json(current, source);
+  if (c.is_null() && source) c = {{"source", *source}};
+  if (covariance && c.is_object()) {
+    c["covariance_m2ps2"] = *covariance;
+    c["east_sd_mps"] = std::sqrt(std::max(0.0, (*covariance)[0]));
+    c["north_sd_mps"] = std::sqrt(std::max(0.0, (*covariance)[2]));
+    if (current) {
+      kin::CurrentEstimate e;
+      e.east_mps = current->east_mps;
+      e.north_mps = current->north_mps;
+      e.covariance = *covariance;
+      c["speed_sd_mps"] = e.speed_sd_mps();
+      c["toward_sd_deg"] = e.toward_sd_deg();
+    }
+  }
+  return c;
+}
+
+json speed_reference_json(const app::AnswerMotion& motion) {
+  return {{"value", motion.speed_over_ground ? "over_ground" : "through_water"},
+          {"source", motion.speed_reference_source}};
+}
+
 }  // namespace
 
 json ckt_summary_json(const app::VehicleTable& t) {
@@ -348,7 +376,11 @@ json prediction_json(const app::Prediction& p) {
     j["speed_model"] = q.use_speed_model;
   }
   if (p.table_frame) j["table_frame"] = *p.table_frame;
-  j["current"] = water_current_json(p.current, p.current_source);
+  // "frame" says where the trajectory is placed (world or normalised); "relative_to" what it
+  // moves against: the ground, where the station knows the current, else the water.
+  j["relative_to"] = p.frame;
+  j["current"] = answer_current_json(p.current, p.current_source, p.current_covariance);
+  j["speed_reference"] = speed_reference_json(p.motion);
   if (q.initial_yaw_rate_dps) j["initial_yaw_rate_dps"] = *q.initial_yaw_rate_dps;
   if (q.without_mission_id) j["without_mission_id"] = *q.without_mission_id;
   if (q.without_turn_id) j["without_turn_id"] = *q.without_turn_id;
@@ -559,16 +591,8 @@ void put_answer_frame(json& j, const std::string& frame,
                       const std::optional<std::array<double, 3>>& covariance,
                       const app::AnswerMotion& motion) {
   j["frame"] = frame;
-  json c = water_current_json(current, source);
-  if (c.is_null() && source) c = {{"source", *source}};
-  if (covariance && c.is_object()) {
-    c["covariance_m2ps2"] = *covariance;
-    c["east_sd_mps"] = std::sqrt(std::max(0.0, (*covariance)[0]));
-    c["north_sd_mps"] = std::sqrt(std::max(0.0, (*covariance)[2]));
-  }
-  j["current"] = std::move(c);
-  j["speed_reference"] = {{"value", motion.speed_over_ground ? "over_ground" : "through_water"},
-                          {"source", motion.speed_reference_source}};
+  j["current"] = answer_current_json(current, source, covariance);
+  j["speed_reference"] = speed_reference_json(motion);
   j["scatter"] = {{"along_mps", motion.scatter.along_mps},
                   {"cross_mps", motion.scatter.cross_mps},
                   {"source", motion.scatter_source}};

@@ -138,6 +138,7 @@ app::PredictQuery predict_query(const ApiRequest& r, const std::string& vid) {
   q.current = current.current;
   q.live_current = current.live;
   q.no_current = current.none;
+  q.speed_over_ground = speed_reference_param(r);
   q.include_harvested = include_harvested_param(r);
   q.initial_yaw_rate_dps = number_param(r, "initial_yaw_rate", -90.0, 90.0);
   q.speed_after_mps = number_param(r, "speed_after", 0.0, 100.0);

@@ -142,6 +142,7 @@ int query(const Args& a, Io& io) {
   q.dheading_deg = *dheading;
   if (placed) q.pose = kin::Pose{*x, *y, *heading};
   q.current = current_option(a, false).current;
+  q.speed_over_ground = speed_reference_option(a);
   const app::Prediction p = value_or_fail(app::predict_with_table(table, q));
   emit(a, io,
        format == OutFormat::csv ? trajectory_csv(p.trajectory) : prediction_json(p).dump() + "\n");
@@ -229,9 +230,9 @@ int cmd_ckt(const std::vector<std::string>& args, Io& io) {
     return summarise(t, io);
   }
   if (sub == "query") {
-    return query(
-        Args(rest, {"ckt", "speed", "dheading", "x", "y", "heading", "format", "out", "current"}),
-        io);
+    return query(Args(rest, {"ckt", "speed", "dheading", "x", "y", "heading", "format", "out",
+                             "current", "speed-reference"}),
+                 io);
   }
   throw UsageError("unknown subcommand 'ckt " + sub + "'");
 }

@@ -252,11 +252,7 @@ int encounter_run(const std::vector<std::string>& rest, Io& io) {
   if (rule != "risk" && rule != "corridor") throw UsageError("--rule must be risk or corridor");
   q.corridor_rule = rule == "corridor";
   q.prefer_starboard = a.flag("colregs");
-  if (const auto ref = a.get("speed-reference")) {
-    if (*ref != "over_ground" && *ref != "through_water")
-      throw UsageError("--speed-reference must be over_ground or through_water");
-    q.speed_over_ground = *ref == "over_ground";
-  }
+  q.speed_over_ground = speed_reference_option(a);
   q.vehicle_id = vehicle_of(a, ctx.db(), {}, "vehicle-id");
   const app::EncounterFile file =
       value_or_fail(app::parse_encounter_file(read_file(scenarios_path, io.in)));

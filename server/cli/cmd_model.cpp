@@ -308,11 +308,11 @@ int compare(const std::vector<std::string>& rest, Io& io) {
 }
 
 int predict(const std::vector<std::string>& rest, Io& io) {
-  const Args a(
-      rest,
-      {"db", "speed", "dheading", "method", "model", "x", "y", "heading", "format", "vehicle",
-       "threshold", "corridor", "current", "initial-yaw-rate", "speed-after", "without-mission"},
-      {"speed-model"});
+  const Args a(rest,
+               {"db", "speed", "dheading", "method", "model", "x", "y", "heading", "format",
+                "vehicle", "threshold", "corridor", "current", "initial-yaw-rate", "speed-after",
+                "without-mission", "speed-reference"},
+               {"speed-model"});
   app::Context ctx(a.require("db"));
   app::PredictQuery q;
   const auto speed = a.number("speed");
@@ -344,6 +344,7 @@ int predict(const std::vector<std::string>& rest, Io& io) {
   q.current = current.current;
   q.live_current = current.live;
   q.no_current = current.none;
+  q.speed_over_ground = speed_reference_option(a);
   q.initial_yaw_rate_dps = a.number("initial-yaw-rate");
   if (const auto held_out = a.get("without-mission"))
     q.without_mission_id = parse_id(*held_out, "--without-mission");

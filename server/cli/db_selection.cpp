@@ -47,6 +47,14 @@ CurrentOption current_option(const Args& a, bool allow_live) {
   return out;
 }
 
+std::optional<bool> speed_reference_option(const Args& a) {
+  const auto ref = a.get("speed-reference");
+  if (!ref) return std::nullopt;
+  if (*ref != "over_ground" && *ref != "through_water")
+    throw UsageError("--speed-reference must be over_ground or through_water");
+  return *ref == "over_ground";
+}
+
 std::vector<std::int64_t> mission_ids(const Args& a) {
   std::vector<std::int64_t> ids;
   for (const std::string& s : a.all("mission"))

@@ -31,6 +31,10 @@ struct CurrentOption {
 };
 CurrentOption current_option(const Args& a, bool allow_live = true);
 
+// --speed-reference over_ground|through_water: which speed the vehicle's loop holds (true: over
+// ground); none when absent. UsageError for anything else.
+std::optional<bool> speed_reference_option(const Args& a);
+
 // Every --mission, each a positive whole number (UsageError otherwise); empty: all missions.
 std::vector<std::int64_t> mission_ids(const Args& a);
 

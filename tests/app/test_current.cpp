@@ -102,8 +102,8 @@ TEST(MissionCurrent, TheRecorderStoresTheEstimateAndTheWaterFrameAsTheMissionRun
   // The ground form is untouched.
   for (const auto& t : ctx.db().load_normalized_turns({mission}, "m200"))
     EXPECT_FALSE(t.meta().removed_current);
-  // The station's table is built from them and predicts through the water; the live estimate
-  // is what `current=live` adds.
+  // The station's table is built from them and predicts through the water (current=none); the
+  // live estimate is what `current=live` adds, and what an answer not asked for a current gets.
   auto table = app::vehicle_table(ctx, "m200");
   ASSERT_TRUE(table);
   EXPECT_EQ(table->table->frame, kinematics::TableFrame::water);
@@ -112,11 +112,21 @@ TEST(MissionCurrent, TheRecorderStoresTheEstimateAndTheWaterFrameAsTheMissionRun
   q.speed_mps = 1.0;
   q.dheading_deg = 90.0;
   q.pose = kinematics::Pose{0.0, 0.0, 0.0};
+  q.no_current = true;
   const auto through_water = app::predict(ctx, q);
+  q.no_current = false;
+  const auto by_default = app::predict(ctx, q);
   q.live_current = true;
   const auto over_ground = app::predict(ctx, q);
-  ASSERT_TRUE(through_water && over_ground);
+  ASSERT_TRUE(through_water && over_ground && by_default);
   EXPECT_EQ(over_ground->current_source, "live");
+  EXPECT_EQ(through_water->frame, "water");
+  EXPECT_EQ(by_default->frame, "ground");
+  ASSERT_EQ(by_default->trajectory.size(), over_ground->trajectory.size());
+  for (std::size_t i = 0; i < by_default->trajectory.size(); ++i) {
+    EXPECT_DOUBLE_EQ(by_default->trajectory[i].x_m, over_ground->trajectory[i].x_m);
+    EXPECT_DOUBLE_EQ(by_default->trajectory[i].y_m, over_ground->trajectory[i].y_m);
+  }
   // Carried south: the predicted end lies south of the one through the water by about c·t.
   EXPECT_LT(over_ground->trajectory.back().y_m, through_water->trajectory.back().y_m - 1.0);
   // A still-water mission keeps its turns over ground.

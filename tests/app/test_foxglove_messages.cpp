@@ -134,8 +134,9 @@ TEST(FoxgloveMessages, ATurnSceneDrawsEveryPredictionTheCorridorAndReplacesThePr
   kinematics::CorridorBand band;
   band.left = {{9, 20}, {9, 25}};
   band.right = {{11, 20}, {11, 25}};
-  s.predictions = {{"avk", {{10, 20}, {10, 25}}, band},
-                   {"instantaneous", {{10, 20}, {30, 20}}, {}}};
+  s.predictions = {
+      {"avk", {{10, 20}, {10, 25}}, band, "ground", "0.20 m/s toward 180 deg (live)"},
+      {"instantaneous", {{10, 20}, {30, 20}}, {}, "ground", "0.20 m/s toward 180 deg (live)"}};
   s.cell_label = "CKT 1.00 m/s +90 deg (cell)";
   const auto j = json::parse(turn_scene_message(s));
   EXPECT_EQ(j["deletions"][0]["type"], 1);  // ALL: nothing of the last turn lingers
@@ -150,6 +151,18 @@ TEST(FoxgloveMessages, ATurnSceneDrawsEveryPredictionTheCorridorAndReplacesThePr
   EXPECT_NEAR(ray[1]["x"].get<double>() - 10.0, 30.0, 1e-9);
   EXPECT_NEAR(ray[1]["y"].get<double>(), 20.0, 1e-9);
   EXPECT_NE(by_id["turn/cell"]["texts"][0]["text"].get<std::string>().find("+90"),
+            std::string::npos);
+  // What the predictions move against is said on each and on the cell's label.
+  const auto meta_of = [&](const std::string& id) {
+    std::map<std::string, std::string> meta;
+    for (const auto& kv : by_id[id]["metadata"])
+      meta[kv["key"].get<std::string>()] = kv["value"].get<std::string>();
+    return meta;
+  };
+  EXPECT_EQ(meta_of("turn/avk").at("frame"), "ground");
+  EXPECT_EQ(meta_of("turn/avk").at("current"), "0.20 m/s toward 180 deg (live)");
+  EXPECT_EQ(meta_of("turn/cell").at("frame"), "ground");
+  EXPECT_NE(by_id["turn/cell"]["texts"][0]["text"].get<std::string>().find("predicted over ground"),
             std::string::npos);
 }
 

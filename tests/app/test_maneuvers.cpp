@@ -48,7 +48,10 @@ class Maneuvers : public ::testing::Test {
 };
 
 TEST_F(Maneuvers, TheTableChoosesTheSmallestTurnThatClearsItsCorridor) {
-  const auto e = app::evaluate_maneuvers(ctx_, crossing(app::PredictionMethod::avk));
+  // The corridor rule (the default is the choice by risk).
+  auto q = crossing(app::PredictionMethod::avk);
+  q.corridor_rule = true;
+  const auto e = app::evaluate_maneuvers(ctx_, q);
   ASSERT_TRUE(e) << e.error().message;
   ASSERT_EQ(e->candidates.size(), 73u);
   EXPECT_EQ(e->table_source, "turns");

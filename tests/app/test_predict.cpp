@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -12,6 +13,7 @@
 #include "app/predict.hpp"
 #include "kinematics/ckt.hpp"
 #include "kinematics/ckt_file.hpp"
+#include "kinematics/maneuver.hpp"
 #include "kinematics/yaw_model.hpp"
 #include "support/stored_turns.hpp"
 #include "support/temp_db.hpp"
@@ -326,6 +328,202 @@ TEST_F(Predict, WithoutATurnTheTableHoldsEveryOtherTurn) {
   EXPECT_NE(foreign.error().message.find("belongs to vehicle 'beta', not 'alpha'"),
             std::string::npos)
       << foreign.error().message;
+}
+
+// --- in a current: over ground by default ---------------------------------------------------
+
+// The station's estimate for the vehicle: `east`, `north` with a 1-sigma of `sd` m/s on each.
+void store_current(store::Store& db, std::int64_t mission, double east, double north, double sd) {
+  store::StoredCurrent c;
+  c.mission_id = mission;
+  c.t_s = 100.0;
+  c.estimate.east_mps = east;
+  c.estimate.north_mps = north;
+  c.estimate.covariance = {sd * sd, 0.0, sd * sd};
+  c.estimate.legs = 6;
+  db.save_mission_current(c, {});
+}
+
+app::PredictQuery ray_east(kinematics::WaterCurrent c, std::optional<bool> over_ground) {
+  auto q = query("anyone", 1.0, 90.0);
+  q.method = app::PredictionMethod::instantaneous;
+  q.pose = kinematics::Pose{0.0, 0.0, 0.0};  // heading north, the ray due east for 20 s
+  q.current = c;
+  q.speed_over_ground = over_ground;
+  return q;
+}
+
+// A straight leg at 1 m/s through the water for 20 s in a current along it, against it and
+// across it. Held through the water it is carried c·20 s; held over ground the loop makes 1 m/s
+// good over ground, so the leg takes 20/k s (k the scale of the speed through the water) and
+// covers 20/k m: along 0.2 m/s, k = 0.8 and 25 m; against it, k = 1.2 and 16.67 m; across it,
+// k = sqrt(0.96) and 20 m along plus 0.2·20/k across.
+TEST_F(Predict, AStraightLegInACurrentIsCarriedOrRetimedAsTheSpeedLoopHoldsIt) {
+  struct Case {
+    kinematics::WaterCurrent c;
+    kinematics::Point water, ground;
+  };
+  const double k_cross = std::sqrt(0.96);
+  for (const Case& c : {Case{{0.2, 0.0}, {24.0, 0.0}, {25.0, 0.0}},
+                        Case{{-0.2, 0.0}, {16.0, 0.0}, {20.0 - 0.2 * 20.0 / 1.2, 0.0}},
+                        Case{{0.0, 0.2}, {20.0, 4.0}, {20.0, 0.2 * 20.0 / k_cross}}}) {
+    const auto water = app::predict(ctx_, ray_east(c.c, false));
+    const auto ground = app::predict(ctx_, ray_east(c.c, true));
+    ASSERT_TRUE(water && ground);
+    EXPECT_NEAR(water->trajectory.back().x_m, c.water.x_m, 1e-9);
+    EXPECT_NEAR(water->trajectory.back().y_m, c.water.y_m, 1e-9);
+    EXPECT_NEAR(ground->trajectory.back().x_m, c.ground.x_m, 1e-9);
+    EXPECT_NEAR(ground->trajectory.back().y_m, c.ground.y_m, 1e-9);
+    // Both are over ground (a current was given), and say which reference carried them.
+    for (const auto* p : {&*water, &*ground}) {
+      EXPECT_EQ(p->frame, "ground");
+      EXPECT_EQ(p->current_source, "query");
+      EXPECT_EQ(p->motion.speed_reference_source, "query");
+    }
+    EXPECT_FALSE(water->motion.speed_over_ground);
+    EXPECT_TRUE(ground->motion.speed_over_ground);
+  }
+  // Unasked, the reference is the vehicle's (the default until the station identifies it: over
+  // ground, as the M200's loop holds it).
+  const auto unasked = app::predict(ctx_, ray_east({0.2, 0.0}, std::nullopt));
+  ASSERT_TRUE(unasked);
+  EXPECT_EQ(unasked->motion.speed_reference_source, "default");
+  EXPECT_TRUE(unasked->motion.speed_over_ground);
+  EXPECT_NEAR(unasked->trajectory.back().x_m, 25.0, 1e-9);
+}
+
+// A turn in a current, held over ground: each segment of the answer makes good over ground the
+// speed it has through the water, and differs from the path through the water by c·t over its
+// re-timed time. Held through the water: the path through the water plus c·t at the table's own
+// times. Either way the answer starts where the turn does and the vertices stay one for one.
+TEST_F(Predict, ATurnInACurrentKeepsItsStillWaterSpeedOverGroundWhenTheLoopHoldsIt) {
+  avk::testing::store_arc_turns(ctx_.db(), "alpha");
+  const kinematics::WaterCurrent c{0.15, -0.1};
+  auto q = query("alpha", 1.0, 100.0);
+  q.no_current = true;
+  const auto through_water = app::predict(ctx_, q);
+  q.no_current = false;
+  q.current = c;
+  q.speed_over_ground = true;
+  const auto over_ground = app::predict(ctx_, q);
+  q.speed_over_ground = false;
+  const auto carried = app::predict(ctx_, q);
+  ASSERT_TRUE(through_water && over_ground && carried);
+  EXPECT_EQ(through_water->frame, "water");
+  EXPECT_EQ(through_water->current_source, "none");
+  EXPECT_FALSE(through_water->current);
+  // The water path's times, as the table recorded its turns.
+  const auto table = kinematics::Ckt::build(ctx_.db().load_normalized_turns({}, "alpha"));
+  const auto fine = kinematics::MaterializedCkt(table).query(1.0, 100.0);
+  ASSERT_TRUE(fine.timing);
+  const kinematics::TimedPath water =
+      kinematics::timed_maneuver(0.0, 1.0, through_water->trajectory, fine.timing).path;
+  const auto& g = over_ground->trajectory;
+  const auto& d = carried->trajectory;
+  ASSERT_EQ(g.size(), water.size());
+  ASSERT_EQ(d.size(), water.size());
+  EXPECT_NEAR(g.front().x_m, 0.0, 1e-12);
+  EXPECT_NEAR(g.front().y_m, 0.0, 1e-12);
+  const double cs = std::hypot(c.east_mps, c.north_mps);
+  double t_ground = 0.0;
+  std::size_t moving = 0;
+  for (std::size_t i = 1; i < water.size(); ++i) {
+    const double dt = water[i].t_s - water[i - 1].t_s;
+    const double wx = water[i].x_m - water[i - 1].x_m, wy = water[i].y_m - water[i - 1].y_m;
+    // Carried: the water path plus c·t at the table's times.
+    EXPECT_NEAR(d[i].x_m, water[i].x_m + c.east_mps * water[i].t_s, 1e-9) << i;
+    EXPECT_NEAR(d[i].y_m, water[i].y_m + c.north_mps * water[i].t_s, 1e-9) << i;
+    const double gx = g[i].x_m - g[i - 1].x_m, gy = g[i].y_m - g[i - 1].y_m;
+    // The drift over the segment is along c, c times its time over ground...
+    const double drift = std::hypot(gx - wx, gy - wy);
+    const double dt_ground = drift / cs;
+    EXPECT_NEAR((gx - wx) * cs, c.east_mps * drift, 1e-9) << i;
+    EXPECT_NEAR((gy - wy) * cs, c.north_mps * drift, 1e-9) << i;
+    t_ground += dt_ground;
+    // ...which puts point i on the water path plus the drift over the re-timed time so far...
+    EXPECT_NEAR(g[i].x_m, water[i].x_m + c.east_mps * t_ground, 1e-6) << i;
+    EXPECT_NEAR(g[i].y_m, water[i].y_m + c.north_mps * t_ground, 1e-6) << i;
+    // ...and in that time the segment makes good its still-water speed over ground (a segment
+    // far slower than the current would need a speed through the water beyond the loop's bounds).
+    if (!(dt > 1e-6) || std::hypot(wx, wy) < 2.0 * cs * dt) continue;
+    ++moving;
+    EXPECT_NEAR(std::hypot(gx, gy) / dt_ground, std::hypot(wx, wy) / dt, 1e-6) << i;
+  }
+  EXPECT_GT(moving, 5u);
+  // The two references differ measurably by the end of the turn.
+  EXPECT_GT(std::hypot(g.back().x_m - d.back().x_m, g.back().y_m - d.back().y_m), 0.05);
+}
+
+// Not asked for a current, the answer is over ground wherever the station knows it: the stored
+// estimate when it is told apart from still water (with its uncertainty), still water when it is
+// not; through the water only without an estimate, or when asked with current=none.
+TEST_F(Predict, UnaskedTheAnswerIsOverGroundWithTheStoredEstimate) {
+  const std::int64_t mission = avk::testing::store_arc_turns(ctx_.db(), "alpha");
+  auto q = query("alpha", 1.0, 100.0);
+  q.pose = kinematics::Pose{10.0, -5.0, 30.0};
+  const auto before = app::predict(ctx_, q);  // no estimate yet
+  ASSERT_TRUE(before);
+  EXPECT_EQ(before->frame, "water");
+  EXPECT_EQ(before->current_source, "unknown");
+  EXPECT_FALSE(before->current);
+
+  store_current(ctx_.db(), mission, 0.0, -0.2, 0.01);
+  const auto by_default = app::predict(ctx_, q);
+  auto given = q;
+  given.current = kinematics::WaterCurrent{0.0, -0.2};
+  const auto as_given = app::predict(ctx_, given);
+  auto none = q;
+  none.no_current = true;
+  const auto through_water = app::predict(ctx_, none);
+  ASSERT_TRUE(by_default && as_given && through_water);
+  EXPECT_EQ(by_default->frame, "ground");
+  EXPECT_EQ(by_default->current_source, "live");
+  ASSERT_TRUE(by_default->current);
+  EXPECT_DOUBLE_EQ(by_default->current->north_mps, -0.2);
+  ASSERT_TRUE(by_default->current_covariance);
+  EXPECT_DOUBLE_EQ((*by_default->current_covariance)[0], 1e-4);
+  EXPECT_DOUBLE_EQ((*by_default->current_covariance)[2], 1e-4);
+  expect_same_line(by_default->trajectory, as_given->trajectory);
+  // current=none: the path through the water, the same as before there was an estimate.
+  EXPECT_EQ(through_water->frame, "water");
+  EXPECT_EQ(through_water->current_source, "none");
+  EXPECT_FALSE(through_water->current);
+  expect_same_line(through_water->trajectory, before->trajectory);
+  // Carried south by the current: the end lies south of the one through the water.
+  EXPECT_LT(by_default->trajectory.back().y_m, through_water->trajectory.back().y_m - 1.0);
+
+  // An estimate not told apart from still water: over ground, nothing added.
+  store_current(ctx_.db(), mission, 0.01, 0.0, 0.02);
+  const auto still = app::predict(ctx_, q);
+  ASSERT_TRUE(still);
+  EXPECT_EQ(still->frame, "ground");
+  EXPECT_EQ(still->current_source, "still_water");
+  EXPECT_FALSE(still->current);
+  ASSERT_TRUE(still->current_covariance);
+  expect_same_line(still->trajectory, before->trajectory);
+}
+
+// A CKT file has no station: a given current is applied over ground with the asked reference
+// (else the default), and without one the answer is through the water.
+TEST_F(Predict, ATableFileAppliesAGivenCurrentWithTheAskedSpeedReference) {
+  avk::testing::store_arc_turns(ctx_.db(), "alpha");
+  const auto table = kinematics::Ckt::build(ctx_.db().load_normalized_turns({}, "alpha"));
+  app::PredictQuery q = query("alpha", 1.0, 100.0);
+  const auto plain = app::predict_with_table(table, q);
+  q.current = kinematics::WaterCurrent{0.2, 0.0};
+  const auto default_ref = app::predict_with_table(table, q);
+  q.speed_over_ground = true;
+  const auto over_ground = app::predict_with_table(table, q);
+  q.speed_over_ground = false;
+  const auto carried = app::predict_with_table(table, q);
+  ASSERT_TRUE(plain && default_ref && over_ground && carried);
+  EXPECT_EQ(plain->frame, "water");
+  EXPECT_EQ(over_ground->frame, "ground");
+  EXPECT_EQ(default_ref->motion.speed_reference_source, "default");
+  EXPECT_EQ(over_ground->motion.speed_reference_source, "query");
+  EXPECT_FALSE(carried->motion.speed_over_ground);
+  expect_same_line(default_ref->trajectory, over_ground->trajectory);
+  EXPECT_GT(std::abs(over_ground->trajectory.back().x_m - carried->trajectory.back().x_m), 0.05);
 }
 
 TEST(PredictMethod, NamesRoundTrip) {

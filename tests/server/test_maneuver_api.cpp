@@ -94,7 +94,10 @@ class ManeuverApi : public ::testing::Test {
 };
 
 TEST_F(ManeuverApi, InstantaneousChoiceIsTheClosedFormOfAHeadOnEncounter) {
-  const json e = ok(post("evaluate", head_on().dump()));
+  // The corridor rule: the smallest heading change that clears (the default chooses by risk).
+  json body = head_on();
+  body["rule"] = "corridor";
+  const json e = ok(post("evaluate", body.dump()));
   EXPECT_EQ(e["method"], "instantaneous");
   ASSERT_EQ(e["candidates"].size(), 73u);  // -180..180 in 5-deg steps
   ASSERT_TRUE(e["chosen"].is_object()) << e["chosen"];
@@ -303,18 +306,25 @@ TEST_F(ManeuverApi, SimulateUsesTheStationsSimulatedVehicle) {
 }
 
 TEST_F(ManeuverApi, CliPrintsTheChoiceAndTheSameDocumentAsTheApi) {
-  const std::vector<std::string> args = {"maneuver",   "evaluate", "--db",      db_.path(),
-                                         "--own",      "0,0,0,1",  "--contact", "0,40,180,1",
-                                         "--standoff", "10",       "--method",  "instantaneous"};
+  const std::vector<std::string> args = {
+      "maneuver",   "evaluate",   "--db", db_.path(), "--own",         "0,0,0,1", "--contact",
+      "0,40,180,1", "--standoff", "10",   "--method", "instantaneous", "--rule",  "corridor"};
   const auto table = avk::testing::run(args);
   ASSERT_EQ(table.rc, 0) << table.err;
-  EXPECT_NE(table.out.find("chosen: +30° (CPA 10.4 m)"), std::string::npos) << table.out;
+  // The closed form's choice under the corridor rule, with its risk and margin after it.
+  EXPECT_NE(table.out.find("chosen: +30° (CPA 10.4 m, risk "), std::string::npos) << table.out;
+  EXPECT_NE(table.out.find(", margin 0.4 m): the smallest heading change whose corridor edge "
+                           "clears\n"),
+            std::string::npos)
+      << table.out;
   EXPECT_NE(table.out.find("<- chosen"), std::string::npos);
   auto json_args = args;
   json_args.insert(json_args.end(), {"--format", "json"});
   const auto j = avk::testing::run(json_args);
   ASSERT_EQ(j.rc, 0) << j.err;
-  json api = ok(post("evaluate", head_on().dump()));
+  json question = head_on();
+  question["rule"] = "corridor";
+  json api = ok(post("evaluate", question.dump()));
   EXPECT_EQ(json::parse(j.out), api);
 
   auto bad = args;
