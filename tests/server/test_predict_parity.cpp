@@ -32,7 +32,7 @@ struct Question {
 
 class PredictParity : public ::testing::Test {
  protected:
-  json over_http(const Question& q) {
+  server::ApiResponse ask_http(const Question& q) {
     server::StationOptions o;
     o.db_path = db_.path();
     o.token = "parity-token";
@@ -45,7 +45,10 @@ class PredictParity : public ::testing::Test {
                {"method", q.method}};
     if (!q.current.empty()) r.query["current"] = q.current;
     if (!q.speed_reference.empty()) r.query["speed_reference"] = q.speed_reference;
-    const auto res = station.handle(r);
+    return station.handle(r);
+  }
+  json over_http(const Question& q) {
+    const auto res = ask_http(q);
     EXPECT_EQ(res.status, 200) << res.body;
     return json::parse(res.body);
   }
@@ -170,15 +173,7 @@ TEST_F(PredictParity, ABadSpeedReferenceIsRefusedByBoth) {
     store::Store db(db_.path());
     avk::testing::store_arc_turns(db, "alpha");
   }
-  server::StationOptions o;
-  o.db_path = db_.path();
-  o.token = "parity-token";
-  server::Station station(o, hub_);
-  server::ApiRequest r;
-  r.method = "GET";
-  r.path = "/api/v1/vehicles/alpha/predict";
-  r.query = {{"speed", "1"}, {"dheading", "90"}, {"speed_reference", "sideways"}};
-  const auto res = station.handle(r);
+  const auto res = ask_http({"alpha", 1.0, 90.0, "avk", "", "sideways"});
   EXPECT_EQ(res.status, 400);
   EXPECT_EQ(json::parse(res.body)["parameter"], "speed_reference") << res.body;
   const auto cli = avk::testing::run({"predict", "--db", db_.path(), "--speed", "1", "--dheading",

@@ -198,10 +198,12 @@ async function openCell(speed, dheading) {
     const cell = await getJson(`/vehicles/${vid}/ckt/cells`, { speed, dheading });
     const preds = {};
     // AVK too, for its corridor and short_of_goal (its trajectory is the cell's own, drawn above).
+    // In the table's own frame, as its turns are drawn (current=none): the station would
+    // otherwise carry them by its estimate of the current, over ground.
     const methods = ['avk', 'instantaneous', ...(state.models.length ? ['model'] : [])];
     await Promise.all(methods.map(async (m) => {
       try {
-        preds[m] = await getJson(`/vehicles/${vid}/predict`, { speed, dheading, method: m });
+        preds[m] = await getJson(`/vehicles/${vid}/predict`, { speed, dheading, method: m, current: 'none' });
       } catch {
         // A method that cannot answer is left out of the plot.
       }

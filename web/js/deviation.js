@@ -6,7 +6,7 @@
 
 import { state, on, emit } from './state.js';
 import { getJson } from './api.js';
-import { cktCovers, currentParams } from './sync.js';
+import { cktCovers, predictionParams } from './sync.js';
 import { num } from './format.js';
 
 const POLL_MS = 1000;
@@ -48,7 +48,7 @@ async function poll(turn) {
       mx: nav.x_m,
       my: nav.y_m,
       method,
-      ...currentParams(),
+      ...predictionParams(),
     });
     if (state.turn !== turn) return; // the turn ended meanwhile
     state.ongoing = o;

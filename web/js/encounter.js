@@ -3,7 +3,10 @@
 // coloured by its predicted CPA (POST /vehicles/{vid}/maneuvers/evaluate), the chosen one with
 // its AVK corridor against the instantaneous ray of the same heading change, both methods'
 // choices side by side, and "Run in simulator" (POST .../maneuvers/simulate): what the vehicle
-// actually did, and its actual CPA.
+// actually did, and its actual CPA. The choice is the station's risk rule (the smallest heading
+// change whose risk of coming inside the standoff is at most the limit; optionally kept to
+// starboard where COLREGS asks it), over ground by default: the answer says its frame, the
+// current and the speed reference, and the operator may override them.
 
 import { state, on } from './state.js';
 import { postJson } from './api.js';
@@ -11,6 +14,7 @@ import { C, METHOD_STYLE, baseLayout, equalAxes, draw, corridorTrace } from './p
 import { along } from './geometry.js';
 import { el, num, setStatus } from './format.js';
 import { cktCovers } from './sync.js';
+import { frameFields, answerFrameText, riskText, marginText, explanationText, colregsText, candidateText } from './frame.js';
 
 const $ = (id) => document.getElementById(id);
 const VECTOR_S = 10; // velocity vectors show 10 s of travel
@@ -27,6 +31,10 @@ export const encounter = {
   horizon: 120,
   step: 5,
   method: 'avk',
+  maxRiskPct: 5, // the risk rule's limit, in percent
+  colregs: false, // keep to starboard where COLREGS rules 14 and 15 ask it
+  current: 'auto', // auto | live | none (frame.js)
+  speedReference: 'auto', // auto | over_ground | through_water
 };
 
 let plotEl;
@@ -47,6 +55,9 @@ export function initEncounter() {
     ['enc-horizon', 'horizon', Number],
     ['enc-step', 'step', Number],
     ['enc-method', 'method', String],
+    ['enc-max-risk', 'maxRiskPct', Number],
+    ['enc-current', 'current', String],
+    ['enc-speedref', 'speedReference', String],
   ]) {
     const input = $(id);
     const target = key === 'heading' || key === 'speed' ? encounter.own : encounter;
@@ -56,6 +67,12 @@ export function initEncounter() {
       changed(true);
     });
   }
+  const colregs = $('enc-colregs');
+  colregs.checked = encounter.colregs;
+  colregs.addEventListener('change', () => {
+    encounter.colregs = colregs.checked;
+    changed(true);
+  });
   $('enc-add').addEventListener('click', () => {
     // A new contact crossing ahead from starboard, offset from the others so it can be picked.
     const k = encounter.contacts.length;
@@ -101,8 +118,18 @@ function question() {
   };
 }
 
-function body(method) {
-  return { ...question(), horizon_s: encounter.horizon, candidate_step_deg: encounter.step, method };
+/** The evaluation's body: the question, the risk rule's limit and COLREGS, and the operator's
+ *  frame (nothing for "auto": the station answers over ground where it knows the current). */
+export function body(method, e = encounter) {
+  return {
+    ...question(),
+    horizon_s: e.horizon,
+    candidate_step_deg: e.step,
+    method,
+    max_risk: Math.min(1, Math.max(0, (Number.isFinite(e.maxRiskPct) ? e.maxRiskPct : 5) / 100)),
+    colregs: e.colregs,
+    ...frameFields({ current: e.current, speedReference: e.speedReference }),
+  };
 }
 
 /** The method asked: the one chosen, unless the station cannot answer it (no table covering the
@@ -164,11 +191,23 @@ function renderChoice() {
   chosen.textContent = choiceText(main);
   chosen.dataset.dheading = main?.chosen ? String(main.chosen.dheading_deg) : 'none';
   chosen.dataset.evaluations = String(seq);
+  chosen.dataset.method = result.method ?? '';
   $('enc-chosen-method').textContent = `${METHOD_STYLE[result.method ?? 'avk'].name}:`;
   const same = result.method === 'instantaneous';
   $('enc-inst-row').hidden = same;
   $('enc-chosen-inst').textContent = same ? '' : choiceText(result.inst);
   $('enc-simulate').disabled = !main?.chosen;
+  const risk = $('enc-risk');
+  risk.textContent = riskText(main?.chosen, main?.max_risk);
+  risk.dataset.risk = typeof main?.chosen?.risk === 'number' ? String(main.chosen.risk) : '';
+  $('enc-margin').textContent = marginText(main?.chosen);
+  $('enc-explanation').textContent = explanationText(main?.chosen);
+  const rule = colregsText(main?.chosen, main?.prefer_starboard);
+  $('enc-colregs-rule').textContent = rule;
+  $('enc-colregs-rule').hidden = !rule;
+  const frame = $('enc-frame');
+  frame.textContent = main ? answerFrameText(main) : '–';
+  frame.dataset.frame = main?.frame ?? '';
 }
 
 async function simulate() {
@@ -321,6 +360,56 @@ function fanTraces(answer, standoff) {
   }));
 }
 
+/** Each candidate's end, coloured as its path, carrying its tooltip (risk, CPA): the fan itself
+ *  skips hovering, 73 paths of hover points would be slow. */
+function candidateEnds(answer, standoff) {
+  const ks = (answer?.candidates ?? []).filter((k) => k.path?.length);
+  return {
+    type: 'scatter',
+    mode: 'markers',
+    name: 'candidate ends',
+    showlegend: false,
+    x: ks.map((k) => k.path.at(-1)[1]),
+    y: ks.map((k) => k.path.at(-1)[2]),
+    text: ks.map((k) => candidateText(k)),
+    marker: { size: 6, color: ks.map((k) => cpaColour(judged(k), standoff)), line: { color: C.black, width: 0.5 } },
+    hovertemplate: '%{text}<extra></extra>',
+  };
+}
+
+const ELLIPSE_EVERY_S = 10; // the band is drawn every 10 s along the chosen path
+
+/** The chosen candidate's position band: its ellipse (at the answer's share) every ELLIPSE_EVERY_S
+ *  along the path, one trace broken by nulls. */
+export function bandEllipses(candidate, everyS = ELLIPSE_EVERY_S) {
+  const x = [];
+  const y = [];
+  const path = candidate?.path ?? [];
+  const band = candidate?.band ?? [];
+  let next = 0;
+  for (let i = 0; i < path.length && i < band.length; i++) {
+    const [t, px, py] = path[i];
+    if (t + 1e-9 < next) continue;
+    next = t + everyS;
+    const e = band[i];
+    if (!(e.major_m > 0)) continue;
+    // The major axis' direction clockwise from north: unit vectors along it and across it.
+    const a = (e.major_axis_deg * Math.PI) / 180;
+    const ux = Math.sin(a);
+    const uy = Math.cos(a);
+    for (let k = 0; k <= 36; k++) {
+      const w = (k / 36) * 2 * Math.PI;
+      const m = e.major_m * Math.cos(w);
+      const n = e.minor_m * Math.sin(w);
+      x.push(px + m * ux + n * uy);
+      y.push(py + m * uy - n * ux);
+    }
+    x.push(null);
+    y.push(null);
+  }
+  return { x, y };
+}
+
 /** The band of a timed path with its half widths: each point moved sideways both ways. */
 export function corridorOf(path, halfWidths, share) {
   if (!Array.isArray(halfWidths) || halfWidths.length !== path.length || path.length < 2) return null;
@@ -364,6 +453,7 @@ function render() {
   const instChosen = inst?.chosen && inst !== main ? inst.candidates[inst.chosen.index] : null;
   const sameRay = chosen && inst !== main ? candidateAt(inst, chosen.dheading_deg) : null;
   const band = corridorTrace(chosen ? corridorOf(chosen.path, chosen.half_width_m, main.corridor) : null);
+  const ellipses = bandEllipses(chosen);
   const [ox, oy] = along(0, 0, encounter.own.heading, encounter.own.speed * VECTOR_S);
   const vectors = { x: [], y: [] };
   const circles = { x: [], y: [] };
@@ -391,6 +481,8 @@ function render() {
     line(`instantaneous ray, same Δψ`, sameRay?.path ?? [], { color: METHOD_STYLE.instantaneous.color, dash: 'dot', width: 2.5 }, { visible: sameRay ? true : 'legendonly' }),
     line(`instantaneous choice`, instChosen?.path ?? [], { color: METHOD_STYLE.instantaneous.color, dash: 'dash', width: 3 }, { visible: instChosen ? true : 'legendonly' }),
     line(`${METHOD_STYLE[m].name} choice`, chosen?.path ?? [], { color: METHOD_STYLE[m].color, width: 4 }, { visible: chosen ? true : 'legendonly' }),
+    { type: 'scatter', mode: 'lines', name: `position band of the choice (${Math.round((main?.band_share ?? 0.9) * 100)} %, every ${ELLIPSE_EVERY_S} s)`, x: ellipses.x, y: ellipses.y, line: { color: METHOD_STYLE[m].color, width: 1 }, opacity: 0.6, hoverinfo: 'skip', visible: ellipses.x.length ? true : 'legendonly' },
+    candidateEnds(main, standoff),
     line('flown (simulator)', flown?.track ?? [], { color: C.green, width: 3 }, { visible: flown ? true : 'legendonly' }),
     { type: 'scatter', mode: 'lines', name: `standoff ${num(standoff, 0)} m at CPA`, x: circles.x, y: circles.y, line: { color: C.vermillion, dash: 'dash', width: 1 }, hoverinfo: 'skip', visible: circles.x.length ? true : 'legendonly' },
     { type: 'scatter', mode: 'lines', name: 'velocity (10 s)', x: [0, ox, null, ...vectors.x], y: [0, oy, null, ...vectors.y], line: { color: C.black, width: 2 }, hoverinfo: 'skip' },

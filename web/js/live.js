@@ -17,6 +17,8 @@ import { drawSeries } from './timeseries.js';
 import { localGrid, formatLatLon, scaleBarLength, graticule } from './geo.js';
 import { attachMap, mapImages } from './maptiles.js';
 import { renderEventLog } from './eventlog.js';
+import { answersFrameText } from './frame.js';
+import { setPredictionFrame } from './sync.js';
 
 const RAY_M = 20; // length of the goal-heading and heading rays
 
@@ -76,6 +78,15 @@ export function initLive() {
   });
   plotEl.parentElement.querySelector('.plot-buttons')?.prepend(fit);
   attachMap(plotEl, () => request(true));
+  // The operator's override of the predictions' current and speed reference.
+  for (const [id, key] of [
+    ['live-pred-current', 'current'],
+    ['live-pred-speedref', 'speedReference'],
+  ]) {
+    const select = document.getElementById(id);
+    select.value = state.predictionFrame[key];
+    select.addEventListener('change', () => setPredictionFrame({ [key]: select.value }));
+  }
 }
 
 export function showLive(isVisible) {
@@ -355,6 +366,16 @@ export function currentText(c) {
   return `${num(c.speed_mps, 2)} ± ${num(c.speed_sd_mps, 2)} m/s toward ${num(c.toward_deg, 0)} ± ${num(c.toward_sd_deg, 0)}°${still}`;
 }
 
+/** What the shown turn's predictions (and the running turn's deviation) move against, as each
+ *  answer says it: one line when they agree. */
+export function predictionFrameText() {
+  const turn = state.shownTurn;
+  const answers = {};
+  for (const [method, p] of Object.entries(turn?.predictions ?? {})) answers[METHOD_STYLE[method]?.name ?? method] = p;
+  if (state.turn && state.ongoing) answers.deviation = state.ongoing;
+  return answersFrameText(answers);
+}
+
 /** The current as an arrow from the vehicle: where the water carries it in CURRENT_ARROW_S. */
 const CURRENT_ARROW_S = 60;
 function currentTrace(nav) {
@@ -474,6 +495,7 @@ function renderReadout() {
   text('live-t', num(nav?.t_s, 1));
   text('live-latlon', latLonText(nav));
   text('live-current', currentText(state.current));
+  text('live-pred-frame', predictionFrameText());
   // Only a real vehicle (the M200 driver) reports a battery and a frontseat link.
   const fs = nav?.frontseat;
   for (const e of document.querySelectorAll('.frontseat')) e.hidden = !fs;

@@ -83,6 +83,9 @@ export const state = {
   turn: null,            // the turn in progress: {speed, dheading, goalHeading, start:{t,x,y,heading}, predictions}
   ongoing: null,         // GET /maneuvers/ongoing of the running turn (deviation.js), null between turns
   current: null,         // the station's estimate of the current (stream `current`, GET /vehicles/{vid}/current)
+  // The operator's choice for Live's predictions (frame.js): current auto|live|none, speed
+  // reference auto|over_ground|through_water; auto leaves it to the station (over ground).
+  predictionFrame: { current: 'auto', speedReference: 'auto' },
   shownTurn: null,       // the turn drawn in Live: the one in progress, else the last one (ended: true)
   lastTurn: null,        // the last finished / aborted turn event
   recordedTurns: [],     // raw paths of the current mission's stored turns (history from REST)

@@ -9,6 +9,7 @@ import { simplify } from './decimate.js';
 import { mergeStoredRows } from './timeseries.js';
 import { setClockMapping } from './clock.js';
 import { retireTrack } from './tracks.js';
+import { frameParams } from './frame.js';
 
 const STALE_AFTER_MS = 2000;
 const MAX_RECORDED_TURNS = 60; // drawn as history in Live; older ones are in the CKT view
@@ -453,9 +454,23 @@ function applyCurrent(d) {
   emit('current', d);
 }
 
-/** The query parameters that add the live current's drift to a prediction, when there is one. */
-export function currentParams() {
-  return state.current?.significant ? { current: 'live' } : {};
+/** The query parameters of Live's predictions: the operator's choice of current and speed
+ *  reference (frame.js); none by default, so the station answers over ground wherever it knows
+ *  the current. */
+export function predictionParams() {
+  return frameParams(state.predictionFrame);
+}
+
+/** The operator changed the frame: the shown turn's predictions are asked again with it (the
+ *  running turn's deviation follows at its next poll). */
+export function setPredictionFrame(choice) {
+  state.predictionFrame = { ...state.predictionFrame, ...choice };
+  const turn = state.shownTurn;
+  if (turn) {
+    turn.predictions = {};
+    emit('predictions', turn);
+    fetchPredictions(turn);
+  }
 }
 
 async function refreshCurrent(vid) {
@@ -583,6 +598,8 @@ async function fetchPredictions(turn) {
   if (!cktCovers(turn.speed) && state.okTurns > 0) await refreshCktSummary();
   const heldOut = turn.storedId ? { cellTurns: 1, missionId: turn.missionId } : null;
   const methods = answerableMethods(turn.speed, turn.dheading, heldOut).filter((m) => !turn.predictions[m]);
+  const params = predictionParams();
+  const asked = state.predictionFrame;
   await Promise.all(
     methods.map(async (method) => {
       try {
@@ -593,13 +610,14 @@ async function fetchPredictions(turn) {
           x: turn.start.x,
           y: turn.start.y,
           heading: turn.start.heading,
-          ...currentParams(),
+          ...params,
           // A stored turn is drawn against predictions that never saw it: asked for after it
           // ended (a table that had not covered its speed, a page opened later), the table and
           // model must leave it out.
           ...(turn.storedId && method !== 'instantaneous' ? { without_turn: turn.storedId } : {}),
         });
         if (state.shownTurn !== turn) return; // a newer turn is drawn now
+        if (state.predictionFrame !== asked) return; // asked again in another frame meanwhile
         turn.predictions[method] = p;
         emit('predictions', turn);
       } catch (e) {

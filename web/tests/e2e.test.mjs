@@ -16,6 +16,7 @@ import { fileURLToPath, pathToFileURL } from 'node:url';
 import { slow, sleep, until } from './wait.mjs';
 import { startAvkServer, stopAvkServer } from './avk_server.mjs';
 import { showView } from './browser.mjs';
+import { answerFrameText, riskText, marginText, explanationText, colregsText, candidateText } from '../js/frame.js';
 
 const here = path.dirname(fileURLToPath(import.meta.url));
 const webDir = path.resolve(here, '..');
@@ -294,6 +295,72 @@ test('the Live view shows the deviation from the prediction while a turn runs', 
   }
 });
 
+test("Live says what its predictions move against, and the operator's override is sent with them", { timeout: slow(90000) }, async () => {
+  // The station has an estimate of the current by now (the small mission's), so the default is
+  // over ground. Every prediction and deviation request of a synthetic turn is recorded.
+  const asks = [];
+  const p = await newPage();
+  p.on('request', (q) => {
+    const u = new URL(q.url());
+    if (/\/(predict|maneuvers\/ongoing)$/.test(u.pathname)) asks.push({ path: u.pathname, params: u.searchParams });
+  });
+  const predicts = () => asks.filter((a) => a.path.endsWith('/predict'));
+  const ongoings = () => asks.filter((a) => a.path.endsWith('/maneuvers/ongoing'));
+  // What the station answers to a request the page made, as the readout should say it.
+  const expectedText = async (a) => answerFrameText(await api(`${a.path.replace(/^\/api\/v1/, '')}?${a.params}`));
+  // Nav until the readout shows `wanted` (the deviation's answer arrives once a second).
+  const shownAs = (what, wanted) =>
+    until(what, async () => {
+      await p.evaluate(() => window.avkTest.turnNav());
+      const text = await p.textContent('#live-pred-frame');
+      return text === wanted ? text : null;
+    }, 20000, 300);
+  try {
+    await p.goto(`${server.base}/?test=1#live`, { waitUntil: 'load', timeout: slow(20000) });
+    await p.waitForFunction(() => window.avkTest && window.avkTest.state().vehicleId && document.querySelector('#live-plot .main-svg'), null, { timeout: slow(20000) });
+    assert.ok(await p.evaluate(() => window.avkTest.startTurn(90, 1.0)), 'the turn started');
+    await until('a prediction and a deviation asked for', async () => {
+      await p.evaluate(() => window.avkTest.turnNav());
+      return predicts().length > 0 && ongoings().length > 0;
+    }, 20000, 300);
+    // By default neither a current nor a speed reference is sent: the station's default answers.
+    for (const a of asks) {
+      assert.equal(a.params.get('current'), null, `${a.path}?${a.params}`);
+      assert.equal(a.params.get('speed_reference'), null, `${a.path}?${a.params}`);
+    }
+    const byDefault = await expectedText(predicts()[0]);
+    assert.match(byDefault, /^over ground · current .* · speed held over ground \(default\)$/);
+    assert.equal(await expectedText(ongoings()[0]), byDefault, 'the deviation moves against the same');
+    await shownAs('the default frame in the readout', byDefault);
+
+    // The operator asks for the path through the water: every request says so, and the readout.
+    asks.length = 0;
+    await p.selectOption('#live-pred-current', 'none');
+    await until('a prediction and a deviation asked through the water', async () => {
+      await p.evaluate(() => window.avkTest.turnNav());
+      return predicts().length > 0 && ongoings().some((a) => a.params.get('current') === 'none');
+    }, 20000, 300);
+    assert.ok(predicts().every((a) => a.params.get('current') === 'none'), predicts().map((a) => `${a.params}`).join('\n'));
+    const water = await expectedText(predicts()[0]);
+    assert.equal(water, 'through the water · current none asked · speed held over ground (default)');
+    await shownAs('the frame through the water', water);
+
+    // And the speed reference, with it.
+    asks.length = 0;
+    await p.selectOption('#live-pred-speedref', 'through_water');
+    await until('a prediction asked with the speed reference', async () => {
+      await p.evaluate(() => window.avkTest.turnNav());
+      return predicts().length > 0 && ongoings().some((a) => a.params.get('speed_reference') === 'through_water');
+    }, 20000, 300);
+    assert.ok(predicts().every((a) => a.params.get('current') === 'none' && a.params.get('speed_reference') === 'through_water'));
+    await shownAs('the asked speed reference', await expectedText(predicts()[0]));
+    assert.match(await p.textContent('#live-pred-frame'), /speed held through the water \(asked\)$/);
+    await shot('live-prediction-frame', p);
+  } finally {
+    await p.close();
+  }
+});
+
 test('Live shows the estimated current: its value and uncertainty, and an arrow along it', { timeout: slow(60000) }, async () => {
   // The small mission that ran before gave the station an estimate (GET /vehicles/{vid}/current);
   // the simulator has no current, so it is not told apart from still water.
@@ -410,6 +477,124 @@ test('the Encounter view evaluates, flies the choice, and a dragged contact chan
   assert.match(after.text, /^chosen: 0° /);
   assert.equal(await page.textContent('#enc-sim'), '', 'the flight of the old choice is cleared');
   await shot('encounter-dragged');
+});
+
+test("the Encounter view shows the choice's risk, margin and reason, and sends the limit, COLREGS and the frame", { timeout: slow(120000) }, async () => {
+  phase = 'encounter';
+  await goView('encounter');
+  // Every evaluation the page asks for, with the station's answer.
+  const answers = [];
+  const record = async (r) => {
+    if (!r.url().endsWith('/maneuvers/evaluate') || r.request().method() !== 'POST') return;
+    try {
+      answers.push({ body: JSON.parse(r.request().postData()), answer: await r.json() });
+    } catch {
+      // a failed evaluation is reported by the page
+    }
+  };
+  page.on('response', record);
+  const setValue = (sel, v) =>
+    page.$eval(sel, (e, v) => {
+      if (e.type === 'checkbox') e.checked = v;
+      else e.value = String(v);
+      e.dispatchEvent(new Event('change', { bubbles: true }));
+    }, v);
+  // The evaluation shown once the count has passed `after`, and the answer the page was given to
+  // the question asked (`asked`: a test of the request body).
+  const shown = async (after, asked) => {
+    const c = await encounterChoice(after);
+    const method = await page.getAttribute('#enc-chosen', 'data-method');
+    const got = await until('the answer recorded', () => answers.findLast((a) => a.body.method === method && asked(a.body)) ?? null, 20000, 100);
+    return { ...c, ...got };
+  };
+  const texts = () =>
+    page.evaluate(() => ({
+      risk: document.getElementById('enc-risk').textContent,
+      riskValue: document.getElementById('enc-risk').dataset.risk,
+      margin: document.getElementById('enc-margin').textContent,
+      explanation: document.getElementById('enc-explanation').textContent,
+      colregs: document.getElementById('enc-colregs-rule').hidden ? '' : document.getElementById('enc-colregs-rule').textContent,
+      frame: document.getElementById('enc-frame').textContent,
+    }));
+  const expectShown = async ({ answer }, colregs) => {
+    // The page draws the newest answer: wait for it to be this one, then compare every line.
+    const t = await until('the answer shown', async () => {
+      const now = await texts();
+      return now.risk === riskText(answer.chosen, answer.max_risk) && now.frame === answerFrameText(answer) ? now : null;
+    }, 20000, 100);
+    assert.equal(t.riskValue, String(answer.chosen.risk));
+    assert.equal(t.risk, riskText(answer.chosen, answer.max_risk));
+    assert.equal(t.margin, marginText(answer.chosen));
+    assert.equal(t.explanation, explanationText(answer.chosen));
+    assert.equal(t.colregs, colregsText(answer.chosen, colregs));
+    assert.equal(t.frame, answerFrameText(answer));
+    return t;
+  };
+  try {
+    // Ask again with the defaults: a head-on contact 40 m ahead, closing at 2 m/s.
+    for (const [key, v] of [['x', 0], ['y', 40], ['course', 180], ['speed', 1]]) await setValue(`input[data-contact="0"][data-key="${key}"]`, v);
+    const n0 = Number(await page.getAttribute('#enc-chosen', 'data-evaluations'));
+    await setValue('#enc-max-risk', 5);
+    let s = await shown(n0, (b) => b.contacts[0].y_m === 40 && b.contacts[0].course_deg === 180);
+    assert.equal(s.body.max_risk, 0.05);
+    assert.equal(s.body.colregs, false);
+    assert.ok(!('current' in s.body) && !('speed_reference' in s.body), 'auto sends no frame');
+    assert.equal(s.answer.frame, 'ground', 'over ground by default: the station has an estimate');
+    let t = await expectShown(s, false);
+    assert.match(t.risk, /^risk (\d+(\.\d)?|< 0\.1) % \((within 5\.0 %|over the 5\.0 % limit)\)$/);
+    assert.match(t.frame, /^over ground · current /);
+    // Each candidate's risk in its tooltip, and the choice's position band drawn.
+    const tips = s.answer.candidates.filter((k) => k.path.length).map(candidateText);
+    const drawn = await until('the candidates drawn with their tooltips', async () => {
+      const d = await page.evaluate(() => {
+        const data = document.getElementById('enc-plot').data;
+        return { ends: data.find((q) => q.name === 'candidate ends')?.text ?? [], band: data.find((q) => /^position band of the choice/.test(q.name))?.x.filter((v) => v !== null).length ?? 0 };
+      });
+      return JSON.stringify(d.ends) === JSON.stringify(tips) ? d : null;
+    }, 20000, 100);
+    assert.equal(drawn.ends.length, s.answer.candidates.length);
+    assert.ok(drawn.band > 0, 'the position band of the choice is drawn');
+
+    // COLREGS: head-on, rule 14 keeps the choice to starboard.
+    let n = s.n;
+    await setValue('#enc-colregs', true);
+    s = await shown(n, (b) => b.colregs === true);
+    assert.equal(s.body.colregs, true);
+    assert.equal(s.answer.chosen.colregs_rule, '14', JSON.stringify(s.answer.chosen));
+    assert.ok(s.answer.chosen.dheading_deg >= 0, `rule 14 chose ${s.answer.chosen.dheading_deg}`);
+    t = await expectShown(s, true);
+    assert.match(t.colregs, /^COLREGS rule 14 applied \(head-on\)$/);
+
+    // A tighter limit is sent as a probability.
+    n = s.n;
+    await setValue('#enc-max-risk', 1);
+    s = await shown(n, (b) => b.max_risk === 0.01);
+    assert.equal(s.body.max_risk, 0.01);
+    await expectShown(s, true);
+
+    // The operator's frame: through the water, then the speed reference too.
+    n = s.n;
+    await setValue('#enc-current', 'none');
+    s = await shown(n, (b) => b.current === 'none');
+    assert.equal(s.body.current, 'none');
+    assert.equal(s.answer.frame, 'water');
+    t = await expectShown(s, true);
+    assert.match(t.frame, /^through the water · current none asked/);
+    n = s.n;
+    await setValue('#enc-speedref', 'through_water');
+    s = await shown(n, (b) => b.speed_reference === 'through_water');
+    assert.equal(s.body.speed_reference, 'through_water');
+    t = await expectShown(s, true);
+    assert.match(t.frame, /speed held through the water \(asked\)$/);
+    await shot('encounter-risk');
+  } finally {
+    page.off('response', record);
+    // Back to the defaults for what follows.
+    await setValue('#enc-current', 'auto');
+    await setValue('#enc-speedref', 'auto');
+    await setValue('#enc-colregs', false);
+    await setValue('#enc-max-risk', 5);
+  }
 });
 
 test('a finished turn appears in the CKT view', { timeout: slow(90000) }, async () => {
