@@ -381,6 +381,7 @@ ManeuverQuery maneuver_query(const EncounterFile& file, const EncounterScenario&
   mq.prefer_starboard = q.prefer_starboard;
   mq.corridor_rule = q.corridor_rule;
   mq.speed_over_ground = q.speed_over_ground;
+  mq.ray_band = q.ray_band;
   return mq;
 }
 

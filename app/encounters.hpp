@@ -91,6 +91,8 @@ struct EncounterBenchQuery {
   bool prefer_starboard = false;
   bool corridor_rule = false;
   std::optional<bool> speed_over_ground;  // none: the vehicle's
+  // The instantaneous method with the vehicle's band about its ray (ManeuverQuery::ray_band).
+  bool ray_band = false;
 };
 
 struct EncounterMethodResult {

@@ -109,7 +109,7 @@ void usage(std::ostream& out) {
          "                  [--format table|json|csv] [--current estimated|none]\n"
          "                  [--sea-seeds 1,2] [--max-risk 0.05] [--rule risk|corridor] "
          "[--colregs]\n"
-         "                  [--speed-reference over_ground|through_water]\n"
+         "                  [--speed-reference over_ground|through_water] [--ray-band]\n"
          "      the encounter bench: each method's maneuver choice flown in the simulator, and\n"
          "      every candidate flown (once per sea seed) to know whether a safe one existed and\n"
          "      how well the predicted risk is calibrated\n"

@@ -123,6 +123,7 @@ json bench_json(const app::EncounterBench& b, const app::EncounterBenchQuery& q)
           {"max_risk", q.max_risk},
           {"rule", q.corridor_rule ? "corridor" : "risk"},
           {"colregs", q.prefer_starboard},
+          {"ray_band", q.ray_band},
           {"candidate_step_deg", q.candidate_step_deg},
           {"current", water_current_json(b.current, "estimated")},
           {"flights", b.flights},
@@ -252,6 +253,7 @@ int encounter_run(const std::vector<std::string>& rest, Io& io) {
   if (rule != "risk" && rule != "corridor") throw UsageError("--rule must be risk or corridor");
   q.corridor_rule = rule == "corridor";
   q.prefer_starboard = a.flag("colregs");
+  q.ray_band = a.flag("ray-band");
   q.speed_over_ground = speed_reference_option(a);
   q.vehicle_id = vehicle_of(a, ctx.db(), {}, "vehicle-id");
   const app::EncounterFile file =
