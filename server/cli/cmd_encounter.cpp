@@ -220,7 +220,7 @@ int encounter_run(const std::vector<std::string>& rest, Io& io) {
       rest,
       {"scenarios", "db", "vehicle-id", "vehicle", "sim-config", "method", "seed", "ticks",
        "format", "step", "threads", "current", "sea-seeds", "max-risk", "rule", "speed-reference"},
-      {"jitter", "colregs"});
+      {"jitter", "colregs", "ray-band"});
   const std::string format = a.get("format").value_or("table");
   if (format != "table" && format != "json" && format != "csv")
     throw UsageError("--format must be table, json or csv");
