@@ -35,17 +35,6 @@ namespace {
 
 using NavIt = std::vector<store::NavRow>::const_iterator;
 
-// The row after the last one before the command (nav.begin() when there is none).
-NavIt command_end(const std::vector<store::NavRow>& nav, double start_s) {
-  return std::lower_bound(nav.begin(), nav.end(), start_s,
-                          [](const store::NavRow& r, double t) { return r.t_s < t; });
-}
-
-// Guidance held a speed > 0 at the command.
-bool guided(const store::NavRow& last) {
-  return last.desired_heading_deg && last.desired_speed_mps && *last.desired_speed_mps > 0.0;
-}
-
 // The same guidance as at the command; anything else is the leg's beginning.
 bool same_guidance(const store::NavRow& r, const store::NavRow& last) {
   return r.desired_heading_deg && r.desired_speed_mps &&
@@ -53,14 +42,26 @@ bool same_guidance(const store::NavRow& r, const store::NavRow& last) {
          std::abs(*r.desired_speed_mps - *last.desired_speed_mps) <= 1e-9;
 }
 
-// The first row of the stretch before `end` (the command) during which the guidance was the one
-// in force at the command, from since_s at the earliest.
-NavIt held_since(const std::vector<store::NavRow>& nav, NavIt end, double since_s) {
+// The rows [first, end) before the command at start_s during which the guidance in force at the
+// command held, from since_s at the earliest, and the speed it commanded. None when there was no
+// row before the command or its guidance held no heading and speed > 0. The last row before the
+// command is what was in force while conditions were set.
+struct Held {
+  NavIt first, end;
+  double speed_mps;
+};
+std::optional<Held> held_before(const std::vector<store::NavRow>& nav, double start_s,
+                                double since_s) {
+  const auto end = std::lower_bound(nav.begin(), nav.end(), start_s,
+                                    [](const store::NavRow& r, double t) { return r.t_s < t; });
+  if (end == nav.begin()) return std::nullopt;
   const store::NavRow& last = *(end - 1);
+  if (!last.desired_heading_deg || !last.desired_speed_mps || !(*last.desired_speed_mps > 0.0))
+    return std::nullopt;
   auto first = end;
   while (first != nav.begin() && (first - 1)->t_s >= since_s && same_guidance(*(first - 1), last))
     --first;
-  return first;
+  return Held{first, end, *last.desired_speed_mps};
 }
 
 // Sums of the unit vectors of headings: their circular mean is heading_of_deg(s, c).
@@ -98,14 +99,11 @@ std::vector<kin::SteadyLeg> steady_legs_before(const std::vector<double>& turn_s
                                                double leg_s) {
   std::vector<kin::SteadyLeg> legs;
   for (const double start : turn_starts_s) {
-    // The last row before the command: what was in force while conditions were set.
-    const auto end = command_end(nav, start);
-    if (end == nav.begin()) continue;
-    const store::NavRow& last = *(end - 1);
-    if (!guided(last)) continue;
-    const auto first = held_since(nav, end, start - leg_s);
+    const auto held = held_before(nav, start, start - leg_s);
+    if (!held) continue;
+    const auto [first, end, speed] = *held;
     if (end - first < 3 || (end - 1)->t_s - first->t_s < kMinSteadyLegS) continue;
-    legs.push_back(leg_of(first, end, *last.desired_speed_mps));
+    legs.push_back(leg_of(first, end, speed));
   }
   return legs;
 }
@@ -114,11 +112,9 @@ std::vector<kin::SteadyLeg> steady_stretches_before(const std::vector<double>& t
                                                     const std::vector<store::NavRow>& nav) {
   std::vector<kin::SteadyLeg> legs;
   for (const double start : turn_starts_s) {
-    const auto end = command_end(nav, start);
-    if (end == nav.begin()) continue;
-    const store::NavRow& last = *(end - 1);
-    if (!guided(last)) continue;
-    const auto first = held_since(nav, end, start - kMotionLegMaxS);
+    const auto held = held_before(nav, start, start - kMotionLegMaxS);
+    if (!held) continue;
+    const auto [first, end, speed] = *held;
     // The reference: the means over the last seconds, which the ConditionSet judged steady.
     HeadingSum ref_heading;
     double ref_speed = 0.0;
@@ -156,7 +152,7 @@ std::vector<kin::SteadyLeg> steady_stretches_before(const std::vector<double>& t
       kept = it;
     }
     if (end - kept < 3 || (end - 1)->t_s - kept->t_s < kMotionLegMinS) continue;
-    legs.push_back(leg_of(kept, end, *last.desired_speed_mps));
+    legs.push_back(leg_of(kept, end, speed));
   }
   return legs;
 }
