@@ -42,7 +42,7 @@ TEST(Container, TheRunBeforeTheBufferFollowsTheCourse) {
   const Container c(square());
   for (const double course : {0.0, 90.0, 180.0, 270.0})
     EXPECT_DOUBLE_EQ(c.run_before_buffer_m({0, 0}, course, 100.0), 40.0) << course;
-  EXPECT_DOUBLE_EQ(c.run_before_buffer_m({0, 0}, 45.0, 100.0), 56.0);  // 40 √2 = 56.6
+  EXPECT_DOUBLE_EQ(c.run_before_buffer_m({0, 0}, 45.0, 100.0), 56.0);   // 40 √2 = 56.6
   EXPECT_DOUBLE_EQ(c.run_before_buffer_m({30, 0}, 90.0, 100.0), 10.0);  // east, 10 m to go
   EXPECT_DOUBLE_EQ(c.run_before_buffer_m({30, 0}, 270.0, 100.0), 70.0);
   EXPECT_DOUBLE_EQ(c.run_before_buffer_m({0, 0}, 0.0, 25.0), 25.0);
