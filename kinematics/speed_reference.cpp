@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "kinematics/angles.hpp"
+#include "kinematics/water_frame.hpp"
 
 namespace avk::kinematics {
 
@@ -23,13 +24,10 @@ std::array<double, 2> ground_velocity_for(double heading_deg, double speed_mps,
   const double he = std::sin(h), hn = std::cos(h);
   if (!(speed_mps > 0.0)) return {current.east_mps, current.north_mps};
   double along_mps = speed_mps;  // the speed through the water, k · U
-  if (ref == SpeedReference::over_ground) {
-    const double c_along = current.east_mps * he + current.north_mps * hn;
-    const double c_across = current.east_mps * hn - current.north_mps * he;
-    const double rest = speed_mps * speed_mps - c_across * c_across;
-    along_mps = -c_along + std::sqrt(std::max(0.0, rest));
-    along_mps = std::clamp(along_mps, kMinSpeedLoopGain * speed_mps, kMaxSpeedLoopGain * speed_mps);
-  }
+  // The same loop gain a re-timed prediction uses (water_frame.hpp over_ground_scale).
+  if (ref == SpeedReference::over_ground)
+    along_mps = speed_mps * over_ground_scale({speed_mps * he, speed_mps * hn},
+                                              {current.east_mps, current.north_mps});
   return {along_mps * he + current.east_mps, along_mps * hn + current.north_mps};
 }
 
