@@ -141,18 +141,20 @@ Result<BandCoverage> band_coverage(Context& ctx, const BandCoverageQuery& q) {
       for (const auto& s : raw.samples())
         seen.push_back({{s.t_s - t0, s.x_m, s.y_m}, false});
       const double end = raw.samples().back().t_s;
+      // The run after the turn lasts while the turn's own command holds: the command of the last
+      // sample within the turn, so a new command given as the turn ends (containment turning back,
+      // the next condition set) ends the run at once.
       std::optional<double> held_heading, held_speed;
-      bool started = false;
+      bool known = false;
       for (const auto& n : nav) {
-        if (n.t_s <= end) continue;
-        if (n.t_s > end + q.after_turn_s) break;
-        if (!started) {
+        if (n.t_s <= end) {
           held_heading = n.desired_heading_deg, held_speed = n.desired_speed_mps;
-          started = true;
-        } else if (!same(n.desired_heading_deg, held_heading) ||
-                   !same(n.desired_speed_mps, held_speed)) {
-          break;
+          known = true;
+          continue;
         }
+        if (!known || n.t_s > end + q.after_turn_s) break;
+        if (!same(n.desired_heading_deg, held_heading) || !same(n.desired_speed_mps, held_speed))
+          break;
         seen.push_back({{n.t_s - t0, n.x_m, n.y_m}, true});
       }
       const double horizon = std::max(1.0, seen.back().first.t_s + 1.0);
