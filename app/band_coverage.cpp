@@ -101,7 +101,8 @@ Result<BandCoverage> band_coverage(Context& ctx, const BandCoverageQuery& q) {
   out.table_missions = table_missions;
   out.test_missions = q.test_missions;
   out.share = q.share;
-  const AnswerMotion motion = answer_motion(ctx, q.vehicle_id, q.speed_over_ground);
+  // The speed reference and scatter as the table's missions measured them, not the tests'.
+  const AnswerMotion motion = answer_motion(ctx, q.vehicle_id, q.speed_over_ground, table_missions);
   out.speed_over_ground = motion.speed_over_ground;
   out.scatter_along_mps = motion.scatter.along_mps;
   out.scatter_cross_mps = motion.scatter.cross_mps;

@@ -181,12 +181,13 @@ std::optional<Error> check(const ManeuverQuery& q) {
 // What the answer assumes of the vehicle's motion: the request's speed reference, else the
 // vehicle's; its straight-leg scatter.
 AnswerMotion answer_motion(Context& ctx, const std::string& vehicle_id,
-                           std::optional<bool> speed_over_ground) {
+                           std::optional<bool> speed_over_ground,
+                           std::span<const std::int64_t> missions) {
   AnswerMotion m;
   m.speed_over_ground = kDefaultSpeedReference == kin::SpeedReference::over_ground;
   m.scatter = {kDefaultDriftScatter.along_mps, kDefaultDriftScatter.cross_mps};
   m.position_sd_m = kNavigationPositionSdM;
-  if (auto v = vehicle_motion(ctx, vehicle_id)) {
+  if (auto v = vehicle_motion(ctx, vehicle_id, missions)) {
     m.speed_over_ground = v->speed_reference.value == kin::SpeedReference::over_ground;
     m.speed_reference_source = v->speed_reference.source;
     m.scatter = {v->drift_scatter.scatter.along_mps, v->drift_scatter.scatter.cross_mps};

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -121,8 +122,10 @@ struct OngoingManeuver {
 
 // What an answer assumes of the vehicle's motion: the request's speed reference, else the
 // vehicle's; its straight-leg scatter.
+// With missions given, from what those missions measured only (vehicle_motion).
 AnswerMotion answer_motion(Context& ctx, const std::string& vehicle_id,
-                           std::optional<bool> speed_over_ground);
+                           std::optional<bool> speed_over_ground,
+                           std::span<const std::int64_t> missions = {});
 
 // A table's answer as a timed maneuver in the normalised frame, with the corridor's half widths
 // at corridor_share and the turns' spread at equal time (PredictedManeuver::along_sd_m,

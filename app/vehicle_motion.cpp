@@ -1,5 +1,7 @@
 #include "app/vehicle_motion.hpp"
 
+#include <algorithm>
+
 #include "app/context.hpp"
 #include "app/current.hpp"
 #include "app/vehicles.hpp"
@@ -21,7 +23,8 @@ LegMotion leg_motion(const std::vector<kin::SteadyLeg>& legs,
   return out;
 }
 
-Result<VehicleMotion> vehicle_motion(Context& ctx, const std::string& vehicle_id) {
+Result<VehicleMotion> vehicle_motion(Context& ctx, const std::string& vehicle_id,
+                                     std::span<const std::int64_t> missions) {
   store::Store& db = ctx.db();
   // The station's own vehicle counts before it has stored anything.
   if (auto known = get_vehicle(ctx, vehicle_id); !known) return known.error();
@@ -31,6 +34,9 @@ Result<VehicleMotion> vehicle_motion(Context& ctx, const std::string& vehicle_id
   std::optional<store::StoredCurrent> undetermined;  // the newest evaluated, undetermined
   // Oldest first: whatever comes later replaces what came before.
   for (const store::StoredCurrent& c : db.vehicle_currents(vehicle_id)) {
+    if (!missions.empty() &&
+        std::find(missions.begin(), missions.end(), c.mission_id) == missions.end())
+      continue;
     if (current_is_significant(c.estimate)) out.current = c;
     if (c.drift_scatter && c.drift_scatter->legs > 0) scatters.push_back(*c.drift_scatter);
     if (!c.speed_reference) continue;

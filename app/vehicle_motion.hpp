@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -77,7 +78,9 @@ struct VehicleMotion {
 // The newest identification wins (conditions and the vehicle's setup change; the counts show
 // whether missions agree); the drift scatter is pooled over every mission that measured one (RMS
 // pooled by legs: more legs, steadier rates). not_found for a vehicle the station neither drives
-// nor has stored.
-Result<VehicleMotion> vehicle_motion(Context& ctx, const std::string& vehicle_id);
+// nor has stored. With missions given, only what those missions measured counts (an evaluation
+// on held-out missions must not learn from them).
+Result<VehicleMotion> vehicle_motion(Context& ctx, const std::string& vehicle_id,
+                                     std::span<const std::int64_t> missions = {});
 
 }  // namespace avk::app

@@ -218,6 +218,18 @@ TEST(VehicleMotion, TheNewestIdentificationWinsAndTheScatterIsPooled) {
   // The newest significant current: b's (c's 0.01 m/s is not told apart from still water).
   ASSERT_TRUE(m->current);
   EXPECT_EQ(m->current->mission_id, b);
+
+  // Restricted to some missions (a held-out evaluation's table): only theirs count.
+  const std::vector<std::int64_t> only_a{a, c};
+  const auto ma = app::vehicle_motion(ctx, "v", only_a);
+  ASSERT_TRUE(ma);
+  EXPECT_EQ(ma->speed_reference.value, kin::SpeedReference::over_ground);
+  EXPECT_EQ(ma->speed_reference.mission_id, a);
+  EXPECT_EQ(ma->speed_reference.missions_through_water, 0u);
+  EXPECT_EQ(ma->drift_scatter.missions, 1u);
+  EXPECT_NEAR(ma->drift_scatter.scatter.along_mps, 0.1, 1e-12);
+  ASSERT_TRUE(ma->current);
+  EXPECT_EQ(ma->current->mission_id, a);
 }
 
 TEST(VehicleMotion, DefaultsUntilMeasuredAndUnknownVehiclesAreNotFound) {
