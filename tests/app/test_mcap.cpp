@@ -10,25 +10,13 @@
 
 #include "app/mcap_reader.hpp"
 #include "app/mcap_writer.hpp"
+#include "support/mcap_bytes.hpp"
 
 namespace {
 
 using namespace avk::app::mcap;
+using namespace avk::testing::mcap_bytes;
 
-// Little-endian fields written by hand, to build files the writer would never write.
-template <class T>
-std::string le(T v) {
-  std::string out;
-  for (std::size_t i = 0; i < sizeof(T); ++i)
-    out.push_back(static_cast<char>(v >> (8 * i)));
-  return out;
-}
-std::string str(const std::string& s) {
-  return le<std::uint32_t>(s.size()) + s;
-}
-std::string record(Opcode op, const std::string& content) {
-  return std::string(1, static_cast<char>(op)) + le<std::uint64_t>(content.size()) + content;
-}
 std::uint64_t u64_at(const std::string& bytes, std::uint64_t at) {
   std::uint64_t v = 0;
   for (int i = 7; i >= 0; --i)
@@ -37,15 +25,6 @@ std::uint64_t u64_at(const std::string& bytes, std::uint64_t at) {
 }
 std::uint32_t u32_at(const std::string& bytes, std::uint64_t at) {
   return static_cast<std::uint32_t>(u64_at(bytes + std::string(4, '\0'), at));
-}
-
-// Magic, Header, `data`, a Data End and Footer without CRCs or summary, Magic.
-std::string hand_built_file(const std::string& data) {
-  return std::string(kMagic) + record(Opcode::header, str("") + str("hand")) + data +
-         record(Opcode::data_end, le<std::uint32_t>(0)) +
-         record(Opcode::footer,
-                le<std::uint64_t>(0) + le<std::uint64_t>(0) + le<std::uint32_t>(0)) +
-         std::string(kMagic);
 }
 
 std::string error_of(std::string_view bytes) {
@@ -422,30 +401,6 @@ TEST(McapReader, AbsurdUncompressedSizeIsRefusedBeforeAllocating) {
                                 str("zstd") + le<std::uint64_t>(4) + "\x28\xB5\x2F\xFD");
   EXPECT_NE(error_of(hand_built_file(chunk)).find("chunk at offset 29: uncompressed_size"),
             std::string::npos);
-}
-
-// A zstd frame of `size` zero bytes that declares its size, made of RLE blocks by hand: 4 bytes
-// per 128 KiB, so 1 GiB takes 32 KiB, as a bomb packs it.
-std::string zero_frame(std::uint64_t size) {
-  std::string f = le<std::uint32_t>(0xFD2FB528u) + "\xE0" + le<std::uint64_t>(size);
-  constexpr std::uint64_t kBlock = 128 * 1024;  // the largest block zstd allows
-  for (std::uint64_t left = size; left > 0;) {
-    const std::uint64_t n = std::min(left, kBlock);
-    left -= n;
-    const auto header = static_cast<std::uint32_t>(n << 3 | 1u << 1 | (left == 0 ? 1u : 0u));
-    f += le<std::uint32_t>(header).substr(0, 3) + std::string(1, '\0');
-  }
-  return f;
-}
-
-// A chunk whose records are `size` zero bytes, honestly declared (no CRC: 0 is "not checked").
-// Zeros read as records of opcode 0 and length 0, which a reader skips, so a size that is a
-// multiple of 9 makes a chunk a reader without limits takes whole.
-std::string zero_chunk(std::uint64_t size) {
-  const std::string frame = zero_frame(size);
-  return record(Opcode::chunk, le<std::uint64_t>(0) + le<std::uint64_t>(0) +
-                                   le<std::uint64_t>(size) + le<std::uint32_t>(0) + str("zstd") +
-                                   le<std::uint64_t>(frame.size()) + frame);
 }
 
 TEST(McapReader, TheZeroFrameIsZstd) {
