@@ -16,6 +16,7 @@
 #include "app/mcap_writer.hpp"
 #include "app/mission_mcap.hpp"
 #include "store/sqlite.hpp"
+#include "support/mcap_bytes.hpp"
 #include "support/recorded_mission.hpp"
 #include "support/temp_db.hpp"
 
@@ -523,6 +524,11 @@ TEST_F(MissionMcapTest, FilesNotWrittenByTheStationAreRefusedWithTheReason) {
   foreign.add_message(ch, 1, 1, R"({"message":"hello"})");
   refused(foreign.finish(), "no avk.mission metadata record");
   refused("this is not MCAP at all", "not a readable MCAP file");
+  // A zstd bomb: 32 KiB declaring 1 GiB, refused from the declared size.
+  namespace mb = avk::testing::mcap_bytes;
+  refused(mb::hand_built_file(mb::zero_chunk(std::uint64_t{9} * 119'304'647)),
+          "not a readable MCAP file: chunk at offset 29: uncompressed_size 1073741823 is more than "
+          "a chunk may hold");
 
   const std::string good = exported().bytes;
   refused(rewritten(good,
