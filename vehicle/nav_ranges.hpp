@@ -1,8 +1,8 @@
 #pragma once
 // The ranges a navigation value read from outside the station must lie in, shared by every reader
 // of such input: NMEA sentences from a frontseat (vehicle/nmea.cpp), pLogger postings
-// (vehicle/alog.cpp) and MCAP recordings (app/mission_mcap.cpp). One definition, so that a value
-// one reader refuses no other stores, and a mission imported from a log can be exported and
+// (vehicle/alog.cpp) and MCAP recordings (app/mission_mcap.cpp). One definition, so that the
+// readers agree on what is plausible, and a mission imported from a log can be exported and
 // imported again. Beyond a quantity's own limits (a heading), the bounds are far outside anything
 // a small boat reports: they catch garbage that passed a checksum or a CRC (a firmware bug, an
 // edited file), not unusual motion.
@@ -13,16 +13,16 @@
 
 namespace avk::vehicle {
 
+// Both bounds included.
 struct ValueRange {
   double low = 0.0;
   double high = 0.0;
-  bool open_high = false;
 
-  // Inclusive unless open_high; false for NaN.
-  constexpr bool contains(double v) const { return v >= low && (open_high ? v < high : v <= high); }
+  // False for NaN.
+  constexpr bool contains(double v) const { return v >= low && v <= high; }
 };
 
-// "[low, high]" or "[low, high)", each bound the shortest text that reads back ("[0, 360]").
+// "[low, high]", the bounds written as the station writes numbers ("[0.0, 360.0]").
 std::string to_string(const ValueRange& r);
 
 // Degrees clockwise from north. Exactly 360 is in: a frontseat rounding 359.9999997 writes it.

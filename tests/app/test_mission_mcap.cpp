@@ -453,17 +453,17 @@ TEST_F(MissionMcapTest, OutOfRangeValuesAndTimeGoingBackAreRefusedNamingTheMessa
   };
   const std::vector<Case> cases = {
       {"a time of 1e308 s", set(K::navigation, 17, "t_s", constant(1e308)),
-       nav + "'t_s' 1e+308 is out of range [0, 1e+10]"},
+       nav + "'t_s' 1e+308 is out of range [0.0, 10000000000.0]"},
       {"x of -1e308 m", set(K::navigation, 17, "x_m", constant(-1e308)),
        nav + "'x_m' -1e+308 is out of range"},
       {"y of 2e7 m", set(K::navigation, 17, "y_m", constant(2e7)),
        nav + "'y_m' 20000000.0 is out of range"},
       {"a speed of -5 m/s", set(K::navigation, 17, "speed_mps", constant(-5.0)),
-       nav + "'speed_mps' -5.0 is out of range [0, 100]"},
+       nav + "'speed_mps' -5.0 is out of range [0.0, 100.0]"},
       {"a heading of 400 deg", set(K::navigation, 17, "heading_deg", constant(400.0)),
-       nav + "'heading_deg' 400.0 is out of range [0, 360]"},
+       nav + "'heading_deg' 400.0 is out of range [0.0, 360.0]"},
       {"a desired speed of 1000 m/s", set(K::navigation, 17, "desired_speed_mps", constant(1e3)),
-       nav + "'desired_speed_mps' 1000.0 is out of range [0, 100]"},
+       nav + "'desired_speed_mps' 1000.0 is out of range [0.0, 100.0]"},
       {"a sample earlier than the one before it",
        set(K::navigation, 17, "t_s",
            [](const json* previous, const json&) {

@@ -285,11 +285,11 @@ TEST(AlogNavBuilder, NavigationValuesOutOfRangeAreMalformed) {
   ASSERT_EQ(b.stats().malformed.count, 5u);
   const auto& p = b.stats().malformed.first;
   EXPECT_EQ(p[0].line, 1u);
-  EXPECT_EQ(p[0].reason, "NAV_X value '-1e308' is out of range [-12756274, 12756274]");
+  EXPECT_EQ(p[0].reason, "NAV_X value '-1e308' is out of range [-12756274.0, 12756274.0]");
   EXPECT_EQ(p[1].line, 6u);
-  EXPECT_EQ(p[1].reason, "NAV_HEADING value '400' is out of range [0, 360]");
+  EXPECT_EQ(p[1].reason, "NAV_HEADING value '400' is out of range [0.0, 360.0]");
   EXPECT_EQ(p[2].line, 7u);
-  EXPECT_EQ(p[2].reason, "NAV_SPEED value '-5' is out of range [0, 100]");
+  EXPECT_EQ(p[2].reason, "NAV_SPEED value '-5' is out of range [0.0, 100.0]");
   EXPECT_EQ(p[3].line, 11u);
   EXPECT_EQ(p[4].line, 12u);
 }
