@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <map>
 #include <utility>
 
@@ -13,8 +14,6 @@ namespace {
 
 // zstd cannot expand more than this: an RLE block of 4 bytes yields at most 128 KiB.
 constexpr std::uint64_t kZstdMaxRatio = 32768;
-// A chunk claiming more is refused rather than allocated (the station writes 1 MiB chunks).
-constexpr std::uint64_t kMaxChunkBytes = std::uint64_t{1} << 30;
 
 std::string hex(std::uint8_t op) {
   char buf[8];
@@ -60,6 +59,26 @@ std::string record_name(Opcode op) {
 
 std::string where(const RecordView& r) {
   return record_name(r.opcode) + " record at offset " + std::to_string(r.offset);
+}
+
+std::string chunk_at(std::uint64_t offset) {
+  return "chunk at offset " + std::to_string(offset) + ": ";
+}
+
+// a * b, or the largest u64 when that overflows.
+std::uint64_t times_or_max(std::uint64_t a, std::uint64_t b) {
+  constexpr std::uint64_t kMax = std::numeric_limits<std::uint64_t>::max();
+  return b != 0 && a > kMax / b ? kMax : a * b;
+}
+
+// Before anything of the chunk is allocated or inflated.
+void check_chunk_size(const ChunkRecord& chunk, std::uint64_t chunk_offset,
+                      std::uint64_t max_bytes) {
+  if (chunk.uncompressed_size > max_bytes) {
+    throw McapError(chunk_at(chunk_offset) + "uncompressed_size " +
+                    std::to_string(chunk.uncompressed_size) + " is more than a chunk may hold (" +
+                    std::to_string(max_bytes) + " bytes)");
+  }
 }
 
 // A bounds-checked little-endian cursor over a record's content (or a map or array inside it).
@@ -160,7 +179,13 @@ bool is_known(std::uint8_t op) {
 // The records of a data section, a chunk or a summary section; the definitions seen so far.
 class ContentsReader {
  public:
-  explicit ContentsReader(McapContents& out) : out_(out) {}
+  // `file_bytes`: the size of the file, which bounds what its chunks may inflate to.
+  ContentsReader(McapContents& out, const ReadLimits& limits, std::uint64_t file_bytes)
+      : out_(out),
+        limits_(limits),
+        file_bytes_(file_bytes),
+        max_inflated_(
+            std::min(limits.max_file_bytes, times_or_max(file_bytes, limits.max_file_ratio))) {}
 
   // Schema and Channel records, in a chunk, the data or the summary section; false for others.
   bool definition(const RecordView& r) {
@@ -213,7 +238,17 @@ class ContentsReader {
   }
 
   void chunk(const RecordView& r) {
-    const std::string records = chunk_records(parse<ChunkRecord>(r), r.offset);
+    const ChunkRecord c = parse<ChunkRecord>(r);
+    check_chunk_size(c, r.offset, limits_.max_chunk_bytes);
+    if (c.uncompressed_size > max_inflated_ - inflated_) {
+      throw McapError(chunk_at(r.offset) + "uncompressed_size " +
+                      std::to_string(c.uncompressed_size) + " would bring the file's chunks to " +
+                      std::to_string(inflated_ + c.uncompressed_size) +
+                      " bytes, more than a file of " + std::to_string(file_bytes_) +
+                      " bytes may hold (" + std::to_string(max_inflated_) + ")");
+    }
+    inflated_ += c.uncompressed_size;
+    const std::string records = chunk_records(c, r.offset, limits_.max_chunk_bytes);
     try {
       for (std::uint64_t at = 0; at < records.size();) {
         const RecordView inner = record_at(records, at);
@@ -237,6 +272,10 @@ class ContentsReader {
 
  private:
   McapContents& out_;
+  ReadLimits limits_;
+  std::uint64_t file_bytes_;
+  std::uint64_t max_inflated_;                          // the records of all chunks, uncompressed
+  std::uint64_t inflated_ = 0;                          // so far
   std::map<std::uint16_t, std::size_t> schema_index_;   // id -> index in out_.schemas
   std::map<std::uint16_t, std::size_t> channel_index_;  // id -> index in out_.channels
   std::map<std::uint16_t, std::uint64_t> message_counts_;
@@ -387,8 +426,10 @@ template MetadataIndexRecord parse(const RecordView&);
 template SummaryOffsetRecord parse(const RecordView&);
 template DataEndRecord parse(const RecordView&);
 
-std::string chunk_records(const ChunkRecord& chunk, std::uint64_t chunk_offset) {
-  const std::string at = "chunk at offset " + std::to_string(chunk_offset) + ": ";
+std::string chunk_records(const ChunkRecord& chunk, std::uint64_t chunk_offset,
+                          std::uint64_t max_bytes) {
+  const std::string at = chunk_at(chunk_offset);
+  check_chunk_size(chunk, chunk_offset, max_bytes);
   std::string records;
   if (chunk.compression.empty() || (chunk.records.empty() && chunk.uncompressed_size == 0)) {
     if (chunk.records.size() != chunk.uncompressed_size) {
@@ -399,11 +440,10 @@ std::string chunk_records(const ChunkRecord& chunk, std::uint64_t chunk_offset) 
     records = std::string(chunk.records);
   } else if (chunk.compression == "zstd") {
     const std::uint64_t claimed = chunk.uncompressed_size;
-    if (claimed > kMaxChunkBytes || claimed / kZstdMaxRatio > chunk.records.size()) {
+    if (claimed / kZstdMaxRatio > chunk.records.size()) {
       throw McapError(at + "uncompressed_size " + std::to_string(claimed) + " from " +
                       std::to_string(chunk.records.size()) +
-                      " compressed bytes is more than zstd can give or this reader takes (" +
-                      std::to_string(kMaxChunkBytes) + ")");
+                      " compressed bytes is more than zstd can give");
     }
     // The first frame's declared size (a chunk may hold several frames).
     const unsigned long long framed =
@@ -435,7 +475,7 @@ std::string chunk_records(const ChunkRecord& chunk, std::uint64_t chunk_offset) 
   return records;
 }
 
-McapContents read_mcap(std::string_view bytes) {
+McapContents read_mcap(std::string_view bytes, const ReadLimits& limits) {
   check_magic(bytes, 0);
   McapContents out;
   const RecordView header_record = record_at(bytes, kMagic.size());
@@ -443,7 +483,7 @@ McapContents read_mcap(std::string_view bytes) {
   out.profile = header.profile;
   out.library = header.library;
 
-  ContentsReader reader(out);
+  ContentsReader reader(out, limits, bytes.size());
   std::uint64_t offset =
       read_data_section(bytes, kMagic.size() + header_record.length(), reader, out);
   if (const RecordView end = record_at(bytes, offset); end.opcode == Opcode::data_end) {

@@ -30,10 +30,23 @@ struct McapContents {
   std::size_t chunk_count = 0;
 };
 
+// How much a file may inflate to. A chunk's CRC is of its uncompressed records, so a chunk must be
+// inflated whole before it can be checked: these caps are checked against the sizes the chunks
+// declare, before anything is allocated or inflated (docs/foxglove.md, "Import").
+struct ReadLimits {
+  // The uncompressed records of one chunk. The station writes 1 MiB chunks, other writers a few.
+  std::uint64_t max_chunk_bytes = std::uint64_t{64} << 20;
+  // The uncompressed records of all chunks of a file together: at most this many bytes...
+  std::uint64_t max_file_bytes = std::uint64_t{1} << 30;
+  // ... and at most this many times the file's own size. The station's JSON compresses about
+  // 5 times; a bomb's zeros 30,000 times.
+  std::uint64_t max_file_ratio = 100;
+};
+
 // Reads the data section linearly (checking chunk CRCs, the data-section CRC and every length),
 // then the summary section and footer (their CRC, and the statistics and chunk indexes against
-// what the data section holds).
-McapContents read_mcap(std::string_view bytes);
+// what the data section holds). Chunks past `limits` are refused naming the chunk.
+McapContents read_mcap(std::string_view bytes, const ReadLimits& limits = {});
 
 // The pieces read_mcap is built from, for reading by index.
 
@@ -55,8 +68,9 @@ template <class Record>
 Record parse(const RecordView& r);
 
 // A chunk's records, decompressed, their size and CRC checked; `chunk_offset` names the chunk in
-// errors.
-std::string chunk_records(const ChunkRecord& chunk, std::uint64_t chunk_offset);
+// errors. A chunk declaring more than `max_bytes` is refused before anything is allocated.
+std::string chunk_records(const ChunkRecord& chunk, std::uint64_t chunk_offset,
+                          std::uint64_t max_bytes = ReadLimits{}.max_chunk_bytes);
 
 // The footer and the summary section, read from the end of the file as an indexed reader does.
 struct McapSummary {

@@ -15,6 +15,7 @@
 #include "kinematics/turn_json.hpp"
 #include "mission/event_kind.hpp"
 #include "mission/mission_config.hpp"
+#include "vehicle/nav_ranges.hpp"
 
 #ifndef AVK_STATION_VERSION
 #define AVK_STATION_VERSION ""
@@ -333,6 +334,13 @@ const std::string& entry(const std::map<std::string, std::string>& r, const std:
   return it->second;
 }
 
+// `v` when `range` holds it; else what is wrong, naming it as `what`.
+double in_range(double v, const vehicle::ValueRange& range, const std::string& what) {
+  if (!range.contains(v))
+    throw FileError(what + " " + number_text(v) + " is out of range " + vehicle::to_string(range));
+  return v;
+}
+
 std::optional<double> optional_number_entry(const std::map<std::string, std::string>& r,
                                             const std::string& record, const std::string& key) {
   const std::string& text = entry(r, record, key);
@@ -348,6 +356,14 @@ double number_entry(const std::map<std::string, std::string>& r, const std::stri
   const auto v = optional_number_entry(r, record, key);
   if (!v) throw FileError(record + " metadata '" + key + "' is empty");
   return *v;
+}
+
+// A time on the station clock, in its range (vehicle/nav_ranges.hpp).
+std::optional<double> optional_clock_entry(const std::map<std::string, std::string>& r,
+                                           const std::string& record, const std::string& key) {
+  const auto v = optional_number_entry(r, record, key);
+  if (v) in_range(*v, vehicle::kClockRange_s, record + " metadata '" + key + "'");
+  return v;
 }
 
 std::int64_t integer_entry(const std::map<std::string, std::string>& r, const std::string& record,
@@ -384,6 +400,15 @@ class MessageFields {
     if (v.is_null()) return std::nullopt;
     return number(key);
   }
+  // A number in the range every reader of navigation holds (vehicle/nav_ranges.hpp).
+  double number(const char* key, const vehicle::ValueRange& range) const {
+    return in_range(number(key), range, where_ + ": '" + key + "'");
+  }
+  std::optional<double> optional_number(const char* key, const vehicle::ValueRange& range) const {
+    const auto v = optional_number(key);
+    if (v) in_range(*v, range, where_ + ": '" + key + "'");
+    return v;
+  }
   std::string text(const char* key) const {
     const json& v = member(key);
     if (!v.is_string()) throw FileError(where_ + ": '" + key + "' is not a string");
@@ -401,22 +426,28 @@ class MessageFields {
   std::string where_;
 };
 
-store::NavRow nav_row(const MessageFields& f) {
+// `previous`: the navigation sample before it in the file, which it must not precede (the
+// station writes them in time order).
+store::NavRow nav_row(const MessageFields& f, const store::NavRow* previous) {
   store::NavRow r;
-  r.t_s = f.number("t_s");
-  r.x_m = f.number("x_m");
-  r.y_m = f.number("y_m");
-  r.heading_deg = f.number("heading_deg");
-  r.speed_mps = f.number("speed_mps");
-  r.desired_heading_deg = f.optional_number("desired_heading_deg");
-  r.desired_speed_mps = f.optional_number("desired_speed_mps");
+  r.t_s = f.number("t_s", vehicle::kClockRange_s);
+  if (previous && r.t_s < previous->t_s)
+    throw FileError(f.where() + ": 't_s' " + number_text(r.t_s) +
+                    " is earlier than the navigation sample before it (" +
+                    number_text(previous->t_s) + ")");
+  r.x_m = f.number("x_m", vehicle::kGridRange_m);
+  r.y_m = f.number("y_m", vehicle::kGridRange_m);
+  r.heading_deg = f.number("heading_deg", vehicle::kHeadingRange_deg);
+  r.speed_mps = f.number("speed_mps", vehicle::kSpeedRange_mps);
+  r.desired_heading_deg = f.optional_number("desired_heading_deg", vehicle::kHeadingRange_deg);
+  r.desired_speed_mps = f.optional_number("desired_speed_mps", vehicle::kSpeedRange_mps);
   r.helm_mode = f.member("helm_mode").is_null() ? std::string() : f.text("helm_mode");
   return r;
 }
 
 store::MissionEvent event_row(const MessageFields& f) {
   store::MissionEvent e;
-  e.t_s = f.number("t_s");
+  e.t_s = f.number("t_s", vehicle::kClockRange_s);
   e.kind = f.text("kind");
   e.message = f.text("message");
   return e;
@@ -444,13 +475,16 @@ store::StoredTurn stored_turn(const MessageFields& f, const std::string& vehicle
   const json& row_json = f.member("row");
   if (!row_json.is_object()) throw FileError(f.where() + ": 'row' is not an object");
   const MessageFields row(row_json, f.where() + ", row");
-  r.cell_speed_mps = row.number("cell_speed_mps");
+  r.cell_speed_mps = row.number("cell_speed_mps", vehicle::kSpeedRange_mps);
   r.cell_dheading_deg = row.number("cell_dheading_deg");
-  r.commanded_speed_mps = row.number("commanded_speed_mps");
+  r.commanded_speed_mps = row.number("commanded_speed_mps", vehicle::kSpeedRange_mps);
   r.goal_dheading_deg = row.number("goal_dheading_deg");
   r.observed_dheading_deg = row.number("observed_dheading_deg");
-  r.start_time_s = row.number("start_time_s");
-  r.end_time_s = row.number("end_time_s");
+  r.start_time_s = row.number("start_time_s", vehicle::kClockRange_s);
+  r.end_time_s = row.number("end_time_s", vehicle::kClockRange_s);
+  if (r.end_time_s < r.start_time_s)
+    throw FileError(row.where() + ": 'end_time_s' " + number_text(r.end_time_s) +
+                    " is before 'start_time_s' " + number_text(r.start_time_s));
   r.advance_m = row.optional_number("advance_m");
   r.transfer_m = row.optional_number("transfer_m");
   r.condition_set_time_s = row.optional_number("condition_set_time_s");
@@ -479,8 +513,8 @@ store::Mission mission_row(const std::map<std::string, std::string>& r) {
   m.status = *parsed;
   m.status_reason = entry(r, rec, "status_reason");
   m.created_utc = entry(r, rec, "created_utc");
-  m.started_s = optional_number_entry(r, rec, "started_s");
-  m.ended_s = optional_number_entry(r, rec, "ended_s");
+  m.started_s = optional_clock_entry(r, rec, "started_s");
+  m.ended_s = optional_clock_entry(r, rec, "ended_s");
   // A mission exported while it ran is not running here: no process of this station runs it.
   if (m.status == store::MissionStatus::running || m.status == store::MissionStatus::paused) {
     m.status = store::MissionStatus::interrupted;
@@ -504,8 +538,9 @@ std::vector<store::ConditionSetTiming> condition_sets(const std::map<std::string
       throw FileError(std::string(kConditionSetsRecord) + " [" + std::to_string(i) +
                       "] is not an object");
     const MessageFields f(a[i], std::string(kConditionSetsRecord) + " [" + std::to_string(i) + "]");
-    out.push_back(
-        {f.number("start_s"), f.number("end_s"), f.number("target_speed_mps"), f.text("outcome")});
+    out.push_back({f.number("start_s", vehicle::kClockRange_s),
+                   f.number("end_s", vehicle::kClockRange_s),
+                   f.number("target_speed_mps", vehicle::kSpeedRange_mps), f.text("outcome")});
   }
   return out;
 }
@@ -513,7 +548,7 @@ std::vector<store::ConditionSetTiming> condition_sets(const std::map<std::string
 store::StoredCurrent current_row(const std::map<std::string, std::string>& r) {
   const std::string rec = kCurrentRecord;
   store::StoredCurrent c;
-  c.t_s = number_entry(r, rec, "t_s");
+  c.t_s = in_range(number_entry(r, rec, "t_s"), vehicle::kClockRange_s, rec + " metadata 't_s'");
   c.method = entry(r, rec, "method");
   c.estimate.east_mps = number_entry(r, rec, "east_mps");
   c.estimate.north_mps = number_entry(r, rec, "north_mps");
@@ -619,7 +654,7 @@ ReadMission read_mission(std::string_view bytes) {
     if (!ch->second.second) continue;
     switch (*ch->second.second) {
       case fg::ChannelKind::navigation:
-        d.nav.push_back(nav_row(f));
+        d.nav.push_back(nav_row(f, d.nav.empty() ? nullptr : &d.nav.back()));
         break;
       case fg::ChannelKind::log:
         d.events.push_back(event_row(f));

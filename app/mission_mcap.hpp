@@ -65,8 +65,9 @@ struct McapImport {
 // A file written by export_mission_mcap, as a new mission. Everything is read and checked before
 // anything is stored, and stored in one transaction: a file that fails leaves the database as
 // it was. invalid_argument (field "file") naming what is wrong: not MCAP, not the station's (no
-// avk.mission metadata), another layout version, a message that does not parse (its topic and
-// sequence), counts that disagree with the mission record.
+// avk.mission metadata), another layout version, a message that does not parse or holds a value
+// outside the navigation ranges (vehicle/nav_ranges.hpp) or navigation going back in time (its
+// topic and sequence), counts that disagree with the mission record.
 Result<McapImport> import_mission_mcap(Context& ctx, std::string_view bytes);
 
 }  // namespace avk::app

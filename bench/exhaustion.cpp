@@ -8,11 +8,17 @@
 //   2. 1,100 slow connections: a partial request header each, one more byte per 10 s (more than
 //      the server's connection cap, under the 1,024 fds the machine allowed);
 //   3. 8 parallel unauthenticated 62 MB bodies to the CKT import, sent as fast as the server
-//      takes them.
+//      takes them;
+//   4. MCAP bombs: `avk import mcap` into the serving station's database (the import is the
+//      command line's; no route takes an upload), four at once, round after round for 15 s, of
+//      files whose zstd chunks honestly declare what they inflate to: one chunk of 1 GiB in
+//      32 KiB, and 45 chunks of 64 MiB (each within the per-chunk cap) in 93 KB. The imports'
+//      time, answer and peak RSS are reported beside the server's.
 //
 // Throughout, one /health request every 20 ms on a fresh connection: p50/p99/max latency and
 // failures per phase, and the server's RSS (VmRSS sampled every 100 ms, VmHWM at the end).
-// Targets: /health p99 < 50 ms, RSS < 100 MB. Bounded: about 90 s (`--quick`: about 45 s), then
+// Targets: /health p99 < 50 ms, RSS < 100 MB (the server's, and each bomb import's, which must
+// be refused). Bounded: about 105 s (`--quick`: about 50 s), then
 // it stops the server and exits 0 if the targets held, 1 if not.
 //
 //   bench_exhaustion [--quick]
@@ -28,6 +34,7 @@
 #include <signal.h>
 #include <sys/resource.h>
 #include <sys/socket.h>
+#include <sys/time.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -47,6 +54,7 @@
 #include <thread>
 #include <vector>
 
+#include "support/mcap_bytes.hpp"
 #include "support/spawn_avk.hpp"
 
 namespace {
@@ -377,6 +385,76 @@ std::string oversized_bodies(unsigned short port) {
   return s.str();
 }
 
+// Rounds of four `avk import mcap` at once of each bomb into the server's database, until
+// `length` has passed; the notes say how the imports were answered. `refused_small` is cleared
+// unless every import failed naming a chunk and stayed under 100 MB.
+std::string mcap_bombs(const fs::path& dir, std::chrono::seconds length, bool& refused_small) {
+  namespace mb = avk::testing::mcap_bytes;
+  struct Bomb {
+    std::string name;
+    fs::path file;
+    std::size_t bytes = 0;
+    int imports = 0;
+    int refused = 0;
+    double max_s = 0;
+    long max_rss_kb = 0;
+    std::string answer;  // the first line of an import's output
+  };
+  std::string many;
+  for (int i = 0; i < 45; ++i)
+    many += mb::zero_chunk(std::uint64_t{9} * 7'456'540);  // 64 MiB - 4 bytes, a multiple of 9
+  const std::pair<const char*, std::string> files[] = {
+      {"1 GiB in one chunk", mb::hand_built_file(mb::zero_chunk(std::uint64_t{9} * 119'304'647))},
+      {"45 x 64 MiB chunks", mb::hand_built_file(many)},
+  };
+  std::vector<Bomb> bombs;
+  for (const auto& [name, bytes] : files) {
+    Bomb b;
+    b.name = name;
+    b.file = dir / ("bomb" + std::to_string(bombs.size()) + ".mcap");
+    b.bytes = bytes.size();
+    std::ofstream(b.file, std::ios::binary) << bytes;
+    bombs.push_back(b);
+  }
+  const std::string db = (dir / "bench.db").string();
+  const auto end = Clock::now() + length;
+  while (Clock::now() < end) {
+    for (Bomb& b : bombs) {
+      std::vector<pid_t> pids;
+      std::vector<std::string> logs;
+      const auto t0 = Clock::now();
+      for (int i = 0; i < 4; ++i) {
+        logs.push_back((dir / ("import" + std::to_string(i) + ".log")).string());
+        pids.push_back(
+            avk::testing::spawn_avk({"import", "mcap", b.file.string(), "--db", db}, logs.back()));
+      }
+      for (std::size_t i = 0; i < pids.size(); ++i) {
+        rusage ru{};
+        int status = 0;
+        if (pids[i] <= 0 || ::wait4(pids[i], &status, 0, &ru) != pids[i]) continue;
+        std::ifstream f(logs[i]);
+        std::getline(f, b.answer);
+        ++b.imports;
+        b.max_s = std::max(b.max_s, std::chrono::duration<double>(Clock::now() - t0).count());
+        b.max_rss_kb = std::max(b.max_rss_kb, ru.ru_maxrss);
+        if (WIFEXITED(status) && WEXITSTATUS(status) != 0 &&
+            b.answer.find("chunk at offset") != std::string::npos)
+          ++b.refused;
+      }
+    }
+  }
+  std::ostringstream notes;
+  for (const Bomb& b : bombs) {
+    refused_small =
+        refused_small && b.imports > 0 && b.refused == b.imports && b.max_rss_kb < 100 * 1024;
+    notes << (notes.tellp() > 0 ? "; " : "") << b.name << " (" << b.bytes / 1024
+          << " KiB): " << b.refused << "/" << b.imports << " imports refused, each within "
+          << b.max_s << " s and " << b.max_rss_kb / 1024 << " MB: \"" << b.answer << "\"";
+    fs::remove(b.file);
+  }
+  return notes.str();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -416,13 +494,16 @@ int main(int argc, char** argv) {
                           [&] { return slow_connections(server.port, 1100, quick ? 12s : 30s); }));
   results.push_back(phase("8 x 62 MB unauthenticated bodies", server,
                           [&] { return oversized_bodies(server.port); }));
+  bool bombs_refused = true;
+  results.push_back(phase("MCAP bombs, 4 imports at once", server,
+                          [&] { return mcap_bombs(dir, quick ? 5s : 15s, bombs_refused); }));
   const long hwm_kb = proc_kb(server.pid, "VmHWM");
   ::kill(server.pid, SIGTERM);
   int status = 0;
   ::waitpid(server.pid, &status, 0);
   fs::remove_all(dir);
 
-  bool ok = hwm_kb > 0 && hwm_kb < 100 * 1024;
+  bool ok = hwm_kb > 0 && hwm_kb < 100 * 1024 && bombs_refused;
   std::printf("\n%-34s %7s %8s %8s %8s %6s %9s\n", "phase", "probes", "p50 ms", "p99 ms", "max ms",
               "fails", "RSS MB");
   for (const auto& r : results) {
@@ -443,7 +524,9 @@ int main(int argc, char** argv) {
     std::printf("\n");
   }
   std::printf("server peak RSS (VmHWM): %.1f MB\n", static_cast<double>(hwm_kb) / 1024.0);
-  std::printf("targets (/health p99 < 50 ms, no failed probe, RSS < 100 MB): %s\n",
-              ok ? "met" : "NOT met");
+  std::printf(
+      "targets (/health p99 < 50 ms, no failed probe, RSS < 100 MB, every MCAP bomb refused under "
+      "100 MB): %s\n",
+      ok ? "met" : "NOT met");
   return ok ? 0 : 1;
 }

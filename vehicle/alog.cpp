@@ -8,6 +8,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "vehicle/nav_ranges.hpp"
+
 namespace avk::vehicle {
 
 namespace {
@@ -275,6 +277,16 @@ bool AlogNavBuilder::feed(const AlogEntry& e, GuidedNav& out) {
   if (!v) {
     stats_.malformed.add(e.line,
                          e.variable + " value " + quoted(e.value) + " is not a finite number");
+    return false;
+  }
+  // The ranges every reader of navigation holds, so that an imported log exports and imports
+  // again.
+  const ValueRange& range = f == Field::x || f == Field::y                       ? kGridRange_m
+                            : f == Field::heading || f == Field::desired_heading ? kHeadingRange_deg
+                                                                                 : kSpeedRange_mps;
+  if (!range.contains(*v)) {
+    stats_.malformed.add(
+        e.line, e.variable + " value " + quoted(e.value) + " is out of range " + to_string(range));
     return false;
   }
   const bool is_nav = f == Field::x || f == Field::y || f == Field::heading || f == Field::speed;

@@ -11,7 +11,7 @@ namespace avk::vehicle {
 namespace {
 
 // WGS-84.
-constexpr double kA = 6378137.0;
+constexpr double kA = kWgs84SemiMajorAxis_m;
 constexpr double kF = 1.0 / 298.257223563;
 constexpr double kE2 = kF * (2.0 - kF);
 constexpr double kB = kA * (1.0 - kF);

@@ -12,6 +12,9 @@
 
 namespace avk::vehicle {
 
+// WGS-84's semi-major axis, the earth's equatorial radius.
+inline constexpr double kWgs84SemiMajorAxis_m = 6378137.0;
+
 struct LatLon {
   double lat_deg = 0.0;  // + north
   double lon_deg = 0.0;  // + east, in [-180, 180)

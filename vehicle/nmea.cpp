@@ -10,25 +10,21 @@
 #include <type_traits>
 #include <utility>
 
+#include "vehicle/nav_ranges.hpp"
+
 namespace avk::vehicle {
 
 namespace {
 
 using Code = NmeaError::Code;
 
-// Inclusive unless open_high. Beyond the protocol's own limits (headings, thrust, latitudes),
-// the bounds are far outside anything a small boat reports: they catch garbage that passed the
-// checksum (a firmware bug, a corrupted but consistent relay), not unusual motion.
-struct Range {
-  double low;
-  double high;
-  bool open_high = false;
-};
+// Navigation ranges are the ones every reader of navigation shares (vehicle/nav_ranges.hpp).
+// Beyond the protocol's own limits (thrust, latitudes), the bounds of the others are far outside
+// anything a small boat reports: they catch garbage that passed the checksum (a firmware bug, a
+// corrupted but consistent relay), not unusual motion.
+using Range = ValueRange;
 
 constexpr Range kThrust{-100.0, 100.0};
-constexpr Range kSpeedCommand{0.0, 100.0};
-constexpr Range kVelocity{-100.0, 100.0};
-constexpr Range kRate{-5000.0, 5000.0};  // above the full scale of MEMS gyros
 constexpr Range kAcceleration{-1000.0, 1000.0};
 constexpr Range kRoll{-180.0, 180.0};
 constexpr Range kPitch{-90.0, 90.0};
@@ -79,19 +75,6 @@ std::string number_text(double v) {
   char buf[32];
   const auto r = std::to_chars(buf, buf + sizeof buf, v);
   return r.ec == std::errc() ? std::string(buf, r.ptr) : std::string("?");
-}
-
-std::string range_text(const Range& r) {
-  std::string out = "[";
-  out += number_text(r.low);
-  out += ", ";
-  out += number_text(r.high);
-  out += r.open_high ? ")" : "]";
-  return out;
-}
-
-bool in_range(double v, const Range& r) {
-  return v >= r.low && (r.open_high ? v < r.high : v <= r.high);
 }
 
 // Decimal numbers as the protocol writes them: an optional sign, digits, an optional fraction.
@@ -182,8 +165,8 @@ class Reader {
       fail(Code::non_numeric, i, name, quoted(text(i)) + " is not a decimal number");
       return std::nullopt;
     }
-    if (!in_range(*v, range)) {
-      fail(Code::out_of_range, i, name, quoted(text(i)) + " is out of range " + range_text(range));
+    if (!range.contains(*v)) {
+      fail(Code::out_of_range, i, name, quoted(text(i)) + " is out of range " + to_string(range));
       return std::nullopt;
     }
     return v;
@@ -196,7 +179,7 @@ class Reader {
   // Degrees true. Exactly 360 reads as 0: a frontseat rounding 359.9999997 to six decimals
   // writes it, and dropping a navigation sample over that would be worse than wrapping it.
   std::optional<double> maybe_heading(std::size_t i, const char* name) {
-    const auto v = maybe_number(i, name, Range{0.0, 360.0});
+    const auto v = maybe_number(i, name, kHeadingRange_deg);
     if (v && *v == 360.0) return 0.0;
     return v;
   }
@@ -414,12 +397,12 @@ std::variant<NmeaSentence, NmeaError> parse_cpnvr(Reader& r) {
   if (!r.expect_count({7})) return r.take_error();
   Cpnvr s;
   s.time_s = r.time(1, "time");
-  s.v_east_mps = r.number(2, "v east", kVelocity);
-  s.v_north_mps = r.number(3, "v north", kVelocity);
-  s.v_down_mps = r.number(4, "v down", kVelocity);
-  s.pitch_rate_dps = r.number(5, "pitch rate", kRate);
-  s.roll_rate_dps = r.number(6, "roll rate", kRate);
-  s.yaw_rate_dps = r.number(7, "yaw rate", kRate);
+  s.v_east_mps = r.number(2, "v east", kVelocityRange_mps);
+  s.v_north_mps = r.number(3, "v north", kVelocityRange_mps);
+  s.v_down_mps = r.number(4, "v down", kVelocityRange_mps);
+  s.pitch_rate_dps = r.number(5, "pitch rate", kRateRange_dps);
+  s.roll_rate_dps = r.number(6, "roll rate", kRateRange_dps);
+  s.yaw_rate_dps = r.number(7, "yaw rate", kRateRange_dps);
   return finish(r, std::move(s));
 }
 
@@ -452,9 +435,9 @@ std::variant<NmeaSentence, NmeaError> parse_cpimu(Reader& r) {
   if (!r.expect_count({7})) return r.take_error();
   Cpimu s;
   s.time_s = r.time(1, "time");
-  s.rate_x_dps = r.number(2, "rate x", kRate);
-  s.rate_y_dps = r.number(3, "rate y", kRate);
-  s.rate_z_dps = r.number(4, "rate z", kRate);
+  s.rate_x_dps = r.number(2, "rate x", kRateRange_dps);
+  s.rate_y_dps = r.number(3, "rate y", kRateRange_dps);
+  s.rate_z_dps = r.number(4, "rate z", kRateRange_dps);
   s.accel_x = r.number(5, "acceleration x", kAcceleration);
   s.accel_y = r.number(6, "acceleration y", kAcceleration);
   s.accel_z = r.number(7, "acceleration z", kAcceleration);
@@ -536,14 +519,14 @@ std::variant<NmeaSentence, NmeaError> parse_pydev(Reader& r) {
   if (!r.expect_count({2})) return r.take_error();
   Pydev s;
   s.heading_deg = r.heading(1, "heading");
-  s.speed_mps = r.number(2, "speed", kSpeedCommand);
+  s.speed_mps = r.number(2, "speed", kSpeedRange_mps);
   return finish(r, std::move(s));
 }
 
 std::variant<NmeaSentence, NmeaError> parse_pydep(Reader& r) {
   if (!r.expect_count({2})) return r.take_error();
   Pydep s;
-  s.yaw_rate_dps = r.number(1, "yaw rate", kRate);
+  s.yaw_rate_dps = r.number(1, "yaw rate", kRateRange_dps);
   s.thrust_pct = r.number(2, "thrust", kThrust);
   return finish(r, std::move(s));
 }

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
+#include <zstd.h>
 
+#include <algorithm>
 #include <cstring>
 #include <map>
 #include <stdexcept>
@@ -8,25 +10,13 @@
 
 #include "app/mcap_reader.hpp"
 #include "app/mcap_writer.hpp"
+#include "support/mcap_bytes.hpp"
 
 namespace {
 
 using namespace avk::app::mcap;
+using namespace avk::testing::mcap_bytes;
 
-// Little-endian fields written by hand, to build files the writer would never write.
-template <class T>
-std::string le(T v) {
-  std::string out;
-  for (std::size_t i = 0; i < sizeof(T); ++i)
-    out.push_back(static_cast<char>(v >> (8 * i)));
-  return out;
-}
-std::string str(const std::string& s) {
-  return le<std::uint32_t>(s.size()) + s;
-}
-std::string record(Opcode op, const std::string& content) {
-  return std::string(1, static_cast<char>(op)) + le<std::uint64_t>(content.size()) + content;
-}
 std::uint64_t u64_at(const std::string& bytes, std::uint64_t at) {
   std::uint64_t v = 0;
   for (int i = 7; i >= 0; --i)
@@ -35,15 +25,6 @@ std::uint64_t u64_at(const std::string& bytes, std::uint64_t at) {
 }
 std::uint32_t u32_at(const std::string& bytes, std::uint64_t at) {
   return static_cast<std::uint32_t>(u64_at(bytes + std::string(4, '\0'), at));
-}
-
-// Magic, Header, `data`, a Data End and Footer without CRCs or summary, Magic.
-std::string hand_built_file(const std::string& data) {
-  return std::string(kMagic) + record(Opcode::header, str("") + str("hand")) + data +
-         record(Opcode::data_end, le<std::uint32_t>(0)) +
-         record(Opcode::footer,
-                le<std::uint64_t>(0) + le<std::uint64_t>(0) + le<std::uint32_t>(0)) +
-         std::string(kMagic);
 }
 
 std::string error_of(std::string_view bytes) {
@@ -420,6 +401,64 @@ TEST(McapReader, AbsurdUncompressedSizeIsRefusedBeforeAllocating) {
                                 str("zstd") + le<std::uint64_t>(4) + "\x28\xB5\x2F\xFD");
   EXPECT_NE(error_of(hand_built_file(chunk)).find("chunk at offset 29: uncompressed_size"),
             std::string::npos);
+}
+
+TEST(McapReader, TheZeroFrameIsZstd) {
+  const std::string frame = zero_frame(300'000);
+  EXPECT_EQ(ZSTD_getFrameContentSize(frame.data(), frame.size()), 300'000u);
+  std::string out(300'000, 'x');
+  ASSERT_EQ(ZSTD_decompress(out.data(), out.size(), frame.data(), frame.size()), 300'000u);
+  EXPECT_EQ(out, std::string(300'000, '\0'));
+  EXPECT_EQ(read_mcap(hand_built_file(zero_chunk(9 * 1000))).chunk_count, 1u);
+}
+
+// The zstd bomb: 32 KiB of file declaring 1 GiB in one chunk is refused from the declared size,
+// before anything is allocated or inflated.
+TEST(McapReader, AChunkDeclaringMoreThanAChunkMayHoldIsRefusedBeforeInflating) {
+  const std::uint64_t size = 9 * 119'304'647;  // 1 GiB - 1
+  const std::string file = hand_built_file(zero_chunk(size));
+  EXPECT_LT(file.size(), 33'000u);
+  EXPECT_EQ(error_of(file),
+            "chunk at offset 29: uncompressed_size 1073741823 is more than a "
+            "chunk may hold (67108864 bytes)");
+}
+
+// Chunks that each fit are refused once together they declare more than the file may hold:
+// 100 times its own size.
+TEST(McapReader, ChunksDeclaringMoreThanAFileMayHoldAreRefused) {
+  const std::uint64_t size = 9 * 1'000'000;  // 8.6 MiB a chunk, about 1 kB of file
+  std::string chunks;
+  for (int i = 0; i < 3; ++i)
+    chunks += zero_chunk(size);
+  const std::string file = hand_built_file(chunks);
+  EXPECT_EQ(error_of(file),
+            "chunk at offset 29: uncompressed_size 9000000 would bring the "
+            "file's chunks to 9000000 bytes, more than a file of " +
+                std::to_string(file.size()) + " bytes may hold (" +
+                std::to_string(100 * file.size()) + ")");
+}
+
+// The absolute cap of a file, with limits small enough to reach cheaply: the third chunk of
+// 900,000 bytes passes 2 MiB and is refused before it is inflated.
+TEST(McapReader, ChunksPastTheFileCapAreRefusedAtTheChunkThatPassesIt) {
+  const std::string chunk = zero_chunk(9 * 100'000);
+  const std::string file = hand_built_file(chunk + chunk + chunk);
+  ReadLimits limits;
+  limits.max_chunk_bytes = 1 << 20;
+  limits.max_file_bytes = 2 << 20;
+  limits.max_file_ratio = 1'000'000;
+  EXPECT_EQ(read_mcap(hand_built_file(chunk + chunk), limits).chunk_count, 2u);
+  try {
+    read_mcap(file, limits);
+    ADD_FAILURE() << "read";
+  } catch (const McapError& e) {
+    EXPECT_EQ(std::string(e.what()), "chunk at offset " + std::to_string(29 + 2 * chunk.size()) +
+                                         ": uncompressed_size 900000 would bring the file's "
+                                         "chunks to 2700000 bytes, more than a file of " +
+                                         std::to_string(file.size()) + " bytes may hold (2097152)");
+  }
+  limits.max_chunk_bytes = 899'999;
+  EXPECT_THROW(read_mcap(hand_built_file(chunk), limits), McapError);
 }
 
 TEST(McapReader, RecordLengthsBeyondTheFileAreRefused) {

@@ -6,6 +6,7 @@
 #include <functional>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "app/context.hpp"
@@ -15,6 +16,7 @@
 #include "app/mcap_writer.hpp"
 #include "app/mission_mcap.hpp"
 #include "store/sqlite.hpp"
+#include "support/mcap_bytes.hpp"
 #include "support/recorded_mission.hpp"
 #include "support/temp_db.hpp"
 
@@ -411,6 +413,83 @@ TEST_F(MissionMcapTest, ACorruptFileLeavesTheDatabaseExactlyAsItWas) {
   EXPECT_EQ(all_counts(target.path()), before);
 }
 
+// A station-written file whose values are out of the ranges every reader of navigation holds
+// (vehicle/nav_ranges.hpp) or whose navigation runs back in time: refused naming the message by
+// topic and sequence, and nothing stored.
+TEST_F(MissionMcapTest, OutOfRangeValuesAndTimeGoingBackAreRefusedNamingTheMessage) {
+  const std::string good = exported().bytes;
+  avk::testing::TempDb target("avk_mcap_ranges");
+  app::Context to(target.path());
+  (void)to.db();  // the schema, for the counts
+  const auto before = all_counts(target.path());
+
+  using K = app::foxglove::ChannelKind;
+  // Sets `key` of the message of `kind` with `sequence` to what `value` gives from the message
+  // before it on that channel (null before the first) and the message itself.
+  const auto set = [](K kind, std::uint32_t sequence, const char* key,
+                      std::function<json(const json* previous, const json& self)> value) {
+    return [=](app::mcap::McapContents& c) {
+      const auto ch = channel_id(c, kind);
+      std::optional<json> previous;
+      for (auto& m : c.messages) {
+        if (m.channel_id != ch) continue;
+        json j = json::parse(m.data);
+        if (m.sequence == sequence) {
+          j[key] = value(previous ? &*previous : nullptr, j);
+          m.data = j.dump();
+          return;
+        }
+        previous = std::move(j);
+      }
+      ADD_FAILURE() << "no message " << sequence << " on " << topic(kind);
+    };
+  };
+  const auto constant = [](double v) { return [v](const json*, const json&) { return json(v); }; };
+  const std::string nav = "message 17 on " + topic(K::navigation) + ": ";
+  struct Case {
+    std::string name;
+    std::function<void(app::mcap::McapContents&)> edit;
+    std::string expected;  // in the error message
+  };
+  const std::vector<Case> cases = {
+      {"a time of 1e308 s", set(K::navigation, 17, "t_s", constant(1e308)),
+       nav + "'t_s' 1e+308 is out of range [0.0, 10000000000.0]"},
+      {"x of -1e308 m", set(K::navigation, 17, "x_m", constant(-1e308)),
+       nav + "'x_m' -1e+308 is out of range"},
+      {"y of 2e7 m", set(K::navigation, 17, "y_m", constant(2e7)),
+       nav + "'y_m' 20000000.0 is out of range"},
+      {"a speed of -5 m/s", set(K::navigation, 17, "speed_mps", constant(-5.0)),
+       nav + "'speed_mps' -5.0 is out of range [0.0, 100.0]"},
+      {"a heading of 400 deg", set(K::navigation, 17, "heading_deg", constant(400.0)),
+       nav + "'heading_deg' 400.0 is out of range [0.0, 360.0]"},
+      {"a desired speed of 1000 m/s", set(K::navigation, 17, "desired_speed_mps", constant(1e3)),
+       nav + "'desired_speed_mps' 1000.0 is out of range [0.0, 100.0]"},
+      {"a sample earlier than the one before it",
+       set(K::navigation, 17, "t_s",
+           [](const json* previous, const json&) {
+             return (*previous)["t_s"].get<double>() - 0.5;
+           }),
+       nav + "'t_s'"},
+      {"an event before the clock started", set(K::log, 1, "t_s", constant(-1.0)),
+       "message 1 on " + topic(K::log) + ": 't_s' -1.0 is out of range"},
+  };
+  for (const auto& k : cases) {
+    SCOPED_TRACE(k.name);
+    const auto r = app::import_mission_mcap(to, rewritten(good, k.edit));
+    ASSERT_FALSE(r);
+    EXPECT_EQ(r.error().code, app::ErrorCode::invalid_argument);
+    EXPECT_EQ(r.error().field, "file");
+    EXPECT_NE(r.error().message.find(k.expected), std::string::npos) << r.error().message;
+    EXPECT_EQ(all_counts(target.path()), before);
+  }
+  // The time going back is named as such.
+  const auto back = app::import_mission_mcap(to, rewritten(good, cases[6].edit));
+  ASSERT_FALSE(back);
+  EXPECT_NE(back.error().message.find("earlier than the navigation sample before it"),
+            std::string::npos)
+      << back.error().message;
+}
+
 TEST_F(MissionMcapTest, AFailureHalfwayThroughTheStoreRollsEverythingBack) {
   const std::string good = exported().bytes;
   avk::testing::TempDb target("avk_mcap_rollback");
@@ -445,6 +524,11 @@ TEST_F(MissionMcapTest, FilesNotWrittenByTheStationAreRefusedWithTheReason) {
   foreign.add_message(ch, 1, 1, R"({"message":"hello"})");
   refused(foreign.finish(), "no avk.mission metadata record");
   refused("this is not MCAP at all", "not a readable MCAP file");
+  // A zstd bomb: 32 KiB declaring 1 GiB, refused from the declared size.
+  namespace mb = avk::testing::mcap_bytes;
+  refused(mb::hand_built_file(mb::zero_chunk(std::uint64_t{9} * 119'304'647)),
+          "not a readable MCAP file: chunk at offset 29: uncompressed_size 1073741823 is more than "
+          "a chunk may hold");
 
   const std::string good = exported().bytes;
   refused(rewritten(good,

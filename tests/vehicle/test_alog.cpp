@@ -258,6 +258,42 @@ TEST(AlogNavBuilder, UnreadableNavigationValuesAndTimeGoingBackAreMalformed) {
   EXPECT_EQ(b.stats().incomplete_groups, 2u);  // at 1 (no y) and at 3 (no y or heading)
 }
 
+// The ranges every reader of navigation holds (vehicle/nav_ranges.hpp): a value outside them is
+// malformed and changes nothing, so a log's mission can be exported and imported again.
+TEST(AlogNavBuilder, NavigationValuesOutOfRangeAreMalformed) {
+  AlogNavBuilder b;
+  const auto s = build(
+      "1 NAV_X a -1e308\n"  // 1: farther than any point of the earth
+      "1 NAV_Y a 2\n"
+      "1 NAV_HEADING a 3\n"
+      "2 NAV_X a 1\n"
+      "2 NAV_Y a 2\n"
+      "2 NAV_HEADING a 400\n"  // 6
+      "2 NAV_SPEED a -5\n"     // 7
+      "3 NAV_X a 1\n"
+      "3 NAV_Y a 2\n"
+      "3 NAV_HEADING a 360\n"      // in: 360 is 0
+      "3 DESIRED_SPEED a 1000\n"   // 11
+      "3 DESIRED_HEADING a -10\n"  // 12
+      "4 NAV_X a 1\n",
+      b);
+  ASSERT_EQ(s.size(), 1u);  // at 3; 1 has no x, 2 no heading
+  EXPECT_DOUBLE_EQ(s[0].nav.heading_deg, 360.0);
+  EXPECT_DOUBLE_EQ(s[0].nav.speed_mps, 0.0);  // -5 was not taken
+  EXPECT_FALSE(s[0].desired_speed_mps);
+  EXPECT_FALSE(s[0].desired_heading_deg);
+  ASSERT_EQ(b.stats().malformed.count, 5u);
+  const auto& p = b.stats().malformed.first;
+  EXPECT_EQ(p[0].line, 1u);
+  EXPECT_EQ(p[0].reason, "NAV_X value '-1e308' is out of range [-12756274.0, 12756274.0]");
+  EXPECT_EQ(p[1].line, 6u);
+  EXPECT_EQ(p[1].reason, "NAV_HEADING value '400' is out of range [0.0, 360.0]");
+  EXPECT_EQ(p[2].line, 7u);
+  EXPECT_EQ(p[2].reason, "NAV_SPEED value '-5' is out of range [0.0, 100.0]");
+  EXPECT_EQ(p[3].line, 11u);
+  EXPECT_EQ(p[4].line, 12u);
+}
+
 TEST(AlogNavBuilder, RenamedVariablesAndTurnRecords) {
   const AlogNames names = avk::vehicle::parse_alog_names(
       "NAV_X=GPS_X,NAV_Y=GPS_Y,NAV_HEADING=COMPASS_HEADING,"
