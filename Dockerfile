@@ -12,10 +12,14 @@ RUN bash scripts/setup --runtime-build \
  && AVK_WEB_DEPS=runtime bash scripts/build -DAVK_BUILD_TESTS=OFF -DAVK_BUILD_BENCH=OFF
 
 FROM debian:12-slim
+# A fixed uid and gid, 999 (what `useradd --system` picked here before, so existing volumes keep
+# their owner): a bind-mounted folder must be writable by it (README.md, "Docker").
 RUN apt-get update \
  && apt-get install -y --no-install-recommends libsqlite3-0 libzstd1 curl \
  && rm -rf /var/lib/apt/lists/* \
- && useradd --system --create-home --home-dir /var/lib/avk --shell /usr/sbin/nologin avk
+ && groupadd --system --gid 999 avk \
+ && useradd --system --uid 999 --gid 999 --create-home --home-dir /var/lib/avk \
+      --shell /usr/sbin/nologin avk
 COPY --from=build /src/build/server/avk /usr/local/bin/avk
 # The dashboard's files only: not its tests or npm manifests.
 COPY --from=build /src/web/index.html /src/web/favicon.svg /opt/avk/web/

@@ -22,6 +22,7 @@
 #include "app/map_tiles.hpp"
 #include "server/cli/args.hpp"
 #include "server/cli/commands.hpp"
+#include "server/cli/database_location.hpp"
 #include "server/cli/m200_options.hpp"
 #include "server/cli/sim_options.hpp"
 #include "server/http/http_server.hpp"
@@ -231,6 +232,9 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
   StationOptions so;
   so.db_path = db_path;
   so.server_version = "avk-station 0.1.0";
+  // Before anything is written there: a folder this user cannot write (a Docker bind mount
+  // owned by root) is named with its owner and this process's uid, not as a failed token file.
+  check_database_location(db_path);
   RemoveUnlessKept new_token_file;
   if (user_token.empty()) {
     bool created = false;
