@@ -17,7 +17,7 @@ Context::~Context() {
 }
 
 void Context::start() {
-  mark_orphaned_missions_interrupted(db(), 0.0);
+  mark_orphaned_missions_interrupted(db());
   if (loop_) loop_->start();
 }
 

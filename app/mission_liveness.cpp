@@ -26,14 +26,15 @@ store::MissionStatus effective_status(const store::Mission& m) {
   return m.status;
 }
 
-int mark_orphaned_missions_interrupted(store::Store& db, double t_s) {
+int mark_orphaned_missions_interrupted(store::Store& db) {
   int n = 0;
   for (const auto& m : db.list_missions()) {
     if (m.status == store::MissionStatus::running &&
         effective_status(m) == store::MissionStatus::interrupted) {
-      db.set_mission_status(m.id, store::MissionStatus::interrupted,
-                            "the process running it stopped", t_s);
-      db.set_mission_runner(m.id, std::nullopt);
+      // Nothing recorded: it ended where it started.
+      const auto end_s = db.mission_clock_end_s(m.id);
+      db.close_orphaned_mission(m.id, "the process running it stopped",
+                                end_s ? end_s : m.started_s);
       ++n;
     }
   }

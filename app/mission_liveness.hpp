@@ -10,7 +10,8 @@ namespace avk::app {
 
 bool process_alive(std::int64_t pid);
 store::MissionStatus effective_status(const store::Mission& m);
-// Stores interrupted for every mission stored as running whose process is gone; returns how many.
-int mark_orphaned_missions_interrupted(store::Store& db, double t_s);
+// Closes every mission stored as running whose process is gone as interrupted, ended at the last
+// mission-clock time anything of it was recorded (its navigation, usually); returns how many.
+int mark_orphaned_missions_interrupted(store::Store& db);
 
 }  // namespace avk::app

@@ -457,16 +457,19 @@ std::int64_t Store::create_mission(const std::string& vehicle_id, const std::str
 
 void Store::set_mission_status(std::int64_t mission_id, MissionStatus status,
                                const std::string& reason, double t_s) {
+  // Running again (a resume) has no end yet; an interruption ends the run that stopped, so the
+  // mission's elapsed time is known until it is resumed.
   const bool starts = status == MissionStatus::running;
   const bool ends = status == MissionStatus::aborted || status == MissionStatus::halted ||
-                    status == MissionStatus::done;
+                    status == MissionStatus::done || status == MissionStatus::interrupted;
   auto s = db_.prepare(
       "UPDATE missions SET status = ?1, status_reason = ?2, "
       "started_utc = CASE WHEN ?3 AND started_s IS NULL "
       "THEN strftime('%Y-%m-%dT%H:%M:%fZ', 'now') ELSE started_utc END, "
       "started_s = CASE WHEN ?3 AND started_s IS NULL THEN ?5 ELSE started_s END, "
-      "ended_utc = CASE WHEN ?4 THEN strftime('%Y-%m-%dT%H:%M:%fZ', 'now') ELSE ended_utc END, "
-      "ended_s = CASE WHEN ?4 THEN ?5 ELSE ended_s END WHERE id = ?6");
+      "ended_utc = CASE WHEN ?4 THEN strftime('%Y-%m-%dT%H:%M:%fZ', 'now') "
+      "WHEN ?3 THEN NULL ELSE ended_utc END, "
+      "ended_s = CASE WHEN ?4 THEN ?5 WHEN ?3 THEN NULL ELSE ended_s END WHERE id = ?6");
   s.bind(1, to_string(status)).bind(2, reason).bind(3, starts ? 1 : 0).bind(4, ends ? 1 : 0);
   s.bind(5, t_s).bind(6, mission_id);
   s.run();
@@ -700,6 +703,16 @@ std::optional<StoredTurn> Store::get_turn(std::int64_t turn_id) {
     t.normalized =
         parse_stored_turn(turn_id, "normalized_json", s.column_text(kTurnRowColumns + 1));
   return t;
+}
+
+void Store::close_orphaned_mission(std::int64_t mission_id, const std::string& reason,
+                                   std::optional<double> end_s) {
+  auto s = db_.prepare(
+      "UPDATE missions SET status = 'interrupted', status_reason = ?, ended_s = ?, "
+      "ended_utc = NULL, runner_pid = NULL WHERE id = ?");
+  s.bind(1, reason).bind(2, end_s).bind(3, mission_id);
+  s.run();
+  if (db_.changes() == 0) throw StoreError("no mission " + std::to_string(mission_id));
 }
 
 void Store::set_mission_runner(std::int64_t mission_id, std::optional<std::int64_t> pid) {

@@ -47,7 +47,8 @@ struct Mission {
   MissionStatus status = MissionStatus::created;
   std::string created_utc;          // ISO 8601, set by the database
   std::optional<double> started_s;  // mission clock of the first switch to running
-  std::optional<double> ended_s;    // mission clock of the switch to aborted/halted/done
+  // mission clock of the switch to interrupted/aborted/halted/done; none while it runs again
+  std::optional<double> ended_s;
   std::string status_reason;
   std::optional<std::int64_t> runner_pid;  // the process running the mission, if any
   // Wall-clock moments (ISO 8601 UTC, set by the database) of the first switch to running and of
@@ -255,7 +256,8 @@ class Store {
 
   std::int64_t create_mission(const std::string& vehicle_id, const std::string& name,
                               const std::string& config_json);
-  // Records the first start (running) and the end (aborted/halted/done) on the mission clock.
+  // Records the first start (running) and the end (interrupted/aborted/halted/done) on the
+  // mission clock and in wall-clock time; running again (a resume) clears the end.
   // Throws StoreError for an unknown mission.
   void set_mission_status(std::int64_t mission_id, MissionStatus status, const std::string& reason,
                           double t_s);
@@ -263,6 +265,12 @@ class Store {
   std::vector<Mission> list_missions();
   // Throws StoreError for an unknown mission.
   void set_mission_runner(std::int64_t mission_id, std::optional<std::int64_t> pid);
+  // A mission whose process died (kill -9, power loss) before it could store its end: interrupted
+  // for `reason`, ended at end_s (mission clock), no runner. When that was in wall-clock time is
+  // not known (nothing stored holds it), so ended_utc is cleared. Throws StoreError for an unknown
+  // mission.
+  void close_orphaned_mission(std::int64_t mission_id, const std::string& reason,
+                              std::optional<double> end_s);
 
   // Both throw StoreError for an unknown mission or an outcome other than set/timeout/interrupted.
   void append_condition_set(std::int64_t mission_id, const ConditionSetTiming& timing);

@@ -16,11 +16,13 @@
 #include <map>
 #include <ostream>
 #include <random>
+#include <ranges>
 #include <string_view>
 
 #include "app/map_tiles.hpp"
 #include "server/cli/args.hpp"
 #include "server/cli/commands.hpp"
+#include "server/cli/database_location.hpp"
 #include "server/cli/m200_options.hpp"
 #include "server/cli/sim_options.hpp"
 #include "server/http/http_server.hpp"
@@ -178,10 +180,23 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
   };
   count_option("max-connections", ho.max_connections);
   count_option("max-connections-per-address", ho.max_connections_per_address);
-  for (const auto& name : a.all("allow-host")) {
+  const auto allow_host = [&](const std::string& name, const std::string& source) {
     if (name.empty() || name.find_first_of(":/[] ") != std::string::npos)
-      throw UsageError("--allow-host takes a host name without port or scheme, not '" + name + "'");
+      throw UsageError(source + " takes host names without port or scheme, not '" + name + "'");
     ho.allowed_hosts.push_back(name);
+  };
+  for (const auto& name : a.all("allow-host"))
+    allow_host(name, "--allow-host");
+  // The Docker image's command line is fixed, so its host names come from the environment:
+  // AVK_ALLOW_HOSTS=a.example,b.example (spaces around a name and empty items are ignored).
+  if (const char* env = std::getenv(kAllowHostsVariable)) {
+    for (const auto part : std::string_view(env) | std::views::split(',')) {
+      std::string_view name(part.begin(), part.end());
+      const auto first = name.find_first_not_of(" \t");
+      if (first == std::string_view::npos) continue;
+      name = name.substr(first, name.find_last_not_of(" \t") - first + 1);
+      allow_host(std::string(name), kAllowHostsVariable);
+    }
   }
   for (auto origin : a.all("allow-origin")) {
     std::transform(origin.begin(), origin.end(), origin.begin(),
@@ -217,6 +232,9 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
   StationOptions so;
   so.db_path = db_path;
   so.server_version = "avk-station 0.1.0";
+  // Before anything is written there: a folder this user cannot write (a Docker bind mount
+  // owned by root) is named with its owner and this process's uid, not as a failed token file.
+  check_database_location(db_path);
   RemoveUnlessKept new_token_file;
   if (user_token.empty()) {
     bool created = false;
@@ -279,6 +297,12 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
          << ")\n"
          << "dashboard with control: http://" << host << ":" << http.port()
          << "/?token=" << so.token << std::endl;
+  if (!ho.allowed_hosts.empty()) {
+    io.out << "host names answered besides IP addresses and localhost:";
+    for (const auto& name : ho.allowed_hosts)
+      io.out << " " << name;
+    io.out << std::endl;
+  }
   if (tiles) {
     const auto& t = tiles->info();
     io.out << "map tiles: " << t.source << " " << *a.get("tiles") << " (" << t.format << ", zoom "

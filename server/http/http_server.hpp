@@ -16,6 +16,10 @@
 
 namespace avk::server {
 
+// The environment variable `avk serve` takes more allowed host names from (comma separated),
+// beside --allow-host: the Docker image's command line is fixed.
+inline constexpr const char* kAllowHostsVariable = "AVK_ALLOW_HOSTS";
+
 struct HttpServerOptions {
   std::string bind_address = "127.0.0.1";
   unsigned short port = 0;  // 0: an ephemeral port (tests)

@@ -182,7 +182,8 @@ std::optional<http::message_generator> HttpSession::check_header() {
     const bool upgrade = path == kStreamPath;
     return refuse(upgrade ? http::status::forbidden : http::status::misdirected_request,
                   "this server does not answer to Host " + quoted_excerpt(host) +
-                      " (start it with --allow-host NAME to add a name)");
+                      " (start it with --allow-host NAME, or with NAME in " + kAllowHostsVariable +
+                      ", to add a name)");
   }
   // No route has such a path; quoting it in the answer could not be done in JSON either.
   if (!is_valid_utf8(path))

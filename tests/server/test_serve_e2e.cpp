@@ -20,6 +20,7 @@
 #include "server/http/http_server.hpp"
 #include "server/station.hpp"
 #include "sim/sim_config.hpp"
+#include "store/store.hpp"
 #include "support/http_client.hpp"
 #include "support/sim_station.hpp"
 #include "support/spawn_avk.hpp"
@@ -125,51 +126,66 @@ TEST(ServeE2E, MissionOverRestFollowedOverTheStreamAndEveryTurnIsServed) {
 
 // --- a real `avk serve`, killed ----------------------------------------------------------
 
-struct ServeProcess {
-  pid_t pid = -1;
-  unsigned short port = 0;
-};
+using avk::testing::ServeProcess;
 
 ServeProcess spawn_serve(const std::string& db, const std::string& log, bool with_token = true) {
-  std::vector<std::string> args = {"serve", "--db", db, "--sim", "--port", "0", "--realtime-factor",
-                                   "100"};
+  std::vector<std::string> args = {"--db", db, "--sim", "--port", "0", "--realtime-factor", "100"};
   if (with_token) {
     args.push_back("--token");
     args.push_back(kToken);
   }
-  ServeProcess p;
-  p.pid = avk::testing::spawn_avk(args, log);
-  // The server prints its address once it listens.
-  const std::regex listening(R"(http://127\.0\.0\.1:(\d+)/)");
-  const auto deadline = Clock::now() + std::chrono::seconds(20);
-  while (p.pid > 0 && Clock::now() < deadline) {
-    std::ifstream f(log);
-    std::string line;
-    std::smatch m;
-    while (std::getline(f, line))
-      if (std::regex_search(line, m, listening))
-        p.port = static_cast<unsigned short>(std::stoi(m[1]));
-    if (p.port) break;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return p;
+  return avk::testing::spawn_serve(args, log);
 }
 
 json get_json(unsigned short port, const std::string& target) {
   return json::parse(http_call(port, "GET", target).body);
 }
 
+// `avk serve --sim` on db running mission 1 (`repeats` x 4 turns); port 0 when either failed.
+ServeProcess serve_with_mission(const std::string& db, const std::string& log, int repeats) {
+  ServeProcess p = spawn_serve(db, log);
+  if (p.port && http_call(p.port, "POST", "/api/v1/vehicles/sim-usim/missions",
+                          small_mission(repeats), control_headers())
+                        .status == 201)
+    return p;
+  if (p.pid > 0) {
+    kill(p.pid, SIGKILL);
+    waitpid(p.pid, nullptr, 0);
+  }
+  return {};
+}
+
+// Waits (60 s at most) until mission 1 has stored navigation; false when it never does.
+bool wait_for_navigation(unsigned short port) {
+  const auto deadline = Clock::now() + std::chrono::seconds(60);
+  while (Clock::now() < deadline) {
+    if (!get_json(port, "/api/v1/missions/1/nav?limit=1")["items"].empty()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return false;
+}
+
+// The latest navigation time stored for a mission, read from the database file itself.
+std::optional<double> last_nav_t_s(const std::string& db, std::int64_t mission_id) {
+  avk::store::Store store(db);
+  std::optional<double> last;
+  std::int64_t after = 0;
+  for (;;) {
+    const auto page = store.nav_page(mission_id, after, 10000);
+    if (page.empty()) return last;
+    for (const auto& row : page)
+      last = std::max(last.value_or(row.row.t_s), row.row.t_s);
+    after = page.back().rowid;
+  }
+}
+
 TEST(ServeE2E, KillNineDuringAMissionLosesNoFinishedTurnAndTheMissionResumes) {
   avk::testing::TempDb db("avk_e2e_kill");
   const std::string log = db.path() + ".log";
-  ServeProcess first = spawn_serve(db.path(), log);
-  ASSERT_GT(first.port, 0) << "the server did not start";
   // Twelve turns: the kill comes after the second, and ten more leave seconds of wall time for
   // this thread to see the second one even on a loaded machine (at 100x a turn takes ~0.2 s).
-  ASSERT_EQ(http_call(first.port, "POST", "/api/v1/vehicles/sim-usim/missions", small_mission(3),
-                      control_headers())
-                .status,
-            201);
+  ServeProcess first = serve_with_mission(db.path(), log, 3);
+  ASSERT_GT(first.port, 0) << "the server or its mission did not start";
   json before;
   const auto deadline = Clock::now() + std::chrono::seconds(60);
   while (Clock::now() < deadline) {
@@ -182,9 +198,24 @@ TEST(ServeE2E, KillNineDuringAMissionLosesNoFinishedTurnAndTheMissionResumes) {
   int status = 0;
   ASSERT_EQ(waitpid(first.pid, &status, 0), first.pid);
 
+  // What the killed process left: its last navigation, and the latest time of anything stored.
+  const auto nav_end_s = last_nav_t_s(db.path(), 1);
+  ASSERT_TRUE(nav_end_s.has_value());
+  const auto stored_end_s = avk::store::Store(db.path()).mission_clock_end_s(1);
+  ASSERT_TRUE(stored_end_s.has_value());
+
   ServeProcess second = spawn_serve(db.path(), log);
   ASSERT_GT(second.port, 0);
-  EXPECT_EQ(get_json(second.port, "/api/v1/missions/1")["status"], "interrupted");
+  // The restart closes the mission as interrupted, ended where its record ends, so its elapsed
+  // time is known (the banner showed "elapsed –"); when that was in wall-clock time is not.
+  const json interrupted = get_json(second.port, "/api/v1/missions/1");
+  EXPECT_EQ(interrupted["status"], "interrupted");
+  ASSERT_TRUE(interrupted["ended_s"].is_number()) << interrupted.dump();
+  EXPECT_DOUBLE_EQ(interrupted["ended_s"].get<double>(), *stored_end_s);
+  EXPECT_GE(interrupted["ended_s"].get<double>(), *nav_end_s);
+  EXPECT_GT(interrupted["ended_s"].get<double>(), interrupted["started_s"].get<double>());
+  EXPECT_NE(interrupted["status_reason"].get<std::string>().find("stopped"), std::string::npos)
+      << interrupted.dump();
   for (const auto& t : before["items"]) {
     const json again = get_json(second.port, "/api/v1/turns/" + t["id"].dump());
     EXPECT_EQ(again["advance_m"], t["advance_m"]);
@@ -200,11 +231,56 @@ TEST(ServeE2E, KillNineDuringAMissionLosesNoFinishedTurnAndTheMissionResumes) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   EXPECT_EQ(m["status"], "done");
+  EXPECT_GT(m["ended_s"].get<double>(), interrupted["ended_s"].get<double>());
   EXPECT_EQ(get_json(second.port, "/api/v1/turns?mission=1&status=ok")["items"].size(), 12u);
   // SIGTERM: a graceful stop.
   ASSERT_EQ(kill(second.pid, SIGTERM), 0);
   ASSERT_EQ(waitpid(second.pid, &status, 0), second.pid);
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+  std::filesystem::remove(log);
+  std::filesystem::remove(db.path() + ".token");
+}
+
+// `docker stop` sends SIGTERM: the mission it interrupts is stored with its end (station clock and
+// wall clock) and the reason, so after a restart its elapsed time is known.
+TEST(ServeE2E, SigtermEndsARunningMissionAsInterruptedWithItsEndStored) {
+  avk::testing::TempDb db("avk_e2e_term");
+  const std::string log = db.path() + ".log";
+  ServeProcess p = serve_with_mission(db.path(), log, 3);
+  ASSERT_GT(p.port, 0) << "the server or its mission did not start";
+  ASSERT_TRUE(wait_for_navigation(p.port));
+  ASSERT_EQ(get_json(p.port, "/api/v1/missions/1")["status"], "running");
+  ASSERT_EQ(kill(p.pid, SIGTERM), 0);
+  int status = 0;
+  ASSERT_EQ(waitpid(p.pid, &status, 0), p.pid);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+
+  const auto nav_end_s = last_nav_t_s(db.path(), 1);
+  ASSERT_TRUE(nav_end_s.has_value());
+  const auto m = avk::store::Store(db.path()).get_mission(1);
+  ASSERT_TRUE(m.has_value());
+  EXPECT_EQ(m->status, avk::store::MissionStatus::interrupted);
+  EXPECT_EQ(m->status_reason, "the server stopped");
+  EXPECT_FALSE(m->runner_pid.has_value());
+  ASSERT_TRUE(m->started_s.has_value());
+  ASSERT_TRUE(m->ended_s.has_value()) << "no end stored: the banner shows elapsed \u2013";
+  EXPECT_GE(*m->ended_s, *nav_end_s);
+  EXPECT_GT(*m->ended_s, *m->started_s);
+  ASSERT_TRUE(m->started_utc.has_value());
+  ASSERT_TRUE(m->ended_utc.has_value());
+  EXPECT_GE(*m->ended_utc, *m->started_utc);  // ISO 8601 orders as text
+
+  // A restart leaves it as it was: the end the stop stored is not replaced.
+  ServeProcess again = spawn_serve(db.path(), log);
+  ASSERT_GT(again.port, 0);
+  const json listed = get_json(again.port, "/api/v1/missions");
+  ASSERT_EQ(listed.size(), 1u) << listed.dump();
+  EXPECT_EQ(listed[0]["status"], "interrupted");
+  ASSERT_TRUE(listed[0]["ended_s"].is_number()) << listed.dump();
+  EXPECT_DOUBLE_EQ(listed[0]["ended_s"].get<double>(), *m->ended_s);
+  EXPECT_EQ(listed[0]["ended_utc"], *m->ended_utc);
+  ASSERT_EQ(kill(again.pid, SIGTERM), 0);
+  ASSERT_EQ(waitpid(again.pid, &status, 0), again.pid);
   std::filesystem::remove(log);
   std::filesystem::remove(db.path() + ".token");
 }

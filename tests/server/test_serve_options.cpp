@@ -19,6 +19,7 @@
 #include <thread>
 #include <vector>
 
+#include "support/http_client.hpp"
 #include "support/spawn_avk.hpp"
 #include "support/temp_db.hpp"
 
@@ -39,13 +40,11 @@ std::string read_file(const std::string& path) {
   return s.str();
 }
 
-// Runs avk until it exits, or until `until_log` appears in its output (then SIGTERM), or the
-// deadline (then SIGKILL).
-Outcome run_avk(const std::vector<std::string>& args, const std::string& log,
-                const std::string& until_log = "",
-                std::chrono::seconds limit = std::chrono::seconds(30)) {
+// Waits for a started avk until it exits, or until `until_log` appears in its output (then
+// SIGTERM), or the deadline (then SIGKILL).
+Outcome wait_avk(pid_t pid, const std::string& log, const std::string& until_log = "",
+                 std::chrono::seconds limit = std::chrono::seconds(30)) {
   Outcome o;
-  const pid_t pid = avk::testing::spawn_avk(args, log);
   if (pid <= 0) return o;
   const auto deadline = Clock::now() + limit;
   int status = 0;
@@ -71,6 +70,13 @@ Outcome run_avk(const std::vector<std::string>& args, const std::string& log,
   o.log = read_file(log);
   fs::remove(log);
   return o;
+}
+
+Outcome run_avk(const std::vector<std::string>& args, const std::string& log,
+                const std::string& until_log = "",
+                std::chrono::seconds limit = std::chrono::seconds(30),
+                const std::vector<std::string>& env = {}) {
+  return wait_avk(avk::testing::spawn_avk(args, log, env), log, until_log, limit);
 }
 
 // A loopback port held open, so that a server asked to use it fails to start.
@@ -206,6 +212,100 @@ TEST(ServeOptions, ListeningOffThisMachineIsSaidAloud) {
   EXPECT_NE(o.log.find("reachable from other machines"), std::string::npos) << o.log;
   EXPECT_NE(o.log.find("http://127.0.0.1:"), std::string::npos) << o.log;
   fs::remove(db.path() + ".token");
+}
+
+// Through http://<a DNS name>:8080/ every request was 421 (the Host rule), and the Docker image
+// could only be given names by rewriting its command line: `avk serve` also takes them from
+// AVK_ALLOW_HOSTS (comma separated), beside --allow-host.
+TEST(ServeOptions, AllowedHostNamesComeFromTheEnvironmentToo) {
+  avk::testing::TempDb db("avk_serve_hosts");
+  const std::string log = db.path() + ".log";
+  const auto p = avk::testing::spawn_serve({"--db", db.path(), "--port", "0"}, log,
+                                           {"AVK_ALLOW_HOSTS=station.example, Avk.Lan ,"});
+  ASSERT_GT(p.port, 0) << read_file(log);
+  const auto health = [&](const std::string& host) {
+    return avk::testing::http_call(p.port, "GET", "/api/v1/health", "", {{"Host", host}});
+  };
+  for (const std::string host : {"station.example:8080", "station.example", "STATION.example",
+                                 "avk.lan:8080", "127.0.0.1:8080"})
+    EXPECT_EQ(health(host).status, 200) << host;
+  const auto refused = health("other.example:8080");
+  EXPECT_EQ(refused.status, 421);
+  EXPECT_NE(refused.body.find("AVK_ALLOW_HOSTS"), std::string::npos) << refused.body;
+  ::kill(p.pid, SIGTERM);
+  int status = 0;
+  ::waitpid(p.pid, &status, 0);
+  fs::remove(log);
+  fs::remove(db.path() + ".token");
+}
+
+TEST(ServeOptions, AnAllowedHostFromTheEnvironmentMustBeAHostName) {
+  avk::testing::TempDb db("avk_serve_hosts_bad");
+  const std::string log = db.path() + ".log";
+  const auto o = run_avk({"serve", "--db", db.path(), "--port", "0"}, log, "",
+                         std::chrono::seconds(30), {"AVK_ALLOW_HOSTS=station.example,http://x"});
+  EXPECT_TRUE(o.exited) << "the server started";
+  EXPECT_EQ(o.code, 2) << o.log;
+  EXPECT_NE(o.log.find("AVK_ALLOW_HOSTS"), std::string::npos) << o.log;
+  EXPECT_NE(o.log.find("'http://x'"), std::string::npos) << o.log;
+  EXPECT_FALSE(fs::exists(db.path() + ".token"));
+}
+
+// A Docker bind mount owned by root (-v /host/dir:/var/lib/avk): the image's user could not write
+// there and the start said only "cannot create the token file". It now names the folder (or the
+// database file), its owner, the uid avk runs as and what to do. Root writes anywhere, so a test
+// running as root runs avk as nobody (65534), as the image runs it as its own user.
+TEST(ServeOptions, ADatabaseLocationThisUserCannotWriteIsNamedWithItsOwner) {
+  avk::testing::TempDb db("avk_serve_ro");
+  const fs::path dir = db.path() + ".dir";
+  fs::create_directories(dir / "ro");
+  fs::create_directories(dir / "rw");
+  ASSERT_EQ(::chmod(dir.c_str(), 0755), 0);
+  ASSERT_EQ(::chmod((dir / "ro").c_str(), 0555), 0);
+  ASSERT_EQ(::chmod((dir / "rw").c_str(), 0777), 0);
+  std::ofstream(dir / "rw" / "station.db") << "";
+  ASSERT_EQ(::chmod((dir / "rw" / "station.db").c_str(), 0444), 0);
+  const bool root = ::geteuid() == 0;
+  const uid_t uid = root ? 65534 : ::geteuid();
+  const gid_t gid = root ? 65534 : ::getegid();
+  const auto start_as = [&](const fs::path& db_path, const std::string& log) {
+    const std::vector<std::string> args = {"serve", "--db", db_path.string(), "--port", "0"};
+    return wait_avk(
+        root ? avk::testing::spawn_avk_as(uid, gid, args, log) : avk::testing::spawn_avk(args, log),
+        log);
+  };
+  for (const fs::path& where : {dir / "ro", dir / "rw" / "station.db"}) {
+    const fs::path db_path = where.filename() == "station.db" ? where : where / "station.db";
+    const auto o = start_as(db_path, db.path() + ".log");
+    if (o.log.find(avk::testing::kCannotChangeUser) != std::string::npos)
+      GTEST_SKIP() << "running as root without the right to run avk as uid " << uid
+                   << ", where write permissions would bite";
+    struct stat st {};
+    ASSERT_EQ(::stat(where.c_str(), &st), 0);
+    EXPECT_TRUE(o.exited) << where << ": the server started";
+    EXPECT_EQ(o.code, 1) << o.log;
+    EXPECT_NE(o.log.find(where.string()), std::string::npos) << o.log;
+    EXPECT_NE(o.log.find("owned by uid " + std::to_string(st.st_uid)), std::string::npos) << o.log;
+    EXPECT_NE(o.log.find("avk runs as uid " + std::to_string(uid)), std::string::npos) << o.log;
+    EXPECT_NE(o.log.find("chown " + std::to_string(uid)), std::string::npos) << o.log;
+    EXPECT_EQ(o.log.find("cannot create the token file"), std::string::npos) << o.log;
+    EXPECT_FALSE(fs::exists(db_path.string() + ".token")) << where;
+  }
+  ::chmod((dir / "ro").c_str(), 0755);
+  fs::remove_all(dir);
+}
+
+// A database path whose folder is a regular file: said as such, whoever runs the test.
+TEST(ServeOptions, ADatabaseFolderThatIsAFileIsNamed) {
+  avk::testing::TempDb db("avk_serve_notdir");
+  const std::string log = db.path() + ".log";
+  const fs::path file = db.path() + ".file";
+  std::ofstream(file) << "not a folder\n";
+  const auto o = run_avk({"serve", "--db", (file / "station.db").string(), "--port", "0"}, log);
+  EXPECT_TRUE(o.exited) << "the server started";
+  EXPECT_EQ(o.code, 1) << o.log;
+  EXPECT_NE(o.log.find(file.string() + " is not a folder"), std::string::npos) << o.log;
+  fs::remove(file);
 }
 
 }  // namespace

@@ -670,15 +670,41 @@ TEST(MissionQueries, AMissionKeepsTheWallClockMomentsItStartedAndEnded) {
   EXPECT_TRUE(std::regex_match(*started, std::regex(R"(\d{4}-\d\d-\d\dT\d\d:\d\d:\d\d\.\d{3}Z)")))
       << *started;
   EXPECT_GE(*started, s.get_mission(m)->created_utc);  // ISO 8601 orders as text
+  // A stop (SIGTERM, `docker stop`) ends the run with its time, so the elapsed time of the
+  // interrupted mission is known; a resume runs it again, without an end.
   s.set_mission_status(m, MissionStatus::interrupted, "the server stopped", 150.0);
-  EXPECT_FALSE(s.get_mission(m)->ended_utc);
+  const auto interrupted = s.get_mission(m);
+  EXPECT_EQ(interrupted->ended_s, 150.0);
+  ASSERT_TRUE(interrupted->ended_utc);
+  EXPECT_GE(*interrupted->ended_utc, *started);
   s.set_mission_status(m, MissionStatus::running, "", 400.0);  // resumed in a later session
   EXPECT_EQ(s.get_mission(m)->started_utc, started);
   EXPECT_EQ(s.get_mission(m)->started_s, 100.0);
+  EXPECT_FALSE(s.get_mission(m)->ended_s);
+  EXPECT_FALSE(s.get_mission(m)->ended_utc);
   s.set_mission_status(m, MissionStatus::done, "", 500.0);
   const auto done = s.get_mission(m);
   ASSERT_TRUE(done->ended_utc);
   EXPECT_GE(*done->ended_utc, *started);
+}
+
+// A mission whose process was killed (kill -9) stored no end: closing it stores the end it is
+// given, clears the runner and leaves the wall-clock end unknown rather than making one up.
+TEST(MissionQueries, AnOrphanedMissionIsClosedAsInterruptedAtTheEndGiven) {
+  Store s(":memory:");
+  s.upsert_vehicle({"usim-1", "usim", 2.0, 1.0});
+  const auto m = s.create_mission("usim-1", "killed", "{}");
+  s.set_mission_status(m, MissionStatus::running, "", 100.0);
+  s.set_mission_runner(m, 4242);
+  s.close_orphaned_mission(m, "the process running it stopped", 187.5);
+  const auto closed = s.get_mission(m);
+  EXPECT_EQ(closed->status, MissionStatus::interrupted);
+  EXPECT_EQ(closed->status_reason, "the process running it stopped");
+  EXPECT_EQ(closed->started_s, 100.0);
+  EXPECT_EQ(closed->ended_s, 187.5);
+  EXPECT_FALSE(closed->ended_utc);
+  EXPECT_FALSE(closed->runner_pid);
+  EXPECT_THROW(s.close_orphaned_mission(m + 10, "x", 1.0), StoreError);
 }
 
 // A schema-10 file: its missions keep everything and have no wall-clock start or end.

@@ -511,6 +511,8 @@ test('the link lost while a mission runs is an alarm; after a restart an older m
   await page.waitForFunction(() => document.getElementById('link-badge').textContent === 'LIVE', null, { timeout: slow(30000) });
   // The mission was running when the station went away: interrupted.
   await until('the interrupted banner', () => page.evaluate(() => document.getElementById('mission-banner').dataset.state === 'interrupted'), 30000);
+  // The restart closed it at its last recorded time, so its elapsed time is known (it showed "–").
+  assert.match(await page.textContent('#mb-elapsed'), /^\d+:\d\d(:\d\d)?$/, 'the elapsed time of the interrupted mission');
   await showView(page, 'mission');
   const row = await until('mission A in the table', () =>
     page.evaluate((id) => {
