@@ -122,6 +122,16 @@ export function installTestHooks() {
       renderNow();
       return h;
     },
+    /** Stops taking the stream's navigation (as a tab too loaded to keep up: the link goes STALE);
+     *  releaseNav() takes it again. */
+    holdNav() {
+      state.testFeed = true;
+      return true;
+    },
+    releaseNav() {
+      state.testFeed = false;
+      return true;
+    },
     trackLength: () => state.track.length,
     /** The last read of a mission's stored track ({missionId, rows, trackLength} right after it). */
     navHistory: () => navHistory,
