@@ -292,7 +292,10 @@ function render() {
   const slider = $('rp-slider');
   if (Math.abs(Number(slider.value) - nowT) > 0.05) slider.value = String(nowT);
   const elapsed = nowT - nav.t[0];
-  $('rp-time').textContent = `${num(elapsed, 1)} s of ${num(nav.t[nav.t.length - 1] - nav.t[0], 1)} s · station clock ${num(nowT, 1)} s`;
+  // The mission's own time is the station clock (×realtime factor on the simulator); the moment's
+  // wall-clock time where it is known (this server session ran the mission).
+  const when = timeLabel(nowT, rec.report);
+  $('rp-time').textContent = `T+${num(elapsed, 1)} s of ${num(nav.t[nav.t.length - 1] - nav.t[0], 1)} s, station clock (t ${num(nowT, 1)} s)${when.wall ? ` · ${when.text} local time` : ''}`;
   $('rp-mode').textContent = p.mode ?? '–';
   $('rp-xy').textContent = `${num(p.x_m, 1)} m east, ${num(p.y_m, 1)} m north`;
   $('rp-heading').textContent = `${num(p.heading_deg, 1)}° (desired ${num(p.desired_heading_deg, 1)}°)`;
