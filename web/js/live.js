@@ -19,6 +19,8 @@ import { attachMap, mapImages } from './maptiles.js';
 import { renderEventLog } from './eventlog.js';
 import { answersFrameText } from './frame.js';
 import { setPredictionFrame } from './sync.js';
+import { turnsDone } from './banner.js';
+import { turnLabel } from './turnlabel.js';
 
 const RAY_M = 20; // length of the goal-heading and heading rays
 
@@ -518,7 +520,10 @@ function renderTurnPanel() {
     text('turn-meas-speed', num(nav?.speed_mps, 2));
     text('turn-meas-dpsi', turn.start && nav ? num(headingDiff(nav.heading_deg, turn.start.heading), 1) : '–');
     text('turn-meas-heading', num(nav?.heading_deg, 1));
-    text('turn-status', `Turn running (attempt ${turn.attempt ?? 1}) · predictions: ${preds.length ? preds.join(', ') : 'none yet'}`);
+    // Numbered as the event log and Replay number it: the next of the plan's turns to be done.
+    const done = turn.missionId === state.mission?.id ? turnsDone(state.mission) : null;
+    const which = done && done.done < done.planned ? ` · ${turnLabel(done.done + 1, done.planned)}` : '';
+    text('turn-status', `Turn running (attempt ${turn.attempt ?? 1})${which} · predictions: ${preds.length ? preds.join(', ') : 'none yet'}`);
     const deviation = deviationText(state.ongoing);
     text('turn-deviation', deviation);
     const e = state.ongoing?.expected;

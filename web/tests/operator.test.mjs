@@ -97,6 +97,23 @@ test('the event log merges one happening into one entry, names kinds in words an
   // A stop the operator did not ask for is an error; a finished turn is placed by its time.
   const mixed = logEntries([{ t: 5, kind: 'returning', level: 'info', message: 'x' }, { t: 50, kind: 'halted', level: 'warning', message: 'left the region' }], [{ t: 30, kind: 'turn_finished', level: 'info', message: 'turn 1/4' }]);
   assert.deepEqual(mixed.map((e) => [e.kind, e.severity]), [['returning', 'info'], ['turn_finished', 'ok'], ['halted', 'error']]);
+  // Containment entered again within the same second, a little further on: the same words with
+  // other numbers are one entry ×2 (defect 14); a second later it is news again.
+  const buffer = (t, x) => ({ t, kind: 'containment', level: 'warning', message: `entered the buffer zone at (${x}, 3.0) m: heading for the interior` });
+  const near = logEntries([buffer(100.1, '120.0'), buffer(100.7, '120.4'), buffer(101.6, '121.3')], []);
+  assert.deepEqual(near.map((e) => [e.count, e.message]), [[2, buffer(0, '120.0').message], [1, buffer(0, '121.3').message]], JSON.stringify(near));
+  assert.deepEqual(near[0].variants, [buffer(0, '120.4').message]);
+  // Other words (during a turn) are not merged, however close.
+  const other = logEntries([buffer(100.1, '120.0'), { ...buffer(100.2, '120.1'), message: 'entered the buffer zone during a turn at (120.1, 3.0) m: heading for the interior' }], []);
+  assert.equal(other.length, 2);
+});
+
+test('a turn has one number in every view: the ok turns done of the plan (defect 14)', async () => {
+  const { storedTurnLabel, plannedTurns } = await import(pathToFileURL(path.join(webDir, 'js/turnlabel.js')).href);
+  const rows = [{ status: 'ok' }, { status: 'aborted' }, { status: 'rejected' }, { status: 'ok' }, { status: 'ok' }];
+  const planned = plannedTurns([{ planned: 2 }, { planned: 2 }, {}]);
+  assert.equal(planned, 5);
+  assert.deepEqual(rows.map((r) => storedTurnLabel(rows, r, planned)), ['turn 1/5', 'attempt at turn 2/5', 'attempt at turn 2/5', 'turn 2/5', 'turn 3/5']);
 });
 
 test('the station clock maps to wall time by /health, and only for missions of this session', async () => {
@@ -295,6 +312,55 @@ test('pause and abort are one entry each, with their severity in words (defect 6
   for (const k of await page.locator('#event-log .kind').allTextContents()) assert.doesNotMatch(k, /_/, `an internal name in the log: ${k}`);
   await until('Start enabled again', async () => !(await page.isDisabled('#m-start')), 15000);
 });
+
+test('Live and Replay give a turn of mission A the same number (defect 14)', { timeout: slow(90000) }, async () => {
+  errors.phase = 'mission';
+  const a = await api(`/missions/${missionA}`);
+  const okRows = a.turn_list.filter((r) => r.status === 'ok');
+  assert.ok(okRows.length >= 1, `mission A has a finished turn: ${JSON.stringify(a.turn_list.map((r) => r.status))}`);
+  // Live's event log: "turn k/8: …" for the k-th finished turn.
+  await showView(page, 'live');
+  const live = await until("mission A's finished turns in the Live log", () =>
+    page.evaluate(() => {
+      const msgs = [...document.querySelectorAll('#event-log li[data-kind="turn_finished"] .msg')].map((e) => e.textContent).reverse();
+      return msgs.length ? msgs : null;
+    }), 15000);
+  assert.equal(live.length, okRows.length, JSON.stringify(live));
+  // Replay, at the middle of each stored turn: the same number for an ok turn, and an attempt
+  // that did not count named as an attempt at the next one.
+  await showView(page, 'replay');
+  try {
+    await replayNumbers(a, live);
+  } finally {
+    await showView(page, 'live'); // the next tests read Live
+  }
+});
+
+async function replayNumbers(a, live) {
+  await until('mission A in the picker', () => page.evaluate((id) => [...document.querySelectorAll('#rp-mission option')].some((o) => o.value === String(id)), missionA), 15000);
+  await page.selectOption('#rp-mission', String(missionA));
+  await page.click('#rp-load');
+  await until('mission A loaded', () => page.evaluate((id) => window.avkTest.replay().id === id && !window.avkTest.replay().loading, missionA), 30000);
+  let ok = 0;
+  for (const r of a.turn_list) {
+    const t = (r.start_time_s + r.end_time_s) / 2;
+    const text = await until(`the replayed turn at ${t}`, () =>
+      page.evaluate((tm) => {
+        window.avkTest.replaySeek(tm);
+        // Drawn at the next frame: the time readout names the moment once it is.
+        if (!document.getElementById('rp-time').textContent.includes(`${tm.toFixed(1)} s`)) return null;
+        const s = document.getElementById('rp-turn').textContent;
+        return / under way/.test(s) ? s : null;
+      }, t), 10000);
+    if (r.status === 'ok') {
+      ok++;
+      assert.ok(text.startsWith(`Turn ${ok}/${N_TURNS} under way`), `Replay: ${text}`);
+      assert.ok(live[ok - 1].startsWith(`turn ${ok}/${N_TURNS}:`), `Live: ${live[ok - 1]}`);
+    } else {
+      assert.ok(text.startsWith(`Attempt at turn ${ok + 1}/${N_TURNS} under way`), `Replay: ${text}`);
+    }
+  }
+}
 
 let missionB = null;
 
@@ -509,6 +575,30 @@ test('the dark theme: toggled by button or t, remembered, the plots follow, the 
     }), 10000);
   assert.notEqual(dark.body, 'rgb(246, 247, 249)');
   assert.notEqual(dark.region, '#000000', 'what is black on white is light on dark');
+  // The scale bar's label reads on the dark plot (defect 14): its ink against its backing laid
+  // over the plot's paper, WCAG's contrast ratio (4.5:1 for small text).
+  const bar = await until('the scale bar in dark colours', () =>
+    page.evaluate(() => {
+      const label = document.querySelector('#live-plot')?.parentElement.querySelector('.scale-bar-label');
+      if (!label?.textContent) return null;
+      const cs = getComputedStyle(label);
+      return { ink: cs.color, backing: cs.backgroundColor, paper: document.getElementById('live-plot')._fullLayout.paper_bgcolor, text: label.textContent };
+    }), 10000);
+  const rgba = (c) => {
+    if (c.startsWith('#')) return [1, 3, 5].map((i) => parseInt(c.slice(i, i + 2), 16)).concat(1);
+    const v = c.match(/[\d.]+/g).map(Number);
+    return v.length === 3 ? [...v, 1] : v;
+  };
+  const over = (top, under) => top.slice(0, 3).map((v, i) => v * top[3] + under[i] * (1 - top[3]));
+  const lum = (rgb) => {
+    const [r, g, b] = rgb.map((v) => v / 255).map((v) => (v <= 0.03928 ? v / 12.92 : ((v + 0.055) / 1.055) ** 2.4));
+    return 0.2126 * r + 0.7152 * g + 0.0722 * b;
+  };
+  const backing = over(rgba(bar.backing), rgba(bar.paper));
+  const ink = over(rgba(bar.ink), backing);
+  const [hi, lo] = [lum(ink), lum(backing)].sort((p, q) => q - p);
+  const contrast = (hi + 0.05) / (lo + 0.05);
+  assert.ok(contrast >= 4.5, `scale bar "${bar.text}": contrast ${contrast.toFixed(2)}:1 (${JSON.stringify(bar)})`);
   await shot('operator-dark');
   await page.reload({ waitUntil: 'load' });
   await page.waitForFunction(() => document.getElementById('link-badge')?.textContent === 'LIVE', null, { timeout: slow(20000) });
