@@ -14,7 +14,7 @@ import path from 'node:path';
 import { pathToFileURL } from 'node:url';
 
 import { slow, until } from './wait.mjs';
-import { startAvkServer } from './avk_server.mjs';
+import { startAvkServer, apiRequest } from './avk_server.mjs';
 import { AVK, SHOTS, DOC_SHOTS, webDir, repo, checkPrerequisites, launchChromium, openPage, showView, tearDown, killServerOnExit } from './browser.mjs';
 
 const FACTOR = '10';
@@ -31,17 +31,7 @@ function startServer(port = 0) {
   return startAvkServer(AVK, ['serve', '--db', path.join(tmp, 'station.db'), '--sim', '--realtime-factor', FACTOR, '--port', String(port), '--web', webDir]);
 }
 
-async function api(pathname, { method = 'GET', body } = {}) {
-  const res = await fetch(`${server.base}/api/v1${pathname}`, {
-    method,
-    headers: { Authorization: `Bearer ${server.token}`, ...(body ? { 'Content-Type': 'application/json' } : {}) },
-    body: body ? JSON.stringify(body) : undefined,
-    signal: AbortSignal.timeout(slow(10000)),
-  });
-  const text = await res.text();
-  assert.ok(res.ok, `${method} ${pathname}: ${res.status} ${text}`);
-  return text ? JSON.parse(text) : null;
-}
+const api = (pathname, options) => apiRequest(server, pathname, options);
 
 async function shot(name) {
   const file = path.join(SHOTS, `${name}.png`);
