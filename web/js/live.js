@@ -248,28 +248,30 @@ function renderPlot() {
     headingRay = { x: [nav.x_m, hx], y: [nav.y_m, hy] };
   }
 
+  const grid = graticuleTrace();
+  // The previous mission's track, faded grey under this one's (a new mission started while the
+  // page was open: tracks.js).
+  const previous = {
+    type: 'scatter',
+    mode: 'lines',
+    name: state.previousTrack ? `mission ${state.previousTrack.missionId} track (previous)` : 'previous track',
+    x: state.previousTrack?.x ?? [],
+    y: state.previousTrack?.y ?? [],
+    line: { color: C.grey, width: 1.2 },
+    opacity: 0.45,
+    visible: state.previousTrack ? true : 'legendonly',
+    showlegend: Boolean(state.previousTrack),
+    hoverinfo: 'skip',
+  };
   const traces = [
-    graticuleTrace(),
+    grid,
     { type: 'scatter', mode: 'lines', name: 'region', x: reg.region.x, y: reg.region.y, line: { color: C.black, width: 2 }, hoverinfo: 'skip' },
     { type: 'scatter', mode: 'lines', name: `buffer (${reg.bufferM ?? '–'} m)`, x: reg.buffer.x, y: reg.buffer.y, line: { color: C.grey, width: 1.5, dash: 'dash' }, hoverinfo: 'skip' },
     { type: 'scatter', mode: 'markers', name: 'return point', x: reg.ret.x, y: reg.ret.y, marker: { symbol: 'x-thin-open', size: 12, color: C.black, line: { width: 2 } } },
     // Stored turns as a wide halo under the track: where the turns were, and the history (from
     // REST) of a mission that ran before the page was opened.
     { type: 'scatter', mode: 'lines', name: 'recorded turns', x: rec.x, y: rec.y, line: { color: C.sky, width: 6 }, opacity: 0.55, hoverinfo: 'skip', connectgaps: false },
-    // The previous mission's track, faded grey under this one's (a new mission started while the
-    // page was open: tracks.js).
-    {
-      type: 'scatter',
-      mode: 'lines',
-      name: state.previousTrack ? `mission ${state.previousTrack.missionId} track (previous)` : 'previous track',
-      x: state.previousTrack?.x ?? [],
-      y: state.previousTrack?.y ?? [],
-      line: { color: C.grey, width: 1.2 },
-      opacity: 0.45,
-      visible: state.previousTrack ? true : 'legendonly',
-      showlegend: Boolean(state.previousTrack),
-      hoverinfo: 'skip',
-    },
+    previous,
     // The track: its simplified older part (unchanged between updates) and the raw newest minute.
     { type: 'scatter', mode: 'lines', name: 'track', legendgroup: 'track', showlegend: false, x: trk.older.x, y: trk.older.y, line: { color: C.blue, width: 1.5 }, hoverinfo: 'skip' },
     { type: 'scatter', mode: 'lines', name: 'track', legendgroup: 'track', x: trk.tail.x, y: trk.tail.y, line: { color: C.blue, width: 1.5 }, hoverinfo: 'skip' },
@@ -294,7 +296,7 @@ function renderPlot() {
   ];
   const layout = {
     ...baseLayout({ margin: { l: 56, r: 10, t: 40, b: 40 } }),
-    ...equalAxes(),
+    ...fittedAxes(traces.filter((t) => t !== previous && t !== grid)),
     uirevision,
     showlegend: true,
     images: mapImages(plotEl),
@@ -302,6 +304,43 @@ function renderPlot() {
   draw(plotEl, traces, layout, { scrollZoom: true });
   updateScaleBar(plotEl, scaleBarLength);
   renderTurnPlot(turn, { turnX, turnY, goalRay, band, preds: [pred('avk'), pred('model'), pred('instantaneous')], nav, faded });
+}
+
+const FIT_MARGIN = 0.06; // of the larger span, each side
+const FIT_MIN_SPAN_M = 20;
+
+/** The equal axes of the track plot, fitted to `traces`: the current mission (its region, track,
+ *  stored turns, the turn drawn with its predictions) and the vehicle. Plotly's own autorange took
+ *  in every trace, the previous mission's track too, which shrank the current turn into a corner;
+ *  that track is still drawn, faded, wherever it lies. The operator's zoom is kept (uirevision)
+ *  until Fit view. */
+function fittedAxes(traces) {
+  let x0 = Infinity;
+  let x1 = -Infinity;
+  let y0 = Infinity;
+  let y1 = -Infinity;
+  for (const t of traces) {
+    if (t.visible === false || t.visible === 'legendonly' || !t.x) continue;
+    for (let i = 0; i < t.x.length; i++) {
+      const x = t.x[i];
+      const y = t.y[i];
+      if (!Number.isFinite(x) || !Number.isFinite(y)) continue;
+      if (x < x0) x0 = x;
+      if (x > x1) x1 = x;
+      if (y < y0) y0 = y;
+      if (y > y1) y1 = y;
+    }
+  }
+  const axes = equalAxes();
+  if (!Number.isFinite(x0)) return axes;
+  const span = Math.max(x1 - x0, y1 - y0, FIT_MIN_SPAN_M);
+  const pad = FIT_MARGIN * span;
+  const cx = (x0 + x1) / 2;
+  const cy = (y0 + y1) / 2;
+  const half = (v0, v1) => Math.max((v1 - v0) / 2, FIT_MIN_SPAN_M / 2) + pad;
+  axes.xaxis = { ...axes.xaxis, range: [cx - half(x0, x1), cx + half(x0, x1)], autorange: false };
+  axes.yaxis = { ...axes.yaxis, range: [cy - half(y0, y1), cy + half(y0, y1)], autorange: false };
+  return axes;
 }
 
 /** The time series over the chosen window, ending at the newest sample; redrawn only when a

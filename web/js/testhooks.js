@@ -4,6 +4,7 @@
 
 import { state, on } from './state.js';
 import { applyNav, onMessage } from './sync.js';
+import { retireTrack } from './tracks.js';
 import { renderNow, renderTimes, seriesTimes, deviationLog, latLonText } from './live.js';
 import { replayState, seek as replaySeek, poseAt as replayPoseAt } from './replay.js';
 import { logEntries } from './eventlog.js';
@@ -131,6 +132,14 @@ export function installTestHooks() {
     releaseNav() {
       state.testFeed = false;
       return true;
+    },
+    /** The live track so far set aside as the previous mission's, as when a new mission starts
+     *  (tracks.js); stream nav is ignored from now on. */
+    retireTrack() {
+      state.testFeed = true;
+      retireTrack(state.mission?.id ?? 0);
+      renderNow();
+      return state.previousTrack?.x.length ?? 0;
     },
     trackLength: () => state.track.length,
     /** The last read of a mission's stored track ({missionId, rows, trackLength} right after it). */

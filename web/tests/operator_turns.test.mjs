@@ -1,5 +1,6 @@
 // Browser tests of a turn as the operator follows it in Live: the corridor band of a tight turn
-// drawn without spikes. Run with `node --test web/tests/operator_turns.test.mjs` (CTest: web_operator_turns).
+// drawn without spikes, and Live fitted to the current mission rather than the previous one's
+// track. Run with `node --test web/tests/operator_turns.test.mjs` (CTest: web_operator_turns).
 //
 // A simulated M200 (its navigation has noise, so its turns' corridors have width) first collects
 // turns at ×50 for a table with corridors (1.0 m/s, 90° and 160°, three each); then the same
@@ -140,6 +141,43 @@ test('the corridor of a 130–160° turn is drawn as a smooth band, without spik
       // It starts where the turn does (every turn starts there), as the server's band does.
       assert.ok(Math.hypot(band.x[0] - pred.corridor.left[0][0], band.y[0] - pred.corridor.left[0][1]) < 1e-6, `the band starts at (${band.x[0]}, ${band.y[0]})`);
     }
+  } finally {
+    await page.close();
+  }
+});
+
+// ---------------------------------------------------------------- defect 12: the fitted view
+
+test("Live fits the current mission and the vehicle; the previous mission's track is faded outside (defect 12)", { timeout: slow(90000) }, async () => {
+  errors.phase = 'fit';
+  const page = await openLive();
+  try {
+    // A previous mission's track that reaches 900 m south of this mission's region (a two-hour
+    // survey), set aside as when a new mission starts; then a turn in this mission's region.
+    await page.evaluate(() => window.avkTest.loadTrack(20000));
+    const kept = await page.evaluate(() => window.avkTest.retireTrack());
+    assert.ok(kept > 10, `a previous track of ${kept} points`);
+    await page.evaluate(() => window.avkTest.startTurn(90, 1.0));
+    for (let i = 0; i < 6; i++) await page.evaluate(() => window.avkTest.turnNav());
+    const view = await until('the Live plot with the previous track and the turn', () =>
+      page.evaluate(() => {
+        const el = document.getElementById('live-plot');
+        const l = el._fullLayout;
+        const prev = el.data?.find((t) => /track \(previous\)$/.test(t.name));
+        const turn = el.data?.find((t) => t.name === 'current turn');
+        if (!l || !prev?.x?.length || !turn?.x?.length) return null;
+        return { x: l.xaxis.range.slice(), y: l.yaxis.range.slice(), prevY: [Math.min(...prev.y), Math.max(...prev.y)], prevOpacity: prev.opacity, prevVisible: prev.visible, nav: window.avkTest.nav() };
+      }), 15000);
+    const inside = (r, v) => v >= r[0] && v <= r[1];
+    // The region (±100 m), the turn and the vehicle are in view; the previous track reaches far
+    // outside it (it is drawn, faded, there).
+    for (const v of [-100, 100]) assert.ok(inside(view.x, v) && inside(view.y, v), `the region in view: ${JSON.stringify(view)}`);
+    assert.ok(inside(view.x, view.nav.x_m) && inside(view.y, view.nav.y_m), `the vehicle in view: ${JSON.stringify(view)}`);
+    assert.ok(view.y[0] > -200, `the view reaches ${view.y[0].toFixed(0)} m south for a previous track down to ${view.prevY[0].toFixed(0)} m: ${JSON.stringify(view)}`);
+    assert.ok(view.prevY[0] < view.y[0], 'the previous track goes beyond the view');
+    assert.equal(view.prevVisible, true);
+    assert.ok(view.prevOpacity < 1, 'faded');
+    await screenshot(page, 'live-fit-current-mission');
   } finally {
     await page.close();
   }
