@@ -12,7 +12,7 @@ import { C, METHOD_STYLE, baseLayout, equalAxes, draw, showEmpty, corridorTrace,
 import { regionRings, along } from './geometry.js';
 import { TrackDecimator } from './decimate.js';
 import { num, meanSd, headingDiff, el } from './format.js';
-import { deviationText } from './deviation.js';
+import { deviationText, deviationTitle } from './deviation.js';
 import { drawSeries } from './timeseries.js';
 import { localGrid, formatLatLon, scaleBarLength, graticule } from './geo.js';
 import { attachMap, mapImages } from './maptiles.js';
@@ -565,6 +565,9 @@ function renderTurnPanel() {
     text('turn-status', `Turn running (attempt ${turn.attempt ?? 1})${which} · predictions: ${preds.length ? preds.join(', ') : 'none yet'}`);
     const deviation = deviationText(state.ongoing);
     text('turn-deviation', deviation);
+    const devEl = document.getElementById('turn-deviation');
+    const devTitle = deviationTitle(state.ongoing);
+    if (devEl.title !== devTitle) devEl.title = devTitle;
     const e = state.ongoing?.expected;
     if (e && deviation !== deviationLog.at(-1)?.text) {
       deviationLog.push({ text: deviation, expected: [e.x_m, e.y_m] });

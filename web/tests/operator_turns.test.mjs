@@ -1,6 +1,7 @@
 // Browser tests of a turn as the operator follows it in Live: the corridor band of a tight turn
-// drawn without spikes, and Live fitted to the current mission rather than the previous one's
-// track. Run with `node --test web/tests/operator_turns.test.mjs` (CTest: web_operator_turns).
+// drawn without spikes, Live fitted to the current mission rather than the previous one's track,
+// the turn panel following the server's turn state, and the deviation judged against the band at
+// that time. Run with `node --test web/tests/operator_turns.test.mjs` (CTest: web_operator_turns).
 //
 // A simulated M200 (its navigation has noise, so its turns' corridors have width) first collects
 // turns at ×50 for a table with corridors (1.0 m/s, 90° and 160°, three each); then the same
@@ -180,6 +181,112 @@ test("Live fits the current mission and the vehicle; the previous mission's trac
     await screenshot(page, 'live-fit-current-mission');
   } finally {
     await page.close();
+  }
+});
+
+// ---------------------------------------------------------------- defect 13: the turn panel
+
+test('the turn panel leaves "Turn running" when the server says the turn ended (defect 13)', { timeout: slow(90000) }, async () => {
+  errors.phase = 'panel';
+  const page = await openLive();
+  const status = () => page.textContent('#turn-status');
+  try {
+    // A turn of the mission shown that the page was told started (the stream's path), whose end
+    // never reaches it.
+    await page.evaluate((id) => window.avkTest.startTurn(90, 1.0, id), collected);
+    await until('Turn running', async () => /^Turn running/.test(await status()), 10000, 100);
+    // The stream's mission message has no running cell: the station's runner has ended it.
+    const cells = (await api(`/missions/${collected}`)).cells;
+    assert.ok(cells.length > 0 && cells.every((c) => !c.running));
+    await page.evaluate(([id, c]) => window.avkTest.streamMessage('mission', { mission_id: id, state: 'done', helm_mode: null, cells: c }), [collected, cells]);
+    await until('the panel to follow the mission message', async () => /^No turn running/.test(await status()), 10000, 100);
+    assert.equal(await page.textContent('#turn-deviation'), '–');
+    // Again, and this time the page reads the station over REST (as after a reconnection or a gap
+    // in the stream): its report has no turn under way.
+    await page.evaluate((id) => window.avkTest.startTurn(90, 1.0, id), collected);
+    await until('Turn running again', async () => /^Turn running/.test(await status()), 10000, 100);
+    await page.evaluate(() => window.avkTest.catchUp());
+    await until('the panel to follow the report', async () => /^No turn running/.test(await status()), 15000, 100);
+    assert.equal((await page.evaluate(() => window.avkTest.shownTurn()))?.running ?? false, false);
+  } finally {
+    await page.close();
+  }
+});
+
+test("a small offset at a turn's start is inside the band at that time, a large one outside (defect 13)", { timeout: slow(90000) }, async () => {
+  errors.phase = 'deviation';
+  const answers = [];
+  const page = await openLive();
+  page.on('response', async (r) => {
+    if (!r.url().includes('/maneuvers/ongoing?')) return;
+    try {
+      answers.push({ q: new URL(r.url()).searchParams, a: await r.json() });
+    } catch {
+      // a page closing
+    }
+  });
+  try {
+    // The table covers 1.0 m/s and its 90° cell has three turns: AVK with a corridor.
+    await page.evaluate(() => window.avkTest.startTurn(90, 1.0));
+    const shown = async (re) => until(`a deviation ${re}`, async () => {
+      const t = await page.textContent('#turn-deviation');
+      return re.test(t) ? t : null;
+    }, 20000, 100);
+    // 0.3 m to the side as the turn is commanded: GNSS noise. The corridor's half width there is
+    // 0 m (every turn starts at the same pose), the band at that time is not.
+    await page.evaluate(() => window.avkTest.turnNavAt(0, 0.3, 0));
+    const small = await shown(/^deviation 0\.3 m/);
+    assert.equal(small, 'deviation 0.3 m (inside 90 % corridor)');
+    const asked = answers.find((x) => Math.abs(Number(x.q.get('mx')) - 0.3) < 1e-9);
+    assert.equal(asked?.q.get('method'), 'avk');
+    assert.ok(asked.a.half_width_m === 0 && asked.a.inside_corridor === false && asked.a.band_now.inside === true, `the half width at the start: ${asked.a.half_width_m} m; the band then: ${JSON.stringify(asked.a.band_now)}`);
+    assert.match(await page.getAttribute('#turn-deviation', 'title'), /judged against the 90 % band 0\.0 s into the turn: /);
+    // 3 m to the side a moment later: outside (the distance is to where the prediction, placed
+    // over ground, has the vehicle then).
+    await page.evaluate(() => window.avkTest.turnNavAt(0.1, 3, 0));
+    const far = await until('the deviation asked 3 m off', () => answers.find((x) => Math.abs(Number(x.q.get('mx')) - 3) < 1e-9), 20000, 100);
+    assert.equal(far.a.band_now.inside, false, JSON.stringify(far.a.band_now));
+    const wanted = `deviation ${far.a.deviation_m.toFixed(1)} m (outside 90 % corridor)`;
+    await until(`"${wanted}"`, async () => (await page.textContent('#turn-deviation')) === wanted, 20000, 100);
+  } finally {
+    await page.close();
+  }
+});
+
+test('a page opened mid-turn judges the turn by the table from its first question (defect 13)', { timeout: slow(300000) }, async () => {
+  errors.phase = 'mid-turn';
+  const m = await api(`/vehicles/${vid}/missions`, { method: 'POST', body: { name: 'mid-turn', turn_array: { speeds_mps: [1.0], dheadings_deg: [90], repeats: 4 }, operating_region: REGION } });
+  try {
+    // A turn lasts some ten seconds here: open the page while one runs, again at the next turn if
+    // that one ended before the page had read it.
+    let seen = null;
+    for (let attempt = 0; attempt < 4 && !seen; attempt++) {
+      const rt = await until('a turn under way', async () => (await api(`/missions/${m.id}`)).running_turn, 120000, 250);
+      const asks = [];
+      const page = await openLive({ hooks: false, onRequest: (q) => q.url().includes('/maneuvers/ongoing?') && asks.push(new URL(q.url()).searchParams) });
+      try {
+        const adopted = await until('the page to show the turn or its end', () =>
+          page.evaluate(() => {
+            const s = document.getElementById('turn-status').textContent;
+            return /^Turn running|^No turn running\. Last turn/.test(s) ? s : null;
+          }), 20000, 100);
+        if (!/^Turn running/.test(adopted)) continue; // it ended meanwhile: the next one
+        const mine = await until('the deviation asked for this turn', () => {
+          const q = asks.filter((a) => Math.abs(Number(a.get('x')) - rt.x_m) < 1e-6 && Math.abs(Number(a.get('y')) - rt.y_m) < 1e-6);
+          return q.length ? q : null;
+        }, 20000, 100);
+        seen = mine.map((q) => q.get('method'));
+        await screenshot(page, 'live-opened-mid-turn');
+      } finally {
+        await page.close();
+      }
+    }
+    assert.ok(seen, 'a page opened while a turn ran');
+    // The table covers 1.0 m/s: its first question is AVK's, not the instantaneous ray's (asked
+    // before the page had read the table, it showed 10–12 m for a moment).
+    assert.deepEqual([...new Set(seen)], ['avk'], JSON.stringify(seen));
+  } finally {
+    await api(`/missions/${m.id}/abort`, { method: 'POST' }).catch(() => {});
   }
 });
 
