@@ -20,17 +20,22 @@ let audio = null;
 let beeps = 0;
 let beepTimer = null;
 let muted = false;
-let linkBadSince = null;
-let linkRaised = false;
+let linkBadSince = null; // the link not LIVE since (performance.now())
+let linkLostSince = null; // DISCONNECTED since
+let linkRaised = null; // what the alarm of this bad spell said: 'stale' | 'lost'
 let failsafeRaised = null; // the failsafe value already alarmed
 let ready = false; // the first catch-up is done: what was already in the log is history, not news
 const seenEvents = new WeakSet();
 
-/** Raises an alarm (once per `kind` while it is unacknowledged). */
+/** Raises an alarm: once per `kind` while it is unacknowledged, unless it now says something else
+ *  (the link stale, then lost): then the new one takes the old one's place in the bar, so the bar
+ *  shows the state as it is, not the first alarm of the kind. */
 export function raise(kind, title, message) {
-  if (active.some((a) => a.kind === kind)) return false;
+  const shown = active.findIndex((a) => a.kind === kind);
+  if (shown >= 0 && active[shown].title === title) return false;
   const a = { id: nextId++, kind, title, message, t: state.nav?.t_s ?? null };
-  active.push(a);
+  if (shown >= 0) active.splice(shown, 1, a);
+  else active.push(a);
   log.push(a);
   emit('events', state.events); // the log lists it (alarmEntries), beside the station's events
   render();
@@ -157,18 +162,29 @@ function checkMission(m) {
   lastStatus = s;
 }
 
+/** The link not LIVE for LINK_GRACE_MS while a mission runs: stale (the stream open, navigation
+ *  old) or lost (no stream). Lost outranks stale: a link that went stale and then dropped raises
+ *  "Link lost", also while the stale alarm is still unacknowledged. */
 function checkLink() {
   const bad = state.link !== 'LIVE' && RUNNING(state.mission);
   if (!bad) {
     linkBadSince = null;
-    linkRaised = false;
+    linkLostSince = null;
+    linkRaised = null;
     return;
   }
-  linkBadSince ??= performance.now();
-  if (!linkRaised && performance.now() - linkBadSince >= LINK_GRACE_MS) {
-    linkRaised = true;
-    const what = state.link === 'DISCONNECTED' ? 'link lost: no stream from the station' : `link stale: no fresh navigation from the vehicle${state.nav?.link && state.nav.link !== 'LIVE' ? ` (vehicle link ${state.nav.link})` : ''}`;
-    raise('link', state.link === 'DISCONNECTED' ? 'Link lost' : 'Link stale', `${what} while mission ${state.mission.id} runs`);
+  const now = performance.now();
+  linkBadSince ??= now;
+  if (state.link === 'DISCONNECTED') linkLostSince ??= now;
+  else linkLostSince = null;
+  const mission = `while mission ${state.mission.id} runs`;
+  if (linkRaised !== 'lost' && linkLostSince !== null && now - linkLostSince >= LINK_GRACE_MS) {
+    linkRaised = 'lost';
+    raise('link', 'Link lost', `link lost: no stream from the station ${mission}`);
+  } else if (linkRaised === null && now - linkBadSince >= LINK_GRACE_MS && state.link === 'STALE') {
+    linkRaised = 'stale';
+    const vehicle = state.nav?.link && state.nav.link !== 'LIVE' ? ` (vehicle link ${state.nav.link})` : '';
+    raise('link', 'Link stale', `link stale: no fresh navigation from the vehicle${vehicle} ${mission}`);
   }
 }
 

@@ -1,7 +1,7 @@
 // The REST API (docs/api.md). Errors arrive as RFC 9457 problem+json; they become ApiError with
 // the status, the detail and, for mission validation, errors[] with JSON-pointer fields.
 
-import { getToken, requestToken } from './auth.js';
+import { getToken, requestToken, tokenAccepted } from './auth.js';
 
 export const BASE = '/api/v1';
 
@@ -37,23 +37,26 @@ async function problemOf(res) {
 
 /** fetch with the bearer token whenever the page has one: off this machine (a published Docker
  *  port, a LAN) every request needs it, reads included. A 401 asks for the token inline (never a
- *  modal) and retries once with it; concurrent 401s share one prompt. A cancelled prompt leaves
- *  the 401 to the caller. */
+ *  modal), saying so when the token sent was refused, and sends the request again with each token
+ *  the operator enters until one is taken; concurrent 401s share one prompt. A cancelled prompt
+ *  leaves the 401 to the caller. */
 async function authedFetch(url, init = {}) {
-  for (let attempt = 0; ; attempt++) {
+  for (;;) {
     const headers = { ...(init.headers || {}) };
     const token = getToken();
     if (token) headers.Authorization = `Bearer ${token}`;
     const res = await fetch(url, { ...init, headers });
-    if (res.status === 401 && attempt === 0) {
-      try {
-        await requestToken();
-      } catch {
-        return res; // the operator cancelled: the caller reports the 401
-      }
-      continue;
+    if (res.status !== 401) {
+      tokenAccepted(token);
+      return res;
     }
-    return res;
+    // Another token was entered while this request was under way: try that one first.
+    if (getToken() !== token) continue;
+    try {
+      await requestToken(token);
+    } catch {
+      return res; // the operator cancelled: the caller reports the 401
+    }
   }
 }
 
@@ -77,7 +80,7 @@ export async function getBlob(path, params, accept) {
   return { blob: await res.blob(), headers: res.headers };
 }
 
-/** POST with the bearer token (a 401 asks for it inline and retries once, as every request). */
+/** POST with the bearer token (a 401 asks for it inline and is sent again with it, as every request). */
 export async function postJson(path, body) {
   const headers = { Accept: 'application/json' };
   if (body !== undefined) headers['Content-Type'] = 'application/json';

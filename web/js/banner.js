@@ -3,7 +3,7 @@
 // room and above the fold on a tablet. Updated at most once a frame, and only what changed.
 
 import { state, on } from './state.js';
-import { timeLabel, fmtElapsed, missionElapsed } from './clock.js';
+import { timeLabel, fmtElapsed, missionElapsed, missionWallElapsed, clockMapping } from './clock.js';
 
 const LOOK = {
   created: { icon: '○', word: 'STARTING' },
@@ -46,9 +46,22 @@ function render() {
   box.dataset.state = m ? status : 'none';
   set('mb-state', `${look.icon} ${look.word}`);
   set('mb-name', m ? `mission ${m.id} “${m.name}”` : 'Start one in the Mission view.');
-  const elapsed = missionElapsed(m, state.nav?.t_s);
+  // Elapsed by the wall clock (from the stored or mapped start to the server's now, or to the
+  // end), labelled so; the station clock's beside it where it runs at another rate (the simulator
+  // runs it ×realtime factor: 67 s after a start at ×10 it reads 11:10). Without a wall-clock
+  // start (a mission of an earlier session stored before started_utc was kept) the station
+  // clock's alone, labelled as such.
   const start = m ? timeLabel(m.started_s, m) : null;
-  set('mb-elapsed', fmtElapsed(elapsed), start?.text ? `started ${start.text} (${start.title})` : '');
+  const wall = missionWallElapsed(m);
+  const station = missionElapsed(m, state.nav?.t_s);
+  const factor = clockMapping()?.factor ?? 1;
+  set('mb-elapsed', fmtElapsed(wall ?? station), start?.text ? `started ${start.text} (${start.title})` : '');
+  set('mb-elapsed-clock', wall === null && station !== null ? 'station clock' : 'wall clock');
+  const both = wall !== null && station !== null && factor !== 1;
+  const extra = document.getElementById('mb-station');
+  if (extra && extra.hidden === both) extra.hidden = !both;
+  set('mb-station-elapsed', both ? fmtElapsed(station) : '–');
+  set('mb-station-clock', `station clock ×${factor}`, 'The station clock: the time base of nav, turns and events; on the simulator it runs ×realtime factor');
   const td = turnsDone(m);
   set('mb-turns', td ? `${td.done} of ${td.planned}` : '–');
   set('mb-mode', m?.live && m.helm_mode ? m.helm_mode : '');
@@ -66,5 +79,7 @@ function request() {
 
 export function initBanner() {
   for (const ev of ['nav', 'mission', 'missions', 'clock']) on(ev, request);
+  // The wall-clock elapsed time runs on while no navigation arrives (a lost link).
+  setInterval(request, 1000);
   request();
 }

@@ -10,7 +10,7 @@
 
 import { state } from './state.js';
 
-let mapping = null; // {utcMs, clockS, factor, sessionStartS}
+let mapping = null; // {utcMs, clockS, factor, sessionStartS, offsetMs}
 
 // How far a mission's mapped start may lie from its created_utc (stored some 20 ms before it
 // started) and still be of this session. The station clock is exact (start + factor × steady time),
@@ -26,7 +26,15 @@ export function setClockMapping(health) {
   const ok = Number.isFinite(health?.utc_ms) && Number.isFinite(health?.clock_s);
   const factor = Number.isFinite(health?.realtime_factor) && health.realtime_factor > 0 ? health.realtime_factor : 1;
   const sessionStartS = Number.isFinite(health?.session_start_clock_s) ? health.session_start_clock_s : null;
-  mapping = ok ? { utcMs: health.utc_ms, clockS: health.clock_s, factor, sessionStartS } : null;
+  // The server's wall clock less the page's, as the answer arrived (off by the answer's trip, a
+  // few ms): the server's now, for times that keep running while no navigation arrives.
+  const offsetMs = ok ? health.utc_ms - Date.now() : 0;
+  mapping = ok ? { utcMs: health.utc_ms, clockS: health.clock_s, factor, sessionStartS, offsetMs } : null;
+}
+
+/** The server's wall clock now (ms since 1970 UTC); null without a mapping. */
+export function serverNowMs() {
+  return mapping ? Date.now() + mapping.offsetMs : null;
 }
 
 export function clockMapping() {
@@ -122,4 +130,24 @@ export function missionElapsed(m, nowT) {
   if (typeof m.ended_s === 'number') return Math.max(0, m.ended_s - m.started_s);
   if (typeof m.duration_s === 'number') return m.duration_s;
   return null;
+}
+
+/** The wall-clock moment (ms since 1970 UTC) a mission started (`which` 'started') or ended
+ *  ('ended'): as the station stored it (started_utc, ended_utc), else mapped from the station
+ *  clock when this session ran it; null when neither is known. */
+export function missionWallMs(m, which) {
+  const stored = Date.parse(m?.[`${which}_utc`] ?? '');
+  if (Number.isFinite(stored)) return stored;
+  const t = m?.[`${which}_s`];
+  return typeof t === 'number' && inSession(m) ? wallMs(t) : null;
+}
+
+/** A mission's elapsed time by the wall clock, in seconds: to the server's now while it is live,
+ *  else to its end; null when either end is unknown. On the simulator the station clock runs
+ *  ×realtime factor, so this is not missionElapsed (which is on the station clock). */
+export function missionWallElapsed(m, nowMs = serverNowMs()) {
+  const start = missionWallMs(m, 'started');
+  const end = m?.live ? nowMs : missionWallMs(m, 'ended');
+  if (start === null || end === null || typeof end !== 'number') return null;
+  return Math.max(0, (end - start) / 1000);
 }

@@ -34,6 +34,9 @@ async function poll(turn) {
   // The server evaluates up to MAX_ELAPSED_S into a maneuver; a turn still open after that (its
   // end was missed) is not asked about again.
   if (nav.t_s - turn.start.t > MAX_ELAPSED_S) return;
+  // A sample from before the turn's start (a page that read the vehicle before the turn began) is
+  // not a position in the turn: the newest one is awaited.
+  if (nav.t_s < turn.start.t) return;
   // AVK where the table answers at this speed; else the instantaneous assumption, said so.
   const method = cktCovers(turn.speed) ? 'avk' : 'instantaneous';
   asking = true;
@@ -60,13 +63,34 @@ async function poll(turn) {
   }
 }
 
+/** Whether the vehicle is inside the band the prediction allows at this moment: the position band
+ *  `band_now` at the elapsed time (the corridor's spread along and across the path there, with the
+ *  navigation's own position noise), when the prediction has a corridor. Not the lateral half
+ *  width at this point alone (`inside_corridor`): at a turn's start that is 0 m, and every 0.1–0.4 m
+ *  of GNSS noise read "outside corridor". null when there is no corridor to judge by. */
+export function insideBand(o) {
+  if (typeof o?.half_width_m !== 'number') return null;
+  if (typeof o.band_now?.inside === 'boolean') return o.band_now.inside;
+  return typeof o.inside_corridor === 'boolean' ? o.inside_corridor : null;
+}
+
 /** "deviation 0.8 m (inside 90 % corridor)"; otherwise the method that predicted, and whether it
  *  had a corridor. */
 export function deviationText(o) {
   if (!o || typeof o.deviation_m !== 'number') return '–';
   const pct = Math.round((o.corridor ?? 0.9) * 100);
+  const inside = insideBand(o);
   let where = `${o.method} prediction, no corridor`;
-  if (typeof o.inside_corridor === 'boolean') where = `${o.inside_corridor ? 'inside' : 'outside'} ${pct} % corridor`;
+  if (typeof inside === 'boolean') where = `${inside ? 'inside' : 'outside'} ${pct} % corridor`;
   else if (typeof o.half_width_m === 'number') where = `${o.method} prediction`;
   return `deviation ${num(o.deviation_m, 1)} m (${where})`;
+}
+
+/** The band the deviation was judged against, for the panel's hover. */
+export function deviationTitle(o) {
+  const b = o?.band_now;
+  const base = 'How far the vehicle is from where the prediction of the running turn puts it now (GET /maneuvers/ongoing, once a second)';
+  if (typeof insideBand(o) !== 'boolean' || !b) return base;
+  const pct = Math.round((o.corridor ?? 0.9) * 100);
+  return `${base}; judged against the ${pct} % band ${num(o.elapsed_s, 1)} s into the turn: ${num(b.major_m, 2)} × ${num(b.minor_m, 2)} m (half axes; corridor half width there ${num(o.half_width_m, 2)} m)`;
 }

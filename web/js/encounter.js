@@ -427,7 +427,7 @@ export function corridorOf(path, halfWidths, share) {
     left.push([path[i][1] + nx * w, path[i][2] + ny * w]);
     right.push([path[i][1] - nx * w, path[i][2] - ny * w]);
   }
-  return { share, left, right };
+  return { share, left, right, half_width_m: halfWidths };
 }
 
 function line(name, path, style, extra = {}) {

@@ -12,6 +12,7 @@ import { state, on, emit } from './state.js';
 import { el, num } from './format.js';
 import { timeLabel } from './clock.js';
 import { alarmEntries } from './alarms.js';
+import { plannedTurns, turnLabel } from './turnlabel.js';
 
 /** kind → what an operator reads. A kind not listed reads as its name with spaces. */
 export const PHRASES = {
@@ -111,19 +112,25 @@ const signed = (d) => (typeof d === 'number' ? `${d > 0 ? '+' : ''}${d.toFixed(0
 function turnEntries() {
   if (state.mission && turnMission !== state.mission.id) return [];
   const list = [...turns.values()].sort((a, b) => (a.t ?? 0) - (b.t ?? 0));
-  const planned = (state.mission?.cells ?? []).reduce((n, c) => n + (c.planned ?? 1), 0);
+  const planned = plannedTurns(state.mission?.cells);
   return list.map((r, i) => ({
     kind: 'turn_finished',
     level: 'info',
     t: r.t,
     logged: r.logged,
-    message: `turn ${i + 1}${planned ? `/${planned}` : ''}: ${num(r.speed, 2)} m/s, Δψ ${signed(r.dheading)}, advance ${num(r.advance, 1)} m, transfer ${num(r.transfer, 1)} m`,
+    message: `${turnLabel(i + 1, planned)}: ${num(r.speed, 2)} m/s, Δψ ${signed(r.dheading)}, advance ${num(r.advance, 1)} m, transfer ${num(r.transfer, 1)} m`,
   }));
 }
 
 // ---------------------------------------------------------------- one entry per happening
 
 const sameT = (a, b, tol) => typeof a === 'number' && typeof b === 'number' && Math.abs(a - b) <= tol;
+
+// Entries of one kind within this long of the first whose words differ only in their numbers are
+// one (the station rate-limits a kind's status messages per second, not its stored events).
+const NEAR_S = 1;
+const shape = (message) => String(message ?? '').replace(/[-+]?\d+(\.\d+)?/g, '#');
+const sameShape = (a, b) => shape(a) === shape(b);
 
 /** The log as shown, oldest first: [{kind, canon, t, message, level, severity, count, notes}]. */
 export function logEntries(events = state.events, extra = [...turnEntries(), ...alarmEntries()]) {
@@ -162,12 +169,18 @@ export function logEntries(events = state.events, extra = [...turnEntries(), ...
       severity: severityOf(e),
       suppressed: e.suppressed ?? 0,
       count: 1,
+      variants: [], // the other words of near-identical entries merged into this one
+      firstT: e.t, // its first one's time: "near" is within NEAR_S of it
     };
-    // Identical repeats (a link flapping, a condition timeout per attempt): one line, ×n.
-    if (prev && prev.canon === canon && prev.message === entry.message) {
+    // Identical repeats (a link flapping, a condition timeout per attempt), and near-identical
+    // ones within the same second (containment entered again 0.4 m further on: the same words,
+    // other numbers): one line, ×n, the first one's words.
+    const near = prev && prev.canon === canon && sameShape(prev.message, entry.message) && sameT(prev.firstT, entry.t, NEAR_S);
+    if (prev && prev.canon === canon && (prev.message === entry.message || near)) {
       prev.count++;
       prev.t = entry.t ?? prev.t;
       prev.suppressed += entry.suppressed;
+      if (entry.message !== prev.message && !prev.variants.includes(entry.message)) prev.variants.push(entry.message);
       continue;
     }
     out.push(entry);
@@ -196,7 +209,7 @@ export function renderEventLog(list) {
         el('time', { class: 't', title: time.title, text: time.text }),
         el('span', { class: 'kind', title: e.kind, text: phrase(e.kind, e.message) }),
         e.count > 1 ? el('span', { class: 'count', title: `${e.count} times`, text: `×${e.count}` }) : null,
-        el('span', { class: 'msg', text: e.message + (e.suppressed ? ` (+${e.suppressed} suppressed)` : '') }),
+        el('span', { class: 'msg', title: e.variants.length ? ['also:', ...e.variants.slice(0, 5)].join('\n') : undefined, text: e.message + (e.suppressed ? ` (+${e.suppressed} suppressed)` : '') }),
       );
     }),
   );

@@ -12,13 +12,15 @@ import { C, METHOD_STYLE, baseLayout, equalAxes, draw, showEmpty, corridorTrace,
 import { regionRings, along } from './geometry.js';
 import { TrackDecimator } from './decimate.js';
 import { num, meanSd, headingDiff, el } from './format.js';
-import { deviationText } from './deviation.js';
+import { deviationText, deviationTitle } from './deviation.js';
 import { drawSeries } from './timeseries.js';
 import { localGrid, formatLatLon, scaleBarLength, graticule } from './geo.js';
 import { attachMap, mapImages } from './maptiles.js';
 import { renderEventLog } from './eventlog.js';
 import { answersFrameText } from './frame.js';
 import { setPredictionFrame } from './sync.js';
+import { turnsDone } from './banner.js';
+import { turnLabel } from './turnlabel.js';
 
 const RAY_M = 20; // length of the goal-heading and heading rays
 
@@ -246,28 +248,30 @@ function renderPlot() {
     headingRay = { x: [nav.x_m, hx], y: [nav.y_m, hy] };
   }
 
+  const grid = graticuleTrace();
+  // The previous mission's track, faded grey under this one's (a new mission started while the
+  // page was open: tracks.js).
+  const previous = {
+    type: 'scatter',
+    mode: 'lines',
+    name: state.previousTrack ? `mission ${state.previousTrack.missionId} track (previous)` : 'previous track',
+    x: state.previousTrack?.x ?? [],
+    y: state.previousTrack?.y ?? [],
+    line: { color: C.grey, width: 1.2 },
+    opacity: 0.45,
+    visible: state.previousTrack ? true : 'legendonly',
+    showlegend: Boolean(state.previousTrack),
+    hoverinfo: 'skip',
+  };
   const traces = [
-    graticuleTrace(),
+    grid,
     { type: 'scatter', mode: 'lines', name: 'region', x: reg.region.x, y: reg.region.y, line: { color: C.black, width: 2 }, hoverinfo: 'skip' },
     { type: 'scatter', mode: 'lines', name: `buffer (${reg.bufferM ?? '–'} m)`, x: reg.buffer.x, y: reg.buffer.y, line: { color: C.grey, width: 1.5, dash: 'dash' }, hoverinfo: 'skip' },
     { type: 'scatter', mode: 'markers', name: 'return point', x: reg.ret.x, y: reg.ret.y, marker: { symbol: 'x-thin-open', size: 12, color: C.black, line: { width: 2 } } },
     // Stored turns as a wide halo under the track: where the turns were, and the history (from
     // REST) of a mission that ran before the page was opened.
     { type: 'scatter', mode: 'lines', name: 'recorded turns', x: rec.x, y: rec.y, line: { color: C.sky, width: 6 }, opacity: 0.55, hoverinfo: 'skip', connectgaps: false },
-    // The previous mission's track, faded grey under this one's (a new mission started while the
-    // page was open: tracks.js).
-    {
-      type: 'scatter',
-      mode: 'lines',
-      name: state.previousTrack ? `mission ${state.previousTrack.missionId} track (previous)` : 'previous track',
-      x: state.previousTrack?.x ?? [],
-      y: state.previousTrack?.y ?? [],
-      line: { color: C.grey, width: 1.2 },
-      opacity: 0.45,
-      visible: state.previousTrack ? true : 'legendonly',
-      showlegend: Boolean(state.previousTrack),
-      hoverinfo: 'skip',
-    },
+    previous,
     // The track: its simplified older part (unchanged between updates) and the raw newest minute.
     { type: 'scatter', mode: 'lines', name: 'track', legendgroup: 'track', showlegend: false, x: trk.older.x, y: trk.older.y, line: { color: C.blue, width: 1.5 }, hoverinfo: 'skip' },
     { type: 'scatter', mode: 'lines', name: 'track', legendgroup: 'track', x: trk.tail.x, y: trk.tail.y, line: { color: C.blue, width: 1.5 }, hoverinfo: 'skip' },
@@ -292,7 +296,7 @@ function renderPlot() {
   ];
   const layout = {
     ...baseLayout({ margin: { l: 56, r: 10, t: 40, b: 40 } }),
-    ...equalAxes(),
+    ...fittedAxes(traces.filter((t) => t !== previous && t !== grid)),
     uirevision,
     showlegend: true,
     images: mapImages(plotEl),
@@ -300,6 +304,43 @@ function renderPlot() {
   draw(plotEl, traces, layout, { scrollZoom: true });
   updateScaleBar(plotEl, scaleBarLength);
   renderTurnPlot(turn, { turnX, turnY, goalRay, band, preds: [pred('avk'), pred('model'), pred('instantaneous')], nav, faded });
+}
+
+const FIT_MARGIN = 0.06; // of the larger span, each side
+const FIT_MIN_SPAN_M = 20;
+
+/** The equal axes of the track plot, fitted to `traces`: the current mission (its region, track,
+ *  stored turns, the turn drawn with its predictions) and the vehicle. Plotly's own autorange took
+ *  in every trace, the previous mission's track too, which shrank the current turn into a corner;
+ *  that track is still drawn, faded, wherever it lies. The operator's zoom is kept (uirevision)
+ *  until Fit view. */
+function fittedAxes(traces) {
+  let x0 = Infinity;
+  let x1 = -Infinity;
+  let y0 = Infinity;
+  let y1 = -Infinity;
+  for (const t of traces) {
+    if (t.visible === false || t.visible === 'legendonly' || !t.x) continue;
+    for (let i = 0; i < t.x.length; i++) {
+      const x = t.x[i];
+      const y = t.y[i];
+      if (!Number.isFinite(x) || !Number.isFinite(y)) continue;
+      if (x < x0) x0 = x;
+      if (x > x1) x1 = x;
+      if (y < y0) y0 = y;
+      if (y > y1) y1 = y;
+    }
+  }
+  const axes = equalAxes();
+  if (!Number.isFinite(x0)) return axes;
+  const span = Math.max(x1 - x0, y1 - y0, FIT_MIN_SPAN_M);
+  const pad = FIT_MARGIN * span;
+  const cx = (x0 + x1) / 2;
+  const cy = (y0 + y1) / 2;
+  const half = (v0, v1) => Math.max((v1 - v0) / 2, FIT_MIN_SPAN_M / 2) + pad;
+  axes.xaxis = { ...axes.xaxis, range: [cx - half(x0, x1), cx + half(x0, x1)], autorange: false };
+  axes.yaxis = { ...axes.yaxis, range: [cy - half(y0, y1), cy + half(y0, y1)], autorange: false };
+  return axes;
 }
 
 /** The time series over the chosen window, ending at the newest sample; redrawn only when a
@@ -518,9 +559,15 @@ function renderTurnPanel() {
     text('turn-meas-speed', num(nav?.speed_mps, 2));
     text('turn-meas-dpsi', turn.start && nav ? num(headingDiff(nav.heading_deg, turn.start.heading), 1) : '–');
     text('turn-meas-heading', num(nav?.heading_deg, 1));
-    text('turn-status', `Turn running (attempt ${turn.attempt ?? 1}) · predictions: ${preds.length ? preds.join(', ') : 'none yet'}`);
+    // Numbered as the event log and Replay number it: the next of the plan's turns to be done.
+    const done = turn.missionId === state.mission?.id ? turnsDone(state.mission) : null;
+    const which = done && done.done < done.planned ? ` · ${turnLabel(done.done + 1, done.planned)}` : '';
+    text('turn-status', `Turn running (attempt ${turn.attempt ?? 1})${which} · predictions: ${preds.length ? preds.join(', ') : 'none yet'}`);
     const deviation = deviationText(state.ongoing);
     text('turn-deviation', deviation);
+    const devEl = document.getElementById('turn-deviation');
+    const devTitle = deviationTitle(state.ongoing);
+    if (devEl.title !== devTitle) devEl.title = devTitle;
     const e = state.ongoing?.expected;
     if (e && deviation !== deviationLog.at(-1)?.text) {
       deviationLog.push({ text: deviation, expected: [e.x_m, e.y_m] });

@@ -8,7 +8,7 @@ import { EXAMPLES } from './examples.js';
 import { C, baseLayout, equalAxes, draw, showEmpty } from './plots.js';
 import { insetPolygon, ring } from './geometry.js';
 import { el, fillTable, setStatus } from './format.js';
-import { timeLabel, fmtElapsed } from './clock.js';
+import { timeLabel, fmtElapsed, missionWallElapsed } from './clock.js';
 import { loadMission, refreshMissions } from './sync.js';
 
 // id -> [JSON pointer, kind]. Kinds: list (numbers), number, int, text, select, points, point.
@@ -369,8 +369,12 @@ function renderControl() {
       { key: 'id', label: 'id' },
       { key: 'name', label: 'name' },
       { key: 'status', label: 'status' },
-      { key: 'started_s', label: 'started', get: (m) => timeCell(m.started_s, m) },
-      { key: 'ended_s', label: 'duration', get: (m) => (typeof m.started_s === 'number' && typeof m.ended_s === 'number' ? fmtElapsed(m.ended_s - m.started_s) : '–') },
+      // Every time says its clock: the start in local wall-clock time, the duration by the wall
+      // clock and by the station clock (on the simulator it runs ×realtime factor, so a mission
+      // of 5 minutes can last 50 on it).
+      { key: 'started_s', label: 'started (local time)', get: (m) => timeCell(m.started_s, m) },
+      { key: 'wall_s', label: 'duration (wall clock)', get: (m) => (m.live ? '–' : fmtElapsed(missionWallElapsed(m))) },
+      { key: 'ended_s', label: 'duration (station clock)', get: (m) => (typeof m.started_s === 'number' && typeof m.ended_s === 'number' ? fmtElapsed(m.ended_s - m.started_s) : '–') },
       { key: 'status_reason', label: 'reason', get: (m) => el('span', { class: 'reason', text: m.status_reason ?? '–' }) },
     ],
     missions,
@@ -384,7 +388,8 @@ function renderControl() {
 function timeCell(t, m) {
   if (typeof t !== 'number') return '–';
   const l = timeLabel(t, m);
-  return el('time', { title: l.title, text: l.wall ? l.text : `${(m.created_utc ?? '').replace('T', ' ').replace(/\.\d+Z$/, 'Z')}` || l.text });
+  const created = (m.created_utc ?? '').replace('T', ' ').replace(/(\.\d+)?Z$/, ' UTC');
+  return el('time', { title: l.title, text: l.wall ? l.text : created ? `created ${created}` : l.text });
 }
 
 function updateButtons() {

@@ -1,6 +1,8 @@
 // Plotly helpers: the palette, common layouts, equal-aspect axes for trajectories, a PNG button on
 // every plot, and the registry of plots the Export view lists.
 
+import { corridorRing } from './corridor.js';
+
 /** Okabe-Ito: distinguishable with the common colour-vision deficiencies. */
 export const C = {
   black: '#000000',
@@ -229,21 +231,27 @@ export function corridorName(corridor) {
   return `AVK ${pct} % corridor${typeof n === 'number' ? ` (${n} turn${n === 1 ? '' : 's'})` : ''}`;
 }
 
+const rings = new WeakMap(); // corridor -> {x, y}: a band is worked out once, not at every frame
+
 /** The band of an AVK prediction's corridor (GET /predict: `corridor.left`, `corridor.right`, in
  *  the frame of the prediction's trajectory) as one filled polygon: the left boundary, then the
- *  right one reversed, closed. An empty trace (nothing drawn, no legend entry) when there is no
- *  corridor, so a figure keeps the same traces in the same order either way. */
+ *  right one reversed, closed, smoothed along the path and without folds (corridor.js). An empty
+ *  trace (nothing drawn, no legend entry) when there is no corridor, so a figure keeps the same
+ *  traces in the same order either way. */
 export function corridorTrace(corridor, extra = {}) {
-  const left = corridor?.left ?? [];
-  const right = corridor?.right ?? [];
-  const has = left.length >= 2 && right.length >= 2;
-  const ring = has ? [...left, ...[...right].reverse(), left[0]] : [];
+  const has = (corridor?.left?.length ?? 0) >= 2 && (corridor?.right?.length ?? 0) >= 2;
+  let xy = has ? rings.get(corridor) : { x: [], y: [] };
+  if (!xy) {
+    const ring = corridorRing(corridor);
+    xy = { x: ring.map((p) => p[0]), y: ring.map((p) => p[1]) };
+    rings.set(corridor, xy);
+  }
   return {
     type: 'scatter',
     mode: 'lines',
     name: has ? corridorName(corridor) : 'AVK corridor',
-    x: ring.map((p) => p[0]),
-    y: ring.map((p) => p[1]),
+    x: xy.x,
+    y: xy.y,
     fill: 'toself',
     fillcolor: withAlpha(METHOD_STYLE.avk.color, 0.16),
     line: { color: withAlpha(METHOD_STYLE.avk.color, 0.35), width: 0.5 },

@@ -15,6 +15,7 @@ import { simplify } from './decimate.js';
 import { firstAtOrAfter, lastAtOrBefore } from './bisect.js';
 import { phrase } from './eventlog.js';
 import { timeLabel } from './clock.js';
+import { plannedTurns, storedTurnLabel } from './turnlabel.js';
 import { answerableMethods, sameCell, refreshMissions } from './sync.js';
 import { attachMap, mapImages } from './maptiles.js';
 
@@ -286,13 +287,18 @@ async function predictTurn(r) {
   request();
 }
 
+const capitalised = (t) => t.charAt(0).toUpperCase() + t.slice(1);
+
 function render() {
   const nav = rec.nav;
   const p = poseAt(nowT);
   const slider = $('rp-slider');
   if (Math.abs(Number(slider.value) - nowT) > 0.05) slider.value = String(nowT);
   const elapsed = nowT - nav.t[0];
-  $('rp-time').textContent = `${num(elapsed, 1)} s of ${num(nav.t[nav.t.length - 1] - nav.t[0], 1)} s · station clock ${num(nowT, 1)} s`;
+  // The mission's own time is the station clock (×realtime factor on the simulator); the moment's
+  // wall-clock time where it is known (this server session ran the mission).
+  const when = timeLabel(nowT, rec.report);
+  $('rp-time').textContent = `T+${num(elapsed, 1)} s of ${num(nav.t[nav.t.length - 1] - nav.t[0], 1)} s, station clock (t ${num(nowT, 1)} s)${when.wall ? ` · ${when.text} local time` : ''}`;
   $('rp-mode').textContent = p.mode ?? '–';
   $('rp-xy').textContent = `${num(p.x_m, 1)} m east, ${num(p.y_m, 1)} m north`;
   $('rp-heading').textContent = `${num(p.heading_deg, 1)}° (desired ${num(p.desired_heading_deg, 1)}°)`;
@@ -301,7 +307,7 @@ function render() {
   const turn = turnAt(nowT);
   if (turn && turn.predictions === null) predictTurn(turn);
   $('rp-turn').textContent = turn
-    ? `Turn ${rec.turns.indexOf(turn) + 1} of ${rec.turns.length} under way: ${num(turn.speed_mps, 2)} m/s, Δψ ${turn.goal_dheading_deg > 0 ? '+' : ''}${num(turn.goal_dheading_deg, 0)}°, ${num(nowT - turn.start_time_s, 1)} s in; it ended ${turn.status}${typeof turn.advance_m === 'number' ? ` (advance ${num(turn.advance_m, 1)} m, transfer ${num(turn.transfer_m, 1)} m)` : ''}. ${fairnessNote(turn)}`
+    ? `${capitalised(storedTurnLabel(rec.turns, turn, plannedTurns(rec.report.cells)))} under way: ${num(turn.speed_mps, 2)} m/s, Δψ ${turn.goal_dheading_deg > 0 ? '+' : ''}${num(turn.goal_dheading_deg, 0)}°, ${num(nowT - turn.start_time_s, 1)} s in; it ended ${turn.status}${typeof turn.advance_m === 'number' ? ` (advance ${num(turn.advance_m, 1)} m, transfer ${num(turn.transfer_m, 1)} m)` : ''}. ${fairnessNote(turn)}`
     : 'No turn under way at this moment.';
   renderTrack(p, turn);
   renderEvents();

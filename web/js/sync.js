@@ -62,7 +62,10 @@ async function doCatchUp() {
   }
   emit('vehicle', state.vehicle);
   emit('helm', state.helm);
-  await Promise.all([refreshMissions(), refreshTurnCount(), refreshModels(), vid ? refreshCurrent(vid) : null]);
+  // The table's grid before the mission: a turn under way is judged (deviation.js) by AVK where
+  // the table covers its speed, and asked before the grid was read it was judged by the
+  // instantaneous ray instead (a page loaded mid-turn showed 10–12 m for a moment).
+  await Promise.all([refreshMissions(), refreshTurnCount().then(refreshCktSummary), refreshModels(), vid ? refreshCurrent(vid) : null]);
   const mine = state.missions.filter((m) => !vid || m.vehicle_id === vid);
   const currentId = state.helm?.mission_id ?? (mine.length ? Math.max(...mine.map((m) => m.id)) : null);
   if (currentId) await loadMission(currentId, { force: true });
@@ -72,7 +75,6 @@ async function doCatchUp() {
     emit('mission', null);
     emit('events', state.events);
   }
-  await refreshCktSummary();
   emit('synced');
 }
 
@@ -113,6 +115,7 @@ export async function refreshCktSummary() {
  *  paths of its recorded turns (the history drawn under the live track). */
 export async function loadMission(id, { force = false } = {}) {
   const seqBefore = missionMessages;
+  const turnsBefore = turnMessages;
   const m = await getJson(`/missions/${id}`);
   const isNew = force || state.mission?.id !== id;
   if (!isNew && missionMessages !== seqBefore && state.mission) {
@@ -127,7 +130,7 @@ export async function loadMission(id, { force = false } = {}) {
   state.mission = m;
   emit('mission', m);
   setTurnMarks(m);
-  adoptRunningTurn(m);
+  adoptRunningTurn(m, turnMessages === turnsBefore);
   if (isNew) {
     await Promise.all([loadEvents(id), loadRecordedTurns(id), loadTrackHistory(id)]);
     if (!state.shownTurn) await adoptLastTurn(m);
@@ -162,11 +165,20 @@ function turnFromServer(missionId, rt) {
 }
 
 /** The turn under way as the server has it (issue 19): a page opened or reloaded mid-turn, or one
- *  that missed the stream's `started`, draws it from the report. A report without one never
- *  clears a turn the stream started: the answer may predate it. */
-function adoptRunningTurn(m) {
+ *  that missed the stream's `started`, draws it from the report. `current`: no turn message came
+ *  on the stream while the report was asked for, so the report is the newer word; then a report
+ *  without a running turn ends the one the page still shows as running (its `finished` was lost:
+ *  a stream closed under load, a gap), instead of leaving the panel on "Turn running" with a
+ *  deviation that grows past the prediction's end. A report that a stream message overtook never
+ *  clears a turn the stream started: it may predate it. */
+function adoptRunningTurn(m, current = false) {
   const rt = m.running_turn;
-  if (!rt) return;
+  if (!rt) {
+    if (current && state.turn && state.turn.missionId === m.id) endTurnByReport(m, endedRow(m, state.turn));
+    // A turn a mission message ended without saying how: the report tells it now.
+    else if (state.shownTurn?.outcome === 'ended' && state.shownTurn.missionId === m.id) settleEnded(m, state.shownTurn);
+    return;
+  }
   if (state.turn && state.turn.missionId === m.id && Math.abs((state.turn.start?.t ?? NaN) - rt.t_s) < 1e-6) return;
   state.turn = turnFromServer(m.id, rt);
   state.shownTurn = state.turn;
@@ -174,17 +186,51 @@ function adoptRunningTurn(m) {
   fetchPredictions(state.turn);
 }
 
-/** The mission's last stored turn, drawn (faded, with its predictions) as the last turn when the
- *  page did not see it happen: its start pose is the first sample of its record. */
-async function adoptLastTurn(m) {
-  const row = m.turn_list?.at(-1);
+/** The stored row of a turn that started at turn.start.t (the report's turn_list), or null. */
+function endedRow(m, turn) {
+  return (m.turn_list ?? []).find((r) => Math.abs(r.start_time_s - (turn.start?.t ?? NaN)) < 0.5) ?? null;
+}
+
+/** The turn under way has ended: it stays drawn (faded) with its predictions until the next one
+ *  starts, so the operator can see how they compared with what the vehicle did, and the panel
+ *  leaves "Turn running". */
+function endTurn({ event, endT, storedId }) {
+  const turn = state.turn;
+  if (turn) {
+    turn.ended = true;
+    turn.endT = endT;
+    turn.outcome = event;
+    turn.storedId = storedId;
+  }
+  state.turn = null;
+  emit('turn', null);
+}
+
+/** The turn under way ended as a report says (its stored row, when the report has it yet). */
+function endTurnByReport(m, row) {
+  if (row) state.lastTurn = lastTurnOf(row, m.id);
+  endTurn({ event: row ? state.lastTurn.event : 'ended', endT: row?.end_time_s ?? state.nav?.t_s ?? null, storedId: row?.id ?? null });
+}
+
+/** An ended turn whose outcome the page did not hear: how it ended, from the report's row. */
+function settleEnded(m, turn) {
+  const row = endedRow(m, turn);
   if (!row) return;
-  state.lastTurn = {
+  state.lastTurn = lastTurnOf(row, m.id);
+  turn.outcome = state.lastTurn.event;
+  turn.endT = row.end_time_s;
+  turn.storedId = row.id;
+  emit('turn', state.turn);
+}
+
+/** A stored turn (a report's turn_list row) as the stream's event of its end. */
+function lastTurnOf(row, missionId) {
+  return {
     event: row.status === 'ok' ? 'finished' : row.status,
     status: row.status,
     reason: row.reason,
     id: row.id,
-    mission_id: m.id,
+    mission_id: missionId,
     speed_mps: row.speed_mps,
     goal_dheading_deg: row.goal_dheading_deg,
     advance_m: row.advance_m,
@@ -192,6 +238,14 @@ async function adoptLastTurn(m) {
     condition_set_time_s: row.condition_set_time_s,
     t: row.end_time_s,
   };
+}
+
+/** The mission's last stored turn, drawn (faded, with its predictions) as the last turn when the
+ *  page did not see it happen: its start pose is the first sample of its record. */
+async function adoptLastTurn(m) {
+  const row = m.turn_list?.at(-1);
+  if (!row) return;
+  state.lastTurn = lastTurnOf(row, m.id);
   let first;
   try {
     first = (await getJson(`/turns/${row.id}`)).raw?.samples?.[0];
@@ -392,6 +446,9 @@ export function onHello(hello) {
   const justRead = !helloSeen && performance.now() - lastCatchUpMs < 3000;
   helloSeen = true;
   if (restarted || !justRead) catchUp().catch((e) => console.warn('catch-up failed', e));
+  // Even then, a turn may have started or ended between that read and the subscription: the
+  // running mission's report is read again, so the turn panel follows the server, not a guess.
+  else if (state.mission?.live) loadMission(state.mission.id).catch((e) => console.warn('mission re-read failed', e));
   updateLink();
 }
 
@@ -499,6 +556,15 @@ function applyMission(d, t) {
     return;
   }
   const stateChanged = state.mission.status !== d.state;
+  // The runner marks the turn's cell running before it says `started` and clears it before it
+  // says how the turn ended, and the stream keeps their order: a message with no running cell
+  // while the page shows a turn of this mission running means its end was lost. The report has
+  // how it ended.
+  const cells = Array.isArray(d.cells) ? d.cells : [];
+  if (state.turn && state.turn.missionId === d.mission_id && cells.length > 0 && !cells.some((c) => c.running)) {
+    endTurn({ event: 'ended', endT: state.nav?.t_s ?? null, storedId: null });
+    loadMission(d.mission_id).catch((e) => console.warn(e));
+  }
   state.mission.cells = d.cells;
   state.mission.status = d.state;
   state.mission.helm_mode = d.helm_mode;
@@ -510,7 +576,10 @@ function applyMission(d, t) {
   }
 }
 
+let turnMessages = 0; // stream turn messages so far (a report asked before one is older than it)
+
 function applyTurn(d, t) {
+  turnMessages++;
   if (d.event === 'started') {
     // The event is the report's running_turn: the signed Δψ (the side the runner chose; a half
     // turn's goal lies both ways) and the sample at which the new heading was commanded.
@@ -525,16 +594,7 @@ function applyTurn(d, t) {
     return;
   }
   state.lastTurn = { ...d, t };
-  // The ended turn stays drawn (faded) with its predictions until the next one starts, so the
-  // operator can see how the predictions compared with what the vehicle did.
-  if (state.turn) {
-    state.turn.ended = true;
-    state.turn.endT = state.nav?.t_s ?? null;
-    state.turn.outcome = d.event;
-    state.turn.storedId = d.id ?? null;
-  }
-  state.turn = null;
-  emit('turn', null);
+  endTurn({ event: d.event, endT: state.nav?.t_s ?? null, storedId: d.id ?? null });
   if (d.id) {
     fetchRawPath(d.id).then((p) => {
       if (!p) return;

@@ -3,7 +3,8 @@
 // what a real 2-hour mission at 10 Hz costs the page.
 
 import { state, on } from './state.js';
-import { applyNav, onMessage } from './sync.js';
+import { applyNav, onMessage, catchUp } from './sync.js';
+import { retireTrack } from './tracks.js';
 import { renderNow, renderTimes, seriesTimes, deviationLog, latLonText } from './live.js';
 import { replayState, seek as replaySeek, poseAt as replayPoseAt } from './replay.js';
 import { logEntries } from './eventlog.js';
@@ -48,7 +49,11 @@ function feed(i) {
   applyNav({ vehicle_id: state.vehicleId, link: 'LIVE', t_s: i * 0.1, x_m: p.x + jitter(), y_m: p.y + jitter(), heading_deg: ((p.heading % 360) + 360) % 360, speed_mps: 1.0 }, true);
 }
 
-let turnRun = null; // the synthetic turn of startTurn: {t0, speed, dheading, k}
+let turnRun = null; // the synthetic turn of startTurn: {t0, speed, dheading, k, start}
+// The mission a synthetic turn belongs to unless a test names one: none the station has, so that
+// what the station says of its own missions (a report without a running turn, a mission message
+// without a running cell) never ends it; the page follows the station's turn state.
+const SYNTHETIC_MISSION = -1;
 
 let navHistory = null; // the last stored-track read: {missionId, rows}
 
@@ -78,8 +83,6 @@ export function installTestHooks() {
       feed(next++);
       return state.track.length;
     },
-    /** A synthetic turn through the stream's path: steady north from (0, -72) to (0, -70), then
-     *  the turn's start event at t0 = 1000 s (sim time); stream nav is ignored from now on. */
     /** A stream message as the server sends it (topic, data), through the page's own handler. */
     streamMessage(topic, data) {
       onMessage({ topic, seq: 0, t: state.nav?.t_s ?? 0, data });
@@ -89,7 +92,10 @@ export function installTestHooks() {
     streamNav(extra) {
       onMessage({ topic: 'nav', seq: 0, t: state.nav?.t_s ?? 0, data: { ...state.nav, vehicle_id: state.vehicleId, ...extra } });
     },
-    startTurn(dheading = 90, speed = 1.0) {
+    /** A synthetic turn through the stream's path: steady north from (0, -72) to (0, -70), then
+     *  the turn's start event at t0 = 1000 s (sim time), of `missionId` (by default of no mission
+     *  the station has); stream nav is ignored from now on. */
+    startTurn(dheading = 90, speed = 1.0, missionId = SYNTHETIC_MISSION) {
       state.testFeed = true;
       state.track.clear();
       const t0 = 1000;
@@ -99,10 +105,27 @@ export function installTestHooks() {
       const goal = ((dheading % 360) + 360) % 360;
       // As the server sends it: the report's running_turn (signed Δψ, the start sample).
       const start = { t_s: t0, x_m: 0, y_m: -72 + 2 * speed, heading_deg: 0 };
-      onMessage({ topic: 'turn', seq: 0, t: t0, data: { event: 'started', mission_id: state.mission?.id ?? 1, ...start, speed_mps: speed, dheading_deg: dheading, goal_heading_deg: goal, attempt: 1, speed_after_mps: null } });
-      turnRun = { t0, speed, dheading, k: 0 };
+      onMessage({ topic: 'turn', seq: 0, t: t0, data: { event: 'started', mission_id: missionId, ...start, speed_mps: speed, dheading_deg: dheading, goal_heading_deg: goal, attempt: 1, speed_after_mps: null } });
+      turnRun = { t0, speed, dheading, k: 0, start };
       return state.turn !== null;
     },
+    /** One nav sample dt_s into the synthetic turn, at its start position moved by (dx, dy) m, on
+     *  its start heading: the vehicle a little off where the turn began. */
+    turnNavAt(dtS, dxM, dyM) {
+      const r = turnRun;
+      applyNav({ vehicle_id: state.vehicleId, link: 'LIVE', t_s: r.t0 + dtS, x_m: r.start.x_m + dxM, y_m: r.start.y_m + dyM, heading_deg: r.start.heading_deg, speed_mps: r.speed }, true);
+      return state.nav.t_s;
+    },
+    /** The live track so far set aside as the previous mission's, as when a new mission starts
+     *  (tracks.js); stream nav is ignored from now on. */
+    retireTrack() {
+      state.testFeed = true;
+      retireTrack(state.mission?.id ?? 0);
+      renderNow();
+      return state.previousTrack?.x.length ?? 0;
+    },
+    /** The REST catch-up, as after a reconnection or a gap in an event topic. */
+    catchUp: () => catchUp().then(() => true),
     /** The vehicle 0.5 s further into the synthetic turn: on the new heading at once (the
      *  instantaneous ray), 1 m to port of it. */
     turnNav() {
@@ -121,6 +144,16 @@ export function installTestHooks() {
       applyNav({ vehicle_id: state.vehicleId, link: 'LIVE', t_s: (n.t_s ?? 0) + 0.1, x_m: n.x_m, y_m: n.y_m, heading_deg: h, speed_mps: 0 }, true);
       renderNow();
       return h;
+    },
+    /** Stops taking the stream's navigation (as a tab too loaded to keep up: the link goes STALE);
+     *  releaseNav() takes it again. */
+    holdNav() {
+      state.testFeed = true;
+      return true;
+    },
+    releaseNav() {
+      state.testFeed = false;
+      return true;
     },
     trackLength: () => state.track.length,
     /** The last read of a mission's stored track ({missionId, rows, trackLength} right after it). */

@@ -1,6 +1,7 @@
 // A real `avk serve` for the Node tests (browser and interop): started on a free port, its URL
 // and control token read from what it prints, stopped with SIGTERM (SIGKILL if it hangs).
 
+import assert from 'node:assert/strict';
 import { spawn } from 'node:child_process';
 import { slow, sleep } from './wait.mjs';
 
@@ -52,4 +53,18 @@ export async function stopAvkServer(s) {
     s.child.kill('SIGKILL');
     await Promise.race([exited, sleep(3000)]);
   }
+}
+
+/** A REST request to server `s` under /api/v1 with its token; resolves to the answer's JSON (null
+ *  when empty) and fails naming the request and the status when it is not 2xx. */
+export async function apiRequest(s, pathname, { method = 'GET', body } = {}) {
+  const res = await fetch(`${s.base}/api/v1${pathname}`, {
+    method,
+    headers: { Authorization: `Bearer ${s.token}`, ...(body ? { 'Content-Type': 'application/json' } : {}) },
+    body: body ? JSON.stringify(body) : undefined,
+    signal: AbortSignal.timeout(slow(10000)),
+  });
+  const text = await res.text();
+  assert.ok(res.ok, `${method} ${pathname}: ${res.status} ${text}`);
+  return text ? JSON.parse(text) : null;
 }

@@ -303,3 +303,47 @@ test('without a token a read asks for it inline; once entered, reads and the str
     await context.close();
   }
 });
+
+test('a refused token is said to be refused, the bar stays, and another try with the right one works', { timeout: 120000 }, async () => {
+  const context = await browser.newContext();
+  try {
+    const p = await newPage(context);
+    const bar = () => p.evaluate(() => {
+      const b = document.getElementById('token-bar');
+      return { hidden: b.hidden, text: b.textContent.replace(/\s+/g, ' '), focus: document.activeElement?.id };
+    });
+    const refusedWith = (t) => p.waitForResponse((r) => r.status() === 401 && r.request().headers().authorization === `Bearer ${t}`, { timeout: 20000 });
+    // A wrong token in the address (a mistyped link): the first read is refused, and the page
+    // says it was this token, not that one is missing.
+    const wrong = `${'0'.repeat(31)}1`;
+    const firstRefusal = refusedWith(wrong);
+    await p.goto(`${base()}/?token=${wrong}#live`, { waitUntil: 'load', timeout: 20000 });
+    await firstRefusal;
+    const first = await until('the bar saying the token was refused', async () => {
+      const b = await bar();
+      return !b.hidden && /token refused/i.test(b.text) ? b : null;
+    }, 15000, 100);
+    assert.equal(first.focus, 'token-input');
+    // Another wrong one, entered in the bar: refused again, and the bar is still there for a third
+    // try (it used to go away on submit, leaving DISCONNECTED and no mission, nothing said why).
+    const secondRefusal = refusedWith('not-the-station-token');
+    await p.fill('#token-input', 'not-the-station-token');
+    await p.press('#token-input', 'Enter');
+    await secondRefusal;
+    const second = await until('the bar saying the second token was refused', async () => {
+      const b = await bar();
+      return !b.hidden && /token refused/i.test(b.text) && (await p.evaluate(() => document.getElementById('token-bar').dataset.refused)) === '2' ? b : null;
+    }, 15000, 100);
+    assert.equal(second.focus, 'token-input', 'the input keeps the focus for the next try');
+    assert.equal(await p.getAttribute('#token-input', 'aria-describedby'), 'token-state token-help', 'the input is described by what the bar says');
+    // The right one: taken, the bar goes, the page reads and streams.
+    await p.fill('#token-input', token);
+    await p.press('#token-input', 'Enter');
+    await p.waitForFunction((vid) => document.getElementById('vehicle-name')?.textContent.startsWith(vid), vehicleId, { timeout: 20000 });
+    await p.waitForFunction(() => document.getElementById('link-badge')?.textContent === 'LIVE', null, { timeout: 20000 });
+    await until('the bar gone once the token is taken', async () => (await bar()).hidden, 10000, 100);
+    assert.equal(await p.evaluate(() => sessionStorage.getItem('avk-token')), token);
+  } finally {
+    await context.close();
+  }
+});

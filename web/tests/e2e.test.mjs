@@ -133,8 +133,19 @@ test('an AVK corridor is drawn as one closed band: the left boundary, then the r
   assert.equal(t.fill, 'toself');
   assert.equal(t.visible, true);
   assert.equal(t.name, 'AVK 90 % corridor (3 turns)');
-  assert.deepEqual(t.x, [0, -0.5, -1, 1, 0.5, 0, 0]);
-  assert.deepEqual(t.y, [0, 1, 2, 2, 1, 0, 0]);
+  // A straight path north with a half width growing linearly: drawn sampled along the path (its
+  // width averaged over a window, which leaves a linear one as it is), from the start up the left
+  // boundary x = −y/2, across the end, down the right one x = y/2, and closed.
+  const pts = t.x.map((x, i) => [x, t.y[i]]);
+  const near = (p, q) => Math.hypot(p[0] - q[0], p[1] - q[1]) < 1e-9;
+  assert.ok(near(pts[0], [0, 0]) && near(pts.at(-1), [0, 0]), `from and back to the start: ${pts[0]}, ${pts.at(-1)}`);
+  const corner = (q) => pts.findIndex((p) => near(p, q));
+  assert.ok(corner([-1, 2]) > 0 && corner([1, 2]) === corner([-1, 2]) + 1, 'the end: left corner, then right corner');
+  pts.forEach(([x, y], i) => {
+    const onLeft = i <= corner([-1, 2]) && Math.abs(x + y / 2) < 1e-9;
+    const onRight = i >= corner([1, 2]) && Math.abs(x - y / 2) < 1e-9;
+    assert.ok((onLeft || onRight) && y >= -1e-9 && y <= 2 + 1e-9, `vertex ${i} (${x}, ${y}) on neither boundary`);
+  });
   assert.match(t.fillcolor, /^rgba\(0, 0, 0, 0\.\d+\)$/, 'the AVK colour (black), semi-transparent');
   assert.equal(corridorName({ share: 0.8, n_turns: 1 }), 'AVK 80 % corridor (1 turn)');
   // No corridor (a single turn, an imported table without corridors): nothing drawn, no legend entry.
@@ -640,11 +651,15 @@ test("the CKT cell plot draws the AVK prediction's corridor for a cell of ≥ 2 
     }, cell),
   15000, 250);
   assert.equal(band.name, `AVK 90 % corridor (${pred.corridor.n_turns} turns)`);
-  const ring = [...pred.corridor.left, ...[...pred.corridor.right].reverse(), pred.corridor.left[0]];
+  // The server's band as the page draws a band (js/corridor.js: the left boundary, the right one
+  // reversed, closed, sampled along the path), vertex for vertex.
+  const { corridorRing } = await import(pathToFileURL(path.join(webDir, 'js/corridor.js')).href);
+  const ring = corridorRing(pred.corridor);
   assert.equal(band.x.length, ring.length, 'the left boundary, the right one reversed, closed');
   ring.forEach((p, i) => {
     assert.ok(Math.abs(band.x[i] - p[0]) < 1e-9 && Math.abs(band.y[i] - p[1]) < 1e-9, `vertex ${i}: (${band.x[i]}, ${band.y[i]}) vs (${p[0]}, ${p[1]})`);
   });
+  assert.ok(Math.hypot(ring[0][0] - pred.corridor.left[0][0], ring[0][1] - pred.corridor.left[0][1]) < 1e-9, `it starts where the server's band does`);
   // The short-of-goal warning follows the prediction's flag.
   assert.equal(await page.isHidden('#ckt-cell-warning'), pred.short_of_goal !== true);
   await shot('ckt-corridor');
