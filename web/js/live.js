@@ -76,8 +76,10 @@ export function initLive() {
   const fit = el('button', { type: 'button', id: 'live-fit', class: 'png', text: 'Fit view', 'aria-label': 'Fit the live plot to the track' });
   fit.addEventListener('click', () => {
     uirevision++;
+    operatorAxes = null;
     request(true);
   });
+
   plotEl.parentElement.querySelector('.plot-buttons')?.prepend(fit);
   attachMap(plotEl, () => request(true));
   // The operator's override of the predictions' current and speed reference.
@@ -296,7 +298,7 @@ function renderPlot() {
   ];
   const layout = {
     ...baseLayout({ margin: { l: 56, r: 10, t: 40, b: 40 } }),
-    ...fittedAxes(traces.filter((t) => t !== previous && t !== grid)),
+    ...axesToDraw(traces.filter((t) => t !== previous && t !== grid)),
     uirevision,
     showlegend: true,
     images: mapImages(plotEl),
@@ -304,6 +306,25 @@ function renderPlot() {
   draw(plotEl, traces, layout, { scrollZoom: true });
   updateScaleBar(plotEl, scaleBarLength);
   renderTurnPlot(turn, { turnX, turnY, goalRay, band, preds: [pred('avk'), pred('model'), pred('instantaneous')], nav, faded });
+}
+
+let lastAxes = null; // the axes last given to Plotly
+let operatorAxes = null; // the fit held while the operator's zoom or pan stands
+
+let zoomBound = false;
+
+/** Plotly keeps a zoom across redraws only while the figure's own range stays the same, and the
+ *  fit moves with every sample: once the operator zooms or pans, the fit is held where it was (the
+ *  operator's view wins) until Fit view. Redraws by react() fire no relayout event. */
+function axesToDraw(traces) {
+  if (!zoomBound && plotEl.on) {
+    zoomBound = true;
+    plotEl.on('plotly_relayout', (e) => {
+      if (e && Object.keys(e).some((k) => k.startsWith('xaxis.') || k.startsWith('yaxis.'))) operatorAxes = lastAxes;
+    });
+  }
+  lastAxes = operatorAxes || fittedAxes(traces);
+  return lastAxes;
 }
 
 const FIT_MARGIN = 0.06; // of the larger span, each side
