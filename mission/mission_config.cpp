@@ -167,13 +167,7 @@ MissionConfig parse_mission_config(std::string_view json_text, double max_speed_
   }
   MissionConfig c;
   Reader root(doc, "", errors);
-  if (const json* name = root.get("name", true)) {
-    if (!name->is_string() || name->get<std::string>().empty()) {
-      root.error("/name", "expected a non-empty string");
-    } else {
-      c.name = name->get<std::string>();
-    }
-  }
+  root.text("name", c.name, true, kMaxMissionNameBytes);
   if (const json* kind = root.get("kind", false)) {
     if (*kind == "turns") {
       c.kind = MissionKind::turns;

@@ -138,6 +138,23 @@ TEST(MissionLimits, ValuesExactlyTheSpacingApartAreAccepted) {
   EXPECT_EQ(errors.size(), 1u);
 }
 
+// Regression: a 900 kB name was stored, and every list of missions then carried it.
+TEST(MissionLimits, TheNameIsBoundedAndTheErrorSaysTheLimit) {
+  json d = base_mission();
+  d["name"] = std::string(900000, 'n');
+  auto errors = errors_of(d.dump());
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_EQ(errors[0].field, "/name");
+  EXPECT_NE(errors[0].message.find("at most 256 bytes"), std::string::npos) << errors[0].message;
+  EXPECT_NE(errors[0].message.find("900000"), std::string::npos) << errors[0].message;
+  d["name"] = std::string(kMaxMissionNameBytes + 1, 'n');
+  EXPECT_TRUE(names(errors_of(d.dump()), "/name"));
+  d["name"] = "";
+  EXPECT_TRUE(names(errors_of(d.dump()), "/name"));
+  d["name"] = std::string(kMaxMissionNameBytes, 'n');
+  EXPECT_EQ(parse_mission_config(d.dump(), 2.0).name, std::string(256, 'n'));
+}
+
 TEST(MissionLimits, ARegionOfSixtyTwoThousandVerticesIsRefusedByItsCount) {
   // The region: before the limit, the pairwise simplicity check took 48 s on it.
   json d = base_mission();
