@@ -271,6 +271,22 @@ TEST(CliSim, VariabilityReportsTheCoefficientOfVariation) {
   EXPECT_NE(r.out.find("(CV "), std::string::npos);
 }
 
+// A vehicle id from the command line is bounded like every vehicle id, before anything runs.
+TEST(CliMission, AVehicleIdTooLongIsAUsageErrorNamingTheOption) {
+  const std::string id(65, 'v');
+  for (const auto& vehicle :
+       {std::vector<std::string>{"--sim"}, std::vector<std::string>{"--m200", "127.0.0.1:1"}}) {
+    std::vector<std::string> words{"mission",      "run",
+                                   "--config",     example("thesis-fig4-1.json"),
+                                   "--db",         "/nonexistent-avk-dir/x.db",
+                                   "--vehicle-id", id};
+    words.insert(words.end(), vehicle.begin(), vehicle.end());
+    const Result r = run(words);
+    EXPECT_EQ(r.rc, 2) << vehicle[0] << ": " << r.err;
+    EXPECT_NE(r.err.find("--vehicle-id must be at most 64 bytes"), std::string::npos) << r.err;
+  }
+}
+
 TEST(CliMission, ValidateNamesEveryProblem) {
   Result r = run({"mission", "validate", "--config",
                   std::string(AVK_SOURCE_DIR) + "/examples/thesis-fig4-1.json"});
