@@ -6,9 +6,12 @@
 
 #include "app/context.hpp"
 #include "kinematics/parse_error.hpp"
+#include "kinematics/text_limit.hpp"
 #include "kinematics/turn_text.hpp"
 #include "mission/helm_mode.hpp"
+#include "mission/mission_config.hpp"
 #include "store/store.hpp"
+#include "vehicle/vehicle.hpp"
 
 namespace avk::app {
 
@@ -165,7 +168,11 @@ std::string import_config(const AlogImportRequest& r) {
 
 Result<AlogImportReport> import_alog(Context& ctx, std::istream& log,
                                      const AlogImportRequest& request) {
-  if (request.vehicle_id.empty()) return invalid_argument("vehicle", "must not be empty");
+  if (const auto why = vehicle::vehicle_id_problem(request.vehicle_id))
+    return invalid_argument("vehicle", "the vehicle id " + *why);
+  if (const auto why =
+          kinematics::text_too_long(request.mission_name, mission::kMaxMissionNameBytes))
+    return invalid_argument("name", "the mission's name " + *why);
   store::Store& db = ctx.db();
   // The speed limit is not known until the log has been read; 0 says so meanwhile.
   const auto existing = db.get_vehicle(request.vehicle_id);

@@ -10,6 +10,8 @@
 #include "app/utc_time.hpp"
 #include "kinematics/ckt_file.hpp"
 #include "kinematics/number_text.hpp"
+#include "kinematics/text_limit.hpp"
+#include "vehicle/vehicle.hpp"
 
 namespace avk::app {
 
@@ -122,6 +124,8 @@ Result<kin::Ckt> ckt_for_export(Context& ctx, const std::string& vehicle_id,
 
 Result<ImportedTable> import_ckt(Context& ctx, const std::string& vehicle_id,
                                  const std::string& ckt_file_text) {
+  if (const auto why = vehicle::vehicle_id_problem(vehicle_id))
+    return invalid_argument("vehicle_id", "the vehicle id " + *why);
   kin::Ckt t;
   try {
     t = kin::parse_ckt_json(ckt_file_text);
@@ -131,6 +135,8 @@ Result<ImportedTable> import_ckt(Context& ctx, const std::string& vehicle_id,
   if (t.vehicle_id != vehicle_id)
     return invalid_argument("vehicle_id", "the file's table is for vehicle '" + t.vehicle_id +
                                               "', not '" + vehicle_id + "'");
+  if (const auto why = kin::text_too_long(t.created_utc, kMaxCreatedUtcBytes))
+    return invalid_argument("created_utc", "the file's created_utc " + *why);
   const auto id = ctx.db().save_ckt_snapshot(t, {});
   ctx.tables().forget(vehicle_id);
   return ImportedTable{id, vehicle_id};

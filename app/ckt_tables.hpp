@@ -94,7 +94,10 @@ Result<kinematics::Ckt> ckt_for_export(Context& ctx, const std::string& vehicle_
                                        bool include_harvested = false);
 
 // Parses a CKT file and stores it as the vehicle's imported table. invalid_argument naming
-// "body" when the file is not a CKT file or is another vehicle's; nothing is stored then.
+// "body" when the file is not a CKT file or is another vehicle's, "vehicle_id" for an id
+// vehicle::vehicle_id_problem refuses, "created_utc" for one longer than kMaxCreatedUtcBytes;
+// nothing is stored then.
+inline constexpr std::size_t kMaxCreatedUtcBytes = 64;
 struct ImportedTable {
   std::int64_t snapshot_id = 0;
   std::string vehicle_id;

@@ -51,9 +51,7 @@ EncounterScenario read_scenario(const json& v, const std::string& path, double f
   EncounterScenario s;
   s.standoff_m = file_standoff_m;
   mission::DocumentReader r(v, path, errors);
-  r.text("name", s.name, true);
-  if (r.ok() && v.contains("name") && v["name"].is_string() && s.name.empty())
-    r.error(r.at("name"), "must not be empty");
+  r.text("name", s.name, true, kMaxScenarioNameBytes);
   if (const json* own = r.get("own", true)) {
     mission::DocumentReader o(*own, r.at("own"), errors);
     o.number("heading_deg", s.own_heading_deg, -kMaxAngleDeg, kMaxAngleDeg, true);

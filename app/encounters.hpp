@@ -20,6 +20,9 @@ namespace avk::app {
 
 class Context;
 
+// A scenario's name names its rows in every result table.
+inline constexpr std::size_t kMaxScenarioNameBytes = 256;
+
 struct EncounterScenario {
   std::string name;
   double own_heading_deg = 0.0;  // own vehicle starts at the origin, steady

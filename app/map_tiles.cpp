@@ -31,12 +31,6 @@ constexpr ImageFormat kFormats[] = {{"png", "png", "image/png"},
                                     {"jpg", "jpeg", "image/jpeg"},
                                     {"webp", "webp", "image/webp"}};
 
-std::string media_type_of(const std::string& format) {
-  for (const auto& f : kFormats)
-    if (format == f.format) return f.media_type;
-  return "application/octet-stream";
-}
-
 std::string lower(std::string s) {
   std::transform(s.begin(), s.end(), s.begin(),
                  [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -74,10 +68,34 @@ std::string tile_name(int z, std::int64_t x, std::int64_t y) {
   return s;
 }
 
-MapTile tile_of(std::string bytes, const std::string& format) {
+Error no_tile(int z, std::int64_t x, std::int64_t y) {
+  return not_found("no map tile " + tile_name(z, x, y) + " in the station's tiles");
+}
+
+// A tile's bytes with the media type of their signature; not_found when they are no image a
+// browser draws (whatever the file's extension or the MBTiles format says).
+Result<MapTile> tile_of(std::string bytes, int z, std::int64_t x, std::int64_t y) {
   std::string type = sniff_image_type(bytes);
-  if (type.empty()) type = media_type_of(format);
+  if (type.empty())
+    return not_found("map tile " + tile_name(z, x, y) +
+                     " is not a PNG, JPEG or WebP image (by its signature); it is not served");
   return MapTile{std::move(bytes), std::move(type)};
+}
+
+// Whether a resolved path lies within the resolved root, compared by whole components
+// (/tiles2 is not within /tiles).
+bool inside(const fs::path& root, const fs::path& resolved) {
+  return std::mismatch(root.begin(), root.end(), resolved.begin(), resolved.end()).first ==
+         root.end();
+}
+
+// Whether a directory entry under the root stays in it: an entry that is not a link does (its
+// directory does); a link does when what it resolves to does.
+bool stays_inside(const fs::path& root, const fs::directory_entry& e) {
+  std::error_code ec;
+  if (!e.is_symlink(ec) && !ec) return true;
+  const fs::path resolved = fs::canonical(e.path(), ec);
+  return !ec && inside(root, resolved);
 }
 
 // ---------------------------------------------------------------- a folder {z}/{x}/{y}.ext
@@ -94,22 +112,33 @@ class FolderTiles final : public MapTiles {
   const MapTileInfo& info() const override { return info_; }
 
  protected:
-  // The path is made of the three parsed integers only: nothing a client sends can name a file
-  // outside the folder.
-  std::optional<MapTile> find(int z, std::int64_t x, std::int64_t y) const override {
+  // The path is made of the three parsed integers only, and what it resolves to (links followed)
+  // must lie within the folder: neither a request nor a link in the folder reaches a file
+  // outside it. The file read is the resolved one.
+  Result<MapTile> find(int z, std::int64_t x, std::int64_t y) const override {
     const fs::path dir = root_ / std::to_string(z) / std::to_string(x);
+    std::optional<Error> refused;
     for (const char* ext : extensions_) {
       const fs::path file = dir / (std::to_string(y) + "." + ext);
       std::error_code ec;
-      if (!fs::is_regular_file(file, ec)) continue;
-      std::ifstream in(file, std::ios::binary);
+      const fs::path resolved = fs::canonical(file, ec);
+      if (ec) continue;  // no such file (or a dangling link)
+      if (!inside(root_, resolved)) {
+        if (!refused)
+          refused = not_found("map tile " + tile_name(z, x, y) +
+                              " is a link that leaves the tile folder; it is not served");
+        continue;
+      }
+      if (!fs::is_regular_file(resolved, ec)) continue;
+      std::ifstream in(resolved, std::ios::binary);
       if (!in) continue;
       std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-      std::string format = ext;
-      if (format == "jpeg") format = "jpg";
-      return tile_of(std::move(bytes), format);
+      auto t = tile_of(std::move(bytes), z, x, y);
+      if (t) return t;
+      if (!refused) refused = t.error();
     }
-    return std::nullopt;
+    if (refused) return *refused;
+    return no_tile(z, x, y);
   }
 
  private:
@@ -133,10 +162,11 @@ std::vector<fs::directory_entry> entries(const fs::path& dir, std::size_t limit,
   return out;
 }
 
-// A tile file's row and format: "12.png" -> (12, "png").
-std::optional<std::pair<std::int64_t, std::string>> tile_file(const fs::directory_entry& e) {
+// A tile file's row and format: "12.png" -> (12, "png"); none for a link that leaves the root.
+std::optional<std::pair<std::int64_t, std::string>> tile_file(const fs::path& root,
+                                                              const fs::directory_entry& e) {
   std::error_code ec;
-  if (!e.is_regular_file(ec)) return std::nullopt;
+  if (!e.is_regular_file(ec) || !stays_inside(root, e)) return std::nullopt;
   const std::string ext = lower(e.path().extension().string());
   for (const auto& f : kFormats) {
     if (ext != std::string(".") + f.extension) continue;
@@ -157,7 +187,8 @@ Result<std::shared_ptr<const MapTiles>> open_folder(const std::string& path) {
   std::map<int, fs::path> levels;
   for (const auto& e : entries(root, 1000, cut)) {
     const auto z = whole_name(e.path().filename().string());
-    if (z && *z <= kMaxTileZoom && e.is_directory(ec)) levels[static_cast<int>(*z)] = e.path();
+    if (z && *z <= kMaxTileZoom && e.is_directory(ec) && stays_inside(root, e))
+      levels[static_cast<int>(*z)] = e.path();
   }
   // A level counts when it holds a tile; the format is the first tile's.
   std::string format;
@@ -165,9 +196,11 @@ Result<std::shared_ptr<const MapTiles>> open_folder(const std::string& path) {
   for (const auto& [z, dir] : levels) {
     bool found = false;
     for (const auto& column : entries(dir, kScanLimit, cut)) {
-      if (!whole_name(column.path().filename().string()) || !column.is_directory(ec)) continue;
+      if (!whole_name(column.path().filename().string()) || !column.is_directory(ec) ||
+          !stays_inside(root, column))
+        continue;
       for (const auto& file : entries(column.path(), kScanLimit, cut)) {
-        if (const auto t = tile_file(file)) {
+        if (const auto t = tile_file(root, file)) {
           if (format.empty()) format = t->second;
           found = true;
           break;
@@ -194,9 +227,9 @@ Result<std::shared_ptr<const MapTiles>> open_folder(const std::string& path) {
   const std::int64_t n = std::int64_t{1} << info.max_zoom;
   for (const auto& column : entries(levels.at(info.max_zoom), kScanLimit, cut)) {
     const auto x = whole_name(column.path().filename().string());
-    if (!x || *x >= n || !column.is_directory(ec)) continue;
+    if (!x || *x >= n || !column.is_directory(ec) || !stays_inside(root, column)) continue;
     for (const auto& file : entries(column.path(), kScanLimit, cut)) {
-      const auto t = tile_file(file);
+      const auto t = tile_file(root, file);
       if (!t || t->first >= n) continue;
       x0 = std::min(x0, *x);
       x1 = std::max(x1, *x);
@@ -223,11 +256,11 @@ class MbtilesTiles final : public MapTiles {
 
  protected:
   // MBTiles stores rows in the TMS scheme, counted from the south (spec 1.3).
-  std::optional<MapTile> find(int z, std::int64_t x, std::int64_t y) const override {
+  Result<MapTile> find(int z, std::int64_t x, std::int64_t y) const override {
     const std::int64_t row = (std::int64_t{1} << z) - 1 - y;
     auto bytes = reader_->tile(z, x, row);
-    if (!bytes) return std::nullopt;
-    return tile_of(std::move(*bytes), info_.format);
+    if (!bytes) return no_tile(z, x, y);
+    return tile_of(std::move(*bytes), z, x, y);
   }
 
  private:
@@ -333,9 +366,7 @@ Result<MapTile> MapTiles::tile(int z, std::int64_t x, std::int64_t y) const {
       "must be from 0 to " + std::to_string(n - 1) + " at zoom " + std::to_string(z) + ", got ";
   if (x < 0 || x >= n) return invalid_argument("x", within + std::to_string(x));
   if (y < 0 || y >= n) return invalid_argument("y", within + std::to_string(y));
-  auto t = find(z, x, y);
-  if (!t) return not_found("no map tile " + tile_name(z, x, y) + " in the station's tiles");
-  return std::move(*t);
+  return find(z, x, y);
 }
 
 Result<std::shared_ptr<const MapTiles>> open_map_tiles(const std::string& path) {

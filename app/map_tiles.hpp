@@ -4,6 +4,12 @@
 // slippy-map tiles `{z}/{x}/{y}.png` (or .jpg, .jpeg, .webp) in the XYZ scheme (Web Mercator, y
 // from the north), or an MBTiles file. Either is served the same way: tiles by XYZ coordinates
 // with their media type, and what the page needs to choose them (zoom levels, bounds).
+//
+// The tiles are requests from outside reading the station's disk, so a folder is confined: every
+// path is resolved (links followed) and must stay within the folder's own resolved path, so a
+// link to /etc/passwd or to the station's token file serves nothing; a link within the folder
+// (one tile standing for another) is followed. And nothing is served that is not an image: the
+// media type is the image's signature, never the file's extension.
 
 #include <array>
 #include <cstdint>
@@ -39,11 +45,14 @@ class MapTiles {
   virtual ~MapTiles() = default;
   virtual const MapTileInfo& info() const = 0;
   // The tile at XYZ (z, x, y). invalid_argument (field "z", "x" or "y") for an address outside
-  // the scheme, not_found when the source has no such tile. Safe to call from many threads.
+  // the scheme; not_found, saying why, when the source has no such tile or holds one it does not
+  // serve: a file that is no PNG, JPEG or WebP image by its signature, or (a folder) a link that
+  // leaves the folder. Safe to call from many threads.
   Result<MapTile> tile(int z, std::int64_t x, std::int64_t y) const;
 
  protected:
-  virtual std::optional<MapTile> find(int z, std::int64_t x, std::int64_t y) const = 0;
+  // The tile at an address in the scheme, or not_found as above.
+  virtual Result<MapTile> find(int z, std::int64_t x, std::int64_t y) const = 0;
 };
 
 // Opens a folder or an MBTiles file, checking it holds raster tiles: invalid_argument (field

@@ -10,6 +10,7 @@
 #include "app/foxglove_channels.hpp"
 #include "app/foxglove_messages.hpp"
 #include "app/foxglove_scene.hpp"
+#include "app/imported_text.hpp"
 #include "app/mcap_reader.hpp"
 #include "kinematics/angles.hpp"
 #include "kinematics/turn_json.hpp"
@@ -773,6 +774,7 @@ Result<McapImport> import_mission_mcap(Context& ctx, std::string_view bytes) {
     return invalid_argument("file", e.what());
   }
   store::MissionImport& d = r.data;
+  if (auto text = check_imported_text(d); !text) return text.error();
   if (d.current && current_is_significant(d.current->estimate)) {
     // The water-frame form is derived, as the station derives it when it stores the estimate.
     std::vector<std::pair<std::int64_t, kin::TurnSequence>> ok;

@@ -7,6 +7,7 @@
 // fraction of arc length (never by averaging y at equal x across different heading changes), so
 // an interpolated turn ends on the requested heading.
 
+#include <cmath>
 #include <cstddef>
 #include <optional>
 #include <stdexcept>
@@ -53,6 +54,15 @@ struct CktOptions {
   double dheading_match_deg = 0.5;
   friend bool operator==(const CktOptions&, const CktOptions&) = default;
 };
+
+// Whether two values (speeds, heading changes) fall in one cell at a match tolerance: when they
+// are closer than it. Values the tolerance itself apart, as a mission may plan them, are two cells
+// however their decimals round in binary (1.15 - 1.1 is 0.04999999999999982 as doubles, 1.05 - 1.0
+// is 0.05000000000000004): the comparison allows 1e-9 for that rounding.
+inline bool within_match(double a, double b, double match) {
+  constexpr double kRounding = 1e-9;
+  return std::abs(a - b) < match - kRounding;
+}
 
 struct CktGrid {
   std::vector<double> speeds_mps;     // ascending

@@ -91,9 +91,9 @@ std::vector<SpeedChangeCellScores> compare_speed_changes(
     const double d = std::abs(m.goal_dheading_deg);
     std::size_t k = 0;
     while (k < cells.size() &&
-           !(std::abs(cells[k].from_mps - m.commanded_speed_mps) <= options.speed_match_mps &&
-             std::abs(cells[k].to_mps - *m.speed_after_mps) <= options.speed_match_mps &&
-             std::abs(cells[k].dheading_deg - d) <= options.dheading_match_deg))
+           !(within_match(cells[k].from_mps, m.commanded_speed_mps, options.speed_match_mps) &&
+             within_match(cells[k].to_mps, *m.speed_after_mps, options.speed_match_mps) &&
+             within_match(cells[k].dheading_deg, d, options.dheading_match_deg)))
       ++k;
     if (k == cells.size()) {
       SpeedChangeCellScores c;

@@ -15,8 +15,8 @@ SpeedChangeTable SpeedChangeTable::build(const std::vector<TurnSequence>& turns,
     if (m.status != TurnStatus::ok || !m.speed_after_mps) continue;
     std::size_t k = 0;
     while (k < out.pairs_.size() &&
-           !(std::abs(out.pairs_[k].from_mps - m.commanded_speed_mps) <= options.speed_match_mps &&
-             std::abs(out.pairs_[k].to_mps - *m.speed_after_mps) <= options.speed_match_mps))
+           !(within_match(out.pairs_[k].from_mps, m.commanded_speed_mps, options.speed_match_mps) &&
+             within_match(out.pairs_[k].to_mps, *m.speed_after_mps, options.speed_match_mps)))
       ++k;
     if (k == out.pairs_.size()) {
       out.pairs_.push_back({m.commanded_speed_mps, *m.speed_after_mps, Ckt{}});

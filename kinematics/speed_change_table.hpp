@@ -21,7 +21,7 @@ struct SpeedChangeCells {
 class SpeedChangeTable {
  public:
   // From the ok turns that carry TurnMeta::speed_after_mps (others are left out). Pairs closer
-  // than the options' speed_match_mps in both speeds are one pair.
+  // than the options' speed_match_mps in both speeds are one pair (within_match).
   static SpeedChangeTable build(const std::vector<TurnSequence>& turns,
                                 const CktOptions& options = {});
 

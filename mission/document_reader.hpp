@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "kinematics/geometry.hpp"
+#include "kinematics/text_limit.hpp"
 #include "mission/mission_config.hpp"
 
 namespace avk::mission {
@@ -69,11 +70,16 @@ class DocumentReader {
     target = static_cast<int>(v->get<long long>());
   }
 
-  void text(const char* key, std::string& target, bool required = false) {
+  // Free text is always bounded (kinematics/text_limit.hpp); it must not be empty when required.
+  void text(const char* key, std::string& target, bool required, std::size_t max_bytes) {
     const nlohmann::json* v = get(key, required);
     if (!v) return;
-    if (!v->is_string()) {
-      error(at(key), "expected a string");
+    if (!v->is_string() || (required && v->get_ref<const std::string&>().empty())) {
+      error(at(key), required ? "expected a non-empty string" : "expected a string");
+      return;
+    }
+    if (const auto why = kinematics::text_too_long(v->get_ref<const std::string&>(), max_bytes)) {
+      error(at(key), *why);
       return;
     }
     target = v->get<std::string>();

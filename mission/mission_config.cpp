@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <set>
 
+#include "kinematics/ckt.hpp"
 #include "kinematics/json_parse.hpp"
 #include "mission/document_reader.hpp"
 
@@ -77,9 +78,10 @@ std::vector<double> number_list(Reader& r, const char* key, double min, double m
       continue;
     }
     // A value within the table's cell tolerance of an earlier one collects the same cell twice
-    // and makes the resumed count of a cell ambiguous.
+    // and makes the resumed count of a cell ambiguous; one exactly the spacing apart is another
+    // cell (the comparison the cells are matched with, mission/turn_plan.hpp).
     for (std::size_t j = 0; j < out.size(); ++j) {
-      if (std::abs(out[j] - d) < min_spacing) {
+      if (kinematics::within_match(out[j], d, min_spacing)) {
         r.error(f, "duplicates an earlier value (" + json(out[j]).dump() + " " + unit +
                        "; values must be at least " + json(min_spacing).dump() + " " + unit +
                        " apart)");
@@ -115,14 +117,14 @@ std::vector<SpeedChange> speed_change_list(Reader& r, double vmax) {
     e.number("from_mps", c.from_mps, 0.0, vmax, true, true);
     e.number("to_mps", c.to_mps, 0.0, vmax, true, true);
     e.finish();
-    if (errors.empty() && std::abs(c.from_mps - c.to_mps) < kMinSpeedSpacingMps) {
+    if (errors.empty() && kinematics::within_match(c.from_mps, c.to_mps, kMinSpeedSpacingMps)) {
       errors.push_back({f + "/to_mps", "must differ from from_mps by at least " +
                                            json(kMinSpeedSpacingMps).dump() +
                                            " m/s (a constant-speed turn belongs in speeds_mps)"});
     }
     for (std::size_t j = 0; errors.empty() && j < out.size(); ++j) {
-      if (std::abs(out[j].from_mps - c.from_mps) < kMinSpeedSpacingMps &&
-          std::abs(out[j].to_mps - c.to_mps) < kMinSpeedSpacingMps) {
+      if (kinematics::within_match(out[j].from_mps, c.from_mps, kMinSpeedSpacingMps) &&
+          kinematics::within_match(out[j].to_mps, c.to_mps, kMinSpeedSpacingMps)) {
         errors.push_back({f, "duplicates entry " + std::to_string(j)});
       }
     }
@@ -165,13 +167,7 @@ MissionConfig parse_mission_config(std::string_view json_text, double max_speed_
   }
   MissionConfig c;
   Reader root(doc, "", errors);
-  if (const json* name = root.get("name", true)) {
-    if (!name->is_string() || name->get<std::string>().empty()) {
-      root.error("/name", "expected a non-empty string");
-    } else {
-      c.name = name->get<std::string>();
-    }
-  }
+  root.text("name", c.name, true, kMaxMissionNameBytes);
   if (const json* kind = root.get("kind", false)) {
     if (*kind == "turns") {
       c.kind = MissionKind::turns;

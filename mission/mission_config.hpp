@@ -31,6 +31,9 @@ inline constexpr std::size_t kMaxMissionYawRates = 9;
 inline constexpr std::size_t kMaxPlannedTurns = 2000;  // speeds x dheadings x yaw rates x repeats
 inline constexpr std::size_t kMaxRegionVertices = 256;
 inline constexpr double kMaxRegionExtentM = 10000.0;  // each side of the bounding box
+// The name is listed with every mission (GET /missions, the dashboard's tables): at most this
+// many bytes of UTF-8, which holds any file name (255) an import takes it from.
+inline constexpr std::size_t kMaxMissionNameBytes = 256;
 // Two speeds (heading changes) closer than this would fill the same table cell: a duplicate.
 inline constexpr double kMinSpeedSpacingMps = 0.05;
 inline constexpr double kMinDheadingSpacingDeg = 0.5;

@@ -50,16 +50,16 @@ std::vector<TurnTask> plan_turns(const MissionConfig& config) {
 bool same_cell(double speed_a_mps, double dheading_a_deg, double speed_b_mps,
                double dheading_b_deg) {
   const kinematics::CktOptions tolerances;
-  return std::abs(speed_a_mps - speed_b_mps) <= tolerances.speed_match_mps &&
-         std::abs(std::abs(dheading_a_deg) - std::abs(dheading_b_deg)) <=
-             tolerances.dheading_match_deg;
+  return kinematics::within_match(speed_a_mps, speed_b_mps, tolerances.speed_match_mps) &&
+         kinematics::within_match(std::abs(dheading_a_deg), std::abs(dheading_b_deg),
+                                  tolerances.dheading_match_deg);
 }
 
 bool same_cell(double speed_a_mps, std::optional<double> speed_after_a_mps, double dheading_a_deg,
                double speed_b_mps, std::optional<double> speed_after_b_mps, double dheading_b_deg) {
   if (speed_after_a_mps.has_value() != speed_after_b_mps.has_value()) return false;
-  if (speed_after_a_mps &&
-      std::abs(*speed_after_a_mps - *speed_after_b_mps) > kinematics::CktOptions{}.speed_match_mps)
+  if (speed_after_a_mps && !kinematics::within_match(*speed_after_a_mps, *speed_after_b_mps,
+                                                     kinematics::CktOptions{}.speed_match_mps))
     return false;
   return same_cell(speed_a_mps, dheading_a_deg, speed_b_mps, dheading_b_deg);
 }

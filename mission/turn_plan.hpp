@@ -42,7 +42,8 @@ struct CellCount {
 std::vector<TurnTask> remaining_turns(const std::vector<TurnTask>& plan,
                                       const std::vector<CellCount>& done);
 
-// Cells are matched with the same tolerances the CKT uses.
+// Cells are matched with the same tolerances the CKT uses (kinematics::within_match): values a
+// mission's spacing apart (0.05 m/s, 0.5 deg) are two cells.
 bool same_cell(double speed_a_mps, double dheading_a_deg, double speed_b_mps,
                double dheading_b_deg);
 // Also the speed after: a speed-change cell is never a constant-speed one.

@@ -8,6 +8,7 @@
 
 #include "kinematics/json_parse.hpp"
 #include "kinematics/parse_error.hpp"
+#include "vehicle/vehicle.hpp"
 
 namespace avk::sim {
 
@@ -129,7 +130,10 @@ SimSetup parse_sim_config(std::string_view json_text, const std::string& default
     fail("/vehicle", e.what());
   }
   SimVehicleConfig& v = s.vehicle;
-  if (const auto id = root.string("vehicle_id")) v.id = *id;
+  if (const auto id = root.string("vehicle_id")) {
+    if (const auto why = vehicle::vehicle_id_problem(*id)) fail("/vehicle_id", *why);
+    v.id = *id;
+  }
   root.object("ticks_hz", [&](ObjectReader& r) {
     r.number("plant", v.plant_hz, 0.1, 1000.0);
     r.number("controller", v.controller_hz, 0.1, 1000.0);

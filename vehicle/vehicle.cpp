@@ -4,8 +4,18 @@
 #include <stdexcept>
 
 #include "kinematics/angles.hpp"
+#include "kinematics/text_limit.hpp"
 
 namespace avk::vehicle {
+
+std::optional<std::string> vehicle_id_problem(std::string_view id) {
+  if (id.empty()) return "must not be empty";
+  if (auto why = kinematics::text_too_long(id, kMaxVehicleIdBytes)) return why;
+  for (const char c : id)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f)
+      return std::string("must not hold control characters");
+  return std::nullopt;
+}
 
 const char* to_string(LinkState s) {
   switch (s) {

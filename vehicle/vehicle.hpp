@@ -9,6 +9,13 @@
 
 namespace avk::vehicle {
 
+// A vehicle id names the vehicle in every list, stream topic and file name the station makes.
+inline constexpr std::size_t kMaxVehicleIdBytes = 64;
+// What is wrong with a vehicle id from outside (a config, an option, an imported file): empty,
+// longer than kMaxVehicleIdBytes, or holding a control character (it goes into headers, CSV and
+// log lines). A phrase to follow the id's name ("must not be empty"); none when it will do.
+std::optional<std::string> vehicle_id_problem(std::string_view id);
+
 // One navigation report (MOOS NAV_*). Local grid: x east, y north, metres; heading degrees
 // clockwise from north in [0, 360); speed over ground m/s.
 struct NavSample {

@@ -1,5 +1,6 @@
 #include "server/cli/args.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 
@@ -8,6 +9,10 @@ namespace avk::server {
 Args::Args(const std::vector<std::string>& words, const std::set<std::string>& value_options,
            const std::set<std::string>& flag_options,
            const std::set<std::string>& repeatable_options) {
+  // Help wins over every other word, even one that is wrong: it is what a puzzled user types.
+  if (std::any_of(words.begin(), words.end(),
+                  [](const std::string& w) { return w == "--help" || w == "-h"; }))
+    throw HelpRequested{};
   for (std::size_t i = 0; i < words.size(); ++i) {
     const std::string& w = words[i];
     if (w.rfind("--", 0) != 0 || w == "-") {

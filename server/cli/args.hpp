@@ -15,10 +15,15 @@ class UsageError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Thrown when a command's words hold --help or -h: the answer is the command's usage (exit 0).
+// Not a std::exception, so that no handler's catch of failures takes it for one.
+struct HelpRequested {};
+
 class Args {
  public:
-  // value_options take a value; flag_options do not. Anything else starting with "--" is an error;
-  // other words are positional.
+  // value_options take a value; flag_options do not. --help or -h anywhere throws HelpRequested
+  // (before any other word is looked at); anything else starting with "--" is an error; other
+  // words are positional.
   // repeatable_options may be given more than once (`--mission 1 --mission 2`).
   Args(const std::vector<std::string>& words, const std::set<std::string>& value_options,
        const std::set<std::string>& flag_options = {},

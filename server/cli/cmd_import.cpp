@@ -56,8 +56,8 @@ int import_alog(const std::vector<std::string>& rest, Io& io) {
   options.condition_set.max_yaw_rate_dps =
       positive(a, "max-yaw-rate", options.condition_set.max_yaw_rate_dps);
   const std::filesystem::path file(path);
+  // The use case checks the id (and says so naming --vehicle's field).
   const std::string vehicle_id = a.get("vehicle").value_or(file.stem().string());
-  if (vehicle_id.empty()) throw UsageError("--vehicle must not be empty");
 
   std::error_code ec;
   std::ifstream in;

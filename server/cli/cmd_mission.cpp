@@ -247,7 +247,7 @@ int run(const std::vector<std::string>& rest, Io& io) {
     info = vehicle::m200_info(spec.m200->config);
   } else {
     spec.setup = sim_setup_from(a, io);
-    spec.setup.vehicle.id = a.get("vehicle-id").value_or("sim-" + spec.setup.vehicle.kind);
+    spec.setup.vehicle.id = vehicle_id_option(a, "sim-" + spec.setup.vehicle.kind);
     info = {spec.setup.vehicle.id, spec.setup.vehicle.kind, spec.setup.vehicle_max_speed_mps(),
             std::nullopt};
   }

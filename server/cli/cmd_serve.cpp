@@ -8,12 +8,10 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <ostream>
 #include <random>
 #include <ranges>
@@ -27,6 +25,7 @@
 #include "server/cli/sim_options.hpp"
 #include "server/http/http_server.hpp"
 #include "server/station.hpp"
+#include "server/token_strength.hpp"
 #include "store/store.hpp"
 
 namespace avk::server {
@@ -54,29 +53,10 @@ std::string random_token() {
   return t;
 }
 
-// A token an operator chose must be as hard to guess as the one we would generate (128 bits of
-// hex): at least 32 characters of a header-safe alphabet, and an estimated entropy (the
-// characters' own frequencies, times the length) of at least 96 bits, which rules out repeats
-// and short alphabets ("aaaa...", "abab...").
+// A token an operator chose must be as hard to guess as the one we would generate
+// (server/token_strength.hpp).
 void check_user_token(const std::string& token) {
-  if (token.size() < 32)
-    throw UsageError("--token must be at least 32 characters (it has " +
-                     std::to_string(token.size()) + "); leave it out to have one generated");
-  std::map<char, std::size_t> counts;
-  for (const char c : token) {
-    const bool safe = std::isalnum(static_cast<unsigned char>(c)) != 0 ||
-                      std::string_view("-._~+/=").find(c) != std::string_view::npos;
-    if (!safe) throw UsageError("--token may hold only letters, digits and - . _ ~ + / =");
-    ++counts[c];
-  }
-  double bits = 0.0;
-  for (const auto& [c, n] : counts) {
-    const double p = static_cast<double>(n) / static_cast<double>(token.size());
-    bits -= static_cast<double>(n) * std::log2(p);
-  }
-  if (bits < 96.0)
-    throw UsageError("--token is too predictable (about " + std::to_string(static_cast<int>(bits)) +
-                     " bits; at least 96 needed): use more varied characters, or leave it out");
+  if (const auto why = token_weakness(token)) throw UsageError("--token " + *why);
 }
 
 // The token lives beside the database, readable by its owner only, so a restart keeps the

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "server/serialize.hpp"
+#include "vehicle/vehicle.hpp"
 
 namespace avk::server {
 
@@ -82,6 +83,12 @@ std::string vehicle_of(const Args& a, store::Store& db, const std::vector<std::i
                      option);
   }
   return *vehicles.begin();
+}
+
+std::string vehicle_id_option(const Args& a, const std::string& fallback) {
+  const std::string id = a.get("vehicle-id").value_or(fallback);
+  if (const auto why = vehicle::vehicle_id_problem(id)) throw UsageError("--vehicle-id " + *why);
+  return id;
 }
 
 }  // namespace avk::server

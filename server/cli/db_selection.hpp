@@ -35,6 +35,10 @@ CurrentOption current_option(const Args& a, bool allow_live = true);
 // ground); none when absent. UsageError for anything else.
 std::optional<bool> speed_reference_option(const Args& a);
 
+// --vehicle-id: the id a vehicle is stored under (vehicle::vehicle_id_problem), else a
+// UsageError naming the option; `fallback` when absent.
+std::string vehicle_id_option(const Args& a, const std::string& fallback);
+
 // Every --mission, each a positive whole number (UsageError otherwise); empty: all missions.
 std::vector<std::int64_t> mission_ids(const Args& a);
 

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "server/cli/db_selection.hpp"
+
 namespace avk::server {
 
 std::optional<vehicle::LatLon> datum_from(const Args& a) {
@@ -36,7 +38,7 @@ std::optional<vehicle::M200Options> m200_options_from(const Args& a) {
     if (!(*hz >= 1.0 && *hz <= 100.0)) throw UsageError("--controller-hz must be in [1, 100]");
     o.config.controller_hz = *hz;
   }
-  o.config.id = a.get("vehicle-id").value_or("m200");
+  o.config.id = vehicle_id_option(a, "m200");
   return o;
 }
 

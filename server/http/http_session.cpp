@@ -174,6 +174,10 @@ std::optional<http::message_generator> HttpSession::check_header() {
   const auto target = split_target(req.target());
   std::string path = percent_decode(target.path, false);
 
+  // Two Host fields leave the target ambiguous (a proxy may route by one while this server checks
+  // the other): RFC 9112 §3.2 requires a 400, on every path including the stream's upgrade.
+  if (req.count(http::field::host) > 1)
+    return refuse(http::status::bad_request, "more than one Host header");
   // DNS rebinding: a page of evil.example re-pointed at 127.0.0.1 sends Host: evil.example.
   const auto host = req[http::field::host];
   if (host.empty()) {

@@ -27,15 +27,20 @@ std::string small_log() {
   return log;
 }
 
+// The import of test.alog as the vehicle's.
+app::AlogImportRequest request_for(const std::string& vehicle_id) {
+  app::AlogImportRequest r;
+  r.source = "test.alog";
+  r.mission_name = "test.alog";
+  r.vehicle_id = vehicle_id;
+  return r;
+}
+
 TEST(AlogImport, StoresTheNavigationAsAFinishedMissionAndNamesBadLines) {
   avk::testing::TempDb db("avk_app_alog");
   app::Context ctx(db.path());
   std::istringstream in(small_log());
-  app::AlogImportRequest r;
-  r.source = "test.alog";
-  r.mission_name = "test.alog";
-  r.vehicle_id = "kf";
-  const auto report = app::import_alog(ctx, in, r);
+  const auto report = app::import_alog(ctx, in, request_for("kf"));
   ASSERT_TRUE(report) << report.error().message;
   EXPECT_EQ(report->nav_stored, 40u);
   EXPECT_EQ(report->malformed.count, 1u);
@@ -62,6 +67,21 @@ TEST(AlogImport, WithoutAVehicleNothingIsStored) {
   ASSERT_FALSE(report);
   EXPECT_EQ(report.error().field, "vehicle");
   EXPECT_TRUE(ctx.db().list_missions().empty());
+}
+
+// The vehicle id (--vehicle, else the file's stem) is bounded like every vehicle id.
+TEST(AlogImport, AVehicleIdTooLongIsRefusedNamingTheLimit) {
+  avk::testing::TempDb db("avk_app_alog");
+  app::Context ctx(db.path());
+  std::istringstream in(small_log());
+  const auto r = request_for(std::string(65, 'v'));
+  const auto report = app::import_alog(ctx, in, r);
+  ASSERT_FALSE(report);
+  EXPECT_EQ(report.error().field, "vehicle");
+  EXPECT_NE(report.error().message.find("at most 64 bytes"), std::string::npos)
+      << report.error().message;
+  EXPECT_TRUE(ctx.db().list_missions().empty());
+  EXPECT_FALSE(ctx.db().get_vehicle(r.vehicle_id));
 }
 
 }  // namespace

@@ -9,6 +9,8 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <tuple>
+#include <utility>
 
 #include "app/map_tiles.hpp"
 #include "store/sqlite.hpp"
@@ -216,6 +218,86 @@ TEST(MapTiles, WhatIsNotATileSourceIsRefusedNamingThePath) {
         "tile_data BLOB)");
   }
   expect_refused(empty.path(), "holds no tiles");
+}
+
+// Regression: `ln -s /etc/passwd tiles/1/0/0.png` served /etc/passwd as image/png, and a link to
+// the station's token file served the token. Links are resolved and must stay in the folder;
+// one within the folder is followed.
+TEST(MapTiles, ALinkThatLeavesTheFolderServesNothing) {
+  TempDir base("avk_tiles_links");
+  base.write("tiles/1/0/0.png", kPng);
+  base.write("station.db.token", "0123456789abcdef-secret-token\n");
+  base.write("secret.png", kPng + "SECRET");
+  base.write("outside/0/0.png", kPng + "SECRET");
+  const fs::path tiles = base.path() / "tiles";
+  fs::create_directories(tiles / "1/1");
+  fs::create_symlink(base.path() / "station.db.token", tiles / "1/1/0.png");
+  fs::create_symlink("../../../secret.png", tiles / "1/1/1.png");  // relative, still outside
+  fs::create_symlink("/etc/passwd", tiles / "1/0/1.png");
+  fs::create_symlink(base.path() / "outside", tiles / "4");  // a whole level outside
+  fs::create_directories(tiles / "3/0");
+  fs::create_symlink("../../1/0/0.png", tiles / "3/0/0.png");  // within the folder
+  // A folder reached by a link of its own is confined to where the link leads.
+  fs::create_symlink(tiles, base.path() / "tiles-link");
+
+  for (const fs::path& root : {tiles, base.path() / "tiles-link"}) {
+    const auto opened = open_map_tiles(root.string());
+    ASSERT_TRUE(opened) << opened.error().message;
+    const auto& t = **opened;
+    EXPECT_EQ(t.info().max_zoom, 3) << "the level outside is not one of the folder's";
+    for (const auto& [z, x, y] :
+         {std::tuple{1, 1, 0}, std::tuple{1, 1, 1}, std::tuple{1, 0, 1}, std::tuple{4, 0, 0}}) {
+      const auto r = t.tile(z, x, y);
+      ASSERT_FALSE(r) << z << "/" << x << "/" << y << " served " << r->bytes;
+      EXPECT_EQ(r.error().code, ErrorCode::not_found);
+      EXPECT_NE(r.error().message.find("leaves the tile folder"), std::string::npos)
+          << r.error().message;
+    }
+    const auto within = t.tile(3, 0, 0);
+    ASSERT_TRUE(within) << within.error().message;
+    EXPECT_EQ(within->bytes, kPng);
+  }
+}
+
+// Regression: a file with no image signature was served with the type of its extension.
+TEST(MapTiles, AFileThatIsNoImageIsNotServed) {
+  TempDir dir("avk_tiles_not_images");
+  dir.write("1/0/0.png", kPng);
+  dir.write("1/0/1.png", "root:x:0:0:root:/root:/bin/bash\n");
+  dir.write("1/1/0.jpg", "GIF89a not a format the page draws");
+  dir.write("1/1/1.webp", "");
+  // A JPEG named .png is served as what it is.
+  dir.write("2/0/2.png", kJpeg);
+  const auto tiles = open_map_tiles(dir.path().string());
+  ASSERT_TRUE(tiles) << tiles.error().message;
+  for (const auto& [x, y] : {std::pair{0, 1}, std::pair{1, 0}, std::pair{1, 1}}) {
+    const auto r = (*tiles)->tile(1, x, y);
+    ASSERT_FALSE(r) << x << "/" << y << " served as " << r->media_type;
+    EXPECT_EQ(r.error().code, ErrorCode::not_found);
+    EXPECT_NE(r.error().message.find("not a PNG, JPEG or WebP image"), std::string::npos)
+        << r.error().message;
+  }
+  const auto jpeg = (*tiles)->tile(2, 0, 2);
+  ASSERT_TRUE(jpeg) << jpeg.error().message;
+  EXPECT_EQ(jpeg->media_type, "image/jpeg");
+}
+
+TEST(MapTiles, AnMbtilesTileThatIsNoImageIsNotServed) {
+  avk::testing::TempDb db("avk_tiles_mbtiles_text");
+  make_mbtiles(db.path(), "png");
+  {
+    avk::store::Connection c(db.path());
+    auto put = c.prepare("INSERT INTO tiles VALUES (?1, ?2, ?3, ?4)");
+    const std::string text = "not an image";
+    put.bind(1, 16).bind(2, 19808).bind(3, (1 << 16) - 1 - 24185);
+    put.bind_blob(4, {reinterpret_cast<const unsigned char*>(text.data()), text.size()});
+    put.run();
+  }
+  const auto tiles = open_map_tiles(db.path());
+  ASSERT_TRUE(tiles) << tiles.error().message;
+  const auto r = (*tiles)->tile(16, 19808, 24185);
+  ASSERT_FALSE(r) << "served as " << r->media_type;
+  EXPECT_NE(r.error().message.find("not a PNG, JPEG or WebP image"), std::string::npos);
 }
 
 TEST(MapTiles, ImagesAreToldByTheirSignature) {

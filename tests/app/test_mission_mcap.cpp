@@ -547,4 +547,51 @@ TEST_F(MissionMcapTest, FilesNotWrittenByTheStationAreRefusedWithTheReason) {
   EXPECT_EQ(count_rows(target.path(), "missions"), 0);
 }
 
+// Regression: a mission's name had no limit (a 900 kB one was stored and listed). An imported
+// recording's free text is bounded like the station's own input, naming the record and field.
+TEST_F(MissionMcapTest, FreeTextTooLongIsRefusedNamingTheRecordAndTheLimit) {
+  avk::testing::TempDb target("avk_mcap_text");
+  app::Context to(target.path());
+  (void)to.db();
+  const std::string good = exported().bytes;
+  const auto with_entry = [&](const char* record, const char* key, std::string value) {
+    return rewritten(good, [&](app::mcap::McapContents& c) {
+      for (auto& m : c.metadata)
+        if (m.name == record) m.entries.insert_or_assign(key, value);
+    });
+  };
+  struct Case {
+    std::string bytes;
+    std::string expected;
+  };
+  const std::vector<Case> cases = {
+      {with_entry("avk.mission", "name", std::string(900000, 'n')),
+       "avk.mission metadata 'name' must be at most 256 bytes (UTF-8), got 900000"},
+      {with_entry("avk.mission", "status_reason", std::string(5000, 'r')),
+       "avk.mission metadata 'status_reason' must be at most 1024 bytes"},
+      {with_entry("avk.vehicle", "kind", std::string(100, 'k')),
+       "avk.vehicle metadata 'kind' must be at most 64 bytes"},
+      {rewritten(good,
+                 [](app::mcap::McapContents& c) {
+                   const auto ch = channel_id(c, app::foxglove::ChannelKind::log);
+                   for (auto& m : c.messages)
+                     if (m.channel_id == ch) {
+                       json j = json::parse(m.data);
+                       j["message"] = std::string(5000, 'm');
+                       m.data = j.dump();
+                       break;
+                     }
+                 }),
+       "event 0 of the log channel: 'message' must be at most 4096 bytes"},
+  };
+  for (const auto& k : cases) {
+    const auto r = app::import_mission_mcap(to, k.bytes);
+    ASSERT_FALSE(r) << k.expected;
+    EXPECT_EQ(r.error().field, "file");
+    EXPECT_NE(r.error().message.find(k.expected), std::string::npos) << r.error().message;
+  }
+  EXPECT_EQ(count_rows(target.path(), "missions"), 0);
+  EXPECT_EQ(count_rows(target.path(), "vehicles"), 0);
+}
+
 }  // namespace

@@ -113,6 +113,48 @@ TEST(MissionLimits, DuplicateSpeedsAndHeadingChangesAreRefused) {
   EXPECT_EQ(errors.size(), 2u);
 }
 
+// Values exactly the documented spacing apart are two cells, whatever their binary rounding:
+// 1.15 - 1.1 is 0.04999999999999982 in doubles, 1.05 - 1.0 is 0.05000000000000004.
+TEST(MissionLimits, ValuesExactlyTheSpacingApartAreAccepted) {
+  for (const auto& speeds :
+       {std::vector<double>{1.1, 1.15}, std::vector<double>{1.0, 1.05},
+        std::vector<double>{0.15, 0.2, 0.25, 0.3}, std::vector<double>{1.7, 1.65}}) {
+    json d = base_mission();
+    d["turn_array"]["speeds_mps"] = speeds;
+    d["turn_array"]["dheadings_deg"] = {40.1, 40.6, 100};
+    d["turn_array"]["initial_yaw_rates_dps"] = {-0.7, -0.2, 0.3};
+    EXPECT_NO_THROW(parse_mission_config(d.dump(), 2.0)) << json(speeds).dump();
+  }
+  json change = base_mission();
+  change["turn_array"]["speed_changes"] = {{{"from_mps", 1.1}, {"to_mps", 1.15}},
+                                           {{"from_mps", 1.15}, {"to_mps", 1.1}},
+                                           {{"from_mps", 1.15}, {"to_mps", 1.2}}};
+  EXPECT_NO_THROW(parse_mission_config(change.dump(), 2.0));
+  // Closer than the spacing is still a duplicate.
+  json close = base_mission();
+  close["turn_array"]["speeds_mps"] = {1.1, 1.1499};
+  const auto errors = errors_of(close.dump());
+  EXPECT_TRUE(names(errors, "/turn_array/speeds_mps/1"));
+  EXPECT_EQ(errors.size(), 1u);
+}
+
+// Regression: a 900 kB name was stored, and every list of missions then carried it.
+TEST(MissionLimits, TheNameIsBoundedAndTheErrorSaysTheLimit) {
+  json d = base_mission();
+  d["name"] = std::string(900000, 'n');
+  auto errors = errors_of(d.dump());
+  ASSERT_EQ(errors.size(), 1u);
+  EXPECT_EQ(errors[0].field, "/name");
+  EXPECT_NE(errors[0].message.find("at most 256 bytes"), std::string::npos) << errors[0].message;
+  EXPECT_NE(errors[0].message.find("900000"), std::string::npos) << errors[0].message;
+  d["name"] = std::string(kMaxMissionNameBytes + 1, 'n');
+  EXPECT_TRUE(names(errors_of(d.dump()), "/name"));
+  d["name"] = "";
+  EXPECT_TRUE(names(errors_of(d.dump()), "/name"));
+  d["name"] = std::string(kMaxMissionNameBytes, 'n');
+  EXPECT_EQ(parse_mission_config(d.dump(), 2.0).name, std::string(256, 'n'));
+}
+
 TEST(MissionLimits, ARegionOfSixtyTwoThousandVerticesIsRefusedByItsCount) {
   // The region: before the limit, the pairwise simplicity check took 48 s on it.
   json d = base_mission();

@@ -117,6 +117,25 @@ TEST(SpeedChanges, ACellWithASpeedChangeIsNotTheConstantSpeedCell) {
   EXPECT_FALSE(left[0].speed_after_mps);
 }
 
+// The cells a mission may plan (speeds 0.05 m/s apart, heading changes 0.5 deg apart) are told
+// apart, whichever way the decimals round in binary; a resumed mission skips only its own cell.
+TEST(SpeedChanges, CellsTheDocumentedSpacingApartAreTwoCells) {
+  EXPECT_FALSE(same_cell(1.1, 90, 1.15, 90));
+  EXPECT_FALSE(same_cell(1.0, 90, 1.05, 90));
+  EXPECT_FALSE(same_cell(1.1, 40.1, 1.1, 40.6));
+  EXPECT_FALSE(same_cell(1.5, 1.1, 90, 1.5, 1.15, 90));
+  EXPECT_TRUE(same_cell(1.1, 90, 1.1499, 90.4));
+  json doc = fig41();
+  doc["turn_array"]["speeds_mps"] = {1.1, 1.15};
+  doc["turn_array"]["dheadings_deg"] = {90};
+  doc["turn_array"]["repeats"] = 1;
+  const auto plan = plan_turns(parse_mission_config(doc.dump(), 1.7));
+  ASSERT_EQ(plan.size(), 2u);
+  const auto left = remaining_turns(plan, {{1.1, 90, 1, std::nullopt}});
+  ASSERT_EQ(left.size(), 1u);
+  EXPECT_DOUBLE_EQ(left[0].speed_mps, 1.15);
+}
+
 TEST(SpeedChanges, TheExampleMissionFliesBothChangesAtThreeHeadingChanges) {
   const MissionConfig c =
       parse_mission_config(avk::testing::example_text("speed-change.json"), 1.8);

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -10,6 +11,7 @@
 #include "kinematics/ckt_file.hpp"
 #include "kinematics/turn_text.hpp"
 #include "server/cli/cli.hpp"
+#include "server/cli/usage.hpp"
 #include "support/cli_run.hpp"
 #include "support/synthetic_turns.hpp"
 
@@ -62,6 +64,80 @@ TEST(Cli, UnknownCommandIsAnErrorThatNamesIt) {
   const Result r = run({"frobnicate"});
   EXPECT_EQ(r.rc, 2);
   EXPECT_NE(r.err.find("frobnicate"), std::string::npos);
+}
+
+// Regression: `avk predict --help` was "unknown option --help"; only `avk --help` printed the
+// usage. Every command and subcommand the CLI knows answers --help and -h with its own usage on
+// stdout and exit 0, also after other words (even wrong ones), and without doing anything else.
+TEST(Cli, EveryCommandAndSubcommandAnswersHelpWithItsOwnUsage) {
+  using avk::server::command_usages;
+  // Should help not be recognised, nothing may start for real: `avk serve -h` would open the
+  // default database (under XDG_DATA_HOME, here a path that cannot be made) and listen.
+  const char* data_home = std::getenv("XDG_DATA_HOME");
+  const std::string saved = data_home ? data_home : "";
+  ::setenv("XDG_DATA_HOME", "/dev/null/avk-test-no-data", 1);
+  const std::vector<std::string> others{"--db", "/dev/null/avk-test-no.db", "--no-such-option"};
+  const auto own_usage_only = [](const Result& r, const std::string& line,
+                                 const std::string& command, const std::string& label) {
+    EXPECT_EQ(r.rc, 0) << label << ": " << r.err;
+    EXPECT_EQ(r.err, "") << label;
+    EXPECT_NE(r.out.find("  " + line + " "), std::string::npos) << label << ":\n" << r.out;
+    // Only this command's lines: every usage line names it.
+    std::istringstream lines(r.out);
+    for (std::string l; std::getline(lines, l);) {
+      if (l.rfind("  avk ", 0) == 0) {
+        EXPECT_EQ(l.rfind("  avk " + command + " ", 0), 0u) << label << ": " << l;
+      }
+    }
+  };
+  std::size_t walked = 0;
+  for (const auto& u : command_usages()) {
+    const std::string command(u.command);
+    for (const char* help : {"--help", "-h"}) {
+      own_usage_only(run({command, help}), "avk " + command, command, command + " " + help);
+      if (u.subcommands.empty()) {
+        std::vector<std::string> words{command};
+        words.insert(words.end(), others.begin(), others.end());
+        words.push_back(help);
+        own_usage_only(run(words), "avk " + command, command, command + " ... " + help);
+        ++walked;
+      }
+      for (const auto sub_view : u.subcommands) {
+        const std::string sub(sub_view);
+        const std::string label = command + " " + sub + " " + help;
+        std::vector<std::string> after_others{command, sub};
+        after_others.insert(after_others.end(), others.begin(), others.end());
+        after_others.push_back(help);
+        for (const auto& words : {std::vector<std::string>{command, sub, help}, after_others}) {
+          const Result r = run(words);
+          own_usage_only(r, "avk " + command + " " + sub, command, label);
+          // This subcommand's usage, not its siblings' (a line documenting several names it).
+          std::istringstream lines(r.out);
+          for (std::string l; std::getline(lines, l);) {
+            if (l.rfind("  avk ", 0) == 0) {
+              EXPECT_NE(l.find(sub), std::string::npos) << label << ": " << l;
+            }
+          }
+        }
+        ++walked;
+      }
+    }
+  }
+  // A usage per subcommand it documents (or per command without any), twice: 38 today.
+  EXPECT_GE(walked, 2u * 38u);
+  // `avk --help` holds every usage; an unknown subcommand stays an error.
+  const Result all = run({"--help"});
+  EXPECT_EQ(all.rc, 0);
+  for (const auto& u : command_usages())
+    EXPECT_NE(all.out.find(u.text), std::string::npos) << u.text;
+  const Result unknown = run({"mission", "frobnicate", "--help"});
+  EXPECT_EQ(unknown.rc, 2);
+  EXPECT_NE(unknown.err.find("frobnicate"), std::string::npos) << unknown.err;
+  if (data_home) {
+    ::setenv("XDG_DATA_HOME", saved.c_str(), 1);
+  } else {
+    ::unsetenv("XDG_DATA_HOME");
+  }
 }
 
 TEST(Cli, UnknownOptionAndBadNumberAreUsageErrors) {
@@ -193,6 +269,22 @@ TEST(CliSim, VariabilityReportsTheCoefficientOfVariation) {
   ASSERT_EQ(r.rc, 0) << r.err;
   EXPECT_NE(r.out.find("repetition,seed,completed,advance_m,transfer_m\n"), std::string::npos);
   EXPECT_NE(r.out.find("(CV "), std::string::npos);
+}
+
+// A vehicle id from the command line is bounded like every vehicle id, before anything runs.
+TEST(CliMission, AVehicleIdTooLongIsAUsageErrorNamingTheOption) {
+  const std::string id(65, 'v');
+  for (const auto& vehicle :
+       {std::vector<std::string>{"--sim"}, std::vector<std::string>{"--m200", "127.0.0.1:1"}}) {
+    std::vector<std::string> words{"mission",      "run",
+                                   "--config",     example("thesis-fig4-1.json"),
+                                   "--db",         "/nonexistent-avk-dir/x.db",
+                                   "--vehicle-id", id};
+    words.insert(words.end(), vehicle.begin(), vehicle.end());
+    const Result r = run(words);
+    EXPECT_EQ(r.rc, 2) << vehicle[0] << ": " << r.err;
+    EXPECT_NE(r.err.find("--vehicle-id must be at most 64 bytes"), std::string::npos) << r.err;
+  }
 }
 
 TEST(CliMission, ValidateNamesEveryProblem) {

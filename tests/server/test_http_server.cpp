@@ -1124,6 +1124,33 @@ TEST_F(HttpServerTest, OnlyHostsOfThisServerAreAnswered) {
   EXPECT_EQ(status_of(raw_exchange(port, "GET /api/v1/echo HTTP/1.0\r\n\r\n").data), 200);
 }
 
+// Regression: with two Host headers the first was used, on REST and on the stream upgrade.
+TEST_F(HttpServerTest, TwoHostHeadersAre400EvenOnTheStreamUpgrade) {
+  start();
+  const std::string p = std::to_string(port);
+  for (const std::string& hosts : std::vector<std::string>{
+           "Host: 127.0.0.1:" + p + "\r\nHost: evil.example", "Host: 127.0.0.1\r\nHost: 127.0.0.1",
+           "Host: evil.example\r\nhost: 127.0.0.1:" + p}) {
+    const auto rest = raw_exchange(
+        port, "GET /api/v1/echo HTTP/1.1\r\n" + hosts + "\r\nConnection: close\r\n\r\n");
+    EXPECT_EQ(status_of(rest.data), 400) << hosts << "\n" << rest.data;
+    EXPECT_NE(rest.data.find("more than one Host header"), std::string::npos) << rest.data;
+    const auto upgrade = raw_exchange(port, "GET /api/v1/stream HTTP/1.1\r\n" + hosts +
+                                                "\r\nConnection: Upgrade\r\nUpgrade: websocket\r\n"
+                                                "Sec-WebSocket-Version: 13\r\nSec-WebSocket-Key: "
+                                                "dGhlIHNhbXBsZSBub25jZQ==\r\n\r\n");
+    EXPECT_EQ(status_of(upgrade.data), 400) << hosts << "\n" << upgrade.data;
+  }
+  EXPECT_EQ(api.calls.load(), 0);
+  EXPECT_EQ(server->open_stream_sessions(), 0u);
+  // HTTP/1.0 is held to the same rule.
+  EXPECT_EQ(status_of(raw_exchange(port,
+                                   "GET /api/v1/echo HTTP/1.0\r\nHost: 127.0.0.1\r\n"
+                                   "Host: 127.0.0.1\r\n\r\n")
+                          .data),
+            400);
+}
+
 // Regression: invalid UTF-8 in the path or the query answered 500 with nlohmann's
 // type_error.316 text.
 TEST_F(HttpServerTest, InvalidUtf8InPathIs404AndInQueryIs400NamingIt) {

@@ -158,6 +158,25 @@ TEST_F(MapTilesApi, NoPathReachesAFileOutsideTheFolder) {
   }
 }
 
+// Regression: a link in the folder to a file outside it (/etc/passwd, the station's token file)
+// was served as image/png. Now it is a 404 that says why and carries none of the file.
+TEST_F(MapTilesApi, ALinkOutOfTheFolderOrAFileThatIsNoImageIs404) {
+  write(base_ / "station.db.token", "SECRET-token-0123456789abcdef\n");
+  fs::create_directories(base_ / "tiles/2/0");
+  fs::create_symlink(base_ / "station.db.token", base_ / "tiles/2/0/0.png");
+  fs::create_symlink(base_ / "secret.png", base_ / "tiles/2/0/1.png");
+  write(base_ / "tiles/2/0/2.png", "SECRET but no image\n");
+  for (const char* path : {"/api/v1/tiles/2/0/0", "/api/v1/tiles/2/0/1", "/api/v1/tiles/2/0/2"}) {
+    const auto r = get(path);
+    EXPECT_EQ(r.status, 404) << path << ": " << r.body;
+    EXPECT_EQ(r.content_type, "application/problem+json") << path;
+    EXPECT_EQ(r.body.find("SECRET"), std::string::npos) << path;
+  }
+  EXPECT_NE(get("/api/v1/tiles/2/0/0").body.find("leaves the tile folder"), std::string::npos);
+  EXPECT_NE(get("/api/v1/tiles/2/0/2").body.find("not a PNG, JPEG or WebP image"),
+            std::string::npos);
+}
+
 TEST_F(MapTilesApi, FromElsewhereATileTakesTheTokenAsAQueryParameter) {
   EXPECT_EQ(get("/api/v1/tiles/1/0/0", false).status, 401);
   EXPECT_EQ(get("/api/v1/tiles/1/0/0", false, {{"token", "wrong"}}).status, 401);

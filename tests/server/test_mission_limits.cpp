@@ -105,3 +105,19 @@ TEST_F(MissionLimitsApi, AMissionTooLargeToPlanIsA422AndNothingIsStored) {
   EXPECT_EQ(problem["errors"][0]["field"], "/turn_array/repeats");
   EXPECT_EQ(json::parse(call("GET", "/api/v1/missions").body).size(), 0u);
 }
+
+// Regression: a 900 kB mission name was stored, and GET /missions then answered 901 KB.
+TEST_F(MissionLimitsApi, ANameTooLongIsA422NamingTheFieldAndTheLimit) {
+  json m = mission({0.5, 1.0}, {40, 100}, 1);
+  m["name"] = std::string(900000, 'n');
+  const auto r = call("POST", "/api/v1/vehicles/sim-usim/missions", m.dump());
+  EXPECT_EQ(r.status, 422) << r.body.substr(0, 300);
+  EXPECT_LT(r.body.size(), 2000u) << "the answer quotes the name";
+  const json problem = json::parse(r.body);
+  ASSERT_TRUE(problem.contains("errors")) << r.body;
+  EXPECT_EQ(problem["errors"][0]["field"], "/name");
+  EXPECT_NE(problem["errors"][0]["message"].get<std::string>().find("at most 256 bytes"),
+            std::string::npos)
+      << problem["errors"];
+  EXPECT_EQ(json::parse(call("GET", "/api/v1/missions").body).size(), 0u);
+}

@@ -100,13 +100,14 @@ class BusyPort {
   unsigned short port_ = 0;
 };
 
-// Regression: a token of 16 'a's was accepted.
+// Regression: a token of 16 'a's was accepted, and then 0123456789abcdef0123456789abcdef.
 TEST(ServeOptions, AUserTokenMustBeLongAndUnpredictable) {
   avk::testing::TempDb db("avk_serve_token");
   const std::string log = db.path() + ".log";
   for (const std::string& token :
        {std::string(16, 'a'), std::string(31, 'x') + "y", std::string(64, 'a'),
-        std::string("abababababababababababababababababababab"), std::string(40, 'q') + " x"}) {
+        std::string("abababababababababababababababababababab"), std::string(40, 'q') + " x",
+        std::string("0123456789abcdef0123456789abcdef")}) {
     const auto o = run_avk({"serve", "--db", db.path(), "--port", "0", "--token", token}, log);
     EXPECT_TRUE(o.exited) << token << ": the server started";
     EXPECT_EQ(o.code, 2) << token << "\n" << o.log;

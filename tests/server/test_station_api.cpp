@@ -633,6 +633,17 @@ TEST_F(StationApi, CktCellsExportImportPredictModelsCompare) {
   EXPECT_EQ(call(post("/api/v1/vehicles/sim-usim/ckt/import", exported.body)).status, 201);
   EXPECT_EQ(call(post("/api/v1/vehicles/other/ckt/import", exported.body)).status, 422);
   EXPECT_EQ(call(post("/api/v1/vehicles/sim-usim/ckt/import", R"({"schema":99})")).status, 422);
+  // Its free text is bounded: the vehicle id (64 bytes) and created_utc (64 bytes).
+  const ApiResponse long_id =
+      call(post("/api/v1/vehicles/" + std::string(65, 'v') + "/ckt/import", exported.body));
+  EXPECT_EQ(long_id.status, 422);
+  EXPECT_EQ(body(long_id)["pointer"], "/vehicle_id") << long_id.body;
+  EXPECT_NE(long_id.body.find("at most 64 bytes"), std::string::npos) << long_id.body;
+  json stamped = json::parse(exported.body);
+  stamped["created_utc"] = std::string(100, '9');
+  const ApiResponse long_stamp = call(post("/api/v1/vehicles/sim-usim/ckt/import", stamped.dump()));
+  EXPECT_EQ(long_stamp.status, 422);
+  EXPECT_EQ(body(long_stamp)["pointer"], "/created_utc") << long_stamp.body;
 
   const json avk = body(call(
       get("/api/v1/vehicles/sim-usim/predict",

@@ -40,3 +40,17 @@ TEST(SimConfigLimits, SyntaxErrorsAndDeepNestingAreParseErrors) {
   EXPECT_EQ(deep.field().rfind("/wind", 0), 0u) << deep.field();
   EXPECT_NE(std::string(deep.what()).find("nested"), std::string::npos) << deep.what();
 }
+
+// A vehicle id names the vehicle in every list and file name: bounded, and without control
+// characters (it goes into headers and CSV).
+TEST(SimConfigLimits, AVehicleIdIsBoundedAndPrintable) {
+  const ParseError long_id = error_of(R"({"vehicle_id": ")" + std::string(65, 'v') + R"("})");
+  EXPECT_EQ(long_id.field(), "/vehicle_id");
+  EXPECT_NE(std::string(long_id.what()).find("at most 64 bytes"), std::string::npos)
+      << long_id.what();
+  EXPECT_EQ(error_of(R"({"vehicle_id": ""})").field(), "/vehicle_id");
+  EXPECT_EQ(error_of(R"({"vehicle_id": "boat\r\nX-Evil: 1"})").field(), "/vehicle_id");
+  EXPECT_EQ(
+      parse_sim_config(R"({"vehicle_id": ")" + std::string(64, 'v') + R"("})", "usim").vehicle.id,
+      std::string(64, 'v'));
+}
