@@ -1,7 +1,7 @@
 #pragma once
 // The station the load benchmarks measure: a database holding one Figure 4-1 mission (so the CKT
 // has turns), the station with its simulated usim vehicle, and the HTTP server on an ephemeral
-// loopback port with two io threads — as `avk serve --sim` runs it.
+// loopback port with two io threads and the repository's web/ — as `avk serve --sim` runs it.
 
 #include <memory>
 #include <sstream>
@@ -44,6 +44,8 @@ struct BenchStation {
     ho.port = 0;
     ho.threads = 2;
     ho.server_version = "bench";
+    // The dashboard as `avk serve` serves it from a checkout.
+    ho.web_root = std::string(AVK_SOURCE_DIR) + "/web";
     http = std::make_unique<server::HttpServer>(ho, *station, hub);
     http->start();
   }

@@ -34,6 +34,7 @@
 #include "app/foxglove_channels.hpp"
 #include "server/api_types.hpp"
 #include "server/http/http_server.hpp"
+#include "server/http/static_files.hpp"
 #include "server/stream_hub.hpp"
 
 namespace {
@@ -638,6 +639,89 @@ TEST_F(StaticFilesTest, OnlyGetAndHead) {
   const auto res = HttpClient(port).request(http::verb::post, "/index.html", "x");
   EXPECT_EQ(res.result_int(), 405);
   EXPECT_EQ(res[http::field::allow], "GET, HEAD");
+}
+
+// Regression: files came without validators, so every page load read and sent them again.
+TEST_F(StaticFilesTest, ConditionalRequestsAreAnsweredWith304) {
+  HttpServerOptions o;
+  o.web_root = (base / "web").string();
+  start(o);
+  HttpClient c(port);
+  const auto full = c.request(http::verb::get, "/js/app.js");
+  ASSERT_EQ(full.result_int(), 200);
+  const std::string etag(full[http::field::etag]);
+  const std::string modified(full[http::field::last_modified]);
+  ASSERT_FALSE(etag.empty());
+  EXPECT_EQ(etag.front(), '"');
+  ASSERT_TRUE(avk::server::StaticFiles::parse_http_date(modified)) << modified;
+  EXPECT_EQ(full[http::field::cache_control], "no-cache");
+
+  // The same connection: a 304 has no body, so keep-alive framing must hold.
+  for (const std::string& tag : {etag, "W/" + etag, "\"other\", " + etag, std::string("*")}) {
+    const auto again = c.request(http::verb::get, "/js/app.js", "", {{"If-None-Match", tag}});
+    EXPECT_EQ(again.result_int(), 304) << tag;
+    EXPECT_TRUE(again.body().empty());
+    EXPECT_EQ(again[http::field::etag], etag);
+    EXPECT_EQ(again["X-Content-Type-Options"], "nosniff");
+  }
+  EXPECT_EQ(
+      c.request(http::verb::get, "/js/app.js", "", {{"If-None-Match", "\"other\""}}).result_int(),
+      200);
+  EXPECT_EQ(c.request(http::verb::head, "/js/app.js", "", {{"If-None-Match", etag}}).result_int(),
+            304);
+  EXPECT_EQ(
+      c.request(http::verb::get, "/js/app.js", "", {{"If-Modified-Since", modified}}).result_int(),
+      304);
+  EXPECT_EQ(c.request(http::verb::get, "/js/app.js", "",
+                      {{"If-Modified-Since", "Sat, 01 Jan 2000 00:00:00 GMT"}})
+                .result_int(),
+            200);
+  // If-None-Match decides alone when both are sent (RFC 9110 13.1.3).
+  EXPECT_EQ(c.request(http::verb::get, "/js/app.js", "",
+                      {{"If-None-Match", "\"other\""}, {"If-Modified-Since", modified}})
+                .result_int(),
+            200);
+  // An unreadable date is ignored.
+  EXPECT_EQ(c.request(http::verb::get, "/js/app.js", "", {{"If-Modified-Since", "yesterday"}})
+                .result_int(),
+            200);
+  // Validators differ between files.
+  EXPECT_EQ(
+      c.request(http::verb::get, "/css/style.css", "", {{"If-None-Match", etag}}).result_int(),
+      200);
+}
+
+// The file list is read at the start, each file's bytes when it changes: an edited file is served
+// as it is now, with a new ETag; one that became a symlink since is not followed.
+TEST_F(StaticFilesTest, AnEditedFileIsServedAnewAndALinkPutInItsPlaceIsNot) {
+  HttpServerOptions o;
+  o.web_root = (base / "web").string();
+  start(o);
+  const auto before = get(port, "/js/app.js");
+  ASSERT_EQ(before.body(), "console.log(1);");
+  write(base / "web" / "js" / "app.js", "console.log('edited');");
+  const auto after = get(port, "/js/app.js");
+  EXPECT_EQ(after.body(), "console.log('edited');");
+  EXPECT_NE(after[http::field::etag], before[http::field::etag]);
+  // Added after the start: not in the list.
+  write(base / "web" / "js" / "new.js", "new");
+  EXPECT_EQ(get(port, "/js/new.js").result_int(), 404);
+  fs::remove(base / "web" / "css" / "style.css");
+  fs::create_symlink(base / "secret", base / "web" / "css" / "style.css");
+  const auto swapped = get(port, "/css/style.css");
+  EXPECT_EQ(swapped.result_int(), 404);
+  EXPECT_EQ(swapped.body().find("TOPSECRET"), std::string::npos);
+}
+
+TEST(HttpDate, FormatsAndParsesImfFixdate) {
+  using avk::server::StaticFiles;
+  EXPECT_EQ(StaticFiles::http_date(784111777), "Sun, 06 Nov 1994 08:49:37 GMT");
+  EXPECT_EQ(StaticFiles::parse_http_date("Sun, 06 Nov 1994 08:49:37 GMT"), 784111777);
+  EXPECT_EQ(StaticFiles::parse_http_date(StaticFiles::http_date(1700000000)), 1700000000);
+  for (const char* bad : {"", "Sunday, 06-Nov-94 08:49:37 GMT", "Sun Nov  6 08:49:37 1994",
+                          "Sun, 31 Feb 1994 08:49:37 GMT", "Sun, 06 Nov 1994 25:49:37 GMT",
+                          "Sun, 06 Xyz 1994 08:49:37 GMT", "Sun, 06 Nov 1994 08:49:37 UTC"})
+    EXPECT_FALSE(StaticFiles::parse_http_date(bad)) << bad;
 }
 
 TEST_F(StaticFilesTest, WithoutAWebRootOnlyTheApi) {
