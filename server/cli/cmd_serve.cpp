@@ -158,7 +158,8 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
                 "allow-host",
                 "allow-origin",
                 "max-connections",
-                "max-connections-per-address"},
+                "max-connections-per-address",
+                "max-streams-per-address"},
                {"sim", "jitter"}, {"allow-host", "allow-origin"});
   if (a.flag("sim") && a.get("m200")) throw UsageError("give one vehicle: --sim or --m200");
   auto m200 = m200_options_from(a);  // option mistakes show before anything is opened
@@ -178,6 +179,7 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
   };
   count_option("max-connections", ho.max_connections);
   count_option("max-connections-per-address", ho.max_connections_per_address);
+  count_option("max-streams-per-address", ho.max_streams_per_address);
   for (const auto& name : a.all("allow-host")) {
     if (name.empty() || name.find_first_of(":/[] ") != std::string::npos)
       throw UsageError("--allow-host takes a host name without port or scheme, not '" + name + "'");

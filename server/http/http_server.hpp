@@ -29,12 +29,20 @@ struct HttpServerOptions {
   // Header and body together, from the request's first byte: a body trickled in at one byte
   // per pause shorter than idle_timeout is still cut here.
   std::chrono::milliseconds request_timeout{30000};
-  // Open connections (HTTP and WebSocket) in all, and HTTP connections from one address. When
-  // full, the oldest connection still waiting for (or reading) a request is closed to make
-  // room, so a flood of slow connections cannot keep /health out; when none can be closed the
-  // new one gets a 503 and is closed.
+  // Open connections (HTTP and WebSocket) in all. When full, a connection still waiting for (or
+  // reading) a request is closed to make room — the oldest of the address holding the most — so
+  // a flood of slow connections cannot keep /health out; when none can be closed the new one gets
+  // a 503 and is closed.
   std::size_t max_connections = 512;
+  // HTTP connections from one address that have sent a request. At the cap the address's oldest
+  // one idle between requests is closed to make room, else the request gets a 503. A connection
+  // that has sent nothing yet is not counted (header_timeout bounds it), so a burst of upgrades
+  // from one address (a dashboard behind a proxy) is not cut before it asks.
   std::size_t max_connections_per_address = 64;
+  // Live WebSocket sessions (the stream and the Foxglove connection) from one address, counted
+  // from the accepted upgrade request until the session ends; one more is a 503 with
+  // Retry-After instead of a 101.
+  std::size_t max_streams_per_address = 256;
   // Request bodies that are JSON (by type or by their first character) nested deeper are a 400
   // before any handler parses them: nothing recursive ever sees an attacker's depth.
   std::size_t json_depth_limit = 64;

@@ -36,6 +36,10 @@ bool offers_subprotocol(std::string_view header, std::string_view wanted) {
 // in the client's buffer before it reads it.
 constexpr std::chrono::milliseconds kMaxLinger{1000};
 
+// A live session lasts minutes to hours: a client over its address's cap waits a few seconds for
+// one to close rather than retrying at once.
+constexpr const char* kStreamRetryAfterS = "5";
+
 const beast::error_category& http_errors() {
   static const auto& category = http::make_error_code(http::error::bad_method).category();
   return category;
@@ -144,6 +148,15 @@ void HttpSession::read_header() {
 void HttpSession::on_header(beast::error_code ec, std::size_t) {
   if (ec) return on_read_error(ec);
   head_ = parser_->get().method() == http::verb::head;
+  // An upgrade is counted as a live session instead (max_streams_per_address).
+  if (!established_ && !websocket::is_upgrade(parser_->get())) {
+    established_ = state_->establish(this);
+    if (!established_)
+      return reject(http::status::service_unavailable,
+                    "too many connections from this address (at most " +
+                        std::to_string(state_->options().max_connections_per_address) +
+                        " that have sent a request); try again shortly");
+  }
   if (auto refusal = check_header()) return send(std::move(*refusal));
 
   const auto& req = parser_->get();
@@ -300,12 +313,24 @@ void HttpSession::handle_request() {
     if (state_->stopping())
       return send(problem_response(http::status::service_unavailable, "server shutting down",
                                    req.version(), false));
+    if (!state_->reserve_stream(remote_address_)) {
+      auto res = problem_response(
+          http::status::service_unavailable,
+          "too many live connections from this address (at most " +
+              std::to_string(state_->options().max_streams_per_address) +
+              ": avk serve --max-streams-per-address); try again when one has closed",
+          req.version(), keep_alive);
+      res.set(http::field::retry_after, kStreamRetryAfterS);
+      return send(std::move(res));
+    }
     phase_ = Phase::done;
     awaiting_request_ = false;
     if (foxglove)
-      std::make_shared<FoxgloveSession>(stream_.release_socket(), state_)->run(std::move(req));
+      std::make_shared<FoxgloveSession>(stream_.release_socket(), state_, remote_address_)
+          ->run(std::move(req));
     else
-      std::make_shared<WebSocketSession>(stream_.release_socket(), state_)->run(std::move(req));
+      std::make_shared<WebSocketSession>(stream_.release_socket(), state_, remote_address_)
+          ->run(std::move(req));
     // The connection is the WebSocket's now: counted once, as a stream.
     state_->remove(this);
     return;
@@ -412,7 +437,9 @@ http::message_generator HttpSession::to_http(ApiResponse response, unsigned vers
 
 void HttpSession::reject(http::status status, std::string_view detail) {
   const unsigned version = parser_ ? parser_->get().version() : 11;
-  send(body_unless_head(head_, problem_response(status, detail, version == 10 ? 10 : 11, false)));
+  auto res = problem_response(status, detail, version == 10 ? 10 : 11, false);
+  if (status == http::status::service_unavailable) res.set(http::field::retry_after, "1");
+  send(body_unless_head(head_, std::move(res)));
 }
 
 void HttpSession::send(http::message_generator message) {

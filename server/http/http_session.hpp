@@ -73,7 +73,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   bool remote_is_loopback_ = false;
   Phase phase_ = Phase::reading;
   bool first_request_ = true;
-  bool head_ = false;  // the request being answered is a HEAD
+  bool established_ = false;  // counted as a connection that has sent a request
+  bool head_ = false;         // the request being answered is a HEAD
   std::chrono::steady_clock::time_point request_deadline_{};
   std::atomic<bool> awaiting_request_{true};
   std::array<char, 4096> discard_{};

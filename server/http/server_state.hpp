@@ -35,18 +35,28 @@ class ServerState {
   const StaticFiles& static_files() const { return static_files_; }
   bool stopping() const { return stopping_.load(); }
 
-  // Whether a connection from this address may be served: true when there is room, or when the
-  // oldest connection still waiting for its request (from that address when the address is
-  // over its share, else from any) has been told to close to make room; false: refuse it.
-  bool make_room(const std::string& address);
+  // Whether a new connection may be served: true while the server holds fewer than
+  // max_connections, or when a connection still waiting for (or reading) a request has been told
+  // to close to make room — the oldest of the address that holds the most HTTP connections, so
+  // that one address's flood closes its own connections, not another's. False: refuse it.
+  bool make_room();
+  // At a connection's first complete request header: whether its address may have one more
+  // connection that has sent a request (max_connections_per_address). At the cap, the address's
+  // oldest such connection now idle between requests is told to close to make room; false when
+  // none can be. Connections that have not sent a request yet (a burst of WebSocket handshakes
+  // behind one proxy) are not counted here: the header timeout bounds them.
+  bool establish(const HttpSession* session);
 
   // Sessions add themselves when they start and remove themselves in their destructors.
   void add(const std::shared_ptr<HttpSession>& session);
   void remove(const HttpSession* session);
-  // A live WebSocket session (the stream or the Foxglove connection) and what its publisher
-  // holds.
-  void add(const std::shared_ptr<LiveSession>& session,
-           const std::shared_ptr<DetachableSink>& sink);
+  // Before a live WebSocket session (the stream or the Foxglove connection) is made for an
+  // upgrade: whether its address may have one more (max_streams_per_address). The reservation
+  // is the session's from add() on and ends with its remove().
+  bool reserve_stream(const std::string& address);
+  // A live session and what its publisher holds; address: the one reserve_stream() was given.
+  void add(const std::shared_ptr<LiveSession>& session, const std::shared_ptr<DetachableSink>& sink,
+           const std::string& address);
   void remove(const LiveSession* session);
 
   // A session counts as open from its accepted handshake until it starts to close.
@@ -75,16 +85,19 @@ class ServerState {
   struct HttpEntry {
     std::weak_ptr<HttpSession> session;
     std::string address;
-    std::uint64_t order = 0;  // accept order: the lowest is the oldest
-    bool evicted = false;     // told to close; no longer counted
+    std::uint64_t order = 0;   // accept order: the lowest is the oldest
+    bool evicted = false;      // told to close; no longer counted
+    bool established = false;  // has sent a request
   };
   std::map<const HttpSession*, HttpEntry> http_sessions_;
   std::uint64_t accepted_ = 0;
   struct StreamEntry {
     std::weak_ptr<LiveSession> session;
     std::shared_ptr<DetachableSink> sink;
+    std::string address;
   };
   std::map<const LiveSession*, StreamEntry> stream_sessions_;
+  std::map<std::string, std::size_t> streams_by_address_;  // reserved or open
 };
 
 }  // namespace avk::server

@@ -117,7 +117,13 @@ bool wait_for(Predicate done, std::chrono::milliseconds limit = 5000ms) {
 // An HTTP/1.1 client on one connection; every exchange has a deadline.
 class HttpClient {
  public:
-  explicit HttpClient(unsigned short port) : port_(port), stream_(ioc_) {
+  // from: the loopback address to connect from (127.0.0.2 is another client to the server).
+  explicit HttpClient(unsigned short port, const std::string& from = "")
+      : port_(port), stream_(ioc_) {
+    if (!from.empty()) {
+      stream_.socket().open(tcp::v4());
+      stream_.socket().bind({net::ip::make_address(from), 0});
+    }
     stream_.connect(loopback(port));
   }
 
@@ -1342,22 +1348,57 @@ TEST_F(HttpServerTest, ABodyTrickledInIsCutAtTheRequestDeadline) {
   EXPECT_EQ(get(port, "/api/v1/echo").result_int(), 200);
 }
 
-// Regression: connections from one address were unbounded. At the cap the oldest one
-// still waiting for its request makes room, so slow connections cannot keep a request out.
-TEST_F(HttpServerTest, AtThePerAddressCapTheOldestWaitingConnectionMakesRoom) {
+// Connections from one address that have sent a request are bounded: at the cap the oldest one
+// idle between requests makes room for the new one's request.
+TEST_F(HttpServerTest, AtThePerAddressCapTheOldestIdleConnectionMakesRoom) {
   HttpServerOptions o;
   o.max_connections_per_address = 4;
   start(o);
-  std::vector<std::unique_ptr<TrickleClient>> slow;
+  std::vector<std::unique_ptr<HttpClient>> idle;
   for (int i = 0; i < 4; ++i) {
+    idle.push_back(std::make_unique<HttpClient>(port));
+    ASSERT_EQ(idle.back()->request(http::verb::get, "/api/v1/echo").result_int(), 200);
+  }
+  EXPECT_EQ(get(port, "/api/v1/echo").result_int(), 200);
+  EXPECT_TRUE(idle[0]->closed_by_server());
+  EXPECT_EQ(idle[3]->request(http::verb::get, "/api/v1/echo").result_int(), 200);
+}
+
+// Regression: the per-address cap counted connections that had not sent their request yet, so a
+// burst of connections from one address (dashboards behind a proxy) closed its own members
+// before they asked. Those are bounded by the header timeout instead.
+TEST_F(HttpServerTest, ConnectionsThatHaveNotAskedYetAreNotCutByThePerAddressCap) {
+  HttpServerOptions o;
+  o.max_connections_per_address = 4;
+  start(o);
+  std::vector<std::unique_ptr<RawClient>> waiting;
+  for (int i = 0; i < 12; ++i)
+    waiting.push_back(std::make_unique<RawClient>(port));
+  for (auto& c : waiting) {
+    c->send("GET /api/v1/echo HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n");
+    EXPECT_EQ(status_of(c->read_until_closed().data), 200);
+  }
+}
+
+// Regression: with every slot taken, the oldest waiting connection of any address made room, so
+// one address's flood of slow connections closed another client's. The address holding the
+// most connections makes room now.
+TEST_F(HttpServerTest, AtTheTotalCapTheAddressHoldingTheMostMakesRoom) {
+  HttpServerOptions o;
+  o.max_connections = 6;
+  start(o);
+  HttpClient other(port, "127.0.0.2");
+  ASSERT_EQ(other.request(http::verb::get, "/api/v1/echo").result_int(), 200);
+  std::vector<std::unique_ptr<TrickleClient>> slow;
+  for (int i = 0; i < 5; ++i) {
     slow.push_back(std::make_unique<TrickleClient>(port));
     slow.back()->send("GET /api/v1/echo HTTP/1.1\r\n");  // and never the rest
   }
-  // Accepted in order: the request's connection is the fifth, and the oldest makes room.
+  // Full (6): this connection makes the oldest of 127.0.0.1's slow ones close, not 127.0.0.2's
+  // older idle one.
   EXPECT_EQ(get(port, "/api/v1/echo").result_int(), 200);
   EXPECT_TRUE(slow[0]->closed_within(20000ms));
-  for (int i = 0; i < 3; ++i)
-    EXPECT_EQ(get(port, "/api/v1/echo").result_int(), 200);
+  EXPECT_EQ(other.request(http::verb::get, "/api/v1/echo").result_int(), 200);
 }
 
 // When no connection can make room (open streams), a new one gets a 503, not a silent hang.
@@ -1376,6 +1417,57 @@ TEST_F(HttpServerTest, OverTheTotalCapWithNothingToCloseIs503) {
   EXPECT_NE(refused.data.find("application/problem+json"), std::string::npos);
   EXPECT_TRUE(refused.closed());
   EXPECT_EQ(api.calls.load(), 0);
+}
+
+// Regression: a burst of 100 WebSocket clients from one address lost 36: the per-address cap of
+// 64 counted the connections whose upgrade had not been read yet and closed them to make room.
+TEST_F(HttpServerTest, ABurstOfUpgradesFromOneAddressAllGetSessions) {
+  start();
+  constexpr int kClients = 100;
+  net::io_context ioc;
+  std::vector<std::unique_ptr<websocket::stream<beast::tcp_stream>>> clients;
+  std::atomic<int> opened{0};
+  std::atomic<int> failed{0};
+  for (int i = 0; i < kClients; ++i) {
+    clients.push_back(std::make_unique<websocket::stream<beast::tcp_stream>>(ioc));
+    auto& ws = *clients.back();
+    beast::get_lowest_layer(ws).async_connect(loopback(port), [&ws, &opened, &failed,
+                                                               this](beast::error_code ec) {
+      if (ec) return void(++failed);
+      ws.async_handshake("127.0.0.1:" + std::to_string(port), "/api/v1/stream",
+                         [&opened, &failed](beast::error_code hec) { ++(hec ? failed : opened); });
+    });
+  }
+  ioc.run_for(30s);
+  EXPECT_EQ(opened.load(), kClients);
+  EXPECT_EQ(failed.load(), 0);
+  EXPECT_TRUE(wait_for([&] { return server->open_stream_sessions() == kClients; }, 20000ms))
+      << server->open_stream_sessions();
+}
+
+// Live sessions from one address have a cap of their own: one over it is a 503 with
+// Retry-After, and a place that frees up is taken again.
+TEST_F(HttpServerTest, LiveSessionsPerAddressAreCappedWith503AndRetryAfter) {
+  HttpServerOptions o;
+  o.max_streams_per_address = 2;
+  start(o);
+  auto a = std::make_unique<WsClient>(port);
+  ASSERT_FALSE(a->handshake_error());
+  WsClient b(port, "", 0, "/api/v1/foxglove", "foxglove.websocket.v1");
+  ASSERT_FALSE(b.handshake_error());
+  WsClient over(port);
+  EXPECT_TRUE(over.handshake_error());
+  EXPECT_EQ(over.handshake_response().result_int(), 503);
+  EXPECT_FALSE(over.handshake_response()[http::field::retry_after].empty());
+  EXPECT_EQ(server->open_stream_sessions(), 2u);
+  a.reset();
+  bool reopened = false;
+  for (const auto deadline = Clock::now() + 20s; !reopened && Clock::now() < deadline;) {
+    WsClient again(port);
+    reopened = !again.handshake_error();
+    if (!reopened) std::this_thread::sleep_for(20ms);
+  }
+  EXPECT_TRUE(reopened);
 }
 
 }  // namespace
