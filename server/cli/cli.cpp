@@ -143,6 +143,8 @@ void usage(std::ostream& out) {
          "512]\n"
          "                  [--max-connections-per-address 64] [--max-streams-per-address "
          "256]\n"
+         "                  [--request-workers 4] [--request-queue 64] [--expensive-requests 2]\n"
+         "                  [--expensive-requests-per-address 4]\n"
          "      the ground station: REST + WebSocket API under /api/v1 and the dashboard\n"
          "  avk frontseat-emulator [--port 29500] [--bind 127.0.0.1] [--vehicle catamaran:m200]\n"
          "                  [--sim-config FILE] [--datum LAT,LON] [--seed N]\n"

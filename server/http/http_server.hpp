@@ -59,6 +59,16 @@ struct HttpServerOptions {
   // How long a WebSocket close handshake (and a write stuck in front of it) may take before the
   // socket is cut, and how long stop() waits for in-flight responses before it cuts the rest.
   std::chrono::milliseconds close_timeout{5000};
+  // The API's request work runs on these workers, never on the I/O threads (but for immediate
+  // routes such as /health): `threads` only read, write and route. A request that finds
+  // request_queue requests waiting is a 503 with Retry-After. Expensive requests (Route::workload)
+  // run on at most expensive_requests workers at once, so the others stay free for cheap ones;
+  // a client address with expensive_requests_per_address of them running or waiting gets a 429
+  // with Retry-After for the next.
+  std::size_t request_workers = 4;
+  std::size_t request_queue = 64;
+  std::size_t expensive_requests = 2;
+  std::size_t expensive_requests_per_address = 4;
   std::size_t stream_event_queue_limit = 256;  // per WebSocket session
   std::string server_version;                  // for the hello
 };
@@ -79,6 +89,8 @@ class HttpServer {
   // responses finish (at most close_timeout), joins the threads. Idempotent. Not from a handler.
   void stop();
   std::size_t open_stream_sessions() const;
+  // API requests waiting for a request worker.
+  std::size_t waiting_requests() const;
 
  private:
   class Impl;

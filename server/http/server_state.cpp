@@ -10,7 +10,12 @@
 namespace avk::server {
 
 ServerState::ServerState(HttpServerOptions options, Api& api, StreamHub& hub)
-    : options_(std::move(options)), api_(api), hub_(hub), static_files_(options_.web_root) {}
+    : options_(std::move(options)),
+      api_(api),
+      hub_(hub),
+      static_files_(options_.web_root),
+      pool_({options_.request_workers, options_.request_queue, options_.expensive_requests,
+             options_.expensive_requests_per_address}) {}
 
 void ServerState::add(const std::shared_ptr<HttpSession>& session) {
   std::lock_guard lock(mutex_);
@@ -120,6 +125,7 @@ void ServerState::begin_stop() {
     for (const auto& [key, entry] : stream_sessions_)
       if (auto s = entry.session.lock()) streams.push_back(std::move(s));
   }
+  pool_.close();
   for (const auto& s : http)
     s->shutdown();
   for (const auto& s : streams)

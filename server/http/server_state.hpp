@@ -15,6 +15,7 @@
 #include "server/api_types.hpp"
 #include "server/foxglove_hub.hpp"
 #include "server/http/http_server.hpp"
+#include "server/http/request_pool.hpp"
 #include "server/http/static_files.hpp"
 #include "server/stream_hub.hpp"
 
@@ -33,6 +34,7 @@ class ServerState {
   StreamHub& hub() { return hub_; }
   FoxgloveHub& foxglove() { return hub_.foxglove(); }
   const StaticFiles& static_files() const { return static_files_; }
+  RequestPool& pool() { return pool_; }
   bool stopping() const { return stopping_.load(); }
 
   // Whether a new connection may be served: true while the server holds fewer than
@@ -64,7 +66,8 @@ class ServerState {
   void stream_closed() { --open_streams_; }
   std::size_t open_stream_sessions() const { return open_streams_.load(); }
 
-  // Sets stopping and asks every registered session to wind down (each on its own strand).
+  // Sets stopping, cancels the API requests still waiting for a worker (each answers 503) and
+  // asks every registered session to wind down (each on its own strand).
   void begin_stop();
   // Whether every session is gone by the deadline.
   bool wait_until_idle(std::chrono::steady_clock::time_point deadline);
@@ -77,6 +80,7 @@ class ServerState {
   Api& api_;
   StreamHub& hub_;
   StaticFiles static_files_;
+  RequestPool pool_;
   std::atomic<bool> stopping_{false};
   std::atomic<std::size_t> open_streams_{0};
 

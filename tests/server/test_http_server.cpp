@@ -56,12 +56,19 @@ using avk::server::HttpServer;
 using avk::server::HttpServerOptions;
 using avk::server::StreamHub;
 
-// Echoes what the transport made of the request; /throw throws, /status/N answers N.
+// Echoes what the transport made of the request; /throw throws, /status/N answers N, /block
+// waits until open_gate() (a request worker held busy).
 class EchoApi final : public Api {
  public:
   ApiResponse handle(const ApiRequest& r) override {
     ++calls;
     if (r.path == "/api/v1/throw") throw std::runtime_error("boom");
+    if (r.path == "/api/v1/block") {
+      ++blocked;
+      std::unique_lock lock(gate_mutex_);
+      gate_.wait(lock, [&] { return gate_open_; });
+      --blocked;
+    }
     ApiResponse res;
     if (r.path.starts_with("/api/v1/status/")) {
       res.status = std::stoi(r.path.substr(std::string("/api/v1/status/").size()));
@@ -86,18 +93,35 @@ class EchoApi final : public Api {
     return res;
   }
   // /api/v1/guarded wants "Authorization: Bearer ok"; /api/v1/small takes 10 bytes,
-  // /api/v1/large 4096.
+  // /api/v1/large 4096. /api/v1/health is immediate work, ?cost=expensive expensive.
   avk::server::Admission admit(const ApiRequest& head) override {
     ++admits;
     avk::server::Admission a;
+    if (head.path == "/api/v1/health") a.workload = avk::server::Workload::immediate;
+    if (const auto it = head.query.find("cost");
+        it != head.query.end() && it->second == "expensive")
+      a.workload = avk::server::Workload::expensive;
     if (head.path == "/api/v1/small") a.body_limit_bytes = 10;
     if (head.path == "/api/v1/large") a.body_limit_bytes = 4096;
     if (head.path == "/api/v1/guarded" && head.authorization != "Bearer ok")
       a.refusal = ApiResponse{401, "application/problem+json", R"({"status":401})", {}};
     return a;
   }
+  void open_gate() {
+    {
+      std::lock_guard lock(gate_mutex_);
+      gate_open_ = true;
+    }
+    gate_.notify_all();
+  }
   std::atomic<int> calls{0};
   std::atomic<int> admits{0};
+  std::atomic<int> blocked{0};  // requests waiting at the gate
+
+ private:
+  std::mutex gate_mutex_;
+  std::condition_variable gate_;
+  bool gate_open_ = false;
 };
 
 tcp::endpoint loopback(unsigned short port) {
@@ -322,6 +346,26 @@ class WsClient {
 
 class HttpServerTest : public ::testing::Test {
  protected:
+  // A request still at the gate would keep the server's stop waiting for its worker.
+  ~HttpServerTest() override { api.open_gate(); }
+
+  // With one request worker: a request held at the gate on it, and another waiting behind it
+  // (each on its own connection, answered once the gate opens); null when either never got
+  // there.
+  std::pair<std::unique_ptr<RawClient>, std::unique_ptr<RawClient>> the_worker_busy_and_one_waiting(
+      unsigned short on_port) {
+    const auto request = [](const std::string& target) {
+      return "GET " + target + " HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n";
+    };
+    auto busy = std::make_unique<RawClient>(on_port);
+    busy->send(request("/api/v1/block"));
+    if (!wait_for([&] { return api.blocked.load() == 1; })) return {};
+    auto waiting = std::make_unique<RawClient>(on_port);
+    waiting->send(request("/api/v1/echo"));
+    if (!wait_for([&] { return server->waiting_requests() == 1; })) return {};
+    return {std::move(busy), std::move(waiting)};
+  }
+
   void start(HttpServerOptions options = {}) {
     options.server_version = "test-1";
     server = std::make_unique<HttpServer>(std::move(options), api, hub);
@@ -1468,6 +1512,97 @@ TEST_F(HttpServerTest, LiveSessionsPerAddressAreCappedWith503AndRetryAfter) {
     if (!reopened) std::this_thread::sleep_for(20ms);
   }
   EXPECT_TRUE(reopened);
+}
+
+// --- request work on the request workers ---------------------------------------------------
+
+std::string raw_get(const std::string& target) {
+  return "GET " + target + " HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n";
+}
+
+bool has_header(const std::string& raw, const std::string& line) {
+  return raw.find("\r\n" + line + "\r\n") != std::string::npos;
+}
+
+// Regression: request work ran on the two I/O threads, so two slow requests stalled /health and
+// the live stream. It runs on the request workers; with the only worker busy and the queue full,
+// the next request is a 503 with Retry-After while /health and the stream still answer.
+TEST_F(HttpServerTest, ABusyPoolAnswers503WhileHealthAndTheStreamAnswer) {
+  HttpServerOptions o;
+  o.request_workers = 1;
+  o.request_queue = 1;
+  start(o);
+  const auto [first, second] = the_worker_busy_and_one_waiting(port);
+  ASSERT_TRUE(first && second);
+
+  const auto refused = raw_exchange(port, raw_get("/api/v1/echo"));
+  EXPECT_EQ(status_of(refused.data), 503) << refused.data;
+  EXPECT_TRUE(has_header(refused.data, "Retry-After: 1")) << refused.data;
+  EXPECT_NE(refused.data.find("application/problem+json"), std::string::npos);
+
+  EXPECT_EQ(get(port, "/api/v1/health").result_int(), 200);
+  WsClient ws(port);
+  ASSERT_FALSE(ws.handshake_error());
+  ASSERT_TRUE(ws.read());  // hello
+  ws.send(R"({"subscribe":["turn"]})");
+  ASSERT_TRUE(ws.read());  // subscribed
+  hub.publish("turn", 1.0, R"({"id":1})");
+  const auto message = ws.read();
+  ASSERT_TRUE(message);
+  EXPECT_EQ((*message)["data"]["id"], 1);
+
+  api.open_gate();
+  EXPECT_EQ(status_of(first->read_until_closed().data), 200);
+  EXPECT_EQ(status_of(second->read_until_closed().data), 200);
+}
+
+// Expensive requests run on at most expensive_requests workers, the others stay for cheap ones,
+// and one client address may have expensive_requests_per_address of them running or waiting.
+TEST_F(HttpServerTest, ExpensiveRequestsAreLimitedInAllAndPerAddress) {
+  HttpServerOptions o;
+  o.request_workers = 2;
+  o.expensive_requests = 1;
+  o.expensive_requests_per_address = 1;
+  start(o);
+  RawClient heavy(port);
+  heavy.send(raw_get("/api/v1/block?cost=expensive"));
+  ASSERT_TRUE(wait_for([&] { return api.blocked.load() == 1; }));
+
+  const auto same_address = raw_exchange(port, raw_get("/api/v1/echo?cost=expensive"));
+  EXPECT_EQ(status_of(same_address.data), 429) << same_address.data;
+  EXPECT_TRUE(has_header(same_address.data, "Retry-After: 1")) << same_address.data;
+
+  // Another address is let in, and waits for the expensive worker.
+  HttpClient other(port, "127.0.0.2");
+  std::optional<http::response<http::string_body>> other_answer;
+  std::thread asking(
+      [&] { other_answer = other.request(http::verb::get, "/api/v1/echo?cost=expensive"); });
+  EXPECT_TRUE(wait_for([&] { return server->waiting_requests() == 1; }));
+  // Cheap work takes the other worker meanwhile.
+  EXPECT_EQ(get(port, "/api/v1/echo").result_int(), 200);
+  api.open_gate();
+  asking.join();
+  ASSERT_TRUE(other_answer);
+  EXPECT_EQ(other_answer->result_int(), 200);
+  EXPECT_EQ(status_of(heavy.read_until_closed().data), 200);
+  // Answered: the address has its share back.
+  EXPECT_EQ(get(port, "/api/v1/echo?cost=expensive").result_int(), 200);
+}
+
+// A request still waiting for a worker when the server stops is answered 503 at once, not left
+// to the stop's deadline.
+TEST_F(HttpServerTest, StopAnswersTheRequestsStillWaiting) {
+  HttpServerOptions o;
+  o.request_workers = 1;
+  start(o);
+  const auto [first, waiting] = the_worker_busy_and_one_waiting(port);
+  ASSERT_TRUE(first && waiting);
+  std::thread stopping([&] { server->stop(); });
+  const auto answer = waiting->read_until_closed();
+  EXPECT_EQ(status_of(answer.data), 503) << answer.data;
+  EXPECT_NE(answer.data.find("shutting down"), std::string::npos);
+  api.open_gate();
+  stopping.join();
 }
 
 }  // namespace
