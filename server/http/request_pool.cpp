@@ -1,6 +1,10 @@
 #include "server/http/request_pool.hpp"
 
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <exception>
 #include <iostream>
 #include <utility>
@@ -23,7 +27,8 @@ void RequestPool::start() {
   if (!workers_.empty() || closed_) return;
   workers_.reserve(limits_.workers);
   for (std::size_t i = 0; i < limits_.workers; ++i)
-    workers_.emplace_back([this] { run_worker(); });
+    workers_.emplace_back(
+        [this, expensive = i < limits_.expensive_running] { run_worker(expensive); });
 }
 
 RequestPool::Submitted RequestPool::submit(bool expensive, const std::string& address, Work work) {
@@ -40,29 +45,41 @@ RequestPool::Submitted RequestPool::submit(bool expensive, const std::string& ad
       cheap_.push_back({std::move(work), {}});
     }
   }
-  // Every worker may be waiting for a kind of work that did not come: each looks again.
-  ready_.notify_all();
+  // Any worker takes cheap work: one is enough. Only some take expensive work: wake them all.
+  if (expensive)
+    ready_.notify_all();
+  else
+    ready_.notify_one();
   return Submitted::queued;
 }
 
-bool RequestPool::can_take() const {
-  return !cheap_.empty() || (!expensive_.empty() && expensive_now_ < limits_.expensive_running);
+bool RequestPool::can_take(bool expensive_worker) const {
+  return !cheap_.empty() || (expensive_worker && !expensive_.empty());
 }
 
-void RequestPool::run_worker() {
+void RequestPool::run_worker(bool expensive_worker) {
+  if (expensive_worker && limits_.nice > 0) {
+    // Best effort, once (lowering one's own priority needs no privilege; raising it back would):
+    // where it cannot be changed, expensive work runs at the process's priority.
+    const auto self = static_cast<id_t>(::gettid());
+    errno = 0;
+    const int own = ::getpriority(PRIO_PROCESS, self);
+    if (errno == 0) (void)::setpriority(PRIO_PROCESS, self, std::min(19, own + limits_.nice));
+  }
   for (;;) {
     Item item;
     bool expensive = false;
     {
       std::unique_lock lock(mutex_);
-      ready_.wait(lock, [&] { return closed_ || can_take(); });
+      ready_.wait(lock, [&] { return closed_ || can_take(expensive_worker); });
       // close() has cancelled whatever waited: the pool is done.
-      if (!can_take()) return;
-      expensive = cheap_.empty();
+      if (!can_take(expensive_worker)) return;
+      // A worker for expensive work takes it first, so that cheap work cannot starve it; the
+      // other workers are there for cheap work.
+      expensive = expensive_worker && !expensive_.empty();
       auto& from = expensive ? expensive_ : cheap_;
       item = std::move(from.front());
       from.pop_front();
-      if (expensive) ++expensive_now_;
     }
     try {
       item.work(true);
@@ -73,15 +90,10 @@ void RequestPool::run_worker() {
       std::cerr << "avk http: unexpected exception in a request worker\n";
     }
     if (!expensive) continue;
-    {
-      std::lock_guard lock(mutex_);
-      --expensive_now_;
-      if (const auto it = per_address_.find(item.address);
-          it != per_address_.end() && --it->second == 0)
-        per_address_.erase(it);
-    }
-    // A slot for expensive work is free: a worker that could not take any may now.
-    ready_.notify_all();
+    std::lock_guard lock(mutex_);
+    if (const auto it = per_address_.find(item.address);
+        it != per_address_.end() && --it->second == 0)
+      per_address_.erase(it);
   }
 }
 

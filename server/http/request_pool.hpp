@@ -1,11 +1,12 @@
 #pragma once
 // The threads that run the API's request work, so that the I/O threads only read, write and
 // route: a slow answer (a model fit, hundreds of maneuver candidates, an export) never holds up
-// /health, the live stream or the Foxglove connection. Work waits in one bounded queue; cheap
-// work is taken first, and expensive work runs on at most `expensive_running` workers at once,
-// so a worker is left for cheap requests (a command, a page of turns) while heavy ones run. Each
-// client address may have at most `expensive_per_address` expensive requests running or
-// waiting. Plain threads: nothing here knows about sockets.
+// /health, the live stream or the Foxglove connection. Work waits in one bounded queue.
+// `expensive_running` of the workers take expensive work (first; cheap work when none waits) and
+// run at a lower priority; the others take cheap work only, so cheap requests (a command, a page
+// of turns) find a worker while heavy ones run. Each client address may have at most
+// `expensive_per_address` expensive requests running or waiting. Plain threads: nothing here
+// knows about sockets.
 
 #include <condition_variable>
 #include <cstddef>
@@ -24,6 +25,10 @@ struct RequestPoolLimits {
   std::size_t queue = 64;  // waiting requests, cheap and expensive together
   std::size_t expensive_running = 2;
   std::size_t expensive_per_address = 4;  // running or waiting
+  // How far below the rest of the process expensive work runs (Linux nice, per thread): when
+  // it fills the cores, the I/O threads (/health, the stream, Foxglove), cheap requests and the
+  // vehicle loop still get theirs at once.
+  int nice = 10;
 };
 
 class RequestPool {
@@ -55,15 +60,14 @@ class RequestPool {
     Work work;
     std::string address;  // expensive work only: whose count it holds
   };
-  void run_worker();
-  bool can_take() const;  // under mutex_
+  void run_worker(bool expensive_worker);
+  bool can_take(bool expensive_worker) const;  // under mutex_
 
   RequestPoolLimits limits_;
   mutable std::mutex mutex_;
   std::condition_variable ready_;
   std::deque<Item> cheap_;
   std::deque<Item> expensive_;
-  std::size_t expensive_now_ = 0;                   // running
   std::map<std::string, std::size_t> per_address_;  // expensive, running or waiting
   bool closed_ = false;
   std::vector<std::thread> workers_;

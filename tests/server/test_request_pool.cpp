@@ -2,8 +2,11 @@
 // number of workers and per client address, the bounded queue, and a close that cancels what
 // waits. Work is held by gates the test opens, and every wait is for a state with a deadline.
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <unistd.h>
 
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
@@ -134,6 +137,37 @@ TEST(RequestPool, WorkThatThrowsLeavesTheWorkerRunning) {
   std::atomic<bool> ran{false};
   ASSERT_EQ(pool.submit(true, "a", [&](bool run) { ran = run; }), Submitted::queued);
   EXPECT_TRUE(wait_for([&] { return ran.load(); }));
+  pool.stop();
+}
+
+// Expensive work must not take the CPU from the I/O threads and the vehicle loop: it runs at a
+// lower priority than the thread that made the pool; cheap work on the others does not.
+TEST(RequestPool, ExpensiveWorkRunsBelowTheRestOfTheProcess) {
+  errno = 0;
+  const int own = ::getpriority(PRIO_PROCESS, static_cast<id_t>(::gettid()));
+  ASSERT_EQ(errno, 0);
+  if (own >= 19) GTEST_SKIP() << "this process runs at the lowest priority already";
+  RequestPool pool(RequestPoolLimits{2, 8, 1, 8});
+  pool.start();
+  std::atomic<int> expensive{-100};
+  Gate gate;  // holds the worker for expensive work, so the cheap one runs on the other
+  auto hold = gate.work();
+  ASSERT_EQ(pool.submit(true, "a",
+                        [&](bool run) {
+                          expensive = ::getpriority(PRIO_PROCESS, static_cast<id_t>(::gettid()));
+                          hold(run);
+                        }),
+            Submitted::queued);
+  ASSERT_TRUE(wait_for([&] { return gate.running.load() == 1; }));
+  std::atomic<int> cheap{-100};
+  ASSERT_EQ(pool.submit(
+                false, "a",
+                [&](bool) { cheap = ::getpriority(PRIO_PROCESS, static_cast<id_t>(::gettid())); }),
+            Submitted::queued);
+  ASSERT_TRUE(wait_for([&] { return cheap.load() != -100; }));
+  EXPECT_GT(expensive.load(), own);
+  EXPECT_EQ(cheap.load(), own);
+  gate.open();
   pool.stop();
 }
 
