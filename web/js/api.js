@@ -2,6 +2,7 @@
 // the status, the detail and, for mission validation, errors[] with JSON-pointer fields.
 
 import { getToken, requestToken } from './auth.js';
+import { fetchUnlessBusy } from './busy.js';
 
 export const BASE = '/api/v1';
 
@@ -38,13 +39,13 @@ async function problemOf(res) {
 /** fetch with the bearer token whenever the page has one: off this machine (a published Docker
  *  port, a LAN) every request needs it, reads included. A 401 asks for the token inline (never a
  *  modal) and retries once with it; concurrent 401s share one prompt. A cancelled prompt leaves
- *  the 401 to the caller. */
+ *  the 401 to the caller. A busy station's 429/503 is retried as it asks (busy.js). */
 async function authedFetch(url, init = {}) {
   for (let attempt = 0; ; attempt++) {
     const headers = { ...(init.headers || {}) };
     const token = getToken();
     if (token) headers.Authorization = `Bearer ${token}`;
-    const res = await fetch(url, { ...init, headers });
+    const res = await fetchUnlessBusy(url, { ...init, headers });
     if (res.status === 401 && attempt === 0) {
       try {
         await requestToken();
