@@ -34,29 +34,39 @@ void TableCache::forget(const std::string& vehicle_id) {
     std::lock_guard lock(e.mutex);
     e.value.reset();
   }
+  std::lock_guard lock(held_out_mutex_);
+  std::erase_if(held_out_, [&](const auto& kv) { return kv.first.vehicle_id == vehicle_id; });
+}
+
+const TableCache::Revision& TableCache::revision(Context& ctx, Entry& e,
+                                                 const std::string& vehicle_id,
+                                                 bool include_harvested, bool stale) {
+  const auto now = std::chrono::steady_clock::now();
+  if (!stale && now - e.checked < recheck_) return e.seen;
+  e.checked = now;
+  store::Store& db = ctx.db();
+  Revision r;
+  r.turns = db.newest_ok_turn_id(vehicle_id, include_harvested);
+  // A new estimate of a mission's current moves its turns into (or out of) the water frame.
+  r.current = r.turns > 0 ? db.current_revision(vehicle_id) : 0;
+  // Only a vehicle without turns is answered by an imported table, so only then is it looked up;
+  // its document is read only when the newest id changed.
+  r.snapshot = r.turns == 0 ? db.latest_ckt_snapshot_id(vehicle_id) : 0;
+  e.seen = r;
+  return e.seen;
 }
 
 Result<VehicleTable> TableCache::get(Context& ctx, const std::string& vehicle_id,
                                      bool include_harvested) {
   Entry& e = entry(vehicle_id, include_harvested);
   std::lock_guard lock(e.mutex);
-  const auto now = std::chrono::steady_clock::now();
-  if (e.value && now - e.checked < recheck_) return *e.value;
-  e.checked = now;
+  const Revision rev = revision(ctx, e, vehicle_id, include_harvested, !e.value);
+  if (e.value && e.value_from == rev) return *e.value;
   store::Store& db = ctx.db();
-  const std::int64_t newest = db.newest_ok_turn_id(vehicle_id, include_harvested);
-  // A new estimate of a mission's current moves its turns into (or out of) the water frame.
-  const std::int64_t current_revision = newest > 0 ? db.current_revision(vehicle_id) : 0;
-  // Only a vehicle without turns is answered by an imported table, so only then is it looked up;
-  // its document is read only when the newest id changed.
-  const std::int64_t snap_id = newest == 0 ? db.latest_ckt_snapshot_id(vehicle_id) : 0;
-  if (e.value && newest == e.turns_seen && snap_id == e.snapshot_seen &&
-      current_revision == e.current_seen)
-    return *e.value;
   VehicleTable t;
   t.vehicle_id = vehicle_id;
   t.include_harvested = include_harvested;
-  if (newest > 0) {
+  if (rev.turns > 0) {
     // Turns in the water frame where their mission's current is known: the table then predicts
     // through the water, and a query adds the drift of the current it is asked in.
     const auto turns = db.load_normalized_turns({}, vehicle_id, include_harvested,
@@ -67,19 +77,56 @@ Result<VehicleTable> TableCache::get(Context& ctx, const std::string& vehicle_id
     t.measured_speed_response = kin::measured_speed_response(turns);
     t.table = std::move(built);
     t.source = TableSource::turns;
-  } else if (auto snap = snap_id ? db.latest_ckt_snapshot(vehicle_id) : std::nullopt) {
+  } else if (auto snap = rev.snapshot ? db.latest_ckt_snapshot(vehicle_id) : std::nullopt) {
     t.table = std::make_shared<kin::Ckt>(std::move(snap->table));
     t.source = TableSource::imported;
     t.snapshot_id = snap->id;
   } else {
+    e.value.reset();
     return not_found("vehicle '" + vehicle_id + "' has no turns and no imported CKT");
   }
   if (t.table->speed_range_mps()) t.fine = std::make_shared<kin::MaterializedCkt>(*t.table);
-  e.turns_seen = newest;
-  e.snapshot_seen = snap_id;
-  e.current_seen = current_revision;
+  e.value_from = rev;
   e.value = t;
   return t;
+}
+
+std::shared_ptr<const kin::Ckt> TableCache::held_out(Context& ctx, const std::string& vehicle_id,
+                                                     bool include_harvested,
+                                                     const store::TurnsLeftOut& left_out) {
+  Revision rev;
+  {
+    Entry& e = entry(vehicle_id, include_harvested);
+    std::lock_guard lock(e.mutex);
+    rev = revision(ctx, e, vehicle_id, include_harvested, false);
+  }
+  const HeldOutKey key{vehicle_id, include_harvested, left_out.mission_id, left_out.turn_id};
+  {
+    std::lock_guard lock(held_out_mutex_);
+    const auto it = held_out_.find(key);
+    if (it != held_out_.end() && it->second.built_from == rev) {
+      it->second.used = ++held_out_uses_;
+      return it->second.table;
+    }
+  }
+  // Built outside the lock: two requests for the same new set may both build it, and the
+  // second's table replaces the first's (the same turns give the same table).
+  const auto turns = ctx.db().load_normalized_turns(
+      {}, vehicle_id, include_harvested, store::TurnFrameChoice::water_where_known, left_out);
+  if (turns.empty()) return nullptr;
+  auto table = std::make_shared<const kin::Ckt>(kin::Ckt::build(turns));
+  std::lock_guard lock(held_out_mutex_);
+  // Tables of an older revision answer no one any more.
+  std::erase_if(held_out_, [&](const auto& kv) {
+    return kv.first.vehicle_id == vehicle_id && kv.first.include_harvested == include_harvested &&
+           kv.second.built_from != rev;
+  });
+  held_out_[key] = HeldOutTable{rev, table, ++held_out_uses_};
+  while (held_out_.size() > kHeldOutTables)
+    held_out_.erase(std::min_element(
+        held_out_.begin(), held_out_.end(),
+        [](const auto& a, const auto& b) { return a.second.used < b.second.used; }));
+  return table;
 }
 
 Result<VehicleTable> vehicle_table(Context& ctx, const std::string& vehicle_id,

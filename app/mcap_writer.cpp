@@ -143,9 +143,18 @@ const char* to_string(Compression c) {
   return "";
 }
 
-Writer::Writer(WriterOptions options) : options_(std::move(options)) {
+Writer::Writer(WriterOptions options, Sink sink)
+    : options_(std::move(options)), sink_(std::move(sink)) {
   out_.append(kMagic);
   put(out_, HeaderRecord{options_.profile, options_.library});
+}
+
+void Writer::flush() {
+  if (!sink_ || out_.empty()) return;
+  data_crc_.process_bytes(out_.data(), out_.size());
+  sink_(out_);
+  flushed_ += out_.size();
+  out_.clear();
 }
 
 void Writer::check_open() const {
@@ -229,22 +238,23 @@ void Writer::close_chunk() {
   index.message_start_time_ns = chunk_message_index_.empty() ? 0 : chunk_start_time_ns_;
   index.message_end_time_ns = chunk_message_index_.empty() ? 0 : chunk_end_time_ns_;
   index.chunk_start_offset =
-      put(out_,
-          ChunkRecord{index.message_start_time_ns, index.message_end_time_ns, chunk_records_.size(),
-                      crc32(chunk_records_), to_string(options_.compression), records});
-  index.chunk_length = out_.size() - index.chunk_start_offset;
-  const std::uint64_t message_index_start = out_.size();
+      flushed_ + put(out_, ChunkRecord{index.message_start_time_ns, index.message_end_time_ns,
+                                       chunk_records_.size(), crc32(chunk_records_),
+                                       to_string(options_.compression), records});
+  index.chunk_length = offset() - index.chunk_start_offset;
+  const std::uint64_t message_index_start = offset();
   for (auto& [channel_id, entries] : chunk_message_index_) {
     index.message_index_offsets[channel_id] =
-        put(out_, MessageIndexRecord{channel_id, std::move(entries)});
+        flushed_ + put(out_, MessageIndexRecord{channel_id, std::move(entries)});
   }
-  index.message_index_length = out_.size() - message_index_start;
+  index.message_index_length = offset() - message_index_start;
   index.compression = to_string(options_.compression);
   index.compressed_size = records.size();
   index.uncompressed_size = chunk_records_.size();
   chunk_indexes_.push_back(std::move(index));
   chunk_records_.clear();
   chunk_message_index_.clear();
+  flush();
 }
 
 // Metadata may not sit inside a chunk; the open chunk is appended to the file only when it
@@ -252,8 +262,8 @@ void Writer::close_chunk() {
 void Writer::add_metadata(const std::string& name,
                           const std::map<std::string, std::string>& entries) {
   check_open();
-  const std::uint64_t offset = put(out_, MetadataRecord{name, entries});
-  metadata_indexes_.push_back(MetadataIndexRecord{offset, out_.size() - offset, name});
+  const std::uint64_t at = flushed_ + put(out_, MetadataRecord{name, entries});
+  metadata_indexes_.push_back(MetadataIndexRecord{at, offset() - at, name});
 }
 
 std::string Writer::finish() {
@@ -267,16 +277,20 @@ std::string Writer::finish() {
   for (std::size_t i = 0; i < channels_.size(); ++i) {
     if (!channel_written_[i]) put(out_, channels_[i]);
   }
-  put(out_, DataEndRecord{crc32(out_)});
+  boost::crc_32_type data_crc = data_crc_;
+  data_crc.process_bytes(out_.data(), out_.size());
+  put(out_, DataEndRecord{data_crc.checksum()});
+  flush();
 
-  const std::uint64_t summary_start = out_.size();
+  const std::size_t summary_at = out_.size();  // in out_
+  const std::uint64_t summary_start = offset();
   std::vector<SummaryOffsetRecord> groups;
   auto group = [&](Opcode op, auto&& records) {
     if (records.empty()) return;
-    const std::uint64_t start = out_.size();
+    const std::uint64_t start = offset();
     for (const auto& r : records)
       put(out_, r);
-    groups.push_back(SummaryOffsetRecord{op, start, out_.size() - start});
+    groups.push_back(SummaryOffsetRecord{op, start, offset() - start});
   };
   group(Opcode::schema, schemas_);
   group(Opcode::channel, channels_);
@@ -293,7 +307,7 @@ std::string Writer::finish() {
   group(Opcode::chunk_index, chunk_indexes_);
   group(Opcode::metadata_index, metadata_indexes_);
 
-  const std::uint64_t summary_offset_start = out_.size();
+  const std::uint64_t summary_offset_start = offset();
   for (const SummaryOffsetRecord& g : groups)
     put(out_, g);
 
@@ -301,13 +315,17 @@ std::string Writer::finish() {
   std::string footer;
   put(footer, FooterRecord{summary_start, summary_offset_start, 0});
   boost::crc_32_type crc;
-  crc.process_bytes(out_.data() + summary_start, out_.size() - summary_start);
+  crc.process_bytes(out_.data() + summary_at, out_.size() - summary_at);
   crc.process_bytes(footer.data(), footer.size() - 4);
   footer.resize(footer.size() - 4);
   put_u32(footer, crc.checksum());
   out_.append(footer);
   out_.append(kMagic);
   finished_ = true;
+  if (sink_) {
+    sink_(out_);
+    out_.clear();
+  }
   return std::move(out_);
 }
 

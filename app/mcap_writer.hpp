@@ -1,11 +1,14 @@
 #pragma once
-// Writes an MCAP file in memory: Magic, Header, chunks of messages (each followed by its Message
-// Index records), Metadata, Data End, then a summary section (Schema, Channel, Statistics, Chunk
-// Index, Metadata Index groups), Summary Offset records, Footer and Magic, so that viewers can
-// seek by time without reading the data section.
+// Writes an MCAP file: Magic, Header, chunks of messages (each followed by its Message Index
+// records), Metadata, Data End, then a summary section (Schema, Channel, Statistics, Chunk Index,
+// Metadata Index groups), Summary Offset records, Footer and Magic, so that viewers can seek by
+// time without reading the data section. In memory, or handed to a sink as each chunk closes, so
+// that a long mission's file is never held whole.
 
+#include <boost/crc.hpp>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <optional>
 #include <string>
@@ -29,7 +32,11 @@ struct WriterOptions {
 
 class Writer {
  public:
-  explicit Writer(WriterOptions options = {});
+  // Takes the file's bytes in order; what it throws leaves the writer unusable.
+  using Sink = std::function<void(std::string_view)>;
+
+  // Without a sink the file is kept in memory and finish() returns it.
+  explicit Writer(WriterOptions options = {}, Sink sink = {});
 
   // Ids are assigned from 1 in call order. Schema encoding e.g. "jsonschema"; data = schema text.
   std::uint16_t add_schema(const std::string& name, const std::string& encoding,
@@ -44,16 +51,26 @@ class Writer {
                    std::uint64_t publish_time_ns, std::string_view data);
   void add_metadata(const std::string& name, const std::map<std::string, std::string>& entries);
   // Closes the last chunk, writes the summary section, the footer (with summary CRC) and the
-  // magic; returns the whole file. The writer takes nothing afterwards (std::logic_error).
+  // magic; returns the whole file (empty with a sink, which has had it all). The writer takes
+  // nothing afterwards (std::logic_error).
   std::string finish();
 
  private:
   void check_open() const;
+  // Where the next byte lands in the file.
+  std::uint64_t offset() const { return flushed_ + out_.size(); }
+  // With a sink: hands it what out_ holds (data-section bytes count into the Data End CRC).
+  void flush();
   void write_definitions_into_chunk(std::uint16_t channel_id);
   void close_chunk();
 
   WriterOptions options_;
-  std::string out_;  // the file so far; the open chunk is kept apart until it closes
+  Sink sink_;
+  // The file so far, less what went to the sink (flushed_ bytes); the open chunk is kept apart
+  // until it closes.
+  std::string out_;
+  std::uint64_t flushed_ = 0;
+  boost::crc_32_type data_crc_;  // of the data-section bytes flushed
   std::vector<SchemaRecord> schemas_;
   std::vector<ChannelRecord> channels_;
   std::vector<bool> schema_written_;   // by id - 1: already in the data section

@@ -698,7 +698,8 @@ std::uint64_t McapChannelCounts::of(const std::string& topic) const {
 }
 
 Result<McapExport> export_mission_mcap(Context& ctx, std::int64_t mission_id,
-                                       const McapExportOptions& options) {
+                                       const McapExportOptions& options,
+                                       const mcap::Writer::Sink& sink) {
   store::Store& db = ctx.db();
   const auto mission = db.get_mission(mission_id);
   if (!mission) return not_found("no mission " + std::to_string(mission_id));
@@ -716,7 +717,7 @@ Result<McapExport> export_mission_mcap(Context& ctx, std::int64_t mission_id,
   mcap::WriterOptions wo;
   wo.compression = options.compression;
   wo.library = library_name();
-  mcap::Writer w(wo);
+  mcap::Writer w(wo, sink);
   const std::string& vid = mission->vehicle_id;
   std::map<std::string, std::uint16_t> schema_ids;
   std::map<fg::ChannelKind, std::uint16_t> channel_ids;

@@ -42,13 +42,16 @@ struct McapChannelCounts {
 struct McapExport {
   std::int64_t mission_id = 0;
   std::string vehicle_id;
-  std::string bytes;  // the file
+  std::string bytes;  // the file; empty when it went to a sink
   McapChannelCounts messages;
 };
 
-// not_found for an unknown mission; invalid_argument naming "datum" for a datum off the earth.
+// not_found for an unknown mission; invalid_argument naming "datum" for a datum off the earth
+// (both before anything goes to the sink). With a sink the file goes to it a chunk at a time as
+// it is written, instead of into `bytes`: an export of a long mission is never held whole.
 Result<McapExport> export_mission_mcap(Context& ctx, std::int64_t mission_id,
-                                       const McapExportOptions& options = {});
+                                       const McapExportOptions& options = {},
+                                       const mcap::Writer::Sink& sink = {});
 
 struct McapImport {
   std::int64_t mission_id = 0;         // the new mission

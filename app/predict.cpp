@@ -202,21 +202,21 @@ Result<HeldOut> held_out_of(Context& ctx, const PredictQuery& q) {
   return h;
 }
 
-// avk without a mission or a turn: a table of the vehicle's other ok turns, built for this
-// answer (the cached table holds every turn). The coarse table answers: a fine one is not worth
-// building for one query.
+// avk without a mission or a turn: a table of the vehicle's other ok turns (the full table holds
+// every turn), kept per left-out set until the vehicle's turns change (TableCache::held_out). The
+// coarse table answers: a fine one is not worth building for the few queries of one set.
 Result<Prediction> from_held_out_table(Context& ctx, Prediction p, const HeldOut& h) {
   const PredictQuery& q = p.query;
   if (q.initial_yaw_rate_dps || q.speed_after_mps)
     return invalid_argument(h.left_out.mission_id ? "without_mission" : "without_turn",
                             "applies to constant-speed turns from a steady course; ask without "
                             "initial_yaw_rate and speed_after");
-  const auto turns = ctx.db().load_normalized_turns(
-      {}, q.vehicle_id, q.include_harvested, store::TurnFrameChoice::water_where_known, h.left_out);
-  if (turns.empty())
+  const auto held_out_table =
+      ctx.tables().held_out(ctx, q.vehicle_id, q.include_harvested, h.left_out);
+  if (!held_out_table)
     return not_found("'" + q.vehicle_id + "' has no ok turns outside " + h.text +
                      " to build a table from");
-  const kin::Ckt table = kin::Ckt::build(turns);
+  const kin::Ckt& table = *held_out_table;
   p.table_source = "turns";
   p.table_frame = kin::to_string(table.frame);
   try {

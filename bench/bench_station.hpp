@@ -1,9 +1,13 @@
 #pragma once
 // The station the load benchmarks measure: a database holding one Figure 4-1 mission (so the CKT
-// has turns), the station with its simulated usim vehicle, and the HTTP server on an ephemeral
-// loopback port with two io threads — as `avk serve --sim` runs it.
+// has turns; more with repeats), the station with its simulated usim vehicle, and the HTTP server
+// on an ephemeral loopback port with two io threads and the repository's web/ — as `avk serve
+// --sim` runs it.
 
+#include <filesystem>
+#include <fstream>
 #include <memory>
+#include <regex>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -18,14 +22,22 @@
 namespace avk::bench {
 
 struct BenchStation {
-  BenchStation(const std::string& name, const std::string& token, double realtime_factor)
+  // repeats: the Figure 4-1 mission's, flown before the server starts (more turns to read).
+  BenchStation(const std::string& name, const std::string& token, double realtime_factor,
+               int repeats = 1)
       : db(name) {
+    std::ifstream example(std::string(AVK_SOURCE_DIR) + "/examples/thesis-fig4-1.json");
+    std::stringstream text;
+    text << example.rdbuf();
+    const std::string config_path = db.path() + ".mission.json";
+    std::ofstream(config_path) << std::regex_replace(text.str(), std::regex(R"("repeats": *\d+)"),
+                                                     "\"repeats\": " + std::to_string(repeats));
     std::istringstream in;
     std::ostringstream out, err;
     const int rc = server::run_cli(
-        {"mission", "run", "--config", std::string(AVK_SOURCE_DIR) + "/examples/thesis-fig4-1.json",
-         "--db", db.path(), "--sim", "--quiet"},
-        in, out, err);
+        {"mission", "run", "--config", config_path, "--db", db.path(), "--sim", "--quiet"}, in, out,
+        err);
+    std::filesystem::remove(config_path);
     if (rc != 0) throw std::runtime_error("the mission run failed: " + err.str());
     server::StationOptions so;
     so.db_path = db.path();
@@ -44,6 +56,8 @@ struct BenchStation {
     ho.port = 0;
     ho.threads = 2;
     ho.server_version = "bench";
+    // The dashboard as `avk serve` serves it from a checkout.
+    ho.web_root = std::string(AVK_SOURCE_DIR) + "/web";
     http = std::make_unique<server::HttpServer>(ho, *station, hub);
     http->start();
   }

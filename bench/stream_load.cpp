@@ -1,9 +1,14 @@
 // Load on the live stream /api/v1/stream: 100 WebSocket clients subscribed to
 // nav while a mission runs, plus one client that subscribes to nav and turn and then never reads.
 // The target is p99 delivery latency < 50 ms, and the stalled client must not slow the others.
+// A third phase adds heavy reads beside them: --heavy-loops clients on this machine each asking
+// for a model fit, the comparison and a held-out prediction one after another (an analyst
+// beside the operator); the stream must stay whole (nav per client against nav published, and
+// the probes' lag). --repeats R flies the Figure 4-1 mission with R repeats first, so the reads
+// have the turns of a long campaign to work on.
 //
 //   bench_stream_load [--clients N] [--seconds D] [--baseline-seconds B] [--realtime-factor K]
-//                     [--quickack]
+//                     [--quickack] [--heavy-loops L] [--repeats R]
 //
 // The vehicle loop publishes nav at 10 Hz by itself; its messages carry no send time, so the
 // bench publishes its own probes on nav too (10 Hz, {"probe_ns":…}) and the clients take
@@ -32,7 +37,9 @@
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
@@ -70,6 +77,8 @@ struct Options {
   double baseline_seconds = 5.0;
   double realtime_factor = 1.0;
   bool quickack = false;
+  int heavy_loops = 4;
+  int repeats = 1;
 };
 
 Options parse_options(int argc, char** argv) {
@@ -90,10 +99,14 @@ Options parse_options(int argc, char** argv) {
       o.realtime_factor = value();
     else if (a == "--quickack")
       o.quickack = true;
+    else if (a == "--heavy-loops")
+      o.heavy_loops = static_cast<int>(value());
+    else if (a == "--repeats")
+      o.repeats = static_cast<int>(value());
     else
-      throw std::invalid_argument(
-          "unknown option " + a +
-          " (--clients N, --seconds D, --baseline-seconds B, --realtime-factor K, --quickack)");
+      throw std::invalid_argument("unknown option " + a +
+                                  " (--clients N, --seconds D, --baseline-seconds B, "
+                                  "--realtime-factor K, --quickack, --heavy-loops L, --repeats R)");
   }
   // Bounded so that a typo cannot start an endless or descriptor-exhausting run.
   if (o.clients < 1 || o.clients > 1000) throw std::invalid_argument("--clients: 1..1000");
@@ -102,6 +115,8 @@ Options parse_options(int argc, char** argv) {
     throw std::invalid_argument("--baseline-seconds: 0..60");
   if (!(o.realtime_factor > 0.0 && o.realtime_factor <= 1000.0))
     throw std::invalid_argument("--realtime-factor: (0, 1000]");
+  if (o.heavy_loops < 0 || o.heavy_loops > 64) throw std::invalid_argument("--heavy-loops: 0..64");
+  if (o.repeats < 1 || o.repeats > 200) throw std::invalid_argument("--repeats: 1..200");
   return o;
 }
 
@@ -116,10 +131,11 @@ std::int64_t now_ns() {
 
 // One request on its own connection; the deadline keeps a stuck server from hanging the bench.
 std::pair<int, std::string> http_call(unsigned short port, http::verb method,
-                                      const std::string& target, const std::string& body = "") {
+                                      const std::string& target, const std::string& body = "",
+                                      std::chrono::seconds limit = 10s) {
   net::io_context ioc;
   beast::tcp_stream stream(ioc);
-  stream.expires_after(10s);
+  stream.expires_after(limit);
   stream.connect(loopback(port));
   http::request<http::string_body> req{method, target, 11};
   req.set(http::field::host, "127.0.0.1:" + std::to_string(port));
@@ -146,7 +162,9 @@ std::pair<int, std::string> http_call(unsigned short port, http::verb method,
 
 // The phase a message arrived in: set by the main thread, read by the io thread.
 std::atomic<int> g_phase{-1};
-constexpr int kPhases = 2;  // 0: baseline, 1: with the stalled client
+constexpr int kPhases = 3;  // 0: baseline, 1: with the stalled client, 2: and heavy reads
+constexpr const char* kPhaseNames[kPhases] = {"baseline (no stall)", "with stalled client",
+                                              "and heavy reads"};
 
 struct PhaseStats {
   std::uint64_t messages = 0;  // every message that arrived in the phase
@@ -403,6 +421,57 @@ std::size_t publish_probes(avk::server::StreamHub& hub, int phase, double second
   return count;
 }
 
+// Heavy reads beside the stream, until `stop`: each loop asks for a model fit, the comparison and
+// a held-out prediction (another turn each time) in turn, as an analyst's page would.
+struct HeavyReads {
+  std::mutex mutex;
+  std::map<int, int> statuses;  // 0: no answer (a transport error or the deadline)
+  std::atomic<bool> stop{false};
+  std::atomic<int> next_turn{1};
+  std::vector<std::thread> loops;
+
+  void start(unsigned short port, int n, std::int64_t mission) {
+    for (int l = 0; l < n; ++l)
+      loops.emplace_back([this, port, l, mission] {
+        for (int i = l; !stop; ++i) {
+          int status = 0;
+          try {
+            const std::string vehicle = std::string("/api/v1/vehicles/") + kVehicle;
+            if (i % 3 == 0)
+              status = http_call(port, http::verb::post, vehicle + "/models",
+                                 R"({"missions":[)" + std::to_string(mission) + "]}", 120s)
+                           .first;
+            else if (i % 3 == 1)
+              status = http_call(port, http::verb::get, vehicle + "/compare", "", 120s).first;
+            else
+              status = http_call(port, http::verb::get,
+                                 vehicle + "/predict?speed=1&dheading=70&without_turn=" +
+                                     std::to_string(next_turn++),
+                                 "", 120s)
+                           .first;
+          } catch (const std::exception&) {
+            status = 0;
+          }
+          {
+            std::lock_guard lock(mutex);
+            ++statuses[status];
+          }
+          if (status == 429 || status == 503) std::this_thread::sleep_for(1s);
+        }
+      });
+  }
+  std::string finish() {
+    stop = true;
+    for (auto& t : loops)
+      t.join();
+    std::string out;
+    for (const auto& [status, count] : statuses)
+      out += " " + (status ? std::to_string(status) : std::string("none")) + " x" +
+             std::to_string(count);
+    return out.empty() ? " none" : out;
+  }
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -416,14 +485,17 @@ int main(int argc, char** argv) {
   const auto bench_start = Clock::now();
   const std::string config_path = std::string(AVK_SOURCE_DIR) + "/examples/thesis-fig4-1.json";
 
-  avk::bench::BenchStation bench_station("avk_bench_stream_load", kToken, o.realtime_factor);
+  avk::bench::BenchStation bench_station("avk_bench_stream_load", kToken, o.realtime_factor,
+                                         o.repeats);
   auto& hub = bench_station.hub;
   auto& station = *bench_station.station;
   auto& server = *bench_station.http;
   const unsigned short port = server.port();
 
-  const auto probes_total = static_cast<std::size_t>(o.baseline_seconds * kProbeHz) +
-                            static_cast<std::size_t>(o.seconds * kProbeHz);
+  // The stalled phase, and the heavy-read phase after it when there is one, last o.seconds each.
+  const auto probes_total =
+      static_cast<std::size_t>(o.baseline_seconds * kProbeHz) +
+      static_cast<std::size_t>(o.seconds * kProbeHz) * (o.heavy_loops > 0 ? 2 : 1);
   net::io_context ioc;
   auto work = net::make_work_guard(ioc);
   std::thread io([&] { ioc.run(); });
@@ -476,12 +548,27 @@ int main(int argc, char** argv) {
     std::this_thread::sleep_for(5ms);
   const std::size_t stalled_subscribed = hub.subscriber_count("turn");
 
+  std::array<std::uint64_t, kPhases> nav_in_phase{};
+  std::uint64_t nav_before = hub.published("nav");
+  nav_in_phase[0] = nav_before;  // the baseline's: since the start (the hub counts from there)
   g_phase = 1;
   probes_in_phase[1] = publish_probes(hub, 1, o.seconds, probes_sent, bench_start);
   probes_sent += probes_in_phase[1];
+  nav_in_phase[1] = hub.published("nav") - nav_before;
+  nav_before = hub.published("nav");
+  HeavyReads heavy;
+  std::string heavy_answers = " (none: --heavy-loops 0)";
+  if (o.heavy_loops > 0) {
+    heavy.start(port, o.heavy_loops, 1);
+    g_phase = 2;
+    probes_in_phase[2] = publish_probes(hub, 2, o.seconds, probes_sent, bench_start);
+    probes_sent += probes_in_phase[2];
+    nav_in_phase[2] = hub.published("nav") - nav_before;
+  }
   // Let the last probes arrive before the numbers are read.
   std::this_thread::sleep_for(500ms);
   g_phase = -1;
+  if (o.heavy_loops > 0) heavy_answers = heavy.finish();
   const std::size_t stalled_still_subscribed = hub.subscriber_count("turn");
   const std::size_t open_sessions = server.open_stream_sessions();
   const auto turns_published = hub.published("turn");
@@ -514,17 +601,23 @@ int main(int argc, char** argv) {
       "bench_stream_load: %d clients subscribed to nav %.2f s after the start; mission %lld posted "
       "(%d)\n",
       subscribed.load(), subscribe_s, static_cast<long long>(mission_id), mission_status);
-  std::printf("\n%-22s %7s %7s %13s %13s %7s %7s %7s %9s %9s\n", "phase", "seconds", "probes",
-              "msgs/client", "nav/client", "p50 ms", "p99 ms", "max ms", "missed", "clients");
-  std::printf("%-22s %7s %7s %13s %13s %7s %7s %7s %9s %9s\n", "", "", "sent", "min/mean",
-              "min/mean", "", "", "", "probes", "missing");
+  std::printf("\n%-22s %7s %7s %9s %13s %13s %7s %7s %7s %9s %9s\n", "phase", "seconds", "probes",
+              "nav", "msgs/client", "nav/client", "p50 ms", "p99 ms", "max ms", "missed",
+              "clients");
+  std::printf("%-22s %7s %7s %9s %13s %13s %7s %7s %7s %9s %9s\n", "", "", "sent", "published",
+              "min/mean", "min/mean", "", "", "", "probes", "missing");
+  // Probe ids run on from phase to phase: where each phase's begin.
+  std::array<std::size_t, kPhases + 1> first_probe{};
+  for (int p = 0; p < kPhases; ++p)
+    first_probe[static_cast<std::size_t>(p) + 1] =
+        first_probe[static_cast<std::size_t>(p)] + probes_in_phase[static_cast<std::size_t>(p)];
   for (int p = 0; p < kPhases; ++p) {
     if (probes_in_phase[static_cast<std::size_t>(p)] == 0) continue;
     std::vector<std::int64_t> lat;
     std::uint64_t min_msgs = UINT64_MAX, min_nav = UINT64_MAX, sum_msgs = 0, sum_nav = 0;
     std::size_t missed = 0, clients_missing = 0;
-    const std::size_t first = p == 0 ? 0 : probes_in_phase[0];
-    const std::size_t last = first + probes_in_phase[static_cast<std::size_t>(p)];
+    const std::size_t first = first_probe[static_cast<std::size_t>(p)];
+    const std::size_t last = first_probe[static_cast<std::size_t>(p) + 1];
     for (const auto& c : clients) {
       const auto& s = c->phase[static_cast<std::size_t>(p)];
       lat.insert(lat.end(), s.latency_ns.begin(), s.latency_ns.end());
@@ -545,11 +638,11 @@ int main(int argc, char** argv) {
                   static_cast<double>(sum_msgs) / n);
     std::snprintf(nav, sizeof nav, "%llu/%.1f", static_cast<unsigned long long>(min_nav),
                   static_cast<double>(sum_nav) / n);
-    std::printf("%-22s %7.1f %7zu %13s %13s %7.2f %7.2f %7.2f %9zu %9zu\n",
-                p == 0 ? "baseline (no stall)" : "with stalled client",
+    std::printf("%-22s %7.1f %7zu %9llu %13s %13s %7.2f %7.2f %7.2f %9zu %9zu\n", kPhaseNames[p],
                 static_cast<double>(probes_in_phase[static_cast<std::size_t>(p)]) / kProbeHz,
-                probes_in_phase[static_cast<std::size_t>(p)], msgs, nav, percentile_ms(lat, 0.5),
-                percentile_ms(lat, 0.99),
+                probes_in_phase[static_cast<std::size_t>(p)],
+                static_cast<unsigned long long>(nav_in_phase[static_cast<std::size_t>(p)]), msgs,
+                nav, percentile_ms(lat, 0.5), percentile_ms(lat, 0.99),
                 lat.empty() ? 0.0 : static_cast<double>(lat.back()) * 1e-6, missed,
                 clients_missing);
   }
@@ -570,9 +663,11 @@ int main(int argc, char** argv) {
     std::size_t over = 0;
     for (const auto& c : clients)
       over += c->probe_latency_ns[i] > 10'000'000 ? 1 : 0;
-    const bool base = i < probes_in_phase[0];
-    std::printf("\n  #%zu, %s, %.1f s: %.2f ms, %zu", i, base ? "baseline" : "stalled",
-                static_cast<double>(base ? i : i - probes_in_phase[0]) / kProbeHz,
+    std::size_t p = 0;
+    while (p + 1 < kPhases && i >= first_probe[p + 1])
+      ++p;
+    std::printf("\n  #%zu, %s, %.1f s: %.2f ms, %zu", i, kPhaseNames[p],
+                static_cast<double>(i - first_probe[p]) / kProbeHz,
                 static_cast<double>(worst[k].first) * 1e-6, over);
   }
   std::printf("\n");
@@ -619,7 +714,11 @@ int main(int argc, char** argv) {
                   std::string(drained.close->reason.data(), drained.close->reason.size()).c_str());
     std::printf("\n");
   }
-  std::printf("target: p99 < 50 ms, and the stalled client does not slow the others\n");
+  std::printf("heavy reads (%d loops: model fit, compare, held-out predict), answers:%s\n",
+              o.heavy_loops, heavy_answers.c_str());
+  std::printf(
+      "target: p99 < 50 ms, and neither the stalled client nor the heavy reads slow the "
+      "others\n");
 
   server.stop();
   station.shutdown();

@@ -13,6 +13,8 @@
 #include <utility>
 #include <vector>
 
+#include "server/body_file.hpp"
+
 namespace avk::server {
 
 struct ApiRequest {
@@ -31,21 +33,40 @@ struct ApiRequest {
 };
 
 struct ApiResponse {
+  ApiResponse() = default;
+  ApiResponse(int status_code, std::string type, std::string text,
+              std::vector<std::pair<std::string, std::string>> extra_headers = {})
+      : status(status_code),
+        content_type(std::move(type)),
+        body(std::move(text)),
+        headers(std::move(extra_headers)) {}
+
   int status = 200;
   std::string content_type = "application/json";
   std::string body;
   std::vector<std::pair<std::string, std::string>> headers;  // extra (Location, ...)
+  std::shared_ptr<BodyFile> body_file;                       // sent instead of body when set
+};
+
+// Where the transport runs a request's work.
+enum class Workload {
+  immediate,  // on the I/O thread: constant work with no I/O (/health), never queued
+  cheap,      // on a request worker
+  expensive,  // on a request worker, limited in number at once and per client address
 };
 
 // What the API decides from a request's header alone, before the transport reads its body: a
 // client without the token must not make the server hold 64 MB for it, and the route (not the
-// transport) knows how large its body may be.
+// transport) knows how large its body may be and how much work its answer takes.
 struct Admission {
   std::optional<ApiResponse> refusal;           // sent as is; the body is never read
   std::optional<std::size_t> body_limit_bytes;  // none: the transport's default
+  Workload workload = Workload::cheap;
 };
 
-// The REST API behind /api/v1. Called concurrently from the transport's threads.
+// The REST API behind /api/v1. handle() is called concurrently from the transport's request
+// workers (and, for immediate work, its I/O threads); admit() and may_open_stream() from its I/O
+// threads.
 class Api {
  public:
   virtual ~Api() = default;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <chrono>
 #include <limits>
+#include <map>
+#include <stdexcept>
 
 #include <nlohmann/json.hpp>
 
@@ -181,9 +183,37 @@ void Station::shutdown() {
 
 void Station::add_routes() {
   app::Context& ctx = context_;
-  const auto route = [this](std::string method, std::string pattern, Access access, RouteHandler h,
-                            std::optional<std::size_t> limit,
-                            std::vector<Representation> representations) {
+  // How much work each answer takes (docs/api.md, "Request work"); a route not named here is
+  // cheap. Immediate: answered on an I/O thread, so /health answers while every request worker
+  // is busy. Expensive: work that grows with the stored data (whole missions, every turn, a
+  // simulation, a fit), limited in number and per client address.
+  const RouteCost expensive{Workload::expensive};
+  std::map<std::string, std::pair<RouteCost, bool>> costs = {
+      {"GET /api/v1/health", {{Workload::immediate}, false}},
+      {"GET /api/v1/meta", {{Workload::immediate}, false}},
+      {"GET /api/v1/missions/{id}/current", {expensive, false}},
+      {"GET /api/v1/missions/{id}/export", {expensive, false}},
+      {"POST /api/v1/missions/{id}/harvest", {expensive, false}},
+      {"GET /api/v1/vehicles/{vid}/ckt/yaw-rate", {expensive, false}},
+      {"POST /api/v1/vehicles/{vid}/ckt/import", {expensive, false}},
+      // A table built for the answer: the vehicle's other turns, or its table over yaw rate.
+      {"GET /api/v1/vehicles/{vid}/predict",
+       {{Workload::cheap, {"without_turn", "without_mission", "initial_yaw_rate"}}, false}},
+      {"POST /api/v1/vehicles/{vid}/maneuvers/evaluate", {expensive, false}},
+      {"POST /api/v1/vehicles/{vid}/maneuvers/simulate", {expensive, false}},
+      {"GET /api/v1/vehicles/{vid}/compare", {expensive, false}},
+      {"POST /api/v1/vehicles/{vid}/models", {expensive, false}},
+      {"GET /api/v1/vehicles/{vid}/models/sweep", {expensive, false}},
+      {"GET /api/v1/models/{id}/headings", {expensive, false}},
+  };
+  const auto route = [this, &costs](std::string method, std::string pattern, Access access,
+                                    RouteHandler h, std::optional<std::size_t> limit,
+                                    std::vector<Representation> representations) {
+    RouteCost cost;
+    if (const auto it = costs.find(method + " " + pattern); it != costs.end()) {
+      cost = it->second.first;
+      it->second.second = true;
+    }
     Route r;
     r.method = std::move(method);
     r.pattern = std::move(pattern);
@@ -191,7 +221,7 @@ void Station::add_routes() {
     r.body_limit_bytes = limit;
     r.handler = std::move(h);
     r.representations = std::move(representations);
-    add(std::move(r));
+    add(std::move(r), std::move(cost));
   };
   const auto get = [route](std::string pattern, RouteHandler h,
                            std::vector<Representation> representations = {kJsonRepresentation}) {
@@ -374,12 +404,19 @@ void Station::add_routes() {
           else if (c->second != "zstd")
             throw bad_parameter("compression", "must be zstd or none");
         }
-        return answer(app::export_mission_mcap(ctx, id, o), false, [id](const app::McapExport& e) {
-          ApiResponse resp{200, app::kMcapMediaType, e.bytes, {}};
-          resp.headers.push_back({"Content-Disposition", "attachment; filename=\"mission-" +
-                                                             std::to_string(id) + ".mcap\""});
-          return resp;
-        });
+        // Written to a temporary file as it is made and sent from there: a long mission's
+        // recording (tens of MB) is never held in memory whole.
+        const auto file = temporary_body_file();
+        const auto to_file = [&file](std::string_view bytes) { file->write(bytes); };
+        return answer(
+            app::export_mission_mcap(ctx, id, o, to_file), false,
+            [id, &file](const app::McapExport&) {
+              ApiResponse resp{200, app::kMcapMediaType, ""};
+              resp.body_file = file;
+              resp.headers.push_back({"Content-Disposition", "attachment; filename=\"mission-" +
+                                                                 std::to_string(id) + ".mcap\""});
+              return resp;
+            });
       },
       {{"mcap", app::kMcapMediaType}});
   for (const auto c :
@@ -633,6 +670,9 @@ void Station::add_routes() {
 
   // --- the map background (avk serve --tiles) ---------------------------------------------
   add_map_tile_routes(*this, options_.tiles, options_.datum);
+
+  for (const auto& [key, cost] : costs)
+    if (!cost.second) throw std::logic_error("Station: a cost for no route: " + key);
 }
 
 }  // namespace avk::server

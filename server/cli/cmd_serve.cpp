@@ -140,7 +140,12 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
                 "allow-host",
                 "allow-origin",
                 "max-connections",
-                "max-connections-per-address"},
+                "max-connections-per-address",
+                "max-streams-per-address",
+                "request-workers",
+                "request-queue",
+                "expensive-requests",
+                "expensive-requests-per-address"},
                {"sim", "jitter"}, {"allow-host", "allow-origin"});
   if (a.flag("sim") && a.get("m200")) throw UsageError("give one vehicle: --sim or --m200");
   auto m200 = m200_options_from(a);  // option mistakes show before anything is opened
@@ -160,6 +165,16 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
   };
   count_option("max-connections", ho.max_connections);
   count_option("max-connections-per-address", ho.max_connections_per_address);
+  count_option("max-streams-per-address", ho.max_streams_per_address);
+  count_option("request-queue", ho.request_queue);
+  count_option("expensive-requests-per-address", ho.expensive_requests_per_address);
+  count_option("request-workers", ho.request_workers);
+  if (ho.request_workers > 256) throw UsageError("--request-workers must be at most 256");
+  count_option("expensive-requests", ho.expensive_requests);
+  if (ho.expensive_requests > ho.request_workers)
+    throw UsageError("--expensive-requests (" + std::to_string(ho.expensive_requests) +
+                     ") must not exceed --request-workers (" + std::to_string(ho.request_workers) +
+                     ")");
   const auto allow_host = [&](const std::string& name, const std::string& source) {
     if (name.empty() || name.find_first_of(":/[] ") != std::string::npos)
       throw UsageError(source + " takes host names without port or scheme, not '" + name + "'");

@@ -216,6 +216,9 @@ const std::vector<CommandUsage>& command_usages() {
        "                  [--bind 127.0.0.1] [--port 8080] [--web DIR] [--token T]\n"
        "                  [--allow-host NAME]... [--allow-origin ORIGIN]...\n"
        "                  [--max-connections 512] [--max-connections-per-address 64]\n"
+       "                  [--max-streams-per-address 256] [--request-workers 4]\n"
+       "                  [--request-queue 64] [--expensive-requests 2]\n"
+       "                  [--expensive-requests-per-address 4]\n"
        "      the ground station: REST + WebSocket API under /api/v1 and the dashboard\n"},
       {"frontseat-emulator",
        {},

@@ -69,8 +69,9 @@ class FoxgloveSessionSink final : public FoxgloveClient, public DetachableSink {
 
 }  // namespace
 
-FoxgloveSession::FoxgloveSession(tcp::socket&& socket, std::shared_ptr<ServerState> state)
-    : LiveWebSocket(std::move(socket), std::move(state)) {}
+FoxgloveSession::FoxgloveSession(tcp::socket&& socket, std::shared_ptr<ServerState> state,
+                                 std::string address)
+    : LiveWebSocket(std::move(socket), std::move(state), std::move(address)) {}
 
 FoxgloveSession::~FoxgloveSession() {
   if (client_) state_->foxglove().leave(client_.get());
@@ -81,7 +82,7 @@ FoxgloveSession::~FoxgloveSession() {
 void FoxgloveSession::run(Request request) {
   auto sink = std::make_shared<FoxgloveSessionSink>(weak_from_this());
   client_ = sink;
-  state_->add(shared_from_this(), sink);
+  state_->add(shared_from_this(), sink, address_);
   // The client offered the subprotocol (the HTTP session checked): the server must select it.
   accept(std::move(request), kFoxgloveSubprotocol);
 }

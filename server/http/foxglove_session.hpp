@@ -31,7 +31,8 @@ using Outgoing =
 
 class FoxgloveSession : public LiveWebSocket<FoxgloveSession, foxglove_wire::Outgoing> {
  public:
-  FoxgloveSession(tcp::socket&& socket, std::shared_ptr<ServerState> state);
+  // address: the client's, reserved with ServerState::reserve_stream.
+  FoxgloveSession(tcp::socket&& socket, std::shared_ptr<ServerState> state, std::string address);
   ~FoxgloveSession() override;
 
   // Completes the upgrade the HTTP session has read; the request offered kFoxgloveSubprotocol.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <iostream>
+#include <optional>
 #include <stdexcept>
 #include <thread>
 #include <utility>
@@ -32,6 +33,10 @@ class HttpServer::Impl {
                                std::to_string(options.port) + ": not an IP address");
     listener_ = std::make_shared<Listener>(ioc_, tcp::endpoint{address, options.port}, state_);
     started_ = true;
+    // Without work (every client gone, the acceptor closed by stop) the io threads would return,
+    // and what stop() posts to the sessions after that would never run.
+    work_.emplace(ioc_.get_executor());
+    state_->pool().start();
     listener_->run();
     threads_.reserve(static_cast<std::size_t>(threads_count_));
     for (int i = 0; i < threads_count_; ++i)
@@ -50,14 +55,19 @@ class HttpServer::Impl {
     const auto deadline = std::chrono::steady_clock::now() + state_->options().close_timeout +
                           std::chrono::milliseconds(250);
     state_->wait_until_idle(deadline);
+    work_.reset();
     ioc_.stop();
     for (auto& t : threads_)
       t.join();
     threads_.clear();
+    // A request running still runs to its end (its answer, posted to the stopped io_context, is
+    // never sent); nothing may reach a session after the io_context goes.
+    state_->pool().stop();
     state_->detach_sinks();
   }
 
   std::size_t open_stream_sessions() const { return state_->open_stream_sessions(); }
+  std::size_t waiting_requests() const { return state_->pool().waiting(); }
 
  private:
   void run_io() {
@@ -82,6 +92,7 @@ class HttpServer::Impl {
   // Destroyed before state_ and after listener_: the sessions and the listener its unrun
   // handlers still hold go with it, and no socket outlives its io_context.
   net::io_context ioc_;
+  std::optional<net::executor_work_guard<net::io_context::executor_type>> work_;
   std::shared_ptr<Listener> listener_;
   std::vector<std::thread> threads_;
 };
@@ -105,6 +116,10 @@ void HttpServer::stop() {
 
 std::size_t HttpServer::open_stream_sessions() const {
   return impl_->open_stream_sessions();
+}
+
+std::size_t HttpServer::waiting_requests() const {
+  return impl_->waiting_requests();
 }
 
 }  // namespace avk::server

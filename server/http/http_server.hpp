@@ -33,12 +33,20 @@ struct HttpServerOptions {
   // Header and body together, from the request's first byte: a body trickled in at one byte
   // per pause shorter than idle_timeout is still cut here.
   std::chrono::milliseconds request_timeout{30000};
-  // Open connections (HTTP and WebSocket) in all, and HTTP connections from one address. When
-  // full, the oldest connection still waiting for (or reading) a request is closed to make
-  // room, so a flood of slow connections cannot keep /health out; when none can be closed the
-  // new one gets a 503 and is closed.
+  // Open connections (HTTP and WebSocket) in all. When full, a connection still waiting for (or
+  // reading) a request is closed to make room — the oldest of the address holding the most — so
+  // a flood of slow connections cannot keep /health out; when none can be closed the new one gets
+  // a 503 and is closed.
   std::size_t max_connections = 512;
+  // HTTP connections from one address that have sent a request. At the cap the address's oldest
+  // one idle between requests is closed to make room, else the request gets a 503. A connection
+  // that has sent nothing yet is not counted (header_timeout bounds it), so a burst of upgrades
+  // from one address (a dashboard behind a proxy) is not cut before it asks.
   std::size_t max_connections_per_address = 64;
+  // Live WebSocket sessions (the stream and the Foxglove connection) from one address, counted
+  // from the accepted upgrade request until the session ends; one more is a 503 with
+  // Retry-After instead of a 101.
+  std::size_t max_streams_per_address = 256;
   // Request bodies that are JSON (by type or by their first character) nested deeper are a 400
   // before any handler parses them: nothing recursive ever sees an attacker's depth.
   std::size_t json_depth_limit = 64;
@@ -55,6 +63,16 @@ struct HttpServerOptions {
   // How long a WebSocket close handshake (and a write stuck in front of it) may take before the
   // socket is cut, and how long stop() waits for in-flight responses before it cuts the rest.
   std::chrono::milliseconds close_timeout{5000};
+  // The API's request work runs on these workers, never on the I/O threads (but for immediate
+  // routes such as /health): `threads` only read, write and route. A request that finds
+  // request_queue requests waiting is a 503 with Retry-After. Expensive requests (Route::workload)
+  // run on at most expensive_requests workers at once, so the others stay free for cheap ones;
+  // a client address with expensive_requests_per_address of them running or waiting gets a 429
+  // with Retry-After for the next.
+  std::size_t request_workers = 4;
+  std::size_t request_queue = 64;
+  std::size_t expensive_requests = 2;
+  std::size_t expensive_requests_per_address = 4;
   std::size_t stream_event_queue_limit = 256;  // per WebSocket session
   std::string server_version;                  // for the hello
 };
@@ -75,6 +93,8 @@ class HttpServer {
   // responses finish (at most close_timeout), joins the threads. Idempotent. Not from a handler.
   void stop();
   std::size_t open_stream_sessions() const;
+  // API requests waiting for a request worker.
+  std::size_t waiting_requests() const;
 
  private:
   class Impl;

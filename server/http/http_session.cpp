@@ -10,6 +10,7 @@
 #include <map>
 #include <utility>
 
+#include "server/http/descriptor_body.hpp"
 #include "server/http/foxglove_session.hpp"
 #include "server/http/responses.hpp"
 #include "server/http/server_state.hpp"
@@ -35,6 +36,10 @@ bool offers_subprotocol(std::string_view header, std::string_view wanted) {
 // oversized body): closing with unread data sends a reset that can destroy our error response
 // in the client's buffer before it reads it.
 constexpr std::chrono::milliseconds kMaxLinger{1000};
+
+// A live session lasts minutes to hours: a client over its address's cap waits a few seconds for
+// one to close rather than retrying at once.
+constexpr const char* kStreamRetryAfterS = "5";
 
 const beast::error_category& http_errors() {
   static const auto& category = http::make_error_code(http::error::bad_method).category();
@@ -109,6 +114,7 @@ void HttpSession::start_request() {
   phase_ = Phase::reading;
   awaiting_request_ = true;
   head_ = false;
+  workload_ = Workload::cheap;
   const auto& options = state_->options();
   parser_.emplace();
   parser_->header_limit(static_cast<std::uint32_t>(
@@ -144,6 +150,15 @@ void HttpSession::read_header() {
 void HttpSession::on_header(beast::error_code ec, std::size_t) {
   if (ec) return on_read_error(ec);
   head_ = parser_->get().method() == http::verb::head;
+  // An upgrade is counted as a live session instead (max_streams_per_address).
+  if (!established_ && !websocket::is_upgrade(parser_->get())) {
+    established_ = state_->establish(this);
+    if (!established_)
+      return reject(http::status::service_unavailable,
+                    "too many connections from this address (at most " +
+                        std::to_string(state_->options().max_connections_per_address) +
+                        " that have sent a request); try again shortly");
+  }
   if (auto refusal = check_header()) return send(std::move(*refusal));
 
   const auto& req = parser_->get();
@@ -215,6 +230,7 @@ std::optional<http::message_generator> HttpSession::check_header() {
     }
     if (admission.refusal) return to_http(std::move(*admission.refusal), version, keep_alive);
     if (admission.body_limit_bytes) limit = *admission.body_limit_bytes;
+    workload_ = admission.workload;
   }
   if (const auto length = parser_->content_length(); length && *length > limit)
     return refuse(http::status::payload_too_large,
@@ -305,19 +321,78 @@ void HttpSession::handle_request() {
     if (state_->stopping())
       return send(problem_response(http::status::service_unavailable, "server shutting down",
                                    req.version(), false));
+    if (!state_->reserve_stream(remote_address_)) {
+      auto res = problem_response(
+          http::status::service_unavailable,
+          "too many live connections from this address (at most " +
+              std::to_string(state_->options().max_streams_per_address) +
+              ": avk serve --max-streams-per-address); try again when one has closed",
+          req.version(), keep_alive);
+      res.set(http::field::retry_after, kStreamRetryAfterS);
+      return send(std::move(res));
+    }
     phase_ = Phase::done;
     awaiting_request_ = false;
     if (foxglove)
-      std::make_shared<FoxgloveSession>(stream_.release_socket(), state_)->run(std::move(req));
+      std::make_shared<FoxgloveSession>(stream_.release_socket(), state_, remote_address_)
+          ->run(std::move(req));
     else
-      std::make_shared<WebSocketSession>(stream_.release_socket(), state_)->run(std::move(req));
+      std::make_shared<WebSocketSession>(stream_.release_socket(), state_, remote_address_)
+          ->run(std::move(req));
     // The connection is the WebSocket's now: counted once, as a stream.
     state_->remove(this);
     return;
   }
   if (path + "/" == kApiPrefix || path.starts_with(kApiPrefix))
-    return send(call_api(req, std::move(path), target.query, keep_alive));
+    return dispatch_api(std::move(req), std::move(path), std::string(target.query), keep_alive);
   send(state_->static_files().respond(req, path, keep_alive));
+}
+
+void HttpSession::dispatch_api(Request req, std::string path, std::string raw_query,
+                               bool keep_alive) {
+  if (workload_ == Workload::immediate)
+    return send(call_api(req, std::move(path), raw_query, keep_alive));
+  const unsigned version = req.version();
+  // Shared, so that the work is copyable (std::function); only the worker touches it.
+  auto request = std::make_shared<Request>(std::move(req));
+  auto work = [self = shared_from_this(), request, path = std::move(path),
+               raw_query = std::move(raw_query), keep_alive, version](bool run) {
+    if (!run)
+      return self->send_from_worker(
+          body_unless_head(self->head_, problem_response(http::status::service_unavailable,
+                                                         "server shutting down", version, false)));
+    self->send_from_worker(self->call_api(*request, path, raw_query, keep_alive));
+  };
+  const auto refuse = [&](http::status status, const std::string& detail, bool keep) {
+    auto res = problem_response(status, detail, version, keep);
+    res.set(http::field::retry_after, "1");
+    send(body_unless_head(head_, std::move(res)));
+  };
+  switch (
+      state_->pool().submit(workload_ == Workload::expensive, remote_address_, std::move(work))) {
+    case RequestPool::Submitted::queued:
+      return;
+    case RequestPool::Submitted::queue_full:
+      return refuse(http::status::service_unavailable,
+                    "the server is busy: " + std::to_string(state_->pool().limits().queue) +
+                        " requests are waiting; try again shortly",
+                    keep_alive);
+    case RequestPool::Submitted::address_busy:
+      return refuse(http::status::too_many_requests,
+                    "this address has " +
+                        std::to_string(state_->pool().limits().expensive_per_address) +
+                        " expensive requests running or waiting already (analyses, "
+                        "held-out predictions, exports); try again when one has answered",
+                    keep_alive);
+    case RequestPool::Submitted::closed:
+      return refuse(http::status::service_unavailable, "server shutting down", false);
+  }
+}
+
+void HttpSession::send_from_worker(http::message_generator message) {
+  net::post(stream_.get_executor(), [self = shared_from_this(), m = std::move(message)]() mutable {
+    self->send(std::move(m));
+  });
 }
 
 bool HttpSession::may_open_stream(const Request& req, std::string_view raw_query) const {
@@ -410,6 +485,19 @@ http::message_generator HttpSession::to_http(ApiResponse response, unsigned vers
     res.prepare_payload();
     return res;
   }
+  if (response.body_file) {
+    std::uint64_t size = 0;
+    try {
+      size = response.body_file->size();
+    } catch (const std::exception& e) {
+      return internal(e.what());
+    }
+    res.content_length(size);
+    if (head_) return http::response<http::empty_body>(std::move(res.base()));
+    http::response<DescriptorBody> from_file(std::move(res.base()));
+    from_file.body() = std::move(response.body_file);
+    return from_file;
+  }
   res.body() = std::move(response.body);
   res.prepare_payload();
   return body_unless_head(head_, std::move(res));
@@ -417,7 +505,9 @@ http::message_generator HttpSession::to_http(ApiResponse response, unsigned vers
 
 void HttpSession::reject(http::status status, std::string_view detail) {
   const unsigned version = parser_ ? parser_->get().version() : 11;
-  send(body_unless_head(head_, problem_response(status, detail, version == 10 ? 10 : 11, false)));
+  auto res = problem_response(status, detail, version == 10 ? 10 : 11, false);
+  if (status == http::status::service_unavailable) res.set(http::field::retry_after, "1");
+  send(body_unless_head(head_, std::move(res)));
 }
 
 void HttpSession::send(http::message_generator message) {

@@ -1,8 +1,8 @@
 #pragma once
 // One HTTP connection: reads requests one at a time (keep-alive), routes them — the stream
-// upgrade, the Api under /api/v1, static files otherwise — and writes each response before it
-// reads the next request. Every read and write has a deadline; malformed or oversized requests
-// get their 4xx and the connection is closed.
+// upgrade, the Api under /api/v1 (its work on the server's request workers), static files
+// otherwise — and writes each response before it reads the next request. Every read and write has a
+// deadline; malformed or oversized requests get their 4xx and the connection is closed.
 
 #include <array>
 #include <atomic>
@@ -53,8 +53,13 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   void handle_request();
   // The Api's rule for the stream, with a `?token=` taken as the bearer token.
   bool may_open_stream(const Request& req, std::string_view raw_query) const;
+  // On the I/O thread for immediate work, else queued for a request worker (or refused: 503
+  // with a full queue, 429 when the address has its expensive requests already).
+  void dispatch_api(Request req, std::string path, std::string raw_query, bool keep_alive);
   http::message_generator call_api(Request& req, std::string path, std::string_view raw_query,
                                    bool keep_alive);
+  // From a request worker: the answer is sent on the session's strand.
+  void send_from_worker(http::message_generator message);
   ApiRequest api_request_of(const Request& req, std::string path, std::string_view raw_query) const;
   http::message_generator to_http(ApiResponse response, unsigned version, bool keep_alive);
   void reject(http::status status, std::string_view detail);
@@ -73,7 +78,9 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   bool remote_is_loopback_ = false;
   Phase phase_ = Phase::reading;
   bool first_request_ = true;
-  bool head_ = false;  // the request being answered is a HEAD
+  bool established_ = false;             // counted as a connection that has sent a request
+  bool head_ = false;                    // the request being answered is a HEAD
+  Workload workload_ = Workload::cheap;  // the request being answered, as the Api admitted it
   std::chrono::steady_clock::time_point request_deadline_{};
   std::atomic<bool> awaiting_request_{true};
   std::array<char, 4096> discard_{};

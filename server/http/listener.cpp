@@ -80,8 +80,8 @@ void Listener::on_accept(beast::error_code ec, tcp::socket socket) {
   beast::error_code nodelay_ec;
   socket.set_option(tcp::no_delay(true), nodelay_ec);
   beast::error_code remote_ec;
-  const auto remote = socket.remote_endpoint(remote_ec);
-  if (remote_ec || !state_->make_room(remote.address().to_string())) {
+  socket.remote_endpoint(remote_ec);
+  if (remote_ec || !state_->make_room()) {
     refuse(socket);
   } else {
     std::make_shared<HttpSession>(std::move(socket), state_)->run();

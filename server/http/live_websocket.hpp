@@ -41,9 +41,11 @@ class LiveWebSocket : public LiveSession, public std::enable_shared_from_this<De
   // Client messages are small commands; anything larger is a broken or hostile client.
   static constexpr std::size_t kMaxClientMessage = 64 * 1024;
 
-  LiveWebSocket(tcp::socket&& socket, std::shared_ptr<ServerState> state)
+  // address: the client's, as reserved with ServerState::reserve_stream.
+  LiveWebSocket(tcp::socket&& socket, std::shared_ptr<ServerState> state, std::string address)
       : ws_(std::move(socket)),
         state_(std::move(state)),
+        address_(std::move(address)),
         close_timer_(ws_.get_executor()),
         queue_(state_->options().stream_event_queue_limit) {}
 
@@ -86,6 +88,7 @@ class LiveWebSocket : public LiveSession, public std::enable_shared_from_this<De
 
   websocket::stream<beast::tcp_stream> ws_;
   std::shared_ptr<ServerState> state_;
+  std::string address_;
   bool open_ = false;  // counted in the server's open sessions
 
  private:

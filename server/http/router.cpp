@@ -165,14 +165,13 @@ const Representation& choose_representation(const ApiRequest& request,
   throw RequestError(406, detail, {{"acceptable", acceptable}});
 }
 
-void Router::add(Route route) {
+void Router::add(Route route, RouteCost cost) {
   std::vector<std::string> pattern;
   for (const auto segment : segments(route.pattern))
     pattern.emplace_back(segment);
   patterns_.push_back(std::move(pattern));
-  if (route.method == "GET" && (route.access == Access::control || route.body_limit_bytes))
-    gets_are_open_reads_ = false;
   routes_.push_back(std::move(route));
+  costs_.push_back(std::move(cost));
 }
 
 Router::Match Router::match(const ApiRequest& request) const {
@@ -210,8 +209,6 @@ std::optional<ApiResponse> Router::refusal(const ApiRequest& request, Access acc
 
 Admission Router::admit(const ApiRequest& head) {
   Admission a;
-  const bool read = head.method == "GET" || head.method == "HEAD";
-  if (read && head.remote_is_loopback && gets_are_open_reads_) return a;
   const Match m = match(head);
   // A method the path does not take is refused as such before the token is asked for: no
   // token would make it succeed, and the route table is public (docs/api.md).
@@ -221,7 +218,14 @@ Admission Router::admit(const ApiRequest& head) {
   }
   // Not a route: only the token's holder learns that, on the body-less 404 after.
   a.refusal = refusal(head, m.route ? m.route->access : Access::read);
-  if (m.route) a.body_limit_bytes = m.route->body_limit_bytes;
+  if (!m.route) return a;
+  a.body_limit_bytes = m.route->body_limit_bytes;
+  const RouteCost& cost = costs_[static_cast<std::size_t>(m.route - routes_.data())];
+  a.workload = cost.workload;
+  if (a.workload == Workload::cheap &&
+      std::ranges::any_of(cost.expensive_with,
+                          [&](const std::string& name) { return head.query.contains(name); }))
+    a.workload = Workload::expensive;
   return a;
 }
 

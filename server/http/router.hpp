@@ -1,8 +1,8 @@
 #pragma once
-// The API's route table: method + path pattern -> handler, each route declaring who may call it
-// and how large its body may be. Answers what no handler should: 404 for no route, 405 with
-// Allow, 401 without the token, HEAD as the route's GET (the transport drops the body and keeps
-// its Content-Length), a request error thrown by a handler as problem+json.
+// The API's route table: method + path pattern -> handler, each route declaring who may call it,
+// how large its body may be and how much work its answer takes. Answers what no handler should: 404
+// for no route, 405 with Allow, 401 without the token, HEAD as the route's GET (the transport drops
+// the body and keeps its Content-Length), a request error thrown by a handler as problem+json.
 
 #include <cstddef>
 #include <functional>
@@ -46,6 +46,16 @@ struct Route {
   std::vector<Representation> representations = {kJsonRepresentation};
 };
 
+// How much work a route's answer takes (Admission::workload): immediate routes answer on the I/O
+// thread, the rest on the transport's request workers; expensive ones (a fit, an evaluation of
+// hundreds of candidates, an export) are limited in number and per client address.
+struct RouteCost {
+  Workload workload = Workload::cheap;
+  // Query parameters that make a cheap route's request expensive when given (predict's
+  // without_turn: a table built for the answer).
+  std::vector<std::string> expensive_with = {};
+};
+
 // What a handler throws for a request it cannot take (a bad parameter, an unacceptable format);
 // the router answers it as problem+json with this status.
 class RequestError : public std::runtime_error {
@@ -73,7 +83,7 @@ const Representation& choose_representation(const ApiRequest& request,
 class Router : public Api {
  public:
   explicit Router(std::string token) : token_(std::move(token)) {}
-  void add(Route route);
+  void add(Route route, RouteCost cost = {});
   const std::vector<Route>& routes() const { return routes_; }
 
   ApiResponse handle(const ApiRequest& request) override;
@@ -92,10 +102,8 @@ class Router : public Api {
 
   std::string token_;
   std::vector<Route> routes_;
+  std::vector<RouteCost> costs_;                    // routes_[i]'s
   std::vector<std::vector<std::string>> patterns_;  // routes_[i]'s pattern, split at '/'
-  // Every GET route is open on loopback and takes the default body limit: a GET from this
-  // machine is admitted without looking for its route (the hot path of guidance queries).
-  bool gets_are_open_reads_ = true;
 };
 
 }  // namespace avk::server

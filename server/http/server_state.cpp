@@ -1,5 +1,6 @@
 #include "server/http/server_state.hpp"
 
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -9,37 +10,73 @@
 namespace avk::server {
 
 ServerState::ServerState(HttpServerOptions options, Api& api, StreamHub& hub)
-    : options_(std::move(options)), api_(api), hub_(hub), static_files_(options_.web_root) {}
+    : options_(std::move(options)),
+      api_(api),
+      hub_(hub),
+      static_files_(options_.web_root),
+      pool_({options_.request_workers, options_.request_queue, options_.expensive_requests,
+             options_.expensive_requests_per_address}) {}
 
 void ServerState::add(const std::shared_ptr<HttpSession>& session) {
   std::lock_guard lock(mutex_);
   http_sessions_[session.get()] = HttpEntry{session, session->remote_address(), ++accepted_};
 }
 
-bool ServerState::make_room(const std::string& address) {
+bool ServerState::make_room() {
   std::shared_ptr<HttpSession> victim;
   {
     std::lock_guard lock(mutex_);
+    std::map<std::string_view, std::size_t> by_address;
     std::size_t total = stream_sessions_.size();
-    std::size_t from_address = 0;
     for (const auto& [key, entry] : http_sessions_) {
       if (entry.evicted) continue;
       ++total;
-      if (entry.address == address) ++from_address;
+      ++by_address[entry.address];
     }
-    const bool address_full = from_address >= options_.max_connections_per_address;
-    if (!address_full && total < options_.max_connections) return true;
-    HttpEntry* oldest = nullptr;
+    if (total < options_.max_connections) return true;
+    HttpEntry* chosen = nullptr;
+    std::size_t chosen_count = 0;
     for (auto& [key, entry] : http_sessions_) {
-      if (entry.evicted || (address_full && entry.address != address)) continue;
-      if (oldest && entry.order > oldest->order) continue;
+      if (entry.evicted) continue;
+      const std::size_t count = by_address[entry.address];
+      if (chosen &&
+          (count < chosen_count || (count == chosen_count && entry.order > chosen->order)))
+        continue;
       const auto s = entry.session.lock();
       if (!s || !s->evictable()) continue;
-      oldest = &entry;
+      chosen = &entry;
+      chosen_count = count;
     }
-    if (!oldest) return false;
-    oldest->evicted = true;
-    victim = oldest->session.lock();
+    if (!chosen) return false;
+    chosen->evicted = true;
+    victim = chosen->session.lock();
+  }
+  if (victim) victim->evict();
+  return true;
+}
+
+bool ServerState::establish(const HttpSession* session) {
+  std::shared_ptr<HttpSession> victim;
+  {
+    std::lock_guard lock(mutex_);
+    const auto self = http_sessions_.find(session);
+    if (self == http_sessions_.end() || self->second.established) return true;
+    const std::string& address = self->second.address;
+    std::size_t established = 0;
+    HttpEntry* oldest = nullptr;
+    for (auto& [key, entry] : http_sessions_) {
+      if (entry.evicted || !entry.established || entry.address != address) continue;
+      ++established;
+      if (oldest && entry.order > oldest->order) continue;
+      const auto s = entry.session.lock();
+      if (s && s->evictable()) oldest = &entry;
+    }
+    if (established >= options_.max_connections_per_address) {
+      if (!oldest) return false;
+      oldest->evicted = true;
+      victim = oldest->session.lock();
+    }
+    self->second.established = true;
   }
   if (victim) victim->evict();
   return true;
@@ -51,15 +88,28 @@ void ServerState::remove(const HttpSession* session) {
   if (http_sessions_.empty() && stream_sessions_.empty()) idle_.notify_all();
 }
 
-void ServerState::add(const std::shared_ptr<LiveSession>& session,
-                      const std::shared_ptr<DetachableSink>& sink) {
+bool ServerState::reserve_stream(const std::string& address) {
   std::lock_guard lock(mutex_);
-  stream_sessions_[session.get()] = StreamEntry{session, sink};
+  auto& n = streams_by_address_[address];
+  if (n >= options_.max_streams_per_address) return false;
+  ++n;
+  return true;
+}
+
+void ServerState::add(const std::shared_ptr<LiveSession>& session,
+                      const std::shared_ptr<DetachableSink>& sink, const std::string& address) {
+  std::lock_guard lock(mutex_);
+  stream_sessions_[session.get()] = StreamEntry{session, sink, address};
 }
 
 void ServerState::remove(const LiveSession* session) {
   std::lock_guard lock(mutex_);
-  stream_sessions_.erase(session);
+  if (const auto it = stream_sessions_.find(session); it != stream_sessions_.end()) {
+    if (const auto n = streams_by_address_.find(it->second.address);
+        n != streams_by_address_.end() && --n->second == 0)
+      streams_by_address_.erase(n);
+    stream_sessions_.erase(it);
+  }
   if (http_sessions_.empty() && stream_sessions_.empty()) idle_.notify_all();
 }
 
@@ -75,6 +125,7 @@ void ServerState::begin_stop() {
     for (const auto& [key, entry] : stream_sessions_)
       if (auto s = entry.session.lock()) streams.push_back(std::move(s));
   }
+  pool_.close();
   for (const auto& s : http)
     s->shutdown();
   for (const auto& s : streams)

@@ -15,6 +15,7 @@
 #include "server/api_types.hpp"
 #include "server/foxglove_hub.hpp"
 #include "server/http/http_server.hpp"
+#include "server/http/request_pool.hpp"
 #include "server/http/static_files.hpp"
 #include "server/stream_hub.hpp"
 
@@ -33,20 +34,31 @@ class ServerState {
   StreamHub& hub() { return hub_; }
   FoxgloveHub& foxglove() { return hub_.foxglove(); }
   const StaticFiles& static_files() const { return static_files_; }
+  RequestPool& pool() { return pool_; }
   bool stopping() const { return stopping_.load(); }
 
-  // Whether a connection from this address may be served: true when there is room, or when the
-  // oldest connection still waiting for its request (from that address when the address is
-  // over its share, else from any) has been told to close to make room; false: refuse it.
-  bool make_room(const std::string& address);
+  // Whether a new connection may be served: true while the server holds fewer than
+  // max_connections, or when a connection still waiting for (or reading) a request has been told
+  // to close to make room — the oldest of the address that holds the most HTTP connections, so
+  // that one address's flood closes its own connections, not another's. False: refuse it.
+  bool make_room();
+  // At a connection's first complete request header: whether its address may have one more
+  // connection that has sent a request (max_connections_per_address). At the cap, the address's
+  // oldest such connection now idle between requests is told to close to make room; false when
+  // none can be. Connections that have not sent a request yet (a burst of WebSocket handshakes
+  // behind one proxy) are not counted here: the header timeout bounds them.
+  bool establish(const HttpSession* session);
 
   // Sessions add themselves when they start and remove themselves in their destructors.
   void add(const std::shared_ptr<HttpSession>& session);
   void remove(const HttpSession* session);
-  // A live WebSocket session (the stream or the Foxglove connection) and what its publisher
-  // holds.
-  void add(const std::shared_ptr<LiveSession>& session,
-           const std::shared_ptr<DetachableSink>& sink);
+  // Before a live WebSocket session (the stream or the Foxglove connection) is made for an
+  // upgrade: whether its address may have one more (max_streams_per_address). The reservation
+  // is the session's from add() on and ends with its remove().
+  bool reserve_stream(const std::string& address);
+  // A live session and what its publisher holds; address: the one reserve_stream() was given.
+  void add(const std::shared_ptr<LiveSession>& session, const std::shared_ptr<DetachableSink>& sink,
+           const std::string& address);
   void remove(const LiveSession* session);
 
   // A session counts as open from its accepted handshake until it starts to close.
@@ -54,7 +66,8 @@ class ServerState {
   void stream_closed() { --open_streams_; }
   std::size_t open_stream_sessions() const { return open_streams_.load(); }
 
-  // Sets stopping and asks every registered session to wind down (each on its own strand).
+  // Sets stopping, cancels the API requests still waiting for a worker (each answers 503) and
+  // asks every registered session to wind down (each on its own strand).
   void begin_stop();
   // Whether every session is gone by the deadline.
   bool wait_until_idle(std::chrono::steady_clock::time_point deadline);
@@ -67,6 +80,7 @@ class ServerState {
   Api& api_;
   StreamHub& hub_;
   StaticFiles static_files_;
+  RequestPool pool_;
   std::atomic<bool> stopping_{false};
   std::atomic<std::size_t> open_streams_{0};
 
@@ -75,16 +89,19 @@ class ServerState {
   struct HttpEntry {
     std::weak_ptr<HttpSession> session;
     std::string address;
-    std::uint64_t order = 0;  // accept order: the lowest is the oldest
-    bool evicted = false;     // told to close; no longer counted
+    std::uint64_t order = 0;   // accept order: the lowest is the oldest
+    bool evicted = false;      // told to close; no longer counted
+    bool established = false;  // has sent a request
   };
   std::map<const HttpSession*, HttpEntry> http_sessions_;
   std::uint64_t accepted_ = 0;
   struct StreamEntry {
     std::weak_ptr<LiveSession> session;
     std::shared_ptr<DetachableSink> sink;
+    std::string address;
   };
   std::map<const LiveSession*, StreamEntry> stream_sessions_;
+  std::map<std::string, std::size_t> streams_by_address_;  // reserved or open
 };
 
 }  // namespace avk::server

@@ -20,8 +20,9 @@ std::string error_message(const std::string& message) {
 
 }  // namespace
 
-WebSocketSession::WebSocketSession(tcp::socket&& socket, std::shared_ptr<ServerState> state)
-    : LiveWebSocket(std::move(socket), std::move(state)) {}
+WebSocketSession::WebSocketSession(tcp::socket&& socket, std::shared_ptr<ServerState> state,
+                                   std::string address)
+    : LiveWebSocket(std::move(socket), std::move(state), std::move(address)) {}
 
 WebSocketSession::~WebSocketSession() {
   if (sink_) state_->hub().unsubscribe_all(sink_.get());
@@ -31,7 +32,7 @@ WebSocketSession::~WebSocketSession() {
 
 void WebSocketSession::run(Request request) {
   sink_ = std::make_shared<WebSocketStreamSink>(weak_from_this());
-  state_->add(shared_from_this(), sink_);
+  state_->add(shared_from_this(), sink_, address_);
   accept(std::move(request), std::nullopt);
 }
 

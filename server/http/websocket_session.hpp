@@ -18,7 +18,8 @@ class WebSocketStreamSink;
 class WebSocketSession
     : public LiveWebSocket<WebSocketSession, std::shared_ptr<const StreamMessage>> {
  public:
-  WebSocketSession(tcp::socket&& socket, std::shared_ptr<ServerState> state);
+  // address: the client's, reserved with ServerState::reserve_stream.
+  WebSocketSession(tcp::socket&& socket, std::shared_ptr<ServerState> state, std::string address);
   ~WebSocketSession() override;
 
   // Completes the upgrade the HTTP session has read.

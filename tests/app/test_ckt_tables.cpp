@@ -34,13 +34,7 @@ TEST_F(CktTables, TheTableHoldsTheVehiclesCellsAndIsRebuiltForNewTurns) {
   EXPECT_EQ(turns, 18u);  // 3 speeds x 3 heading changes x 2
   // Unchanged store: the same table object.
   EXPECT_EQ(cache.get(ctx_, "alpha")->table, first->table);
-  avk::testing::ArcTurnSpec s;
-  s.speed_mps = 1.0;
-  s.dheading_deg = 40.0;
-  s.lead_in_m = 1.5;
-  s.radius_m = 3.0;
-  s.vehicle_id = "alpha";
-  ctx_.db().store_turn(mission, avk::testing::make_arc_turn(s), kinematics::TurnStatus::ok, "");
+  avk::testing::store_one_arc_turn(ctx_.db(), mission, "alpha", 1.0, 40.0);
   const auto second = cache.get(ctx_, "alpha");
   ASSERT_TRUE(second);
   EXPECT_NE(second->table, first->table);
@@ -48,6 +42,70 @@ TEST_F(CktTables, TheTableHoldsTheVehiclesCellsAndIsRebuiltForNewTurns) {
   for (const auto& c : second->table->cells())
     turns += c.n_turns;
   EXPECT_EQ(turns, 19u);
+}
+
+std::size_t turns_in(const kinematics::Ckt& table) {
+  std::size_t n = 0;
+  for (const auto& c : table.cells())
+    n += c.n_turns;
+  return n;
+}
+
+// A held-out prediction's table was rebuilt for every request: it is kept per vehicle and
+// left-out set, and dropped when the vehicle's turns change, as the full table is.
+TEST_F(CktTables, AHeldOutTableIsKeptPerLeftOutSetUntilTheTurnsChange) {
+  const auto tight = avk::testing::store_arc_turns(ctx_.db(), "alpha", 1.0, 2);
+  const auto wide = avk::testing::store_arc_turns(ctx_.db(), "alpha", 2.0, 1);
+  app::TableCache cache(std::chrono::milliseconds(0));  // re-checks the store on every call
+  store::TurnsLeftOut without_tight;
+  without_tight.mission_id = tight;
+  store::TurnsLeftOut without_wide;
+  without_wide.mission_id = wide;
+  const auto first = cache.held_out(ctx_, "alpha", false, without_tight);
+  ASSERT_TRUE(first);
+  EXPECT_EQ(turns_in(*first), 9u);  // the wide mission's: one a cell
+  // Asked again with nothing stored since: the same table, not a new one.
+  EXPECT_EQ(cache.held_out(ctx_, "alpha", false, without_tight), first);
+  const auto other = cache.held_out(ctx_, "alpha", false, without_wide);
+  ASSERT_TRUE(other);
+  EXPECT_NE(other, first);
+  EXPECT_EQ(turns_in(*other), 18u);
+  EXPECT_EQ(cache.held_out(ctx_, "alpha", false, without_tight), first);
+  // The same set of another vehicle's turns is not this one's.
+  EXPECT_FALSE(cache.held_out(ctx_, "bravo", false, without_tight));
+
+  avk::testing::store_one_arc_turn(ctx_.db(), wide, "alpha", 1.0, 40.0);
+  const auto after = cache.held_out(ctx_, "alpha", false, without_tight);
+  ASSERT_TRUE(after);
+  EXPECT_NE(after, first);
+  EXPECT_EQ(turns_in(*after), 10u);
+  EXPECT_EQ(cache.held_out(ctx_, "alpha", false, without_tight), after);
+}
+
+TEST_F(CktTables, HeldOutTablesAreBoundedAndTheLeastRecentlyUsedGoesFirst) {
+  avk::testing::store_arc_turns(ctx_.db(), "alpha", 1.0, 2);
+  app::TableCache cache(std::chrono::hours(1));
+  const auto turn_ids = ctx_.db().list_turns({});
+  ASSERT_GT(turn_ids.size(), app::TableCache::kHeldOutTables + 1);
+  const auto without = [&](std::size_t i) {
+    store::TurnsLeftOut l;
+    l.turn_id = turn_ids[i].id;
+    return cache.held_out(ctx_, "alpha", false, l);
+  };
+  const auto kept = without(0);
+  const auto one = without(1);
+  ASSERT_TRUE(kept && one);
+  // Turn 0's set is used again after each new one, so turn 1's is the least recently used when
+  // the ninth set comes in.
+  for (std::size_t i = 2; i <= app::TableCache::kHeldOutTables; ++i) {
+    ASSERT_TRUE(without(i));
+    EXPECT_EQ(without(0), kept);
+  }
+  EXPECT_EQ(without(0), kept);
+  const auto again = without(1);
+  ASSERT_TRUE(again);
+  EXPECT_NE(again, one);
+  EXPECT_EQ(turns_in(*again), turn_ids.size() - 1);
 }
 
 TEST_F(CktTables, ACellIsFoundOnTheGridOnly) {

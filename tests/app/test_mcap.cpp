@@ -6,6 +6,8 @@
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <string_view>
+#include <utility>
 #include <vector>
 
 #include "app/mcap_reader.hpp"
@@ -52,8 +54,9 @@ struct Sample {
 
 // Four channels (one without messages, one without schema), interleaved messages over several
 // chunks, metadata before, between and after the chunks.
-Sample write_sample(Compression compression, int messages, std::size_t chunk_size = 4096) {
-  Writer w(WriterOptions{compression, chunk_size, "x-avk", "avk-test"});
+Sample write_sample(Compression compression, int messages, std::size_t chunk_size = 4096,
+                    Writer::Sink sink = {}) {
+  Writer w(WriterOptions{compression, chunk_size, "x-avk", "avk-test"}, std::move(sink));
   Sample s;
   const std::uint16_t pose_schema = w.add_schema("foxglove.PoseInFrame", "jsonschema", "{}");
   const std::uint16_t nav_schema = w.add_schema("avk.Navigation", "jsonschema", R"({"a":1})");
@@ -229,6 +232,25 @@ TEST_P(McapRoundTrip, CrcsAreComputed) {
   ASSERT_EQ(data_end.opcode, Opcode::data_end);
   const std::uint32_t crc = parse<DataEndRecord>(data_end).data_section_crc;
   EXPECT_EQ(crc, crc32(std::string_view(s.bytes).substr(0, data_end.offset)));
+}
+
+// A long mission's file goes to its destination as each chunk closes, never held whole: the
+// pieces make the same file as the one written in memory.
+TEST_P(McapRoundTrip, ASinkGetsTheSameFileAPieceAtATime) {
+  const Sample in_memory = write_sample(GetParam(), 3000);
+  std::string streamed;
+  std::size_t pieces = 0;
+  std::size_t largest = 0;
+  const Sample sunk = write_sample(GetParam(), 3000, 4096, [&](std::string_view piece) {
+    streamed.append(piece);
+    ++pieces;
+    largest = std::max(largest, piece.size());
+  });
+  EXPECT_TRUE(sunk.bytes.empty());
+  EXPECT_EQ(streamed, in_memory.bytes);
+  EXPECT_GT(pieces, 10u);
+  EXPECT_LT(largest, in_memory.bytes.size() / 4);
+  EXPECT_EQ(read_mcap(streamed).messages.size(), 3000u);
 }
 
 TEST_P(McapRoundTrip, EmptyFileIsValid) {

@@ -3,8 +3,10 @@
 // the parameter it names. Without HTTP or argv.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <optional>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -286,17 +288,23 @@ TEST_F(Predict, WithoutAMissionTheModelIsOneNotTrainedOnIt) {
   EXPECT_EQ(none.error().code, app::ErrorCode::not_found);
 }
 
+// The id of the first stored turn of the mission in a cell; 0 when it has none.
+std::int64_t first_turn_in_cell(app::Context& ctx, std::int64_t mission, double speed_mps,
+                                double dheading_deg) {
+  store::TurnFilter f;
+  f.mission_id = mission;
+  f.speed_mps = speed_mps;
+  f.dheading_deg = dheading_deg;
+  const auto rows = ctx.db().list_turns(f);
+  return rows.empty() ? 0 : rows.front().id;
+}
+
 // Live's fair prediction of the turn just finished: every other turn of the vehicle.
 TEST_F(Predict, WithoutATurnTheTableHoldsEveryOtherTurn) {
   const auto mission = avk::testing::store_arc_turns(ctx_.db(), "alpha", 1.0, 3);
   avk::testing::store_arc_turns(ctx_.db(), "beta");
-  store::TurnFilter f;
-  f.mission_id = mission;
-  f.speed_mps = 1.0;
-  f.dheading_deg = 100.0;
-  const auto rows = ctx_.db().list_turns(f);
-  ASSERT_FALSE(rows.empty());
-  const std::int64_t turn = rows.front().id;
+  const std::int64_t turn = first_turn_in_cell(ctx_, mission, 1.0, 100.0);
+  ASSERT_GT(turn, 0);
   const auto all = ctx_.db().load_normalized_turns({}, "alpha");
   store::TurnsLeftOut left_out;
   left_out.turn_id = turn;
@@ -328,6 +336,34 @@ TEST_F(Predict, WithoutATurnTheTableHoldsEveryOtherTurn) {
   EXPECT_NE(foreign.error().message.find("belongs to vehicle 'beta', not 'alpha'"),
             std::string::npos)
       << foreign.error().message;
+}
+
+// The held-out table is kept between requests (app::TableCache::held_out): asked again, the same
+// answer; once the vehicle has a new turn in the cell, an answer that counts it.
+TEST_F(Predict, AHeldOutAnswerIsTheSameWhenAskedAgainAndFollowsANewTurn) {
+  const auto mission = avk::testing::store_arc_turns(ctx_.db(), "alpha", 1.0, 3);
+  auto q = query("alpha", 1.0, 100.0);
+  q.without_turn_id = first_turn_in_cell(ctx_, mission, 1.0, 100.0);
+  ASSERT_GT(*q.without_turn_id, 0);
+  const auto first = app::predict(ctx_, q);
+  ASSERT_TRUE(first && first->corridor) << first.error().message;
+  EXPECT_EQ(first->corridor->n_turns, 2u);
+  const auto second = app::predict(ctx_, q);
+  ASSERT_TRUE(second);
+  expect_same_line(second->trajectory, first->trajectory);
+  EXPECT_EQ(second->advance_m, first->advance_m);
+
+  avk::testing::store_one_arc_turn(ctx_.db(), mission, "alpha", 1.0, 100.0);
+  // The station re-reads the store at most once a second: wait for the answer that counts it.
+  std::size_t counted = 0;
+  for (const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+       counted != 3u && std::chrono::steady_clock::now() < deadline;) {
+    const auto p = app::predict(ctx_, q);
+    ASSERT_TRUE(p && p->corridor);
+    counted = p->corridor->n_turns;
+    if (counted != 3u) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  EXPECT_EQ(counted, 3u);
 }
 
 // --- in a current: over ground by default ---------------------------------------------------

@@ -34,6 +34,7 @@
 #include "app/foxglove_channels.hpp"
 #include "server/api_types.hpp"
 #include "server/http/http_server.hpp"
+#include "server/http/static_files.hpp"
 #include "server/stream_hub.hpp"
 
 namespace {
@@ -55,12 +56,19 @@ using avk::server::HttpServer;
 using avk::server::HttpServerOptions;
 using avk::server::StreamHub;
 
-// Echoes what the transport made of the request; /throw throws, /status/N answers N.
+// Echoes what the transport made of the request; /throw throws, /status/N answers N, /block
+// waits until open_gate() (a request worker held busy).
 class EchoApi final : public Api {
  public:
   ApiResponse handle(const ApiRequest& r) override {
     ++calls;
     if (r.path == "/api/v1/throw") throw std::runtime_error("boom");
+    if (r.path == "/api/v1/block") {
+      ++blocked;
+      std::unique_lock lock(gate_mutex_);
+      gate_.wait(lock, [&] { return gate_open_; });
+      --blocked;
+    }
     ApiResponse res;
     if (r.path.starts_with("/api/v1/status/")) {
       res.status = std::stoi(r.path.substr(std::string("/api/v1/status/").size()));
@@ -85,18 +93,35 @@ class EchoApi final : public Api {
     return res;
   }
   // /api/v1/guarded wants "Authorization: Bearer ok"; /api/v1/small takes 10 bytes,
-  // /api/v1/large 4096.
+  // /api/v1/large 4096. /api/v1/health is immediate work, ?cost=expensive expensive.
   avk::server::Admission admit(const ApiRequest& head) override {
     ++admits;
     avk::server::Admission a;
+    if (head.path == "/api/v1/health") a.workload = avk::server::Workload::immediate;
+    if (const auto it = head.query.find("cost");
+        it != head.query.end() && it->second == "expensive")
+      a.workload = avk::server::Workload::expensive;
     if (head.path == "/api/v1/small") a.body_limit_bytes = 10;
     if (head.path == "/api/v1/large") a.body_limit_bytes = 4096;
     if (head.path == "/api/v1/guarded" && head.authorization != "Bearer ok")
       a.refusal = ApiResponse{401, "application/problem+json", R"({"status":401})", {}};
     return a;
   }
+  void open_gate() {
+    {
+      std::lock_guard lock(gate_mutex_);
+      gate_open_ = true;
+    }
+    gate_.notify_all();
+  }
   std::atomic<int> calls{0};
   std::atomic<int> admits{0};
+  std::atomic<int> blocked{0};  // requests waiting at the gate
+
+ private:
+  std::mutex gate_mutex_;
+  std::condition_variable gate_;
+  bool gate_open_ = false;
 };
 
 tcp::endpoint loopback(unsigned short port) {
@@ -116,7 +141,13 @@ bool wait_for(Predicate done, std::chrono::milliseconds limit = 5000ms) {
 // An HTTP/1.1 client on one connection; every exchange has a deadline.
 class HttpClient {
  public:
-  explicit HttpClient(unsigned short port) : port_(port), stream_(ioc_) {
+  // from: the loopback address to connect from (127.0.0.2 is another client to the server).
+  explicit HttpClient(unsigned short port, const std::string& from = "")
+      : port_(port), stream_(ioc_) {
+    if (!from.empty()) {
+      stream_.socket().open(tcp::v4());
+      stream_.socket().bind({net::ip::make_address(from), 0});
+    }
     stream_.connect(loopback(port));
   }
 
@@ -315,6 +346,26 @@ class WsClient {
 
 class HttpServerTest : public ::testing::Test {
  protected:
+  // A request still at the gate would keep the server's stop waiting for its worker.
+  ~HttpServerTest() override { api.open_gate(); }
+
+  // With one request worker: a request held at the gate on it, and another waiting behind it
+  // (each on its own connection, answered once the gate opens); null when either never got
+  // there.
+  std::pair<std::unique_ptr<RawClient>, std::unique_ptr<RawClient>> the_worker_busy_and_one_waiting(
+      unsigned short on_port) {
+    const auto request = [](const std::string& target) {
+      return "GET " + target + " HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n";
+    };
+    auto busy = std::make_unique<RawClient>(on_port);
+    busy->send(request("/api/v1/block"));
+    if (!wait_for([&] { return api.blocked.load() == 1; })) return {};
+    auto waiting = std::make_unique<RawClient>(on_port);
+    waiting->send(request("/api/v1/echo"));
+    if (!wait_for([&] { return server->waiting_requests() == 1; })) return {};
+    return {std::move(busy), std::move(waiting)};
+  }
+
   void start(HttpServerOptions options = {}) {
     options.server_version = "test-1";
     server = std::make_unique<HttpServer>(std::move(options), api, hub);
@@ -638,6 +689,89 @@ TEST_F(StaticFilesTest, OnlyGetAndHead) {
   const auto res = HttpClient(port).request(http::verb::post, "/index.html", "x");
   EXPECT_EQ(res.result_int(), 405);
   EXPECT_EQ(res[http::field::allow], "GET, HEAD");
+}
+
+// Regression: files came without validators, so every page load read and sent them again.
+TEST_F(StaticFilesTest, ConditionalRequestsAreAnsweredWith304) {
+  HttpServerOptions o;
+  o.web_root = (base / "web").string();
+  start(o);
+  HttpClient c(port);
+  const auto full = c.request(http::verb::get, "/js/app.js");
+  ASSERT_EQ(full.result_int(), 200);
+  const std::string etag(full[http::field::etag]);
+  const std::string modified(full[http::field::last_modified]);
+  ASSERT_FALSE(etag.empty());
+  EXPECT_EQ(etag.front(), '"');
+  ASSERT_TRUE(avk::server::StaticFiles::parse_http_date(modified)) << modified;
+  EXPECT_EQ(full[http::field::cache_control], "no-cache");
+
+  // The same connection: a 304 has no body, so keep-alive framing must hold.
+  for (const std::string& tag : {etag, "W/" + etag, "\"other\", " + etag, std::string("*")}) {
+    const auto again = c.request(http::verb::get, "/js/app.js", "", {{"If-None-Match", tag}});
+    EXPECT_EQ(again.result_int(), 304) << tag;
+    EXPECT_TRUE(again.body().empty());
+    EXPECT_EQ(again[http::field::etag], etag);
+    EXPECT_EQ(again["X-Content-Type-Options"], "nosniff");
+  }
+  EXPECT_EQ(
+      c.request(http::verb::get, "/js/app.js", "", {{"If-None-Match", "\"other\""}}).result_int(),
+      200);
+  EXPECT_EQ(c.request(http::verb::head, "/js/app.js", "", {{"If-None-Match", etag}}).result_int(),
+            304);
+  EXPECT_EQ(
+      c.request(http::verb::get, "/js/app.js", "", {{"If-Modified-Since", modified}}).result_int(),
+      304);
+  EXPECT_EQ(c.request(http::verb::get, "/js/app.js", "",
+                      {{"If-Modified-Since", "Sat, 01 Jan 2000 00:00:00 GMT"}})
+                .result_int(),
+            200);
+  // If-None-Match decides alone when both are sent (RFC 9110 13.1.3).
+  EXPECT_EQ(c.request(http::verb::get, "/js/app.js", "",
+                      {{"If-None-Match", "\"other\""}, {"If-Modified-Since", modified}})
+                .result_int(),
+            200);
+  // An unreadable date is ignored.
+  EXPECT_EQ(c.request(http::verb::get, "/js/app.js", "", {{"If-Modified-Since", "yesterday"}})
+                .result_int(),
+            200);
+  // Validators differ between files.
+  EXPECT_EQ(
+      c.request(http::verb::get, "/css/style.css", "", {{"If-None-Match", etag}}).result_int(),
+      200);
+}
+
+// The file list is read at the start, each file's bytes when it changes: an edited file is served
+// as it is now, with a new ETag; one that became a symlink since is not followed.
+TEST_F(StaticFilesTest, AnEditedFileIsServedAnewAndALinkPutInItsPlaceIsNot) {
+  HttpServerOptions o;
+  o.web_root = (base / "web").string();
+  start(o);
+  const auto before = get(port, "/js/app.js");
+  ASSERT_EQ(before.body(), "console.log(1);");
+  write(base / "web" / "js" / "app.js", "console.log('edited');");
+  const auto after = get(port, "/js/app.js");
+  EXPECT_EQ(after.body(), "console.log('edited');");
+  EXPECT_NE(after[http::field::etag], before[http::field::etag]);
+  // Added after the start: not in the list.
+  write(base / "web" / "js" / "new.js", "new");
+  EXPECT_EQ(get(port, "/js/new.js").result_int(), 404);
+  fs::remove(base / "web" / "css" / "style.css");
+  fs::create_symlink(base / "secret", base / "web" / "css" / "style.css");
+  const auto swapped = get(port, "/css/style.css");
+  EXPECT_EQ(swapped.result_int(), 404);
+  EXPECT_EQ(swapped.body().find("TOPSECRET"), std::string::npos);
+}
+
+TEST(HttpDate, FormatsAndParsesImfFixdate) {
+  using avk::server::StaticFiles;
+  EXPECT_EQ(StaticFiles::http_date(784111777), "Sun, 06 Nov 1994 08:49:37 GMT");
+  EXPECT_EQ(StaticFiles::parse_http_date("Sun, 06 Nov 1994 08:49:37 GMT"), 784111777);
+  EXPECT_EQ(StaticFiles::parse_http_date(StaticFiles::http_date(1700000000)), 1700000000);
+  for (const char* bad : {"", "Sunday, 06-Nov-94 08:49:37 GMT", "Sun Nov  6 08:49:37 1994",
+                          "Sun, 31 Feb 1994 08:49:37 GMT", "Sun, 06 Nov 1994 25:49:37 GMT",
+                          "Sun, 06 Xyz 1994 08:49:37 GMT", "Sun, 06 Nov 1994 08:49:37 UTC"})
+    EXPECT_FALSE(StaticFiles::parse_http_date(bad)) << bad;
 }
 
 TEST_F(StaticFilesTest, WithoutAWebRootOnlyTheApi) {
@@ -1285,22 +1419,57 @@ TEST_F(HttpServerTest, ABodyTrickledInIsCutAtTheRequestDeadline) {
   EXPECT_EQ(get(port, "/api/v1/echo").result_int(), 200);
 }
 
-// Regression: connections from one address were unbounded. At the cap the oldest one
-// still waiting for its request makes room, so slow connections cannot keep a request out.
-TEST_F(HttpServerTest, AtThePerAddressCapTheOldestWaitingConnectionMakesRoom) {
+// Connections from one address that have sent a request are bounded: at the cap the oldest one
+// idle between requests makes room for the new one's request.
+TEST_F(HttpServerTest, AtThePerAddressCapTheOldestIdleConnectionMakesRoom) {
   HttpServerOptions o;
   o.max_connections_per_address = 4;
   start(o);
-  std::vector<std::unique_ptr<TrickleClient>> slow;
+  std::vector<std::unique_ptr<HttpClient>> idle;
   for (int i = 0; i < 4; ++i) {
+    idle.push_back(std::make_unique<HttpClient>(port));
+    ASSERT_EQ(idle.back()->request(http::verb::get, "/api/v1/echo").result_int(), 200);
+  }
+  EXPECT_EQ(get(port, "/api/v1/echo").result_int(), 200);
+  EXPECT_TRUE(idle[0]->closed_by_server());
+  EXPECT_EQ(idle[3]->request(http::verb::get, "/api/v1/echo").result_int(), 200);
+}
+
+// Regression: the per-address cap counted connections that had not sent their request yet, so a
+// burst of connections from one address (dashboards behind a proxy) closed its own members
+// before they asked. Those are bounded by the header timeout instead.
+TEST_F(HttpServerTest, ConnectionsThatHaveNotAskedYetAreNotCutByThePerAddressCap) {
+  HttpServerOptions o;
+  o.max_connections_per_address = 4;
+  start(o);
+  std::vector<std::unique_ptr<RawClient>> waiting;
+  for (int i = 0; i < 12; ++i)
+    waiting.push_back(std::make_unique<RawClient>(port));
+  for (auto& c : waiting) {
+    c->send("GET /api/v1/echo HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n");
+    EXPECT_EQ(status_of(c->read_until_closed().data), 200);
+  }
+}
+
+// Regression: with every slot taken, the oldest waiting connection of any address made room, so
+// one address's flood of slow connections closed another client's. The address holding the
+// most connections makes room now.
+TEST_F(HttpServerTest, AtTheTotalCapTheAddressHoldingTheMostMakesRoom) {
+  HttpServerOptions o;
+  o.max_connections = 6;
+  start(o);
+  HttpClient other(port, "127.0.0.2");
+  ASSERT_EQ(other.request(http::verb::get, "/api/v1/echo").result_int(), 200);
+  std::vector<std::unique_ptr<TrickleClient>> slow;
+  for (int i = 0; i < 5; ++i) {
     slow.push_back(std::make_unique<TrickleClient>(port));
     slow.back()->send("GET /api/v1/echo HTTP/1.1\r\n");  // and never the rest
   }
-  // Accepted in order: the request's connection is the fifth, and the oldest makes room.
+  // Full (6): this connection makes the oldest of 127.0.0.1's slow ones close, not 127.0.0.2's
+  // older idle one.
   EXPECT_EQ(get(port, "/api/v1/echo").result_int(), 200);
   EXPECT_TRUE(slow[0]->closed_within(20000ms));
-  for (int i = 0; i < 3; ++i)
-    EXPECT_EQ(get(port, "/api/v1/echo").result_int(), 200);
+  EXPECT_EQ(other.request(http::verb::get, "/api/v1/echo").result_int(), 200);
 }
 
 // When no connection can make room (open streams), a new one gets a 503, not a silent hang.
@@ -1319,6 +1488,148 @@ TEST_F(HttpServerTest, OverTheTotalCapWithNothingToCloseIs503) {
   EXPECT_NE(refused.data.find("application/problem+json"), std::string::npos);
   EXPECT_TRUE(refused.closed());
   EXPECT_EQ(api.calls.load(), 0);
+}
+
+// Regression: a burst of 100 WebSocket clients from one address lost 36: the per-address cap of
+// 64 counted the connections whose upgrade had not been read yet and closed them to make room.
+TEST_F(HttpServerTest, ABurstOfUpgradesFromOneAddressAllGetSessions) {
+  start();
+  constexpr int kClients = 100;
+  net::io_context ioc;
+  std::vector<std::unique_ptr<websocket::stream<beast::tcp_stream>>> clients;
+  std::atomic<int> opened{0};
+  std::atomic<int> failed{0};
+  for (int i = 0; i < kClients; ++i) {
+    clients.push_back(std::make_unique<websocket::stream<beast::tcp_stream>>(ioc));
+    auto& ws = *clients.back();
+    beast::get_lowest_layer(ws).async_connect(loopback(port), [&ws, &opened, &failed,
+                                                               this](beast::error_code ec) {
+      if (ec) return void(++failed);
+      ws.async_handshake("127.0.0.1:" + std::to_string(port), "/api/v1/stream",
+                         [&opened, &failed](beast::error_code hec) { ++(hec ? failed : opened); });
+    });
+  }
+  ioc.run_for(30s);
+  EXPECT_EQ(opened.load(), kClients);
+  EXPECT_EQ(failed.load(), 0);
+  EXPECT_TRUE(wait_for([&] { return server->open_stream_sessions() == kClients; }, 20000ms))
+      << server->open_stream_sessions();
+}
+
+// Live sessions from one address have a cap of their own: one over it is a 503 with
+// Retry-After, and a place that frees up is taken again.
+TEST_F(HttpServerTest, LiveSessionsPerAddressAreCappedWith503AndRetryAfter) {
+  HttpServerOptions o;
+  o.max_streams_per_address = 2;
+  start(o);
+  auto a = std::make_unique<WsClient>(port);
+  ASSERT_FALSE(a->handshake_error());
+  WsClient b(port, "", 0, "/api/v1/foxglove", "foxglove.websocket.v1");
+  ASSERT_FALSE(b.handshake_error());
+  WsClient over(port);
+  EXPECT_TRUE(over.handshake_error());
+  EXPECT_EQ(over.handshake_response().result_int(), 503);
+  EXPECT_FALSE(over.handshake_response()[http::field::retry_after].empty());
+  EXPECT_EQ(server->open_stream_sessions(), 2u);
+  a.reset();
+  bool reopened = false;
+  for (const auto deadline = Clock::now() + 20s; !reopened && Clock::now() < deadline;) {
+    WsClient again(port);
+    reopened = !again.handshake_error();
+    if (!reopened) std::this_thread::sleep_for(20ms);
+  }
+  EXPECT_TRUE(reopened);
+}
+
+// --- request work on the request workers ---------------------------------------------------
+
+std::string raw_get(const std::string& target) {
+  return "GET " + target + " HTTP/1.1\r\nHost: 127.0.0.1\r\nConnection: close\r\n\r\n";
+}
+
+bool has_header(const std::string& raw, const std::string& line) {
+  return raw.find("\r\n" + line + "\r\n") != std::string::npos;
+}
+
+// Regression: request work ran on the two I/O threads, so two slow requests stalled /health and
+// the live stream. It runs on the request workers; with the only worker busy and the queue full,
+// the next request is a 503 with Retry-After while /health and the stream still answer.
+TEST_F(HttpServerTest, ABusyPoolAnswers503WhileHealthAndTheStreamAnswer) {
+  HttpServerOptions o;
+  o.request_workers = 1;
+  o.request_queue = 1;
+  start(o);
+  const auto [first, second] = the_worker_busy_and_one_waiting(port);
+  ASSERT_TRUE(first && second);
+
+  const auto refused = raw_exchange(port, raw_get("/api/v1/echo"));
+  EXPECT_EQ(status_of(refused.data), 503) << refused.data;
+  EXPECT_TRUE(has_header(refused.data, "Retry-After: 1")) << refused.data;
+  EXPECT_NE(refused.data.find("application/problem+json"), std::string::npos);
+
+  EXPECT_EQ(get(port, "/api/v1/health").result_int(), 200);
+  WsClient ws(port);
+  ASSERT_FALSE(ws.handshake_error());
+  ASSERT_TRUE(ws.read());  // hello
+  ws.send(R"({"subscribe":["turn"]})");
+  ASSERT_TRUE(ws.read());  // subscribed
+  hub.publish("turn", 1.0, R"({"id":1})");
+  const auto message = ws.read();
+  ASSERT_TRUE(message);
+  EXPECT_EQ((*message)["data"]["id"], 1);
+
+  api.open_gate();
+  EXPECT_EQ(status_of(first->read_until_closed().data), 200);
+  EXPECT_EQ(status_of(second->read_until_closed().data), 200);
+}
+
+// Expensive requests run on at most expensive_requests workers, the others stay for cheap ones,
+// and one client address may have expensive_requests_per_address of them running or waiting.
+TEST_F(HttpServerTest, ExpensiveRequestsAreLimitedInAllAndPerAddress) {
+  HttpServerOptions o;
+  o.request_workers = 2;
+  o.expensive_requests = 1;
+  o.expensive_requests_per_address = 1;
+  start(o);
+  RawClient heavy(port);
+  heavy.send(raw_get("/api/v1/block?cost=expensive"));
+  ASSERT_TRUE(wait_for([&] { return api.blocked.load() == 1; }));
+
+  const auto same_address = raw_exchange(port, raw_get("/api/v1/echo?cost=expensive"));
+  EXPECT_EQ(status_of(same_address.data), 429) << same_address.data;
+  EXPECT_TRUE(has_header(same_address.data, "Retry-After: 1")) << same_address.data;
+
+  // Another address is let in, and waits for the expensive worker.
+  HttpClient other(port, "127.0.0.2");
+  std::optional<http::response<http::string_body>> other_answer;
+  std::thread asking(
+      [&] { other_answer = other.request(http::verb::get, "/api/v1/echo?cost=expensive"); });
+  EXPECT_TRUE(wait_for([&] { return server->waiting_requests() == 1; }));
+  // Cheap work takes the other worker meanwhile.
+  EXPECT_EQ(get(port, "/api/v1/echo").result_int(), 200);
+  api.open_gate();
+  asking.join();
+  ASSERT_TRUE(other_answer);
+  EXPECT_EQ(other_answer->result_int(), 200);
+  EXPECT_EQ(status_of(heavy.read_until_closed().data), 200);
+  // Answered: the address has its share back.
+  EXPECT_EQ(get(port, "/api/v1/echo?cost=expensive").result_int(), 200);
+}
+
+// A request still waiting for a worker when the server stops is answered 503 at once, not left
+// to the stop's deadline.
+TEST_F(HttpServerTest, StopAnswersTheRequestsStillWaiting) {
+  HttpServerOptions o;
+  o.request_workers = 1;
+  start(o);
+  const auto [first, waiting] = the_worker_busy_and_one_waiting(port);
+  ASSERT_TRUE(first && waiting);
+  std::thread stopping([&] { server->stop(); });
+  const auto answer = waiting->read_until_closed();
+  EXPECT_EQ(status_of(answer.data), 503) << answer.data;
+  EXPECT_NE(answer.data.find("shutting down"), std::string::npos);
+  api.open_gate();
+  stopping.join();
 }
 
 }  // namespace

@@ -148,4 +148,24 @@ TEST(Router, ChoosesARepresentationByFormatThenAccept) {
   }
 }
 
+TEST(Router, AdmissionSaysHowMuchWorkTheRouteTakes) {
+  using avk::server::RouteCost;
+  using avk::server::Workload;
+  Router r("secret-token");
+  const auto ok = [](const ApiRequest&, const PathParams&) { return ApiResponse{}; };
+  r.add({"GET", "/api/v1/ping", Access::read, std::nullopt, ok}, RouteCost{Workload::immediate});
+  r.add({"GET", "/api/v1/answer", Access::read, std::nullopt, ok},
+        RouteCost{Workload::cheap, {"deep"}});
+  r.add({"GET", "/api/v1/study", Access::read, std::nullopt, ok}, RouteCost{Workload::expensive});
+  r.add({"GET", "/api/v1/plain", Access::read, std::nullopt, ok});
+  EXPECT_EQ(r.admit(request("GET", "/api/v1/ping")).workload, Workload::immediate);
+  EXPECT_EQ(r.admit(request("GET", "/api/v1/answer")).workload, Workload::cheap);
+  auto deep = request("GET", "/api/v1/answer");
+  deep.query["deep"] = "1";
+  EXPECT_EQ(r.admit(deep).workload, Workload::expensive);
+  EXPECT_EQ(r.admit(request("GET", "/api/v1/study")).workload, Workload::expensive);
+  EXPECT_EQ(r.admit(request("HEAD", "/api/v1/study")).workload, Workload::expensive);
+  EXPECT_EQ(r.admit(request("GET", "/api/v1/plain")).workload, Workload::cheap);
+}
+
 }  // namespace

@@ -17,6 +17,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "support/http_client.hpp"
@@ -127,6 +128,29 @@ TEST(ServeOptions, AnAllowedOriginMustBeAnOriginAndNothingMore) {
     EXPECT_TRUE(o.exited) << origin << ": the server started";
     EXPECT_EQ(o.code, 2) << origin << "\n" << o.log;
     EXPECT_NE(o.log.find("--allow-origin"), std::string::npos) << o.log;
+  }
+  fs::remove(db.path() + ".token");
+}
+
+// The connection caps and the request workers take whole numbers in range, named when not.
+TEST(ServeOptions, CapsAndRequestWorkersMustBeInRange) {
+  avk::testing::TempDb db("avk_serve_caps");
+  const std::string log = db.path() + ".log";
+  const std::vector<std::pair<std::vector<std::string>, std::string>> wrong = {
+      {{"--max-streams-per-address", "0"}, "--max-streams-per-address"},
+      {{"--request-workers", "0"}, "--request-workers"},
+      {{"--request-workers", "300"}, "--request-workers"},
+      {{"--request-queue", "1.5"}, "--request-queue"},
+      {{"--expensive-requests-per-address", "-1"}, "--expensive-requests-per-address"},
+      {{"--request-workers", "2", "--expensive-requests", "3"}, "--expensive-requests"},
+  };
+  for (const auto& [options, named] : wrong) {
+    std::vector<std::string> args = {"serve", "--db", db.path(), "--port", "0"};
+    args.insert(args.end(), options.begin(), options.end());
+    const auto o = run_avk(args, log);
+    EXPECT_TRUE(o.exited) << named << ": the server started";
+    EXPECT_EQ(o.code, 2) << named << "\n" << o.log;
+    EXPECT_NE(o.log.find(named), std::string::npos) << o.log;
   }
   fs::remove(db.path() + ".token");
 }

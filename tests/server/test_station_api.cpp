@@ -337,6 +337,36 @@ TEST_F(RouteTable, EveryRouteRefusesAnUnacceptableAcceptAlike) {
 // Issue 19: an unauthenticated DELETE from afar got 401. A method the path does not take is a
 // 405 with Allow from any address, token or not, before the body is read; a path that is no
 // route stays a 401 from afar without the token.
+// Which requests the transport answers on an I/O thread, runs on any request worker, or limits
+// as expensive (docs/api.md, "Request work"): decided from the header, by the route table.
+TEST_F(RouteTable, EachRouteSaysHowMuchWorkItsAnswerTakes) {
+  using avk::server::Workload;
+  const auto workload = [&](ApiRequest r) { return station_->admit(r).workload; };
+  EXPECT_EQ(workload(get("/api/v1/health")), Workload::immediate);
+  EXPECT_EQ(workload(get("/api/v1/meta")), Workload::immediate);
+  EXPECT_EQ(workload(get("/api/v1/vehicles/sim-usim")), Workload::cheap);
+  EXPECT_EQ(workload(get("/api/v1/missions/1")), Workload::cheap);
+  EXPECT_EQ(workload(post("/api/v1/missions/1/abort")), Workload::cheap);
+  const std::map<std::string, std::string> turn = {{"speed", "1"}, {"dheading", "90"}};
+  EXPECT_EQ(workload(get("/api/v1/vehicles/sim-usim/predict", turn)), Workload::cheap);
+  for (const char* held_out : {"without_turn", "without_mission", "initial_yaw_rate"}) {
+    auto q = turn;
+    q[held_out] = "1";
+    EXPECT_EQ(workload(get("/api/v1/vehicles/sim-usim/predict", q)), Workload::expensive)
+        << held_out;
+  }
+  for (const auto& r :
+       {get("/api/v1/vehicles/sim-usim/compare"), get("/api/v1/vehicles/sim-usim/models/sweep"),
+        get("/api/v1/missions/1/export", {{"format", "mcap"}}),
+        post("/api/v1/vehicles/sim-usim/maneuvers/evaluate"),
+        post("/api/v1/vehicles/sim-usim/models"), post("/api/v1/missions/1/harvest")})
+    EXPECT_EQ(workload(r), Workload::expensive) << r.method << " " << r.path;
+  // Off this machine without the token: refused from the header, whatever the route's work.
+  ApiRequest afar = get("/api/v1/vehicles/sim-usim/compare");
+  afar.remote_is_loopback = false;
+  EXPECT_TRUE(station_->admit(afar).refusal);
+}
+
 TEST_F(RouteTable, AMethodNotAllowedIs405BeforeTheTokenIsAskedFor) {
   for (const bool loopback : {true, false}) {
     ApiRequest del = get("/api/v1/missions/1");

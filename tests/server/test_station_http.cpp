@@ -14,12 +14,15 @@
 #include <string>
 #include <vector>
 
+#include "app/mission_mcap.hpp"
 #include "server/http/http_server.hpp"
 #include "server/station.hpp"
+#include "support/stored_turns.hpp"
 #include "support/temp_db.hpp"
 
 namespace {
 
+namespace app = avk::app;
 using json = nlohmann::json;
 using Clock = std::chrono::steady_clock;
 using namespace std::chrono_literals;
@@ -193,6 +196,32 @@ TEST_F(StationHttpTest, HeadGivesTheGetsHeadersAndNoBody) {
     EXPECT_TRUE(second.starts_with("HTTP/1.1 ")) << head_then_get;
     EXPECT_EQ(status_of(second), status_of(get)) << path;
   }
+}
+
+// The MCAP export is written to a temporary file and sent from it: the same file as the one made
+// in memory, with its length announced (HEAD too) and nothing else in the body.
+TEST_F(StationHttpTest, TheMcapExportIsSentFromAFileWhole) {
+  const auto mission = avk::testing::store_arc_turns(station->context().db(), "alpha", 1.0, 3);
+  app::McapExportOptions o;
+  o.compression = app::mcap::Compression::none;
+  const auto expected = app::export_mission_mcap(station->context(), mission, o);
+  ASSERT_TRUE(expected) << expected.error().message;
+  const std::string target =
+      "/api/v1/missions/" + std::to_string(mission) + "/export?format=mcap&compression=none";
+  const auto raw = send_and_read(port, request("GET", target));
+  ASSERT_EQ(status_of(raw), 200) << raw.substr(0, 400);
+  EXPECT_EQ(header_value(raw, "Content-Type"), "application/vnd.mcap");
+  EXPECT_EQ(header_value(raw, "Content-Disposition"),
+            "attachment; filename=\"mission-" + std::to_string(mission) + ".mcap\"");
+  EXPECT_EQ(header_value(raw, "Content-Length"), std::to_string(expected->bytes.size()));
+  EXPECT_TRUE(body_of(raw) == expected->bytes) << body_of(raw).size() << " bytes";
+  const auto head = send_and_read(port, request("HEAD", target));
+  EXPECT_EQ(status_of(head), 200);
+  EXPECT_EQ(header_value(head, "Content-Length"), std::to_string(expected->bytes.size()));
+  EXPECT_TRUE(body_of(head).empty());
+  EXPECT_EQ(
+      status_of(send_and_read(port, request("GET", "/api/v1/missions/999/export?format=mcap"))),
+      404);
 }
 
 // Regression: invalid UTF-8 in a path or query was a 500 with nlohmann's text. No route has

@@ -37,4 +37,18 @@ inline std::int64_t store_arc_turns(store::Store& db, const std::string& vehicle
   return mission;
 }
 
+// One more ok turn of the vehicle in a stored mission: lead-in 1.5 m, radius 3 m, as
+// store_arc_turns' cells at 1 m/s and scale 1.
+inline void store_one_arc_turn(store::Store& db, std::int64_t mission,
+                               const std::string& vehicle_id, double speed_mps,
+                               double dheading_deg) {
+  ArcTurnSpec s;
+  s.speed_mps = speed_mps;
+  s.dheading_deg = dheading_deg;
+  s.lead_in_m = 1.5;
+  s.radius_m = 3.0;
+  s.vehicle_id = vehicle_id;
+  db.store_turn(mission, make_arc_turn(s), kinematics::TurnStatus::ok, "");
+}
+
 }  // namespace avk::testing

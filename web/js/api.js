@@ -2,6 +2,7 @@
 // the status, the detail and, for mission validation, errors[] with JSON-pointer fields.
 
 import { getToken, requestToken, tokenAccepted } from './auth.js';
+import { fetchUnlessBusy } from './busy.js';
 
 export const BASE = '/api/v1';
 
@@ -39,13 +40,13 @@ async function problemOf(res) {
  *  port, a LAN) every request needs it, reads included. A 401 asks for the token inline (never a
  *  modal), saying so when the token sent was refused, and sends the request again with each token
  *  the operator enters until one is taken; concurrent 401s share one prompt. A cancelled prompt
- *  leaves the 401 to the caller. */
+ *  leaves the 401 to the caller. A busy station's 429/503 is retried as it asks (busy.js). */
 async function authedFetch(url, init = {}) {
   for (;;) {
     const headers = { ...(init.headers || {}) };
     const token = getToken();
     if (token) headers.Authorization = `Bearer ${token}`;
-    const res = await fetch(url, { ...init, headers });
+    const res = await fetchUnlessBusy(url, { ...init, headers });
     if (res.status !== 401) {
       tokenAccepted(token);
       return res;
