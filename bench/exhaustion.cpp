@@ -26,8 +26,9 @@
 // Targets: /health p99 < 50 ms in every phase; RSS < 100 MB in phases 1-4 and < 200 MB under
 // the heavy reads; every bomb import refused under 100 MB. The database holds one Figure 4-1
 // mission flown with 100 repeats (about 1,800 turns, as the issue's) unless `--repeats R` says
-// otherwise; `--db FILE` starts from a copy of a database made so before. Bounded: a few minutes (`--quick`: shorter phases, 10 repeats), then
-// it stops the server and exits 0 if the targets held, 1 if not.
+// otherwise; `--db FILE` starts from a copy of a database made so before. Bounded: a few
+// minutes (`--quick`: shorter phases, 10 repeats), then it stops the server and exits 0 if the
+// targets held, 1 if not.
 //
 //   bench_exhaustion [--quick] [--repeats R] [--db FILE] [--without KIND]...
 //
