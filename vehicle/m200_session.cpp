@@ -1,5 +1,7 @@
 #include "vehicle/m200_session.hpp"
 
+#include "vehicle/nav_ranges.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -204,9 +206,11 @@ void M200Session::on_cpnvg(const Cpnvg& s, double t_s) {
   if (speed_mps_ && fresh(speed_mps_->t_s)) {
     n.speed_mps = speed_mps_->value;
   } else if (last_nav_) {
-    // No speed sentence: the track's own rate, as a last resort.
-    n.speed_mps =
+    // No speed sentence: the track's own rate, as a last resort. A rate no boat makes is a
+    // position jump (a fix after a dropout), not a speed: the last speed stands instead.
+    const double rate_mps =
         std::hypot(n.x_m - last_nav_->x_m, n.y_m - last_nav_->y_m) / (n.t_s - last_nav_->t_s);
+    n.speed_mps = kSpeedRange_mps.contains(rate_mps) ? rate_mps : last_nav_->speed_mps;
   }
   if (yaw_rate_dps_ && fresh(yaw_rate_dps_->t_s)) n.yaw_rate_dps = yaw_rate_dps_->value;
   ++counters_.nav_samples;

@@ -32,8 +32,10 @@ constexpr Range kDepth{-100.0, 12000.0};  // a pressure sensor may read a little
 constexpr Range kVoltage{0.0, 1000.0};
 constexpr Range kTemperature{-100.0, 200.0};
 constexpr Range kCpaltValue{-1e5, 1e5};
-constexpr Range kSpeedKnots{0.0, 10000.0};
-constexpr Range kSpeedKmh{0.0, 20000.0};
+// The speeds a navigation sample may carry (kSpeedRange_mps) in the sentence's own unit: a
+// speed the station would store must read back from its own recordings.
+constexpr Range kSpeedKnots{0.0, kSpeedRange_mps.high / kMetresPerSecondPerKnot};
+constexpr Range kSpeedKmh{0.0, kSpeedRange_mps.high * 3.6};
 constexpr Range kMagneticVariation{0.0, 180.0};
 constexpr Range kHdop{0.0, 100.0};
 constexpr Range kGpsAltitude{-10000.0, 100000.0};
@@ -403,6 +405,12 @@ std::variant<NmeaSentence, NmeaError> parse_cpnvr(Reader& r) {
   s.pitch_rate_dps = r.number(5, "pitch rate", kRateRange_dps);
   s.roll_rate_dps = r.number(6, "roll rate", kRateRange_dps);
   s.yaw_rate_dps = r.number(7, "yaw rate", kRateRange_dps);
+  // Each component may be within its range while the speed they make is not: the horizontal
+  // speed becomes the sample's speed, so it must be one.
+  if (!r.failed() && !kSpeedRange_mps.contains(std::hypot(s.v_east_mps, s.v_north_mps)))
+    r.fail(Code::out_of_range, 2, "v east",
+           "horizontal speed " + std::to_string(std::hypot(s.v_east_mps, s.v_north_mps)) +
+               " m/s is out of range " + to_string(kSpeedRange_mps));
   return finish(r, std::move(s));
 }
 

@@ -98,6 +98,21 @@ TEST(M200Session, NavigationOnTheLocalGridWithSpeedAndYawRate) {
   EXPECT_EQ(s.link_state(12.5), LinkState::stale);
 }
 
+TEST(M200Session, WithoutSpeedSentencesATrackJumpIsNoSpeed) {
+  M200Session s(config());
+  s.on_connected(0.0);
+  // No speed sentence: the speed is the track's rate, 1 m/s here.
+  s.on_line(sent_at(cpnvg_at(0.0, 0.0, 0.0), 10.0), 10.0);
+  s.on_line(sent_at(cpnvg_at(0.0, 1.0, 0.0), 11.0), 11.0);
+  // 500 m in a second is a fix jumping after a dropout, not a speed a sample may carry.
+  s.on_line(sent_at(cpnvg_at(0.0, 501.0, 0.0), 12.0), 12.0);
+  const auto nav = s.take_nav();
+  ASSERT_EQ(nav.size(), 3u);
+  EXPECT_NEAR(nav[1].speed_mps, 1.0, 0.01);
+  EXPECT_NEAR(nav[2].y_m, 501.0, 0.01);
+  EXPECT_NEAR(nav[2].speed_mps, nav[1].speed_mps, 1e-9);
+}
+
 TEST(M200Session, WithoutGpsQualityThePositionComesFromAFreshFix) {
   M200Session s(config());
   s.on_connected(0.0);

@@ -331,6 +331,9 @@ TEST(NmeaCpnvr, ParsesAndChecks) {
   expect_error(sentence("CPNVR,120000,101,2,3,4,5,6"), Code::out_of_range, 2, "v east");
   expect_error(sentence("CPNVR,120000,1,2,3,4,5,-5001"), Code::out_of_range, 7);
   EXPECT_DOUBLE_EQ(parse_as<Cpnvr>(sentence("CPNVR,120000,+1.5,-.5,3.,0,0,0")).v_east_mps, 1.5);
+  // Components within ±100 m/s can still make a horizontal speed that no sample may carry.
+  expect_error(sentence("CPNVR,120000,80,80,0,0,0,0"), Code::out_of_range, 2, "horizontal speed");
+  EXPECT_DOUBLE_EQ(parse_as<Cpnvr>(sentence("CPNVR,120000,60,80,0,0,0,0")).v_north_mps, 80.0);
 }
 
 TEST(NmeaCprbs, WithAndWithoutBatteryId) {
@@ -449,6 +452,8 @@ TEST(NmeaGprmc, MalformedVariants) {
                5, "longitude");
   expect_error(sentence("GPRMC,123519,A,4807.038,N,01131.000,E,-1,084.4,230394,,,A"),
                Code::out_of_range, 7, "speed over ground");
+  expect_error(sentence("GPRMC,123519,A,4807.038,N,01131.000,E,9999,084.4,230394,,,A"),
+               Code::out_of_range, 7, "speed over ground");
   expect_error(sentence("GPRMC,123519,A,4807.038,N,01131.000,E,1,084.4,300294,,,A"),
                Code::out_of_range, 9, "date");
   expect_error(sentence("GPRMC,123519,A,4807.038,N,01131.000,E,1,084.4,2303944,,,A"),
@@ -500,6 +505,14 @@ TEST(NmeaGpvtg, ParsesAndChecks) {
   EXPECT_DOUBLE_EQ(*old.course_magnetic_deg, 34.4);
   expect_error(sentence("GPVTG,054.7,T,034.4,M,005.5,N,010.2,X"), Code::bad_value, 8);
   expect_error(sentence("GPVTG,054.7,034.4,005.5,010.2"), Code::bad_field_count, 0);
+  // Speeds are bounded as a navigation sample's (100 m/s) in the sentence's own units, so that
+  // what the station stores reads back from its recordings.
+  expect_error(sentence("GPVTG,054.7,T,034.4,M,194.5,N,010.2,K"), Code::out_of_range, 5,
+               "speed knots");
+  expect_error(sentence("GPVTG,054.7,T,034.4,M,005.5,N,360.1,K"), Code::out_of_range, 7,
+               "speed km/h");
+  EXPECT_DOUBLE_EQ(*parse_as<Gpvtg>(sentence("GPVTG,054.7,T,034.4,M,194.3,N,359.9,K")).speed_kmh,
+                   359.9);
 }
 
 TEST(NmeaGps, GnssTalkersMapToTheSameTypes) {
@@ -695,7 +708,8 @@ TEST(NmeaFormat, RandomRoundTrips) {
     // Once written, the text is a fixed point.
     EXPECT_EQ(format_cpnvg(g2), format_cpnvg(g));
 
-    Cpnvr r{uniform(0.0, 86399.0),   uniform(-100.0, 100.0),   uniform(-100.0, 100.0),
+    // Horizontal components within ±70 m/s: together under the 100 m/s a speed may be.
+    Cpnvr r{uniform(0.0, 86399.0),   uniform(-70.0, 70.0),     uniform(-70.0, 70.0),
             uniform(-100.0, 100.0),  uniform(-5000.0, 5000.0), uniform(-5000.0, 5000.0),
             uniform(-5000.0, 5000.0)};
     const Cpnvr r2 = parse_as<Cpnvr>(format_cpnvr(r));
