@@ -332,8 +332,13 @@ Result<OngoingManeuver> evaluate_ongoing(Context& ctx, const OngoingQuery& q) {
   out.covariance_m2 =
       kin::position_band(whole.path, whole.along_sd_m, whole.cross_sd_m, whole.turn_points,
                          band_sources(out.motion, current->covariance));
+  // As in evaluate_maneuvers, the instantaneous assumption is the ray exactly: no band, and no
+  // verdict on whether the vehicle is inside it.
+  std::optional<kin::OngoingBand> band;
+  if (q.method != PredictionMethod::instantaneous)
+    band = kin::OngoingBand{out.covariance_m2, q.corridor_share};
   out.evaluation =
-      kin::evaluate_ongoing(out.prediction, whole.half_width_m, q.elapsed_s, q.measured);
+      kin::evaluate_ongoing(out.prediction, whole.half_width_m, q.elapsed_s, q.measured, band);
   out.half_width_m = whole.half_width_m;
   if (pred->model) out.model_id = pred->model->id;
   return out;

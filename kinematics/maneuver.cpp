@@ -269,10 +269,14 @@ std::vector<double> candidate_dheadings_deg(double step_deg) {
 }
 
 OngoingEvaluation evaluate_ongoing(const TimedPath& path, const std::vector<double>& half_width_m,
-                                   double elapsed_s, std::optional<Point> measured) {
+                                   double elapsed_s, std::optional<Point> measured,
+                                   const std::optional<OngoingBand>& band) {
   if (path.empty()) throw std::invalid_argument("an ongoing maneuver needs its prediction");
   if (!half_width_m.empty() && half_width_m.size() != path.size())
     throw std::invalid_argument("one corridor half width per path point");
+  if (band && band->covariance_m2.size() != path.size())
+    throw std::invalid_argument("one band covariance per path point");
+  const double band_k = band ? band_radius_factor(band->share) : 0.0;
   if (!(elapsed_s >= 0.0) || !std::isfinite(elapsed_s))
     throw std::invalid_argument("the elapsed time must be a non-negative number of seconds");
   if (measured && !(std::isfinite(measured->x_m) && std::isfinite(measured->y_m)))
@@ -287,6 +291,7 @@ OngoingEvaluation evaluate_ongoing(const TimedPath& path, const std::vector<doub
   if (i >= path.size()) {
     e.expected = {path.back().x_m, path.back().y_m};
     if (!half_width_m.empty()) e.half_width_m = half_width_m.back();
+    if (band) e.band_m2 = band->covariance_m2.back();
     next = path.size();
   } else {
     const TimedPoint& a = path[i - 1];
@@ -296,7 +301,15 @@ OngoingEvaluation evaluate_ongoing(const TimedPath& path, const std::vector<doub
     e.expected = {a.x_m + w * (b.x_m - a.x_m), a.y_m + w * (b.y_m - a.y_m)};
     if (!half_width_m.empty())
       e.half_width_m = half_width_m[i - 1] + w * (half_width_m[i] - half_width_m[i - 1]);
+    if (band) {
+      Covariance2 c{};
+      for (std::size_t k = 0; k < c.size(); ++k)
+        c[k] = band->covariance_m2[i - 1][k] +
+               w * (band->covariance_m2[i][k] - band->covariance_m2[i - 1][k]);
+      e.band_m2 = c;
+    }
   }
+  if (e.band_m2) e.band_ellipse = kinematics::band_ellipse(*e.band_m2, band->share);
   e.remaining.push_back({std::max(elapsed_s, path.front().t_s), e.expected.x_m, e.expected.y_m});
   for (std::size_t k = next; k < path.size(); ++k)
     if (path[k].t_s > elapsed_s) e.remaining.push_back(path[k]);
@@ -307,7 +320,13 @@ OngoingEvaluation evaluate_ongoing(const TimedPath& path, const std::vector<doub
     for (const TimedPoint& p : path)
       line.push_back({p.x_m, p.y_m});
     e.cross_track_m = distance_to_polyline_m(*measured, line);
-    if (e.half_width_m) e.inside_corridor = *e.cross_track_m <= *e.half_width_m;
+    if (e.band_m2) {
+      const Point d{measured->x_m - e.expected.x_m, measured->y_m - e.expected.y_m};
+      e.inside_band = mahalanobis2(*e.band_m2, d) <= band_k * band_k;
+      e.inside_corridor = e.inside_band;
+    } else if (e.half_width_m) {
+      e.inside_corridor = *e.cross_track_m <= *e.half_width_m;
+    }
   }
   return e;
 }

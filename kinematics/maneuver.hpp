@@ -153,13 +153,30 @@ struct OngoingEvaluation {
   std::optional<double> half_width_m;   // the corridor at elapsed_s
   std::optional<double> deviation_m;    // measured to expected (along-time error)
   std::optional<double> cross_track_m;  // measured to the nearest point of the whole prediction
-  std::optional<bool> inside_corridor;  // cross-track within the half width at elapsed_s
+  // The position band at elapsed_s (interpolated in time between the path's points) and its
+  // ellipse at the band's share; empty without a band.
+  std::optional<Covariance2> band_m2;
+  std::optional<BandEllipse> band_ellipse;
+  std::optional<bool> inside_band;  // the measured position within the band's ellipse
+  // Where the vehicle is judged inside: the band when there is one, else the cross-track within
+  // the corridor's half width. The corridor alone is the recorded turns' spread, 0 m at the
+  // command where they all start together, so any navigation noise would read "outside"; the
+  // band adds that noise and the straight-leg scatter.
+  std::optional<bool> inside_corridor;
 };
 
-// Throws std::invalid_argument for an empty path, mismatched half widths or a negative or
-// non-finite elapsed time. Past the path's end the expected position is its last point.
+// The band of a share about a placed path, one covariance per path point (position_band).
+struct OngoingBand {
+  std::vector<Covariance2> covariance_m2;
+  double share = 0.9;
+};
+
+// Throws std::invalid_argument for an empty path, mismatched half widths or band, a share
+// outside (0, 1), or a negative or non-finite elapsed time. Past the path's end the expected
+// position is its last point.
 OngoingEvaluation evaluate_ongoing(const TimedPath& placed_path,
                                    const std::vector<double>& half_width_m, double elapsed_s,
-                                   std::optional<Point> measured);
+                                   std::optional<Point> measured,
+                                   const std::optional<OngoingBand>& band = std::nullopt);
 
 }  // namespace avk::kinematics

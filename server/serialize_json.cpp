@@ -667,20 +667,12 @@ json maneuver_evaluation_json(const app::ManeuverEvaluation& e, double path_step
 json ongoing_maneuver_json(const app::OngoingManeuver& o) {
   const app::OngoingQuery& q = o.query;
   const kin::OngoingEvaluation& e = o.evaluation;
-  // The band where the vehicle should be now, at the corridor's share.
   json band_now;
-  if (!o.covariance_m2.empty()) {
-    std::size_t i = 0;
-    while (i + 1 < o.prediction.size() && o.prediction[i + 1].t_s <= e.elapsed_s)
-      ++i;
-    const kin::BandEllipse b = kin::band_ellipse(o.covariance_m2[i], q.corridor_share);
-    band_now = {
-        {"major_m", b.major_m}, {"minor_m", b.minor_m}, {"major_axis_deg", b.major_axis_deg}};
-    if (q.measured) {
-      const double k = kin::band_radius_factor(q.corridor_share);
-      const kin::Point d{q.measured->x_m - e.expected.x_m, q.measured->y_m - e.expected.y_m};
-      band_now["inside"] = kin::mahalanobis2(o.covariance_m2[i], d) <= k * k;
-    }
+  if (e.band_ellipse) {
+    band_now = {{"major_m", e.band_ellipse->major_m},
+                {"minor_m", e.band_ellipse->minor_m},
+                {"major_axis_deg", e.band_ellipse->major_axis_deg}};
+    if (e.inside_band) band_now["inside"] = *e.inside_band;
   }
   json out = {
       {"vehicle_id", q.vehicle_id},

@@ -315,4 +315,57 @@ TEST(Ongoing, AVehicleRunningLateIsOnThePathButBehindItsTime) {
   EXPECT_THROW(evaluate_ongoing(m.path, {}, -1.0, std::nullopt), std::invalid_argument);
 }
 
+TEST(Ongoing, AtTheCommandTheBandJudgesNotTheZeroWidthCorridor) {
+  // A straight 10 m path north in 10 s; the corridor is 0 m at the command and 1 m at the end;
+  // the band is the navigation's noise, 0.3 m each axis, growing to 2 m across at the end.
+  const TimedPath path{{0.0, 0.0, 0.0}, {10.0, 0.0, 10.0}};
+  const std::vector<double> corridor{0.0, 1.0};
+  const OngoingBand band{{{0.09, 0.0, 0.09}, {4.0, 0.0, 0.09}}, 0.9};
+  // 0.2 m east at the command: the corridor alone says outside, the band inside.
+  const OngoingEvaluation start = evaluate_ongoing(path, corridor, 0.0, Point{0.2, 0.0});
+  ASSERT_TRUE(start.inside_corridor);
+  EXPECT_FALSE(*start.inside_corridor);
+  const OngoingEvaluation judged = evaluate_ongoing(path, corridor, 0.0, Point{0.2, 0.0}, band);
+  ASSERT_TRUE(judged.inside_band && judged.inside_corridor && judged.band_ellipse);
+  EXPECT_TRUE(*judged.inside_band);
+  EXPECT_TRUE(*judged.inside_corridor);
+  EXPECT_DOUBLE_EQ(*judged.half_width_m, 0.0);  // still reported as it is
+  // 2 m east at the command is outside the 0.3 m noise.
+  EXPECT_FALSE(*evaluate_ongoing(path, corridor, 0.0, Point{2.0, 0.0}, band).inside_corridor);
+  // Halfway in time the covariance is halfway between the points': xx = (0.09 + 4) / 2.
+  const OngoingEvaluation half = evaluate_ongoing(path, corridor, 5.0, Point{2.0, 5.0}, band);
+  ASSERT_TRUE(half.band_m2);
+  EXPECT_NEAR((*half.band_m2)[0], 2.045, 1e-12);
+  EXPECT_NEAR((*half.band_m2)[2], 0.09, 1e-12);
+  // 2 m across with sd 1.43 m is within the 90 % band (k = 2.146), and the major axis is east.
+  EXPECT_TRUE(*half.inside_corridor);
+  EXPECT_NEAR(half.band_ellipse->major_axis_deg, 90.0, 1e-9);
+  EXPECT_NEAR(half.band_ellipse->major_m, band_radius_factor(0.9) * std::sqrt(2.045), 1e-9);
+  // Past the end the band is the last point's.
+  EXPECT_NEAR((*evaluate_ongoing(path, corridor, 50.0, std::nullopt, band).band_m2)[0], 4.0, 0.0);
+  // Without a measured position there is no verdict, with or without a band.
+  EXPECT_FALSE(evaluate_ongoing(path, corridor, 5.0, std::nullopt, band).inside_corridor);
+  const OngoingBand short_band{{{0.09, 0.0, 0.09}}, 0.9};
+  EXPECT_THROW(evaluate_ongoing(path, corridor, 1.0, std::nullopt, short_band),
+               std::invalid_argument);
+}
+
+TEST(Ongoing, TheBandVerdictTurnsWithTheWorld) {
+  // The same question rotated by 90 deg clockwise (x, y) -> (y, -x): the same verdicts, the
+  // ellipse's axis turned with it.
+  const TimedPath path{{0.0, 0.0, 0.0}, {10.0, 0.0, 10.0}};
+  const TimedPath turned{{0.0, 0.0, 0.0}, {10.0, 10.0, 0.0}};
+  const OngoingBand band{{{0.09, 0.0, 0.09}, {4.0, 0.0, 0.09}}, 0.9};
+  const OngoingBand turned_band{{{0.09, 0.0, 0.09}, {0.09, 0.0, 4.0}}, 0.9};
+  for (const Point m : {Point{2.0, 5.0}, Point{-3.5, 4.0}, Point{0.3, 6.0}, Point{0.0, 4.2}}) {
+    const auto a = evaluate_ongoing(path, {}, 5.0, m, band);
+    const auto b = evaluate_ongoing(turned, {}, 5.0, Point{m.y_m, -m.x_m}, turned_band);
+    ASSERT_TRUE(a.inside_corridor && b.inside_corridor);
+    EXPECT_EQ(*a.inside_corridor, *b.inside_corridor) << m.x_m << ", " << m.y_m;
+    EXPECT_NEAR(a.band_ellipse->major_m, b.band_ellipse->major_m, 1e-9);
+    EXPECT_NEAR(std::fmod(a.band_ellipse->major_axis_deg + 90.0, 180.0),
+                b.band_ellipse->major_axis_deg, 1e-9);
+  }
+}
+
 }  // namespace
