@@ -18,9 +18,14 @@ bool process_alive(std::int64_t pid) {
   return paren == std::string::npos || paren + 2 >= line.size() || line[paren + 2] != 'Z';
 }
 
+// A paused mission is held by its process as much as a running one: the process waits for the
+// operator's resume. Without the process nobody can resume it there, so it is interrupted too.
+bool held_by_a_process(store::MissionStatus s) {
+  return s == store::MissionStatus::running || s == store::MissionStatus::paused;
+}
+
 store::MissionStatus effective_status(const store::Mission& m) {
-  if (m.status == store::MissionStatus::running &&
-      (!m.runner_pid || !process_alive(*m.runner_pid))) {
+  if (held_by_a_process(m.status) && (!m.runner_pid || !process_alive(*m.runner_pid))) {
     return store::MissionStatus::interrupted;
   }
   return m.status;
@@ -29,8 +34,7 @@ store::MissionStatus effective_status(const store::Mission& m) {
 int mark_orphaned_missions_interrupted(store::Store& db) {
   int n = 0;
   for (const auto& m : db.list_missions()) {
-    if (m.status == store::MissionStatus::running &&
-        effective_status(m) == store::MissionStatus::interrupted) {
+    if (held_by_a_process(m.status) && effective_status(m) == store::MissionStatus::interrupted) {
       // Nothing recorded: it ended where it started.
       const auto end_s = db.mission_clock_end_s(m.id);
       db.close_orphaned_mission(m.id, "the process running it stopped",

@@ -1,6 +1,6 @@
 #pragma once
-// Whether a mission stored as running still has a process behind it. A mission whose process is
-// gone (kill -9, power loss) reads as interrupted and can be resumed.
+// Whether a mission stored as running or paused still has a process behind it. A mission whose
+// process is gone (kill -9, power loss) reads as interrupted and can be resumed.
 
 #include <cstdint>
 
@@ -10,8 +10,9 @@ namespace avk::app {
 
 bool process_alive(std::int64_t pid);
 store::MissionStatus effective_status(const store::Mission& m);
-// Closes every mission stored as running whose process is gone as interrupted, ended at the last
-// mission-clock time anything of it was recorded (its navigation, usually); returns how many.
+// Closes every mission stored as running or paused whose process is gone as interrupted, ended at
+// the last mission-clock time anything of it was recorded (its navigation, usually); returns how
+// many.
 int mark_orphaned_missions_interrupted(store::Store& db);
 
 }  // namespace avk::app
