@@ -63,6 +63,7 @@ struct Endpoint {
   net::ip::address address = net::ip::make_address("127.0.0.1");
   unsigned short port = 0;
   std::string path = "/index.html";
+  int pid = 0;  // the process that serves it, for its CPU time; 0: this one
 };
 
 struct Options {
@@ -107,6 +108,7 @@ Endpoint parse_url(const std::string& url) {
 
 Options parse_options(int argc, char** argv) {
   Options o;
+  int compare_pid = 0;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     const auto text = [&]() -> std::string {
@@ -124,10 +126,17 @@ Options parse_options(int argc, char** argv) {
       o.rounds = static_cast<int>(value());
     else if (a == "--compare-url")
       o.compare = parse_url(text());
+    else if (a == "--compare-pid")
+      compare_pid = static_cast<int>(value());
     else
       throw std::invalid_argument("unknown option " + a +
                                   " (--clients K, --seconds D, --io-threads N, --compare-url URL, "
-                                  "--rounds R)");
+                                  "--compare-pid PID, --rounds R)");
+  }
+  if (compare_pid != 0) {
+    if (!o.compare) throw std::invalid_argument("--compare-pid needs --compare-url");
+    if (compare_pid < 0) throw std::invalid_argument("--compare-pid: a process id");
+    o.compare->pid = compare_pid;
   }
   // Bounded so that a typo cannot start an endless or machine-filling run.
   if (o.clients < 1 || o.clients > 256) throw std::invalid_argument("--clients: 1..256");
@@ -171,6 +180,24 @@ double process_cpu_s() {
   timespec ts{};
   clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
   return static_cast<double>(ts.tv_sec) + static_cast<double>(ts.tv_nsec) * 1e-9;
+}
+
+// Another process's CPU time (user + system, /proc/PID/stat fields 14 and 15), or -1 if it
+// cannot be read.
+double other_process_cpu_s(int pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/stat");
+  std::string stat;
+  std::getline(in, stat);
+  // The command name (field 2) may hold spaces: the fields are counted after its ')'.
+  const auto close = stat.rfind(')');
+  if (close == std::string::npos) return -1.0;
+  std::istringstream fields(stat.substr(close + 2));
+  std::string skip;
+  for (int field = 3; field < 14; ++field)
+    fields >> skip;
+  unsigned long long utime = 0, stime = 0;
+  if (!(fields >> utime >> stime)) return -1.0;
+  return static_cast<double>(utime + stime) / static_cast<double>(sysconf(_SC_CLK_TCK));
 }
 
 // Cheap and per thread: the targets must differ from request to request so that nothing along
@@ -282,7 +309,8 @@ struct PassResult {
   double mean_body_bytes = 0.0;
   double process_cpu_s = 0.0;
   double client_cpu_s = 0.0;
-  double machine_busy = 0.0;  // share of the whole machine's CPU time, 0..1
+  double machine_busy = 0.0;   // share of the whole machine's CPU time, 0..1
+  double server_cpu_s = -1.0;  // the serving process's alone (-1: unknown)
   std::vector<std::string> failures;
   std::vector<double> slow_at_s;
 };
@@ -305,9 +333,11 @@ PassResult run_pass(const std::string& name, const Endpoint& endpoint, const Opt
                          std::ref(results[static_cast<std::size_t>(i)]));
   std::this_thread::sleep_until(measure_from);
   const double cpu0 = process_cpu_s();
+  const double other0 = endpoint.pid ? other_process_cpu_s(endpoint.pid) : 0.0;
   const auto machine0 = MachineCpu::now();
   std::this_thread::sleep_until(stop);
   const double cpu1 = process_cpu_s();
+  const double other1 = endpoint.pid ? other_process_cpu_s(endpoint.pid) : 0.0;
   const auto machine1 = MachineCpu::now();
   // A client blocked on a server that stopped answering would never return on its own: past the
   // grace time its socket is shut down under it, which ends the blocking read with an error.
@@ -324,6 +354,7 @@ PassResult run_pass(const std::string& name, const Endpoint& endpoint, const Opt
   r.seconds = o.seconds;
   r.process_cpu_s = cpu1 - cpu0;
   r.machine_busy = MachineCpu::busy_share(machine0, machine1);
+  if (endpoint.pid && other0 >= 0.0 && other1 >= 0.0) r.server_cpu_s = other1 - other0;
   std::vector<std::int64_t> all;
   std::uint64_t bytes = 0;
   for (auto& c : results) {
@@ -334,6 +365,9 @@ PassResult run_pass(const std::string& name, const Endpoint& endpoint, const Opt
     r.slow_at_s.insert(r.slow_at_s.end(), c.slow_at_s.begin(), c.slow_at_s.end());
     if (!c.failure.empty()) r.failures.push_back(c.failure);
   }
+  // This process: the server's threads are what the clients did not take (with the station's
+  // own, such as its simulated vehicle's, which an idle station keeps small).
+  if (!endpoint.pid) r.server_cpu_s = r.process_cpu_s - r.client_cpu_s;
   std::sort(all.begin(), all.end());
   std::sort(r.slow_at_s.begin(), r.slow_at_s.end());
   r.requests = all.size();
@@ -346,17 +380,23 @@ PassResult run_pass(const std::string& name, const Endpoint& endpoint, const Opt
   return r;
 }
 
+double server_us_per_request(const PassResult& p) {
+  return p.server_cpu_s < 0.0 || p.requests == 0
+             ? -1.0
+             : 1e6 * p.server_cpu_s / static_cast<double>(p.requests);
+}
+
 void print_table(const std::vector<PassResult>& passes) {
-  std::printf("\n%-30s %9s %6s %9s %7s %7s %7s %7s %7s %7s %7s %8s %7s\n", "pass", "requests",
+  std::printf("\n%-30s %9s %6s %9s %7s %7s %7s %7s %7s %7s %7s %8s %7s %7s\n", "pass", "requests",
               "errors", "req/s", "p50 ms", "p90 ms", "p99 ms", "max ms", ">5 ms", "body B", "cpu s",
-              "client s", "busy %");
+              "client s", "busy %", "srv us");
   for (const auto& p : passes)
-    std::printf("%-30s %9llu %6llu %9.0f %7.3f %7.3f %7.3f %7.2f %7zu %7.0f %7.2f %8.2f %7.0f\n",
-                p.name.c_str(), static_cast<unsigned long long>(p.requests),
-                static_cast<unsigned long long>(p.errors),
-                static_cast<double>(p.requests) / p.seconds, p.p50, p.p90, p.p99, p.max,
-                p.slow_at_s.size(), p.mean_body_bytes, p.process_cpu_s, p.client_cpu_s,
-                100.0 * p.machine_busy);
+    std::printf(
+        "%-30s %9llu %6llu %9.0f %7.3f %7.3f %7.3f %7.2f %7zu %7.0f %7.2f %8.2f %7.0f %7.1f\n",
+        p.name.c_str(), static_cast<unsigned long long>(p.requests),
+        static_cast<unsigned long long>(p.errors), static_cast<double>(p.requests) / p.seconds,
+        p.p50, p.p90, p.p99, p.max, p.slow_at_s.size(), p.mean_body_bytes, p.process_cpu_s,
+        p.client_cpu_s, 100.0 * p.machine_busy, server_us_per_request(p));
   for (const auto& p : passes) {
     if (p.slow_at_s.empty()) continue;
     std::printf("%s: requests over 5 ms started at (s into the window):", p.name.c_str());
@@ -367,7 +407,8 @@ void print_table(const std::vector<PassResult>& passes) {
   std::printf(
       "\ncpu s: this process (the station's server + the clients) during the measured window; "
       "client s: the client threads alone; busy %%: the whole machine (every process), of its %u "
-      "hardware threads.\n",
+      "hardware threads; srv us: the serving process's CPU per request (this process less its "
+      "clients, or --compare-pid's; -1: unknown).\n",
       std::thread::hardware_concurrency());
 }
 
@@ -389,8 +430,9 @@ bool compare_static(const Endpoint& station, const Endpoint& other, const Option
         run_pass("other " + other.path + " r" + std::to_string(r), other, o, Target::index_html));
   }
   print_table(passes);
-  std::printf("\n%-6s %11s %11s %7s\n", "round", "avk req/s", "other req/s", "ratio");
-  std::vector<double> avk_rates, other_rates;
+  std::printf("\n%-6s %11s %11s %7s %10s %12s\n", "round", "avk req/s", "other req/s", "ratio",
+              "avk srv us", "other srv us");
+  std::vector<double> avk_rates, other_rates, avk_us, other_us;
   bool same_file = true;
   for (int r = 0; r < o.rounds; ++r) {
     const auto& a = passes[static_cast<std::size_t>(2 * r)];
@@ -400,11 +442,15 @@ bool compare_static(const Endpoint& station, const Endpoint& other, const Option
     avk_rates.push_back(ra);
     other_rates.push_back(rb);
     ratios.push_back(rb > 0.0 ? ra / rb : 0.0);
-    std::printf("%-6d %11.0f %11.0f %7.2f\n", r + 1, ra, rb, ratios.back());
+    avk_us.push_back(server_us_per_request(a));
+    other_us.push_back(server_us_per_request(b));
+    std::printf("%-6d %11.0f %11.0f %7.2f %10.1f %12.1f\n", r + 1, ra, rb, ratios.back(),
+                avk_us.back(), other_us.back());
     if (a.mean_body_bytes != b.mean_body_bytes) same_file = false;
   }
-  std::printf("%-6s %11.0f %11.0f %7.2f   (median of the rounds; ratio = avk / other)\n", "median",
-              median(avk_rates), median(other_rates), median(ratios));
+  std::printf("%-6s %11.0f %11.0f %7.2f %10.1f %12.1f   (medians; ratio = avk / other)\n", "median",
+              median(avk_rates), median(other_rates), median(ratios), median(avk_us),
+              median(other_us));
   std::printf(
       "avk: %d io threads in this process, beside the clients and its simulated vehicle; the "
       "other server: what it was started with.\n",
