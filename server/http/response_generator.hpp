@@ -21,8 +21,9 @@ class ResponseGenerator {
  public:
   using const_buffers_type = std::span<const net::const_buffer>;
 
+  // Implicit, as Beast's is: a function that returns a ResponseGenerator returns a response.
   template <class Body, class Fields>
-  ResponseGenerator(http::response<Body, Fields>&& res)  // NOLINT: converts like Beast's
+  ResponseGenerator(http::response<Body, Fields>&& res)
       : impl_(std::make_unique<Impl<Body, Fields>>(std::move(res))) {}
 
   bool is_done() const { return impl_->is_done(); }
