@@ -1,8 +1,8 @@
 #pragma once
 // The station the load benchmarks measure: a database holding one Figure 4-1 mission (so the CKT
 // has turns; more with repeats), the station with its simulated usim vehicle, and the HTTP server
-// on an ephemeral loopback port with two io threads and the repository's web/ — as `avk serve
-// --sim` runs it.
+// on an ephemeral loopback port with two io threads (unless told otherwise) and the repository's
+// web/ — as `avk serve --sim` runs it.
 
 #include <filesystem>
 #include <fstream>
@@ -22,9 +22,10 @@
 namespace avk::bench {
 
 struct BenchStation {
-  // repeats: the Figure 4-1 mission's, flown before the server starts (more turns to read).
+  // repeats: the Figure 4-1 mission's, flown before the server starts (more turns to read);
+  // io_threads: the HTTP server's (`avk serve` runs 2).
   BenchStation(const std::string& name, const std::string& token, double realtime_factor,
-               int repeats = 1)
+               int repeats = 1, int io_threads = 2)
       : db(name) {
     std::ifstream example(std::string(AVK_SOURCE_DIR) + "/examples/thesis-fig4-1.json");
     std::stringstream text;
@@ -54,7 +55,7 @@ struct BenchStation {
     station->start();
     server::HttpServerOptions ho;
     ho.port = 0;
-    ho.threads = 2;
+    ho.threads = io_threads;
     ho.server_version = "bench";
     // The dashboard as `avk serve` serves it from a checkout.
     ho.web_root = std::string(AVK_SOURCE_DIR) + "/web";

@@ -176,14 +176,14 @@ void HttpSession::on_header(beast::error_code ec, std::size_t) {
   read_body();
 }
 
-std::optional<http::message_generator> HttpSession::check_header() {
+std::optional<ResponseGenerator> HttpSession::check_header() {
   const auto& req = parser_->get();
   const unsigned version = req.version() == 10 ? 10 : 11;
   // A refused request whose body is still coming cannot keep its connection: the body would be
   // read as the next request.
   const bool keep_alive = req.keep_alive() && parser_->is_done() && !state_->stopping();
   const auto refuse = [&](http::status status, std::string_view detail,
-                          bool keep = false) -> http::message_generator {
+                          bool keep = false) -> ResponseGenerator {
     return body_unless_head(head_, problem_response(status, detail, version, keep && keep_alive));
   };
   const auto target = split_target(req.target());
@@ -389,7 +389,7 @@ void HttpSession::dispatch_api(Request req, std::string path, std::string raw_qu
   }
 }
 
-void HttpSession::send_from_worker(http::message_generator message) {
+void HttpSession::send_from_worker(ResponseGenerator message) {
   net::post(stream_.get_executor(), [self = shared_from_this(), m = std::move(message)]() mutable {
     self->send(std::move(m));
   });
@@ -421,8 +421,8 @@ ApiRequest HttpSession::api_request_of(const Request& req, std::string path,
   return api_request;
 }
 
-http::message_generator HttpSession::call_api(Request& req, std::string path,
-                                              std::string_view raw_query, bool keep_alive) {
+ResponseGenerator HttpSession::call_api(Request& req, std::string path, std::string_view raw_query,
+                                        bool keep_alive) {
   const unsigned version = req.version();
   const auto limit = state_->options().json_depth_limit;
   if (looks_like_json(req[http::field::content_type], req.body()) &&
@@ -448,8 +448,7 @@ http::message_generator HttpSession::call_api(Request& req, std::string path,
   return to_http(std::move(response), version, keep_alive);
 }
 
-http::message_generator HttpSession::to_http(ApiResponse response, unsigned version,
-                                             bool keep_alive) {
+ResponseGenerator HttpSession::to_http(ApiResponse response, unsigned version, bool keep_alive) {
   const auto internal = [&](std::string_view log) {
     std::cerr << "avk http: " << log << "\n";
     return body_unless_head(
@@ -510,7 +509,7 @@ void HttpSession::reject(http::status status, std::string_view detail) {
   send(body_unless_head(head_, std::move(res)));
 }
 
-void HttpSession::send(http::message_generator message) {
+void HttpSession::send(ResponseGenerator message) {
   phase_ = Phase::writing;
   awaiting_request_ = false;
   const bool keep_alive = message.keep_alive();

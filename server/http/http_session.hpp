@@ -14,6 +14,7 @@
 
 #include "server/api_types.hpp"
 #include "server/http/beast.hpp"
+#include "server/http/response_generator.hpp"
 
 namespace avk::server {
 
@@ -49,22 +50,22 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
 
   // What the header alone decides (Host, encoding, the token, the body limit): an answer when
   // the request is refused before its body is read.
-  std::optional<http::message_generator> check_header();
+  std::optional<ResponseGenerator> check_header();
   void handle_request();
   // The Api's rule for the stream, with a `?token=` taken as the bearer token.
   bool may_open_stream(const Request& req, std::string_view raw_query) const;
   // On the I/O thread for immediate work, else queued for a request worker (or refused: 503
   // with a full queue, 429 when the address has its expensive requests already).
   void dispatch_api(Request req, std::string path, std::string raw_query, bool keep_alive);
-  http::message_generator call_api(Request& req, std::string path, std::string_view raw_query,
-                                   bool keep_alive);
+  ResponseGenerator call_api(Request& req, std::string path, std::string_view raw_query,
+                             bool keep_alive);
   // From a request worker: the answer is sent on the session's strand.
-  void send_from_worker(http::message_generator message);
+  void send_from_worker(ResponseGenerator message);
   ApiRequest api_request_of(const Request& req, std::string path, std::string_view raw_query) const;
-  http::message_generator to_http(ApiResponse response, unsigned version, bool keep_alive);
+  ResponseGenerator to_http(ApiResponse response, unsigned version, bool keep_alive);
   void reject(http::status status, std::string_view detail);
   void expires_within(std::chrono::milliseconds limit);
-  void send(http::message_generator message);
+  void send(ResponseGenerator message);
   void on_write(bool keep_alive, beast::error_code ec, std::size_t bytes);
   void linger();
   void on_linger(beast::error_code ec, std::size_t bytes);

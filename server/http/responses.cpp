@@ -15,7 +15,7 @@ http::response<http::string_body> problem_response(http::status status, std::str
   return res;
 }
 
-http::message_generator body_unless_head(bool head, http::response<http::string_body>&& res) {
+ResponseGenerator body_unless_head(bool head, http::response<http::string_body>&& res) {
   if (!head) return std::move(res);
   http::response<http::empty_body> headers_only(std::move(res.base()));
   return headers_only;

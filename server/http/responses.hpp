@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "server/http/beast.hpp"
+#include "server/http/response_generator.hpp"
 
 namespace avk::server {
 
@@ -32,6 +33,6 @@ void set_common_headers(http::response<Body>& res) {
 // For a HEAD request the same header, Content-Length included, and no body: a body after a
 // HEAD answer would be read as the next response on a keep-alive connection. res must be
 // prepared (prepare_payload) already.
-http::message_generator body_unless_head(bool head, http::response<http::string_body>&& res);
+ResponseGenerator body_unless_head(bool head, http::response<http::string_body>&& res);
 
 }  // namespace avk::server

@@ -197,8 +197,8 @@ std::shared_ptr<const StaticFiles::Snapshot> StaticFiles::snapshot(const File& f
   return file.current;
 }
 
-http::message_generator StaticFiles::respond(const Request& req, const std::string& decoded_path,
-                                             bool keep_alive) const {
+ResponseGenerator StaticFiles::respond(const Request& req, const std::string& decoded_path,
+                                       bool keep_alive) const {
   const bool head = req.method() == http::verb::head;
   const auto not_found = [&](std::string_view detail) {
     return body_unless_head(

@@ -21,6 +21,7 @@
 #include <string_view>
 
 #include "server/http/beast.hpp"
+#include "server/http/response_generator.hpp"
 
 namespace avk::server {
 
@@ -30,8 +31,8 @@ class StaticFiles {
   explicit StaticFiles(const std::optional<std::string>& root);
 
   // decoded_path: the request path, percent-decoded, without the query.
-  http::message_generator respond(const Request& req, const std::string& decoded_path,
-                                  bool keep_alive) const;
+  ResponseGenerator respond(const Request& req, const std::string& decoded_path,
+                            bool keep_alive) const;
 
   static std::string_view mime_type(const std::filesystem::path& file);
 
