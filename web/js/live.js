@@ -77,6 +77,7 @@ export function initLive() {
   fit.addEventListener('click', () => {
     uirevision++;
     operatorAxes = null;
+    lastFit = null;
     request(true);
   });
 
@@ -124,6 +125,7 @@ function frame() {
     dirtyProgress = false;
     renderProgress();
   }
+  let plotted = false;
   if (dirtyPlot) {
     dirtyPlot = false;
     const t0 = performance.now();
@@ -131,11 +133,18 @@ function frame() {
     renderTimes.push(performance.now() - t0);
     if (renderTimes.length > 1000) renderTimes.shift();
     dirtySeries = true;
+    plotted = true;
   }
   if (dirtySeries) {
     // At most four redraws a second: five traces of up to 18,000 samples are not redrawn per frame.
+    // Never in the frame that updated the track plot: the two together took two to four frames.
     const now = performance.now();
-    if (now - lastSeriesMs >= SERIES_MIN_MS) {
+    if (plotted) {
+      if (!frameRequested) {
+        frameRequested = true;
+        requestAnimationFrame(frame);
+      }
+    } else if (now - lastSeriesMs >= SERIES_MIN_MS) {
       dirtySeries = false;
       lastSeriesMs = now;
       renderSeries();
@@ -303,7 +312,7 @@ function renderPlot() {
     showlegend: true,
     images: mapImages(plotEl),
   };
-  draw(plotEl, traces, layout, { scrollZoom: true });
+  draw(plotEl, traces, layout, { scrollZoom: true }, { tracesOnly: true });
   updateScaleBar(plotEl, scaleBarLength);
   renderTurnPlot(turn, { turnX, turnY, goalRay, band, preds: [pred('avk'), pred('model'), pred('instantaneous')], nav, faded });
 }
@@ -353,15 +362,33 @@ function fittedAxes(traces) {
     }
   }
   const axes = equalAxes();
-  if (!Number.isFinite(x0)) return axes;
+  if (!Number.isFinite(x0)) {
+    lastFit = null;
+    return axes;
+  }
   const span = Math.max(x1 - x0, y1 - y0, FIT_MIN_SPAN_M);
   const pad = FIT_MARGIN * span;
   const cx = (x0 + x1) / 2;
   const cy = (y0 + y1) / 2;
   const half = (v0, v1) => Math.max((v1 - v0) / 2, FIT_MIN_SPAN_M / 2) + pad;
-  axes.xaxis = { ...axes.xaxis, range: [cx - half(x0, x1), cx + half(x0, x1)], autorange: false };
-  axes.yaxis = { ...axes.yaxis, range: [cy - half(y0, y1), cy + half(y0, y1)], autorange: false };
+  let fit = { x: [cx - half(x0, x1), cx + half(x0, x1)], y: [cy - half(y0, y1), cy + half(y0, y1)] };
+  const edge = pad / 3; // what is fitted stays this far inside a kept fit
+  if (lastFit && holds(lastFit.x, x0 - edge, x1 + edge, fit.x) && holds(lastFit.y, y0 - edge, y1 + edge, fit.y)) fit = lastFit;
+  lastFit = fit;
+  axes.xaxis = { ...axes.xaxis, range: fit.x.slice(), autorange: false };
+  axes.yaxis = { ...axes.yaxis, range: fit.y.slice(), autorange: false };
   return axes;
+}
+
+// The last fit is kept while what is fitted stays inside it and it is not much larger than a
+// fresh fit: the heading ray swinging at the edge of the track moved the fit by a metre at every
+// sample, and each move costs a full redraw of the plot (axes, labels, legend) instead of the
+// traces alone.
+const FIT_SLACK = 1.25;
+let lastFit = null;
+
+function holds(range, v0, v1, fresh) {
+  return range[0] <= v0 && v1 <= range[1] && range[1] - range[0] <= FIT_SLACK * (fresh[1] - fresh[0]);
 }
 
 /** The time series over the chosen window, ending at the newest sample; redrawn only when a
@@ -440,6 +467,8 @@ export function predictionFrameText() {
 
 /** The current as an arrow from the vehicle: where the water carries it in CURRENT_ARROW_S. */
 const CURRENT_ARROW_S = 60;
+// One object for every draw: Plotly takes a new array (the symbols, the sizes) as a change.
+const CURRENT_MARKER = { symbol: ['circle', 'arrow'], size: [4, 14], angleref: 'previous', color: C.purple };
 function currentTrace(nav) {
   const c = state.current;
   const show = Boolean(c && nav);
@@ -457,7 +486,7 @@ function currentTrace(nav) {
     x,
     y,
     line: { color: C.purple, width: 2.5, dash: 'dot' },
-    marker: { symbol: ['circle', 'arrow'], size: [4, 14], angleref: 'previous', color: C.purple },
+    marker: CURRENT_MARKER,
     visible: show ? true : 'legendonly',
     hovertemplate: `${show ? currentText(c) : ''}<extra>current</extra>`,
   };
