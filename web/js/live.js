@@ -31,10 +31,13 @@ let dirtyPlot = true;
 let dirtyText = true;
 let dirtyProgress = true;
 let dirtySeries = true;
-let seriesKey = '';
+// What the time series shows: {key, frame (window and marks), to (its newest time), pixelS (the
+// seconds one pixel of it spans)}.
+let seriesShown = { key: '', frame: '', to: -Infinity, pixelS: 0 };
 let lastSeriesMs = -Infinity;
 let seriesTimer = null;
 const SERIES_MIN_MS = 250;
+const SERIES_MAX_MS = 2000; // how long samples that move the plot by under a pixel wait at most
 const SERIES_MAX_POINTS = 3000; // per trace: a 30-minute window at 10 Hz is drawn every 6th sample
 let frameRequested = false;
 let uirevision = 1;
@@ -144,17 +147,27 @@ function frame() {
         frameRequested = true;
         requestAnimationFrame(frame);
       }
-    } else if (now - lastSeriesMs >= SERIES_MIN_MS) {
-      dirtySeries = false;
-      lastSeriesMs = now;
-      renderSeries();
-      seriesTimes.push(performance.now() - now);
-      if (seriesTimes.length > 1000) seriesTimes.shift();
-    } else if (!seriesTimer) {
-      seriesTimer = setTimeout(() => {
-        seriesTimer = null;
-        request(false);
-      }, SERIES_MIN_MS - (now - lastSeriesMs));
+    } else {
+      // Redrawn when it changes by a pixel at least; samples that move it by less wait (at most
+      // SERIES_MAX_MS) for more: a full redraw of five traces and four axes costs several frames.
+      const change = seriesChange();
+      const since = now - lastSeriesMs;
+      if (change === 'none') dirtySeries = false;
+      else if (since >= SERIES_MIN_MS && (change === 'pixel' || since >= SERIES_MAX_MS)) {
+        dirtySeries = false;
+        lastSeriesMs = now;
+        renderSeries();
+        seriesTimes.push(performance.now() - now);
+        if (seriesTimes.length > 1000) seriesTimes.shift();
+      } else if (!seriesTimer) {
+        seriesTimer = setTimeout(
+          () => {
+            seriesTimer = null;
+            request(false);
+          },
+          (change === 'pixel' ? SERIES_MIN_MS : SERIES_MAX_MS) - since,
+        );
+      }
     }
   }
 }
@@ -391,22 +404,39 @@ function holds(range, v0, v1, fresh) {
   return range[0] <= v0 && v1 <= range[1] && range[1] - range[0] <= FIT_SLACK * (fresh[1] - fresh[0]);
 }
 
-/** The time series over the chosen window, ending at the newest sample; redrawn only when a
- *  sample, a turn mark or the window changed. */
+function seriesSpanS() {
+  return Number(document.getElementById('ts-window').value) || 120;
+}
+
+/** What drawing the time series now would change: 'none' (nothing), 'pixel' (the window, the
+ *  marks or the samples, by a pixel at least) or 'subpixel' (newer samples that move the plot by
+ *  less than a pixel: a 30-minute window moves by a pixel in about 1.6 s, not at every sample). */
+function seriesChange() {
+  const buf = state.series;
+  const frame = `${seriesSpanS()}|${state.turnMarks.length}|${state.turnMarksMission}`;
+  if (!buf.length) return seriesShown.key === 'empty' ? 'none' : 'pixel';
+  if (`${buf.version}|${frame}` === seriesShown.key) return 'none';
+  if (frame !== seriesShown.frame) return 'pixel';
+  const moved = buf.lastT() - seriesShown.to;
+  return moved < 0 || moved >= seriesShown.pixelS ? 'pixel' : 'subpixel';
+}
+
+/** The time series over the chosen window, ending at the newest sample. */
 function renderSeries() {
   const el = document.getElementById('live-series');
   const buf = state.series;
-  const span = Number(document.getElementById('ts-window').value) || 120;
-  const to = buf.length ? buf.lastT() : 0;
-  const from = to - span;
-  const key = `${buf.version}|${span}|${state.turnMarks.length}|${state.turnMarksMission}`;
-  if (key === seriesKey) return;
-  seriesKey = key;
+  const span = seriesSpanS();
   if (!buf.length) {
+    seriesShown = { key: 'empty', frame: '', to: -Infinity, pixelS: 0 };
     showEmpty(el, 'No navigation yet.');
     return;
   }
+  const to = buf.lastT();
+  const from = to - span;
+  const frame = `${span}|${state.turnMarks.length}|${state.turnMarksMission}`;
   drawSeries(el, buf.window(from, to, SERIES_MAX_POINTS), { from, to, marks: state.turnMarks });
+  const widthPx = el._fullLayout?.xaxis?._length;
+  seriesShown = { key: `${buf.version}|${frame}`, frame, to, pixelS: widthPx > 0 ? span / widthPx : 0 };
 }
 
 let gratCache = { key: undefined, trace: null };
