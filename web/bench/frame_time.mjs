@@ -3,7 +3,7 @@
 // is drawn, bounded and simplified; how fast that happens depends on the machine and its load, so
 // the figures are measured here and recorded in docs/dashboard.md.
 //
-//   node web/bench/frame_time.mjs [--runs 3] [--seconds 5]
+//   node web/bench/frame_time.mjs [--runs 3] [--seconds 5] [--window 1800]
 //
 // Starts a real `avk serve --sim` on a temporary database and drives Debian's Chromium with
 // playwright-core, as the browser test does. Environment: AVK_BINARY (default build/server/avk),
@@ -25,11 +25,12 @@ const CHROMIUM = process.env.AVK_CHROMIUM || '/usr/bin/chromium';
 const POINTS = 72000;
 const HZ = 10;
 
-const { values } = parseArgs({ options: { runs: { type: 'string', default: '3' }, seconds: { type: 'string', default: '5' } } });
+const { values } = parseArgs({ options: { runs: { type: 'string', default: '3' }, seconds: { type: 'string', default: '5' }, window: { type: 'string', default: '1800' } } });
 const RUNS = Number(values.runs);
 const SECONDS = Number(values.seconds);
+const WINDOW_S = values.window; // the time series' window: one of the page's #ts-window choices
 if (!(RUNS >= 1) || !(SECONDS > 0)) {
-  console.error('usage: node web/bench/frame_time.mjs [--runs N ≥ 1] [--seconds S > 0]');
+  console.error('usage: node web/bench/frame_time.mjs [--runs N ≥ 1] [--seconds S > 0] [--window S]');
   process.exit(2);
 }
 
@@ -124,10 +125,12 @@ async function main() {
     await page.waitForFunction(() => window.avkTest && document.querySelector('#live-plot .main-svg'), null, { timeout: 20000 });
     const loaded = await page.evaluate((n) => window.avkTest.loadTrack(n), POINTS);
     if (loaded !== POINTS) throw new Error(`loaded ${loaded} points, not ${POINTS}`);
-    // The widest time-series window: 30 minutes, 18,000 samples a trace before thinning.
-    await page.selectOption('#ts-window', '1800');
+    // By default the widest time-series window: 30 minutes, 18,000 samples a trace before thinning.
+    const windows = await page.$$eval('#ts-window option', (os) => os.map((o) => o.value));
+    if (!windows.includes(WINDOW_S)) throw new Error(`--window ${WINDOW_S}: the page offers ${windows.join(', ')} s`);
+    await page.selectOption('#ts-window', WINDOW_S);
     await sleep(1500);
-    console.log(`Live view, ${POINTS}-point track and a 30-minute time series, navigation at ${HZ} Hz for ${SECONDS} s, ${RUNS} run(s); Chromium ${browser.version()}`);
+    console.log(`Live view, ${POINTS}-point track and a ${WINDOW_S} s time-series window, navigation at ${HZ} Hz for ${SECONDS} s, ${RUNS} run(s); Chromium ${browser.version()}`);
     for (let run = 1; run <= RUNS; run++) {
       const r = await measure(page);
       const f = summary(r.frames);

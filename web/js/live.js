@@ -31,10 +31,13 @@ let dirtyPlot = true;
 let dirtyText = true;
 let dirtyProgress = true;
 let dirtySeries = true;
-let seriesKey = '';
+// What the time series shows: {key, frame (window and marks), to (its newest time), pixelS (the
+// seconds one pixel of it spans)}.
+let seriesShown = { key: '', frame: '', to: -Infinity, pixelS: 0 };
 let lastSeriesMs = -Infinity;
 let seriesTimer = null;
 const SERIES_MIN_MS = 250;
+const SERIES_MAX_MS = 2000; // how long samples that move the plot by under a pixel wait at most
 const SERIES_MAX_POINTS = 3000; // per trace: a 30-minute window at 10 Hz is drawn every 6th sample
 let frameRequested = false;
 let uirevision = 1;
@@ -77,6 +80,7 @@ export function initLive() {
   fit.addEventListener('click', () => {
     uirevision++;
     operatorAxes = null;
+    lastFit = null;
     request(true);
   });
 
@@ -124,6 +128,7 @@ function frame() {
     dirtyProgress = false;
     renderProgress();
   }
+  let plotted = false;
   if (dirtyPlot) {
     dirtyPlot = false;
     const t0 = performance.now();
@@ -131,21 +136,38 @@ function frame() {
     renderTimes.push(performance.now() - t0);
     if (renderTimes.length > 1000) renderTimes.shift();
     dirtySeries = true;
+    plotted = true;
   }
   if (dirtySeries) {
     // At most four redraws a second: five traces of up to 18,000 samples are not redrawn per frame.
+    // Never in the frame that updated the track plot: the two together took two to four frames.
     const now = performance.now();
-    if (now - lastSeriesMs >= SERIES_MIN_MS) {
-      dirtySeries = false;
-      lastSeriesMs = now;
-      renderSeries();
-      seriesTimes.push(performance.now() - now);
-      if (seriesTimes.length > 1000) seriesTimes.shift();
-    } else if (!seriesTimer) {
-      seriesTimer = setTimeout(() => {
-        seriesTimer = null;
-        request(false);
-      }, SERIES_MIN_MS - (now - lastSeriesMs));
+    if (plotted) {
+      if (!frameRequested) {
+        frameRequested = true;
+        requestAnimationFrame(frame);
+      }
+    } else {
+      // Redrawn when it changes by a pixel at least; samples that move it by less wait (at most
+      // SERIES_MAX_MS) for more: a full redraw of five traces and four axes costs several frames.
+      const change = seriesChange();
+      const since = now - lastSeriesMs;
+      if (change === 'none') dirtySeries = false;
+      else if (since >= SERIES_MIN_MS && (change === 'pixel' || since >= SERIES_MAX_MS)) {
+        dirtySeries = false;
+        lastSeriesMs = now;
+        renderSeries();
+        seriesTimes.push(performance.now() - now);
+        if (seriesTimes.length > 1000) seriesTimes.shift();
+      } else if (!seriesTimer) {
+        seriesTimer = setTimeout(
+          () => {
+            seriesTimer = null;
+            request(false);
+          },
+          (change === 'pixel' ? SERIES_MIN_MS : SERIES_MAX_MS) - since,
+        );
+      }
     }
   }
 }
@@ -303,7 +325,7 @@ function renderPlot() {
     showlegend: true,
     images: mapImages(plotEl),
   };
-  draw(plotEl, traces, layout, { scrollZoom: true });
+  draw(plotEl, traces, layout, { scrollZoom: true }, { tracesOnly: true });
   updateScaleBar(plotEl, scaleBarLength);
   renderTurnPlot(turn, { turnX, turnY, goalRay, band, preds: [pred('avk'), pred('model'), pred('instantaneous')], nav, faded });
 }
@@ -353,33 +375,68 @@ function fittedAxes(traces) {
     }
   }
   const axes = equalAxes();
-  if (!Number.isFinite(x0)) return axes;
+  if (!Number.isFinite(x0)) {
+    lastFit = null;
+    return axes;
+  }
   const span = Math.max(x1 - x0, y1 - y0, FIT_MIN_SPAN_M);
   const pad = FIT_MARGIN * span;
   const cx = (x0 + x1) / 2;
   const cy = (y0 + y1) / 2;
   const half = (v0, v1) => Math.max((v1 - v0) / 2, FIT_MIN_SPAN_M / 2) + pad;
-  axes.xaxis = { ...axes.xaxis, range: [cx - half(x0, x1), cx + half(x0, x1)], autorange: false };
-  axes.yaxis = { ...axes.yaxis, range: [cy - half(y0, y1), cy + half(y0, y1)], autorange: false };
+  let fit = { x: [cx - half(x0, x1), cx + half(x0, x1)], y: [cy - half(y0, y1), cy + half(y0, y1)] };
+  const edge = pad / 3; // what is fitted stays this far inside a kept fit
+  if (lastFit && holds(lastFit.x, x0 - edge, x1 + edge, fit.x) && holds(lastFit.y, y0 - edge, y1 + edge, fit.y)) fit = lastFit;
+  lastFit = fit;
+  axes.xaxis = { ...axes.xaxis, range: fit.x.slice(), autorange: false };
+  axes.yaxis = { ...axes.yaxis, range: fit.y.slice(), autorange: false };
   return axes;
 }
 
-/** The time series over the chosen window, ending at the newest sample; redrawn only when a
- *  sample, a turn mark or the window changed. */
+// The last fit is kept while what is fitted stays inside it and it is not much larger than a
+// fresh fit: the heading ray swinging at the edge of the track moved the fit by a metre at every
+// sample, and each move costs a full redraw of the plot (axes, labels, legend) instead of the
+// traces alone.
+const FIT_SLACK = 1.25;
+let lastFit = null;
+
+function holds(range, v0, v1, fresh) {
+  return range[0] <= v0 && v1 <= range[1] && range[1] - range[0] <= FIT_SLACK * (fresh[1] - fresh[0]);
+}
+
+function seriesSpanS() {
+  return Number(document.getElementById('ts-window').value) || 120;
+}
+
+/** What drawing the time series now would change: 'none' (nothing), 'pixel' (the window, the
+ *  marks or the samples, by a pixel at least) or 'subpixel' (newer samples that move the plot by
+ *  less than a pixel: a 30-minute window moves by a pixel in about 1.6 s, not at every sample). */
+function seriesChange() {
+  const buf = state.series;
+  const frame = `${seriesSpanS()}|${state.turnMarks.length}|${state.turnMarksMission}`;
+  if (!buf.length) return seriesShown.key === 'empty' ? 'none' : 'pixel';
+  if (`${buf.version}|${frame}` === seriesShown.key) return 'none';
+  if (frame !== seriesShown.frame) return 'pixel';
+  const moved = buf.lastT() - seriesShown.to;
+  return moved < 0 || moved >= seriesShown.pixelS ? 'pixel' : 'subpixel';
+}
+
+/** The time series over the chosen window, ending at the newest sample. */
 function renderSeries() {
   const el = document.getElementById('live-series');
   const buf = state.series;
-  const span = Number(document.getElementById('ts-window').value) || 120;
-  const to = buf.length ? buf.lastT() : 0;
-  const from = to - span;
-  const key = `${buf.version}|${span}|${state.turnMarks.length}|${state.turnMarksMission}`;
-  if (key === seriesKey) return;
-  seriesKey = key;
+  const span = seriesSpanS();
   if (!buf.length) {
+    seriesShown = { key: 'empty', frame: '', to: -Infinity, pixelS: 0 };
     showEmpty(el, 'No navigation yet.');
     return;
   }
+  const to = buf.lastT();
+  const from = to - span;
+  const frame = `${span}|${state.turnMarks.length}|${state.turnMarksMission}`;
   drawSeries(el, buf.window(from, to, SERIES_MAX_POINTS), { from, to, marks: state.turnMarks });
+  const widthPx = el._fullLayout?.xaxis?._length;
+  seriesShown = { key: `${buf.version}|${frame}`, frame, to, pixelS: widthPx > 0 ? span / widthPx : 0 };
 }
 
 let gratCache = { key: undefined, trace: null };
@@ -440,6 +497,8 @@ export function predictionFrameText() {
 
 /** The current as an arrow from the vehicle: where the water carries it in CURRENT_ARROW_S. */
 const CURRENT_ARROW_S = 60;
+// One object for every draw: Plotly takes a new array (the symbols, the sizes) as a change.
+const CURRENT_MARKER = { symbol: ['circle', 'arrow'], size: [4, 14], angleref: 'previous', color: C.purple };
 function currentTrace(nav) {
   const c = state.current;
   const show = Boolean(c && nav);
@@ -457,7 +516,7 @@ function currentTrace(nav) {
     x,
     y,
     line: { color: C.purple, width: 2.5, dash: 'dot' },
-    marker: { symbol: ['circle', 'arrow'], size: [4, 14], angleref: 'previous', color: C.purple },
+    marker: CURRENT_MARKER,
     visible: show ? true : 'legendonly',
     hovertemplate: `${show ? currentText(c) : ''}<extra>current</extra>`,
   };

@@ -138,8 +138,11 @@ export function baseLayout(extra = {}) {
   };
 }
 
+/** An axis with its title. Tick labels are never hidden for overflowing the plot (`allow`):
+ *  Plotly's default measures every label's box at every redraw to decide, a forced layout that
+ *  cost the Live view a fifth of each update, and with automargin no label overflows anyway. */
 export function axis(title, extra = {}) {
-  return { title: { text: title }, gridcolor: plotTheme.grid, zerolinecolor: plotTheme.zero, automargin: true, ...extra };
+  return { title: { text: title }, gridcolor: plotTheme.grid, zerolinecolor: plotTheme.zero, automargin: true, ticklabeloverflow: 'allow', ...extra };
 }
 
 /** Metres on both axes, one metre the same length on each (trajectories are never distorted). */
@@ -156,14 +159,55 @@ const CONFIG = {
   modeBarButtonsToRemove: ['lasso2d', 'select2d'],
 };
 
-/** Draws (or redraws in place: Plotly.react diffs) a figure into a framed plot element. */
-export function draw(el, traces, layout, config = {}) {
+// What each figure drawn with `tracesOnly` looked like apart from its data: element -> {layout,
+// traces, config} as JSON.
+const shapes = new WeakMap();
+const DATA_KEYS = new Set(['x', 'y', 'angle']);
+const withoutData = (k, v) => (DATA_KEYS.has(k) ? undefined : v);
+
+let angleAnimates = false;
+/** Plotly redraws only the traces (its animation path) when every change is "animatable": x and
+ *  y are, a marker's angle is not, so each new heading of the vehicle would cost the whole figure
+ *  again. The angle is drawn by the same per-point styling either way, so it is declared
+ *  animatable here, once. */
+function markerAngleAnimates(el) {
+  if (!angleAnimates) {
+    const trace = el._fullData?.find((t) => t.type === 'scatter');
+    const attr = trace && Plotly().PlotSchema?.getTraceValObject?.(trace, ['marker', 'angle']);
+    if (attr) {
+      attr.anim = true;
+      angleAnimates = true;
+    }
+  }
+  return angleAnimates;
+}
+
+/** Whether only the data (x, y, a marker's angle) changed since the last draw of `el`, on axes
+ *  with fixed ranges: then nothing but the traces needs drawing again. */
+function onlyDataChanged(el, traces, layout, config) {
+  const now = { layout: JSON.stringify(layout), traces: traces.map((t) => JSON.stringify(t, withoutData)), config: JSON.stringify(config) };
+  const before = shapes.get(el);
+  shapes.set(el, now);
+  if (!before || !el._fullLayout || !markerAngleAnimates(el)) return false;
+  const axes = Object.keys(layout).filter((k) => /^[xy]axis\d*$/.test(k));
+  if (axes.length === 0 || !axes.every((k) => layout[k].autorange === false)) return false;
+  return before.layout === now.layout && before.config === now.config && before.traces.length === now.traces.length && before.traces.every((t, i) => t === now.traces[i]);
+}
+
+/** Draws (or redraws in place: Plotly.react diffs) a figure into a framed plot element. With
+ *  `tracesOnly`, a redraw where only the traces' data changed (a figure updated at 10 Hz) goes
+ *  through Plotly's transition path with no duration: the traces are drawn again, the axes, tick
+ *  labels, legend and margins (most of a full redraw) are left as they are. Every array in such
+ *  a figure other than x and y must keep its identity between draws: Plotly takes a new array as
+ *  a change that needs a full redraw. */
+export function draw(el, traces, layout, config = {}, { tracesOnly = false } = {}) {
   if (el.classList.contains('plot-empty')) {
     el.classList.remove('plot-empty');
     el.textContent = '';
   }
   const p = plots.get(el.id);
-  const res = Plotly().react(el, traces, layout, { ...CONFIG, ...config });
+  const fast = tracesOnly && onlyDataChanged(el, traces, layout, config);
+  const res = Plotly().react(el, traces, fast ? { ...layout, transition: { duration: 0 } } : layout, { ...CONFIG, ...config });
   if (p && !p.drawn) {
     p.drawn = true;
     p.button.disabled = false;
@@ -175,6 +219,7 @@ export function draw(el, traces, layout, config = {}) {
 /** Replaces a plot with a short message (no data yet, an error). */
 export function showEmpty(el, message) {
   if (window.Plotly && el._fullLayout) window.Plotly.purge(el);
+  shapes.delete(el);
   el.classList.add('plot-empty');
   el.textContent = message;
   const p = plots.get(el.id);
