@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <stdexcept>
 
 #include "app/context.hpp"
@@ -35,15 +36,17 @@ constexpr const char* kVehicleRecord = "avk.vehicle";
 constexpr const char* kConditionSetsRecord = "avk.condition_sets";
 constexpr const char* kCurrentRecord = "avk.current";
 
-// Everything of a mission the file carries, as the store holds it.
+// Everything of a mission the file carries but its navigation and its turns' samples, which are
+// read from the store as they are written: a mission of a day at 10 Hz holds close to a million
+// navigation samples, and the export must not hold them (or every turn) whole.
 struct MissionData {
   store::Mission mission;
   vehicle::VehicleInfo vehicle;
-  std::vector<store::NavRow> nav;
   std::vector<store::MissionEvent> events;
-  std::vector<store::StoredTurn> turns;  // by id
+  std::vector<store::TurnRow> turns;  // by id
   std::vector<store::ConditionSetTiming> condition_sets;
   std::optional<store::StoredCurrent> current;
+  std::size_t nav_samples = 0;  // counted as they are written
 };
 
 MissionData load_mission(store::Store& db, const store::Mission& m) {
@@ -51,7 +54,6 @@ MissionData load_mission(store::Store& db, const store::Mission& m) {
   d.mission = m;
   d.vehicle = db.get_vehicle(m.vehicle_id)
                   .value_or(vehicle::VehicleInfo{m.vehicle_id, "", 0.0, std::nullopt});
-  d.nav = db.nav_for_mission(m.id);
   constexpr int kPage = 1000;
   for (std::int64_t after = 0;;) {
     auto page = db.list_events(m.id, after, kPage);
@@ -59,9 +61,8 @@ MissionData load_mission(store::Store& db, const store::Mission& m) {
     after = page.back().id;
     d.events.insert(d.events.end(), page.begin(), page.end());
   }
-  for_each_mission_turn(db, m.id, std::nullopt, [&](const store::TurnRow& t) {
-    if (auto turn = db.get_turn(t.id)) d.turns.push_back(std::move(*turn));
-  });
+  for_each_mission_turn(db, m.id, std::nullopt,
+                        [&](const store::TurnRow& t) { d.turns.push_back(t); });
   d.condition_sets = db.condition_sets(m.id);
   d.current = db.mission_current(m.id);
   return d;
@@ -95,7 +96,7 @@ std::map<std::string, std::string> mission_entries(const MissionData& d) {
           {"created_utc", m.created_utc},
           {"started_s", number_text(m.started_s)},
           {"ended_s", number_text(m.ended_s)},
-          {"nav_samples", std::to_string(d.nav.size())},
+          {"nav_samples", std::to_string(d.nav_samples)},
           {"events", std::to_string(d.events.size())},
           {"turns", std::to_string(d.turns.size())}};
 }
@@ -203,31 +204,23 @@ std::optional<double> yaw_rate_dps(const store::NavRow* previous, const store::N
   return kin::angle180_deg(r.heading_deg - previous->heading_deg) / (r.t_s - previous->t_s);
 }
 
-// One message to write: its time and where its content comes from.
+// One message to write besides the navigation's: its time and where its content comes from.
 struct Item {
   std::uint64_t log_time_ns = 0;
-  fg::ChannelKind kind = fg::ChannelKind::pose;
-  std::size_t index = 0;  // into the stream of its kind (nav row, event, turn)
+  fg::ChannelKind kind = fg::ChannelKind::turn;
+  std::size_t index = 0;  // into the turns or the events
 };
 
-// The file's messages in log-time order: the streams (navigation, turns, records, events) are
-// each in time order only mostly (an event logged late, a harvested turn stored after later
-// ones), so they are put in order together; ties keep stream order.
-std::vector<Item> message_order(const MissionData& d, bool location) {
+// The turns' and events' messages in log-time order: each stream is in time order only mostly
+// (an event logged late, a harvested turn stored after later ones), so they are put in order
+// together; ties keep stream order (turns before events). Navigation, read in time order from
+// the store, is merged in as it is written (write_in_order).
+std::vector<Item> other_messages(const MissionData& d) {
   std::vector<Item> items;
-  items.reserve(d.nav.size() * 4 + d.events.size() + 2 * d.turns.size() + 1);
-  const double first_s = d.nav.empty() ? d.mission.started_s.value_or(0.0) : d.nav.front().t_s;
-  items.push_back({fg::to_ns(first_s), fg::ChannelKind::region, 0});
-  for (std::size_t i = 0; i < d.nav.size(); ++i) {
-    const std::uint64_t t = fg::to_ns(d.nav[i].t_s);
-    items.push_back({t, fg::ChannelKind::pose, i});
-    items.push_back({t, fg::ChannelKind::transform, i});
-    if (location) items.push_back({t, fg::ChannelKind::location, i});
-    items.push_back({t, fg::ChannelKind::navigation, i});
-  }
+  items.reserve(2 * d.turns.size() + d.events.size());
   for (std::size_t i = 0; i < d.turns.size(); ++i) {
-    items.push_back({fg::to_ns(d.turns[i].row.start_time_s), fg::ChannelKind::turn, i});
-    items.push_back({fg::to_ns(d.turns[i].row.end_time_s), fg::ChannelKind::turn_record, i});
+    items.push_back({fg::to_ns(d.turns[i].start_time_s), fg::ChannelKind::turn, i});
+    items.push_back({fg::to_ns(d.turns[i].end_time_s), fg::ChannelKind::turn_record, i});
   }
   for (std::size_t i = 0; i < d.events.size(); ++i)
     items.push_back({fg::to_ns(d.events[i].t_s), fg::ChannelKind::log, i});
@@ -237,21 +230,22 @@ std::vector<Item> message_order(const MissionData& d, bool location) {
 }
 
 // Each stored sample as the navigation channels tell it (pose, tf, location, navigation draw on
-// the same state): built once per sample, the geodetic position only with a datum.
-fg::NavigationState navigation_state(const MissionData& d, std::size_t i,
+// the same state), the geodetic position only with a datum. Throws std::out_of_range for a
+// position too far from the datum.
+fg::NavigationState navigation_state(const store::NavRow& r, const store::NavRow* previous,
+                                     std::int64_t mission_id,
                                      const std::optional<vehicle::LocalGrid>& grid) {
-  const store::NavRow& r = d.nav[i];
   fg::NavigationState s;
   s.t_s = r.t_s;
   s.x_m = r.x_m;
   s.y_m = r.y_m;
   s.heading_deg = r.heading_deg;
   s.speed_mps = r.speed_mps;
-  s.yaw_rate_dps = yaw_rate_dps(i ? &d.nav[i - 1] : nullptr, r);
+  s.yaw_rate_dps = yaw_rate_dps(previous, r);
   s.desired_heading_deg = r.desired_heading_deg;
   s.desired_speed_mps = r.desired_speed_mps;
   s.helm_mode = r.helm_mode;
-  s.mission_id = d.mission.id;
+  s.mission_id = mission_id;
   if (grid) {
     const auto p = grid->to_geodetic(r.x_m, r.y_m);
     s.position = vehicle::LatLon{p.lat_deg, p.lon_deg};
@@ -270,25 +264,40 @@ std::optional<mission::OperatingRegion> mission_region(const MissionData& d) {
   }
 }
 
+// The turn whose messages are being written, read from the store at its first message (the
+// scene, at its start) and kept until its last (the record, at its end): turns seldom overlap,
+// so only a few are held at once.
+class TurnsInFlight {
+ public:
+  TurnsInFlight(store::Store& db, const MissionData& d) : db_(db), d_(d) {}
+  const store::StoredTurn& at_start(std::size_t i) { return get(i); }
+  store::StoredTurn at_end(std::size_t i) {
+    get(i);
+    auto node = held_.extract(i);
+    return std::move(node.mapped());
+  }
+
+ private:
+  const store::StoredTurn& get(std::size_t i) {
+    auto it = held_.find(i);
+    if (it != held_.end()) return it->second;
+    auto turn = db_.get_turn(d_.turns[i].id);
+    if (!turn) throw std::runtime_error("turn " + std::to_string(d_.turns[i].id) + " was deleted");
+    return held_.emplace(i, std::move(*turn)).first->second;
+  }
+  store::Store& db_;
+  const MissionData& d_;
+  std::map<std::size_t, store::StoredTurn> held_;
+};
+
 std::string message_data(Context& ctx, const MissionData& d, const Item& item,
-                         const std::vector<fg::NavigationState>& nav,
-                         const std::optional<mission::OperatingRegion>& region) {
+                         TurnsInFlight& turns) {
   const std::string& vid = d.mission.vehicle_id;
   switch (item.kind) {
-    case fg::ChannelKind::pose:
-      return fg::pose_message(nav[item.index]);
-    case fg::ChannelKind::transform:
-      return fg::transform_message(nav[item.index], vid);
-    case fg::ChannelKind::location:
-      return fg::location_message(nav[item.index], vid);
-    case fg::ChannelKind::navigation:
-      return fg::navigation_message(nav[item.index]);
-    case fg::ChannelKind::region:
-      return fg::region_scene_message(fg::to_s(item.log_time_ns), *region);
     case fg::ChannelKind::turn:
-      return turn_scene(ctx, d.turns[item.index]);
+      return turn_scene(ctx, turns.at_start(item.index));
     case fg::ChannelKind::turn_record:
-      return turn_record_message(d.turns[item.index]);
+      return turn_record_message(turns.at_end(item.index));
     case fg::ChannelKind::log: {
       const store::MissionEvent& e = d.events[item.index];
       const auto kind = mission::event_kind_from_string(e.kind);
@@ -296,8 +305,9 @@ std::string message_data(Context& ctx, const MissionData& d, const Item& item,
       return fg::event_log_message(e.t_s, warning ? fg::LogLevel::warning : fg::LogLevel::info, vid,
                                    e.kind, e.message);
     }
+    default:
+      return {};
   }
-  return {};
 }
 
 std::string library_name() {
@@ -711,7 +721,7 @@ Result<McapExport> export_mission_mcap(Context& ctx, std::int64_t mission_id,
       return invalid_argument("datum", e.what());
     }
   }
-  const MissionData d = load_mission(db, *mission);
+  MissionData d = load_mission(db, *mission);
   const auto region = mission_region(d);
 
   mcap::WriterOptions wo;
@@ -740,21 +750,65 @@ Result<McapExport> export_mission_mcap(Context& ctx, std::int64_t mission_id,
     channel_ids[kind] = w.add_channel(schema->second, spec.topic, fg::kMessageEncoding);
     out.messages.per_topic.emplace_back(spec.topic, 0);
   }
-  std::vector<fg::NavigationState> nav;
-  nav.reserve(d.nav.size());
-  try {
-    for (std::size_t i = 0; i < d.nav.size(); ++i)
-      nav.push_back(navigation_state(d, i, grid));
-  } catch (const std::out_of_range& e) {
-    return invalid_argument("datum",
-                            std::string("the track is too far from the datum: ") + e.what());
+  // A datum too far from the track is the request's mistake: said before anything is written.
+  if (grid) {
+    std::optional<std::string> too_far;
+    db.for_each_nav(mission_id, [&](const store::NavRow& r) {
+      if (too_far) return;
+      try {
+        (void)grid->to_geodetic(r.x_m, r.y_m);
+      } catch (const std::out_of_range& e) {
+        too_far = e.what();
+      }
+    });
+    if (too_far)
+      return invalid_argument("datum", "the track is too far from the datum: " + *too_far);
   }
   std::map<fg::ChannelKind, std::uint64_t> counts;
-  for (const Item& item : message_order(d, grid.has_value())) {
-    if (!channel_ids.contains(item.kind)) continue;
-    w.add_message(channel_ids[item.kind], item.log_time_ns, item.log_time_ns,
-                  message_data(ctx, d, item, nav, region));
-    ++counts[item.kind];
+  const auto add = [&](fg::ChannelKind kind, std::uint64_t t_ns, const std::string& data) {
+    const auto channel = channel_ids.find(kind);
+    if (channel == channel_ids.end()) return;
+    w.add_message(channel->second, t_ns, t_ns, data);
+    ++counts[kind];
+  };
+  // The messages in log-time order, ties in stream order: the region first (at the first
+  // sample's time), then navigation, turns, events.
+  const std::vector<Item> others = other_messages(d);
+  std::size_t next_other = 0;
+  TurnsInFlight turns(db, d);
+  const auto others_before = [&](std::uint64_t t_ns) {
+    for (; next_other < others.size() && others[next_other].log_time_ns < t_ns; ++next_other) {
+      const Item& item = others[next_other];
+      if (channel_ids.contains(item.kind))
+        add(item.kind, item.log_time_ns, message_data(ctx, d, item, turns));
+    }
+  };
+  bool region_written = false;
+  const auto write_region = [&](double t_s) {
+    const std::uint64_t t_ns = fg::to_ns(t_s);
+    others_before(t_ns);
+    if (region) add(fg::ChannelKind::region, t_ns, fg::region_scene_message(t_s, *region));
+    region_written = true;
+  };
+  std::optional<store::NavRow> previous;
+  db.for_each_nav(mission_id, [&](const store::NavRow& r) {
+    if (!region_written) write_region(r.t_s);
+    const std::uint64_t t_ns = fg::to_ns(r.t_s);
+    others_before(t_ns);
+    const fg::NavigationState nav =
+        navigation_state(r, previous ? &*previous : nullptr, mission_id, grid);
+    add(fg::ChannelKind::pose, t_ns, fg::pose_message(nav));
+    add(fg::ChannelKind::transform, t_ns, fg::transform_message(nav, vid));
+    if (grid) add(fg::ChannelKind::location, t_ns, fg::location_message(nav, vid));
+    add(fg::ChannelKind::navigation, t_ns, fg::navigation_message(nav));
+    previous = r;
+    ++d.nav_samples;
+  });
+  if (!region_written) write_region(mission->started_s.value_or(0.0));
+  for (; next_other < others.size(); ++next_other) {
+    const Item& item = others[next_other];
+    if (channel_ids.contains(item.kind))
+      add(item.kind, item.log_time_ns, message_data(ctx, d, item, turns));
   }
   for (auto& [topic, n] : out.messages.per_topic)
     for (const auto& [kind, count] : counts)

@@ -47,15 +47,16 @@ Result<std::vector<kin::IdentSegment>> identification_data(
   for (const std::int64_t id : missions) {
     if (!db.get_mission(id)) return not_found("no mission " + std::to_string(id));
     kin::NavStreams s;
-    for (const auto& r : db.nav_for_mission(id)) {
-      if (!guided(r.helm_mode) || !r.desired_heading_deg) continue;
+    // Read row by row: a long mission's navigation is not held twice.
+    db.for_each_nav(id, [&](const store::NavRow& r) {
+      if (!guided(r.helm_mode) || !r.desired_heading_deg) return;
       s.heading_deg.push_back({r.t_s, r.heading_deg});
       s.desired_heading_deg.push_back({r.t_s, *r.desired_heading_deg});
       s.x_m.push_back({r.t_s, r.x_m});
       s.y_m.push_back({r.t_s, r.y_m});
       s.speed_mps.push_back({r.t_s, r.speed_mps});
       if (r.desired_speed_mps) s.desired_speed_mps.push_back({r.t_s, *r.desired_speed_mps});
-    }
+    });
     if (s.desired_speed_mps.size() != s.heading_deg.size()) s.desired_speed_mps.clear();
     for (auto& seg : kin::resample(s, options))
       out.push_back(std::move(seg));

@@ -188,7 +188,9 @@ bool prepare_database(const fs::path& dir, int repeats, const std::string& sourc
   const fs::path config_path = dir / "mission.json";
   std::ofstream(config_path) << config;
   const pid_t pid = avk::testing::spawn_avk(
-      {"mission", "run", "--config", config_path.string(), "--db", db.string(), "--sim", "--quiet"},
+      // 100 repeats take about 92,000 s of mission clock, past the default day's limit.
+      {"mission", "run", "--config", config_path.string(), "--db", db.string(), "--sim", "--quiet",
+       "--max-sim-time", std::to_string(2000.0 * repeats)},
       (dir / "mission.log").string());
   int status = 0;
   return pid > 0 && ::waitpid(pid, &status, 0) == pid && WIFEXITED(status) &&

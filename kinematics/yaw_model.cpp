@@ -177,33 +177,59 @@ Polyline predict_normalized_turn(const YawModel& m, double speed_mps, double dhe
 
 namespace {
 
-struct Regression {
-  Eigen::MatrixXd x;
-  Eigen::VectorXd y;
+// The stacked regression reduced to what least squares needs: R (p x p, upper triangular), Q'y
+// (p), |X|^2 and the number of equations. Computed block by block, a QR of the running triangle
+// on top of each block of rows, so the design matrix, which grows with the data (a long campaign
+// gives hundreds of thousands of rows), is never held whole. It equals one QR of the whole
+// matrix up to the signs of R's rows (with Q'y's), which the least-squares solution does not see.
+struct ReducedRegression {
+  Eigen::MatrixXd r;
+  Eigen::VectorXd qty;
+  double x_squared_norm = 0.0;
+  Eigen::Index rows = 0;
 };
 
-Regression stack(const std::vector<IdentSegment>& segments, YawModelForm form, std::size_t n) {
+ReducedRegression reduce(const std::vector<IdentSegment>& segments, YawModelForm form,
+                         std::size_t n) {
   const std::size_t warm = form == YawModelForm::thesis ? n : n + 1;
-  std::size_t rows = 0;
-  for (const auto& s : segments)
-    if (s.size() > warm) rows += s.size() - warm;
-  Regression r{Eigen::MatrixXd(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(2 * n)),
-               Eigen::VectorXd(static_cast<Eigen::Index>(rows))};
-  Eigen::Index row = 0;
+  const auto p = static_cast<Eigen::Index>(2 * n);
+  constexpr Eigen::Index kBlock = 4096;
+  // [X y] rows: the running triangle (at most p + 1 rows) on top, then the block being filled.
+  Eigen::MatrixXd work(p + 1 + kBlock, p + 1);
+  Eigen::Index top = 0;
+  Eigen::Index filled = 0;
+  ReducedRegression out;
+  const auto fold = [&] {
+    if (filled == 0) return;
+    const Eigen::Index m = top + filled;
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(work.topRows(m));
+    top = std::min(m, p + 1);
+    work.topRows(top) = qr.matrixQR().topRows(top).triangularView<Eigen::Upper>();
+    filled = 0;
+  };
   std::vector<double> e;
   for (const auto& s : segments) {
     if (s.size() <= warm) continue;
     e.resize(s.size());
     for (std::size_t k = 0; k < s.size(); ++k)
       e[k] = s.error_deg(k);
-    for (std::size_t k = warm - 1; k + 1 < s.size(); ++k, ++row) {
+    for (std::size_t k = warm - 1; k + 1 < s.size(); ++k) {
+      const Eigen::Index row = top + filled;
       regressors(form, n, s.heading_deg.data(), e.data(), k,
-                 [&](std::size_t c) -> double& { return r.x(row, static_cast<Eigen::Index>(c)); });
-      r.y(row) = form == YawModelForm::thesis ? s.heading_deg[k + 1]
-                                              : s.heading_deg[k + 1] - s.heading_deg[k];
+                 [&](std::size_t c) -> double& { return work(row, static_cast<Eigen::Index>(c)); });
+      work(row, p) = form == YawModelForm::thesis ? s.heading_deg[k + 1]
+                                                  : s.heading_deg[k + 1] - s.heading_deg[k];
+      out.x_squared_norm += work.row(row).head(p).squaredNorm();
+      ++out.rows;
+      if (++filled == kBlock) fold();
     }
   }
-  return r;
+  fold();
+  if (out.rows >= p) {
+    out.r = work.topLeftCorner(p, p).triangularView<Eigen::Upper>();
+    out.qty = work.col(p).head(p);
+  }
+  return out;
 }
 
 YawModel model_from(const FitOptions& o, double rate_hz, const Eigen::VectorXd& theta,
@@ -229,18 +255,17 @@ YawModel fit_yaw_model(const std::vector<IdentSegment>& training, const FitOptio
   for (const auto& s : training)
     if (std::abs(s.dt_s - training.front().dt_s) > 1e-12)
       throw std::invalid_argument("fit: training segments have different sample rates");
-  const Regression r = stack(training, options.form, options.history);
-  const Eigen::Index p = r.x.cols();
-  if (r.x.rows() < p)
-    throw std::invalid_argument("fit: " + std::to_string(r.x.rows()) + " equations for " +
+  const ReducedRegression r = reduce(training, options.form, options.history);
+  const auto p = static_cast<Eigen::Index>(2 * options.history);
+  if (r.rows < p)
+    throw std::invalid_argument("fit: " + std::to_string(r.rows) + " equations for " +
                                 std::to_string(p) + " coefficients: too little data for " +
                                 std::to_string(options.history) + " samples of history");
-  // One blocked Householder QR of the data; every ridge strength is then a small p x p problem,
-  // since |X t - y|^2 = |R t - Q'y|^2 + const.
-  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(r.x);
-  const Eigen::MatrixXd rr = qr.matrixQR().topRows(p).triangularView<Eigen::Upper>();
-  const Eigen::VectorXd qty = (qr.householderQ().transpose() * r.y).head(p);
-  const double scale = r.x.squaredNorm() / static_cast<double>(p);
+  // Every ridge strength is then a small p x p problem, since |X t - y|^2 = |R t - Q'y|^2 +
+  // const.
+  const Eigen::MatrixXd& rr = r.r;
+  const Eigen::VectorXd& qty = r.qty;
+  const double scale = r.x_squared_norm / static_cast<double>(p);
   const auto solve = [&](double lambda_rel) {
     Eigen::MatrixXd a(2 * p, p);
     a << rr, Eigen::MatrixXd::Identity(p, p) * std::sqrt(lambda_rel * scale);

@@ -1092,17 +1092,21 @@ std::int64_t Store::import_mission(const MissionImport& m) {
 }
 
 std::vector<NavRow> Store::nav_for_mission(std::int64_t mission_id) {
+  std::vector<NavRow> out;
+  for_each_nav(mission_id, [&](const NavRow& r) { out.push_back(r); });
+  return out;
+}
+
+void Store::for_each_nav(std::int64_t mission_id, const std::function<void(const NavRow&)>& fn) {
   // rowid breaks ties between samples stamped with the same time: insertion order.
   auto s = db_.prepare(
       "SELECT t_s, x_m, y_m, heading_deg, speed_mps, desired_heading_deg, desired_speed_mps, "
       "helm_mode FROM nav_samples WHERE mission_id = ? ORDER BY t_s, rowid");
   s.bind(1, mission_id);
-  std::vector<NavRow> out;
   while (s.step())
-    out.push_back({s.column_double(0), s.column_double(1), s.column_double(2), s.column_double(3),
-                   s.column_double(4), s.column_optional_double(5), s.column_optional_double(6),
-                   s.column_text(7)});
-  return out;
+    fn({s.column_double(0), s.column_double(1), s.column_double(2), s.column_double(3),
+        s.column_double(4), s.column_optional_double(5), s.column_optional_double(6),
+        s.column_text(7)});
 }
 
 std::vector<NavPageRow> Store::nav_page(std::int64_t mission_id, std::int64_t after_rowid,

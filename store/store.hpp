@@ -349,6 +349,9 @@ class Store {
   // One transaction, one prepared statement for the whole batch.
   void append_nav(std::int64_t mission_id, std::span<const NavRow> rows);
   std::vector<NavRow> nav_for_mission(std::int64_t mission_id);
+  // The same rows in the same order (time, then insertion), one at a time: a long mission's
+  // navigation need not be held whole. fn may read through this Store.
+  void for_each_nav(std::int64_t mission_id, const std::function<void(const NavRow&)>& fn);
   // Keyset pagination in insertion (rowid) order: at most `limit` rows with rowid > after_rowid.
   // Insertion order, not time order, so that a page boundary never moves while a mission records.
   std::vector<NavPageRow> nav_page(std::int64_t mission_id, std::int64_t after_rowid, int limit);

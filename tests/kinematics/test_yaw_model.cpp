@@ -175,6 +175,27 @@ TEST(YawModel, NoisyIdentificationIsWithinTolerance) {
   }
 }
 
+TEST(YawModel, TheFitIsTheLeastSquaresOptimumOverManyBlocksOfRows) {
+  // 20,000 noisy equations, reduced block by block: the fitted model's one-step error (the
+  // least-squares objective of the invariant form) is below the true system's and grows when
+  // any coefficient moves either way.
+  const YawModel truth = invariant_truth();
+  const std::vector<IdentSegment> data = {simulate(truth, 9000, 6, 0.3),
+                                          simulate(truth, 11000, 7, 0.3)};
+  const YawModel fitted = fit_yaw_model(data, {YawModelForm::invariant, 3, 0.0});
+  const double best = one_step_rms_deg(fitted, data);
+  EXPECT_LE(best, one_step_rms_deg(truth, data));
+  for (std::size_t i = 0; i < 3; ++i)
+    for (const double step : {-1e-3, 1e-3}) {
+      YawModel moved = fitted;
+      moved.error_coeffs[i] += step;
+      EXPECT_GT(one_step_rms_deg(moved, data), best) << "error " << i << " " << step;
+      moved = fitted;
+      moved.heading_coeffs[i] += step;
+      EXPECT_GT(one_step_rms_deg(moved, data), best) << "heading " << i << " " << step;
+    }
+}
+
 TEST(YawModel, TooLittleDataIsAClearError) {
   const IdentSegment s = simulate(invariant_truth(), 30, 5);
   EXPECT_THROW(fit_yaw_model({s}, {YawModelForm::invariant, 40, 0.0}), std::invalid_argument);
