@@ -1530,6 +1530,11 @@ TEST_F(HttpServerTest, LiveSessionsPerAddressAreCappedWith503AndRetryAfter) {
   EXPECT_TRUE(over.handshake_error());
   EXPECT_EQ(over.handshake_response().result_int(), 503);
   EXPECT_FALSE(over.handshake_response()[http::field::retry_after].empty());
+  // The server counts a session once its handshake's answer is written, which the client may
+  // see first: wait for the count, do not race it.
+  for (const auto deadline = Clock::now() + 20s;
+       server->open_stream_sessions() != 2u && Clock::now() < deadline;)
+    std::this_thread::sleep_for(5ms);
   EXPECT_EQ(server->open_stream_sessions(), 2u);
   a.reset();
   bool reopened = false;
