@@ -166,10 +166,7 @@ double health_once(unsigned short port) {
 
 // --- the server -------------------------------------------------------------------------
 
-struct Server {
-  pid_t pid = -1;
-  unsigned short port = 0;
-};
+using Server = avk::testing::ServeProcess;
 
 // The database the heavy reads read: one Figure 4-1 mission flown with `repeats` repeats in the
 // simulator (`avk mission run --sim`), or a copy of `source`. False when that failed.
@@ -198,22 +195,9 @@ bool prepare_database(const fs::path& dir, int repeats, const std::string& sourc
 }
 
 Server spawn_server(const fs::path& dir) {
-  const std::string log = (dir / "serve.log").string();
-  Server s;
-  s.pid = avk::testing::spawn_avk(
-      {"serve", "--db", (dir / "bench.db").string(), "--port", "0", "--token", kToken}, log);
-  const std::regex listening(R"(http://127\.0\.0\.1:(\d+)/)");
-  const auto deadline = Clock::now() + 20s;
-  while (s.pid > 0 && !s.port && Clock::now() < deadline) {
-    std::ifstream f(log);
-    std::string line;
-    std::smatch m;
-    while (std::getline(f, line))
-      if (std::regex_search(line, m, listening))
-        s.port = static_cast<unsigned short>(std::stoi(m[1]));
-    std::this_thread::sleep_for(20ms);
-  }
-  return s;
+  return avk::testing::spawn_serve(
+      {"--db", (dir / "bench.db").string(), "--port", "0", "--token", kToken},
+      (dir / "serve.log").string());
 }
 
 // kB from /proc/PID/status ("VmRSS", "VmHWM").
