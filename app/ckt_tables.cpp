@@ -114,7 +114,10 @@ std::shared_ptr<const kin::Ckt> TableCache::held_out(Context& ctx, const std::st
   const auto turns = ctx.db().load_normalized_turns(
       {}, vehicle_id, include_harvested, store::TurnFrameChoice::water_where_known, left_out);
   if (turns.empty()) return nullptr;
-  auto table = std::make_shared<const kin::Ckt>(kin::Ckt::build(turns));
+  // Kept for queries alone: without the observed turns a table is a fraction of its size.
+  auto built = kin::Ckt::build(turns);
+  built.drop_observed_turns();
+  auto table = std::make_shared<const kin::Ckt>(std::move(built));
   std::lock_guard lock(held_out_mutex_);
   // Tables of an older revision answer no one any more.
   std::erase_if(held_out_, [&](const auto& kv) {

@@ -51,9 +51,10 @@ class TableCache {
                            bool include_harvested = false);
   // The table of the vehicle's ok turns without a mission or one turn (what a held-out
   // prediction answers from), built once per left-out set and dropped when the vehicle's turns
-  // change, by the same check as get()'s. Null when no turn is left to build from. At most
-  // kHeldOutTables are kept (the least recently used goes first): each holds every turn's
-  // points, and a page asks for one left-out set at a time.
+  // change, by the same check as get()'s. Null when no turn is left to build from. The table
+  // keeps what a query reads, not the observed turns (Ckt::drop_observed_turns). At most
+  // kHeldOutTables are kept (the least recently used goes first): a page asks for one left-out
+  // set at a time.
   std::shared_ptr<const kinematics::Ckt> held_out(Context& ctx, const std::string& vehicle_id,
                                                   bool include_harvested,
                                                   const store::TurnsLeftOut& left_out);

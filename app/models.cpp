@@ -47,7 +47,12 @@ Result<std::vector<kin::IdentSegment>> identification_data(
   for (const std::int64_t id : missions) {
     if (!db.get_mission(id)) return not_found("no mission " + std::to_string(id));
     kin::NavStreams s;
-    // Read row by row: a long mission's navigation is not held twice.
+    // Read row by row into streams reserved to the row count: a long mission's navigation is
+    // held once, without the slack of vectors that grow as they are filled.
+    const auto rows = static_cast<std::size_t>(db.nav_count(id));
+    for (auto* v : {&s.heading_deg, &s.desired_heading_deg, &s.x_m, &s.y_m, &s.speed_mps,
+                    &s.desired_speed_mps})
+      v->reserve(rows);
     db.for_each_nav(id, [&](const store::NavRow& r) {
       if (!guided(r.helm_mode) || !r.desired_heading_deg) return;
       s.heading_deg.push_back({r.t_s, r.heading_deg});
@@ -141,7 +146,7 @@ Result<FittedModel> fit_model(Context& ctx, const std::string& vehicle_id,
   if (!data) return data.error();
   FittedModel f;
   try {
-    f.result = kin::identify_yaw_model(*data, options);
+    f.result = kin::identify_yaw_model(std::move(*data), options);
   } catch (const std::invalid_argument& e) {
     return unsupported(e.what());
   }
@@ -165,7 +170,7 @@ Result<std::vector<kin::HistorySweepRow>> sweep_model_history(
   auto data = identification_data(ctx, missions, resample);
   if (!data) return data.error();
   try {
-    return kin::sweep_history(*data, options, {2, 4, 6, 8, 10, 12, 14, 16, 18, 20});
+    return kin::sweep_history(std::move(*data), options, {2, 4, 6, 8, 10, 12, 14, 16, 18, 20});
   } catch (const std::invalid_argument& e) {
     return unsupported(e.what());
   }

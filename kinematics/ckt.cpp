@@ -425,6 +425,11 @@ RowAnswer answer_row(const std::vector<const CktCell*>& row, double d) {
 
 }  // namespace
 
+void Ckt::drop_observed_turns() {
+  for (auto& c : cells_)
+    std::vector<TurnSequence>().swap(c.turns);
+}
+
 TurnPrediction Ckt::query(double speed_mps, double dheading_deg) const {
   if (!std::isfinite(speed_mps) || !std::isfinite(dheading_deg)) {
     throw std::invalid_argument("speed and heading change must be finite numbers");

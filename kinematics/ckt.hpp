@@ -122,6 +122,7 @@ struct TurnPrediction {
   // trajectory; empty when one of the cells that answered has none.
   std::optional<TurnTiming> timing;
   bool short_of_goal = false;  // one of the cells that answered is short of its goal
+  friend bool operator==(const TurnPrediction&, const TurnPrediction&) = default;
 };
 
 inline constexpr double kShortOfGoalFraction = 0.8;
@@ -179,6 +180,10 @@ class Ckt {
   // Any speed within speed_range_mps and any heading change in [-180, 180]. Throws
   // CktRangeError for a speed outside the range, std::invalid_argument for non-finite input.
   TurnPrediction query(double speed_mps, double dheading_deg) const;
+
+  // Lets go of every cell's observed turns, as a table read from a file has none: query answers
+  // exactly as before, and a table kept for queries alone holds a fraction of the memory.
+  void drop_observed_turns();
 
  private:
   CktGrid grid_;

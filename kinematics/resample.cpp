@@ -164,10 +164,10 @@ std::vector<IdentSegment> resample(const NavStreams& in, const ResampleOptions& 
   return out;
 }
 
-std::vector<IdentSegment> split_long_segments(const std::vector<IdentSegment>& segments,
+std::vector<IdentSegment> split_long_segments(std::vector<IdentSegment> segments,
                                               double max_length_s) {
   std::vector<IdentSegment> out;
-  for (const IdentSegment& s : segments) {
+  for (IdentSegment& s : segments) {
     const auto piece =
         std::max<std::size_t>(1, static_cast<std::size_t>(std::floor(max_length_s / s.dt_s)));
     for (std::size_t start = 0; start < s.size(); start += piece) {
@@ -186,6 +186,8 @@ std::vector<IdentSegment> split_long_segments(const std::vector<IdentSegment>& s
       p.desired_speed_mps = cut(s.desired_speed_mps);
       out.push_back(std::move(p));
     }
+    // Each segment is let go once cut, so a long record is held about once, not twice.
+    s = IdentSegment{};
   }
   return out;
 }

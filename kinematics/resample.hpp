@@ -60,8 +60,9 @@ std::vector<IdentSegment> resample(const NavStreams& streams, const ResampleOpti
 double interpolate_at(const std::vector<TimedValue>& stream, double t_s, bool angle);
 
 // Cuts segments into pieces of at most max_length_s (a long continuous excitation log becomes
-// several pieces, so a split by segment has material on both sides).
-std::vector<IdentSegment> split_long_segments(const std::vector<IdentSegment>& segments,
+// several pieces, so a split by segment has material on both sides). Taken by value: a caller
+// done with its segments moves them in, and each is released once cut.
+std::vector<IdentSegment> split_long_segments(std::vector<IdentSegment> segments,
                                               double max_length_s);
 
 }  // namespace avk::kinematics

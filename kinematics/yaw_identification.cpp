@@ -6,13 +6,13 @@
 
 namespace avk::kinematics {
 
-SegmentSplit split_by_segment(const std::vector<IdentSegment>& segments, double piece_length_s,
+SegmentSplit split_by_segment(std::vector<IdentSegment> segments, double piece_length_s,
                               std::size_t validation_every) {
   SegmentSplit split;
-  const auto pieces = split_long_segments(segments, piece_length_s);
+  auto pieces = split_long_segments(std::move(segments), piece_length_s);
   for (std::size_t i = 0; i < pieces.size(); ++i) {
     const bool held_out = validation_every > 1 && i % validation_every == validation_every - 1;
-    (held_out ? split.validation : split.training).push_back(pieces[i]);
+    (held_out ? split.validation : split.training).push_back(std::move(pieces[i]));
   }
   return split;
 }
@@ -27,18 +27,19 @@ std::size_t samples_of(double history_s, double dt_s) {
 
 }  // namespace
 
-IdentificationResult identify_yaw_model(const std::vector<IdentSegment>& segments,
+IdentificationResult identify_yaw_model(std::vector<IdentSegment> segments,
                                         const IdentificationOptions& options) {
   if (segments.empty()) throw std::invalid_argument("no identification data");
+  const double dt_s = segments.front().dt_s;
   const SegmentSplit split =
-      split_by_segment(segments, options.piece_length_s, options.validation_every);
+      split_by_segment(std::move(segments), options.piece_length_s, options.validation_every);
   if (split.training.empty()) throw std::invalid_argument("no training data after the split");
   IdentificationResult r;
   r.train_segments = split.training.size();
   r.validation_segments = split.validation.size();
   FitOptions fo;
   fo.form = options.form;
-  fo.history = samples_of(options.history_s, segments.front().dt_s);
+  fo.history = samples_of(options.history_s, dt_s);
   fo.ridge_lambda = options.ridge_lambda;
   r.model = fit_yaw_model(split.training, fo, split.validation);
   r.model.speed = fit_speed_model(split.training);
@@ -57,23 +58,24 @@ IdentificationResult identify_yaw_model(const std::vector<IdentSegment>& segment
   return r;
 }
 
-std::vector<HistorySweepRow> sweep_history(const std::vector<IdentSegment>& segments,
+std::vector<HistorySweepRow> sweep_history(std::vector<IdentSegment> segments,
                                            const IdentificationOptions& options,
                                            const std::vector<double>& history_s) {
   if (segments.empty() || history_s.empty()) return {};
+  const double dt_s = segments.front().dt_s;
   const SegmentSplit split =
-      split_by_segment(segments, options.piece_length_s, options.validation_every);
+      split_by_segment(std::move(segments), options.piece_length_s, options.validation_every);
   // Every history length is scored on the same turns: those the longest history can predict.
   std::size_t longest = 0;
   for (double h : history_s)
-    longest = std::max(longest, samples_of(h, segments.front().dt_s));
+    longest = std::max(longest, samples_of(h, dt_s));
   const auto windows = turn_windows(split.validation, longest + 1, options.min_step_deg);
   const auto train_windows = turn_windows(split.training, longest + 1, options.min_step_deg);
   std::vector<HistorySweepRow> rows;
   for (double h : history_s) {
     FitOptions fo;
     fo.form = options.form;
-    fo.history = samples_of(h, segments.front().dt_s);
+    fo.history = samples_of(h, dt_s);
     fo.ridge_lambda = options.ridge_lambda;
     YawModel m = fit_yaw_model(split.training, fo, split.validation);
     if (options.refine)

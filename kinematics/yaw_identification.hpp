@@ -38,11 +38,13 @@ struct SegmentSplit {
   std::vector<IdentSegment> training;
   std::vector<IdentSegment> validation;
 };
-SegmentSplit split_by_segment(const std::vector<IdentSegment>& segments, double piece_length_s,
+// The segments are taken by value (move them in when done with them): a long record is then held
+// about once while it is cut and split, not three times.
+SegmentSplit split_by_segment(std::vector<IdentSegment> segments, double piece_length_s,
                               std::size_t validation_every);
 
 // Throws std::invalid_argument when the data cannot support the model (too short, no rate).
-IdentificationResult identify_yaw_model(const std::vector<IdentSegment>& segments,
+IdentificationResult identify_yaw_model(std::vector<IdentSegment> segments,
                                         const IdentificationOptions& options);
 
 struct HistorySweepRow {
@@ -53,7 +55,7 @@ struct HistorySweepRow {
 };
 // Thesis Figure 3-9, over validation turns rather than one: the validation trajectory error for
 // each history length.
-std::vector<HistorySweepRow> sweep_history(const std::vector<IdentSegment>& segments,
+std::vector<HistorySweepRow> sweep_history(std::vector<IdentSegment> segments,
                                            const IdentificationOptions& options,
                                            const std::vector<double>& history_s);
 

@@ -1109,6 +1109,12 @@ void Store::for_each_nav(std::int64_t mission_id, const std::function<void(const
         s.column_text(7)});
 }
 
+std::int64_t Store::nav_count(std::int64_t mission_id) {
+  auto s = db_.prepare("SELECT COUNT(*) FROM nav_samples WHERE mission_id = ?");
+  s.bind(1, mission_id);
+  return s.step() ? s.column_int64(0) : 0;
+}
+
 std::vector<NavPageRow> Store::nav_page(std::int64_t mission_id, std::int64_t after_rowid,
                                         int limit) {
   auto s = db_.prepare(

@@ -352,6 +352,8 @@ class Store {
   // The same rows in the same order (time, then insertion), one at a time: a long mission's
   // navigation need not be held whole. fn may read through this Store.
   void for_each_nav(std::int64_t mission_id, const std::function<void(const NavRow&)>& fn);
+  // How many navigation rows the mission holds: what a reader reserves before for_each_nav.
+  std::int64_t nav_count(std::int64_t mission_id);
   // Keyset pagination in insertion (rowid) order: at most `limit` rows with rowid > after_rowid.
   // Insertion order, not time order, so that a page boundary never moves while a mission records.
   std::vector<NavPageRow> nav_page(std::int64_t mission_id, std::int64_t after_rowid, int limit);

@@ -105,6 +105,19 @@ TEST(Ckt, InterpolatedSeventyEndsOnSeventyBetweenItsNeighbours) {
   EXPECT_NEAR(p.transfer_m, s.radius_m * (1 - std::cos(deg_to_rad(70.0))), 0.15);
 }
 
+TEST(Ckt, DroppingTheObservedTurnsChangesNoAnswer) {
+  const Ckt full = Ckt::build(grid_turns({0.5, 1.0, 1.5}, {30, 60, 90, 150}, 3, 0.05));
+  Ckt lean = full;
+  lean.drop_observed_turns();
+  for (const CktCell& c : lean.cells())
+    EXPECT_TRUE(c.turns.empty());
+  ASSERT_FALSE(full.cells().front().turns.empty());
+  // On cells, between rows and columns, to port, and past the heading changes the table holds.
+  for (const double u : {0.5, 0.8, 1.0, 1.4})
+    for (const double d : {30.0, -45.0, 60.0, 120.0, -150.0, 170.0})
+      EXPECT_EQ(lean.query(u, d), full.query(u, d)) << u << " m/s, " << d << " deg";
+}
+
 TEST(Ckt, InterpolatesAcrossSpeed) {
   const Ckt t = Ckt::build(grid_turns({0.5, 1.5}, {90}));
   const TurnPrediction p = t.query(1.0, 90.0);
