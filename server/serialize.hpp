@@ -115,6 +115,10 @@ nlohmann::json approach_json(const kinematics::Approach& a);  // {distance_m, ti
 nlohmann::json contact_json(const kinematics::Contact& c);
 // Every candidate with its path, corridor half widths, CPA per contact, and the choice.
 nlohmann::json maneuver_evaluation_json(const app::ManeuverEvaluation& e, double path_step_s);
+// The same document as maneuver_evaluation_json(e, path_step_s).dump(), byte for byte, written
+// one candidate at a time: hundreds of candidates against dozens of contacts make a document of
+// megabytes whose tree is several times the text, and only one candidate's is held here.
+std::string maneuver_evaluation_text(const app::ManeuverEvaluation& e, double path_step_s);
 nlohmann::json ongoing_maneuver_json(const app::OngoingManeuver& o);
 // The flown track (shifted by `origin`: the simulator starts at the origin) and the actual CPAs;
 // with a standoff, whether it was violated.

@@ -1,5 +1,7 @@
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+#include <string_view>
 
 #include "kinematics/angles.hpp"
 #include "kinematics/ckt3_file.hpp"
@@ -612,14 +614,19 @@ json contact_json(const kin::Contact& c) {
   return {{"x_m", c.x_m}, {"y_m", c.y_m}, {"course_deg", c.course_deg}, {"speed_mps", c.speed_mps}};
 }
 
-json maneuver_evaluation_json(const app::ManeuverEvaluation& e, double path_step_s) {
+namespace {
+
+// The evaluation's document; its candidates array left empty unless with_candidates.
+json evaluation_document(const app::ManeuverEvaluation& e, double path_step_s,
+                         bool with_candidates) {
   const app::ManeuverQuery& q = e.query;
   json contacts = json::array();
   for (const auto& c : q.contacts)
     contacts.push_back(contact_json(c));
   json candidates = json::array();
-  for (const auto& c : e.candidates)
-    candidates.push_back(candidate_json(c, path_step_s, q.corridor_share));
+  if (with_candidates)
+    for (const auto& c : e.candidates)
+      candidates.push_back(candidate_json(c, path_step_s, q.corridor_share));
   json chosen;
   if (e.chosen) {
     const kin::CandidateEvaluation& c = e.candidates.at(*e.chosen);
@@ -661,6 +668,31 @@ json maneuver_evaluation_json(const app::ManeuverEvaluation& e, double path_step
               {"candidates", std::move(candidates)},
               {"chosen", std::move(chosen)}};
   put_answer_frame(out, e.frame, e.current, e.current_source, e.current_covariance, e.motion);
+  return out;
+}
+
+}  // namespace
+
+json maneuver_evaluation_json(const app::ManeuverEvaluation& e, double path_step_s) {
+  return evaluation_document(e, path_step_s, true);
+}
+
+std::string maneuver_evaluation_text(const app::ManeuverEvaluation& e, double path_step_s) {
+  // The document with an empty candidates array, dumped, then the candidates written into it.
+  // A compact dump is the concatenation of its parts' dumps, so this is the whole document's.
+  // The key cannot be matched inside a string value: there its quotes are escaped.
+  const std::string head = evaluation_document(e, path_step_s, false).dump();
+  static constexpr std::string_view kEmpty = R"("candidates":[])";
+  const auto at = head.find(kEmpty);
+  if (at == std::string::npos)
+    throw std::logic_error("maneuver evaluation: no candidates array in the document");
+  const auto split = at + kEmpty.size() - 1;  // before the closing bracket
+  std::string out(head, 0, split);
+  for (std::size_t i = 0; i < e.candidates.size(); ++i) {
+    if (i) out += ',';
+    out += candidate_json(e.candidates[i], path_step_s, e.query.corridor_share).dump();
+  }
+  out.append(head, split, std::string::npos);
   return out;
 }
 

@@ -556,7 +556,8 @@ void Station::add_routes() {
     if (!request) return problem_of(request.error(), true);
     return answer(app::evaluate_maneuvers(ctx, request->query), true,
                   [&](const app::ManeuverEvaluation& e) {
-                    return json_response(maneuver_evaluation_json(e, request->path_step_s));
+                    return ApiResponse{200, "application/json",
+                                       maneuver_evaluation_text(e, request->path_step_s)};
                   });
   });
   get("/api/v1/vehicles/{vid}/maneuvers/ongoing", [&ctx](const ApiRequest& r, const PathParams& p) {

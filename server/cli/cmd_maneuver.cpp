@@ -134,7 +134,7 @@ int evaluate(const std::vector<std::string>& rest, Io& io) {
       value_or_fail(maneuver_request(body, vehicle_of(a, ctx.db(), {})));
   const app::ManeuverEvaluation e = value_or_fail(app::evaluate_maneuvers(ctx, request.query));
   if (format == "json")
-    io.out << maneuver_evaluation_json(e, request.path_step_s).dump() << "\n";
+    io.out << maneuver_evaluation_text(e, request.path_step_s) << "\n";
   else
     print_evaluation(e, io.out);
   return 0;

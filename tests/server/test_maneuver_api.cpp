@@ -145,6 +145,23 @@ TEST_F(ManeuverApi, AvkAnswersFromTheTurnsWithCorridorsAndTimes) {
   EXPECT_NEAR(path.back()[0].get<double>(), 120.0, 1e-6);
 }
 
+TEST_F(ManeuverApi, TheEvaluationWrittenCandidateByCandidateIsOneCanonicalDocument) {
+  // The answer is written one candidate at a time into the rest of the document: parsed and
+  // dumped again it is the same bytes (every candidate in place, keys in order, nothing lost),
+  // with two contacts and a chosen candidate.
+  json body = head_on("avk");
+  body["candidate_step_deg"] = 15.0;
+  body["contacts"].push_back(
+      {{"x_m", 30.0}, {"y_m", 10.0}, {"course_deg", 270.0}, {"speed_mps", 0.8}});
+  const auto r = call(post("evaluate", body.dump()));
+  ASSERT_EQ(r.status, 200) << r.body;
+  const json e = json::parse(r.body);
+  EXPECT_EQ(e.dump(), r.body);
+  ASSERT_GT(e["candidates"].size(), 2u);
+  ASSERT_TRUE(e["chosen"].is_object());
+  EXPECT_EQ(e["candidates"].back()["contacts"].size(), 2u) << e["candidates"].back().dump();
+}
+
 TEST_F(ManeuverApi, ValidationErrorsNameTheFieldAndBadJsonIs400) {
   json speed = head_on();
   speed["contacts"][0]["speed_mps"] = -1.0;
