@@ -30,10 +30,11 @@
 // minutes (`--quick`: shorter phases, 10 repeats), then it stops the server and exits 0 if the
 // targets held, 1 if not.
 //
-//   bench_exhaustion [--quick] [--repeats R] [--db FILE] [--without KIND]...
+//   bench_exhaustion [--quick] [--heavy-only] [--repeats R] [--db FILE] [--without KIND]...
 //
-// --without leaves a kind of heavy read out of the mix (evaluate, "predict held out",
-// "mcap export", sweep, compare), to see what each costs.
+// --heavy-only runs the idle phase and the two heavy-read phases alone. --without leaves a kind of
+// heavy read out of the mix (evaluate, "predict held out", "mcap export", sweep, compare), to see
+// what each costs.
 //
 // The client side needs ~1,250 descriptors; when the soft limit is lower it is raised to that
 // (never above the hard limit) and the program says so. The server is spawned with the limit
@@ -606,6 +607,7 @@ std::string heavy_reads(unsigned short port, int n, bool spread, std::chrono::se
 
 int main(int argc, char** argv) {
   bool quick = false;
+  bool heavy_only = false;
   int repeats = 0;
   std::string source_db;
   std::set<std::string> without;
@@ -613,6 +615,8 @@ int main(int argc, char** argv) {
     const std::string a = argv[i];
     if (a == "--quick") {
       quick = true;
+    } else if (a == "--heavy-only") {
+      heavy_only = true;
     } else if (a == "--repeats" && i + 1 < argc) {
       repeats = std::atoi(argv[++i]);
     } else if (a == "--db" && i + 1 < argc) {
@@ -620,8 +624,8 @@ int main(int argc, char** argv) {
     } else if (a == "--without" && i + 1 < argc) {
       without.insert(argv[++i]);
     } else {
-      std::cerr
-          << "usage: bench_exhaustion [--quick] [--repeats R] [--db FILE] [--without KIND]...\n";
+      std::cerr << "usage: bench_exhaustion [--quick] [--heavy-only] [--repeats R] [--db FILE] "
+                   "[--without KIND]...\n";
       return 2;
     }
   }
@@ -663,15 +667,18 @@ int main(int argc, char** argv) {
     std::this_thread::sleep_for(3s);
     return std::string("no attack");
   }));
-  results.push_back(phase("slow bodies (1 byte/10 s)", server,
-                          [&] { return slow_bodies(server.port, quick ? 12s : 40s); }));
-  results.push_back(phase("1,100 slow connections", server,
-                          [&] { return slow_connections(server.port, 1100, quick ? 12s : 30s); }));
-  results.push_back(phase("8 x 62 MB unauthenticated bodies", server,
-                          [&] { return oversized_bodies(server.port); }));
   bool bombs_refused = true;
-  results.push_back(phase("MCAP bombs, 4 imports at once", server,
-                          [&] { return mcap_bombs(dir, quick ? 5s : 15s, bombs_refused); }));
+  if (!heavy_only) {
+    results.push_back(phase("slow bodies (1 byte/10 s)", server,
+                            [&] { return slow_bodies(server.port, quick ? 12s : 40s); }));
+    results.push_back(phase("1,100 slow connections", server, [&] {
+      return slow_connections(server.port, 1100, quick ? 12s : 30s);
+    }));
+    results.push_back(phase("8 x 62 MB unauthenticated bodies", server,
+                            [&] { return oversized_bodies(server.port); }));
+    results.push_back(phase("MCAP bombs, 4 imports at once", server,
+                            [&] { return mcap_bombs(dir, quick ? 5s : 15s, bombs_refused); }));
+  }
   const std::size_t heavy_from = results.size();
   results.push_back(phase("20 heavy reads, one address", server, [&] {
     return heavy_reads(server.port, 20, false, quick ? 15s : 40s, without);
