@@ -36,7 +36,11 @@ let dirtySeries = true;
 let seriesShown = { key: '', frame: '', to: -Infinity, pixelS: 0 };
 let lastSeriesMs = -Infinity;
 let seriesTimer = null;
-const SERIES_MIN_MS = 250;
+// Samples that move the plot redraw it at most twice a second: a full redraw of five traces and
+// four axes takes two or three frames on a machine without a GPU, and at four a second those were
+// one frame in fifteen, past what a 95th-percentile frame time allows. A new window or new turn
+// marks redraw at once.
+const SERIES_MIN_MS = 500;
 const SERIES_MAX_MS = 2000; // how long samples that move the plot by under a pixel wait at most
 const SERIES_MAX_POINTS = 3000; // per trace: a 30-minute window at 10 Hz is drawn every 6th sample
 let frameRequested = false;
@@ -139,7 +143,8 @@ function frame() {
     plotted = true;
   }
   if (dirtySeries) {
-    // At most four redraws a second: five traces of up to 18,000 samples are not redrawn per frame.
+    // At most two redraws a second for new samples: five traces of up to 18,000 samples are not
+    // redrawn per frame.
     // Never in the frame that updated the track plot: the two together took two to four frames.
     const now = performance.now();
     if (plotted) {
@@ -153,7 +158,10 @@ function frame() {
       const change = seriesChange();
       const since = now - lastSeriesMs;
       if (change === 'none') dirtySeries = false;
-      else if (since >= SERIES_MIN_MS && (change === 'pixel' || since >= SERIES_MAX_MS)) {
+      else if (
+        change === 'frame' ||
+        (since >= SERIES_MIN_MS && (change === 'pixel' || since >= SERIES_MAX_MS))
+      ) {
         dirtySeries = false;
         lastSeriesMs = now;
         renderSeries();
@@ -408,15 +416,16 @@ function seriesSpanS() {
   return Number(document.getElementById('ts-window').value) || 120;
 }
 
-/** What drawing the time series now would change: 'none' (nothing), 'pixel' (the window, the
- *  marks or the samples, by a pixel at least) or 'subpixel' (newer samples that move the plot by
- *  less than a pixel: a 30-minute window moves by a pixel in about 1.6 s, not at every sample). */
+/** What drawing the time series now would change: 'none' (nothing), 'frame' (the window or the
+ *  marks), 'pixel' (the samples, by a pixel at least) or 'subpixel' (newer samples that move the
+ *  plot by less than a pixel: a 30-minute window moves by a pixel in about 1.6 s, not at every
+ *  sample). */
 function seriesChange() {
   const buf = state.series;
   const frame = `${seriesSpanS()}|${state.turnMarks.length}|${state.turnMarksMission}`;
-  if (!buf.length) return seriesShown.key === 'empty' ? 'none' : 'pixel';
+  if (!buf.length) return seriesShown.key === 'empty' ? 'none' : 'frame';
   if (`${buf.version}|${frame}` === seriesShown.key) return 'none';
-  if (frame !== seriesShown.frame) return 'pixel';
+  if (frame !== seriesShown.frame) return 'frame';
   const moved = buf.lastT() - seriesShown.to;
   return moved < 0 || moved >= seriesShown.pixelS ? 'pixel' : 'subpixel';
 }
