@@ -15,6 +15,7 @@
 #include "app/map_tiles.hpp"
 #include "store/sqlite.hpp"
 #include "support/temp_db.hpp"
+#include "support/temp_dir.hpp"
 
 namespace {
 
@@ -25,30 +26,7 @@ using avk::app::open_map_tiles;
 const std::string kPng = std::string("\x89PNG\r\n\x1a\n", 8) + "png-body";
 const std::string kJpeg = std::string("\xff\xd8\xff\xe0", 4) + "jpeg-body";
 
-// A fresh directory under the temp directory, removed afterwards.
-class TempDir {
- public:
-  explicit TempDir(const std::string& stem) {
-    static std::atomic<int> counter{0};
-    path_ = fs::temp_directory_path() /
-            (stem + "_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::remove_all(path_);
-    fs::create_directories(path_);
-  }
-  ~TempDir() {
-    std::error_code ec;
-    fs::remove_all(path_, ec);
-  }
-  const fs::path& path() const { return path_; }
-  void write(const std::string& relative, const std::string& bytes) const {
-    const fs::path p = path_ / relative;
-    fs::create_directories(p.parent_path());
-    std::ofstream(p, std::ios::binary) << bytes;
-  }
-
- private:
-  fs::path path_;
-};
+using avk::testing::TempDir;
 
 // Web Mercator, as the page and every slippy map compute it.
 double lon_of(double x, int z) {

@@ -1,0 +1,95 @@
+#include "architecture/layer_check.hpp"
+
+#include <algorithm>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <stdexcept>
+
+namespace avk::testing {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// "a/b" prefixes "a/b" and "a/b/c.hpp", not "a/bc.hpp".
+bool under(const std::string& path, const std::string& prefix) {
+  if (path == prefix) return true;
+  return path.size() > prefix.size() && path.compare(0, prefix.size(), prefix) == 0 &&
+         path[prefix.size()] == '/';
+}
+
+const LayerRule* rule_of(const std::string& file, const std::vector<LayerRule>& rules) {
+  const LayerRule* best = nullptr;
+  for (const auto& r : rules)
+    if (under(file, r.folder) && (!best || r.folder.size() > best->folder.size())) best = &r;
+  return best;
+}
+
+}  // namespace
+
+std::string LayerViolation::text() const {
+  return file + ":" + std::to_string(line) + ": includes \"" + included + "\", which " + folder +
+         "/ may not use (tests/architecture/layer_rules.txt)";
+}
+
+std::vector<LayerRule> parse_layer_rules(std::istream& in) {
+  std::vector<LayerRule> rules;
+  std::string line;
+  for (int n = 1; std::getline(in, line); ++n) {
+    if (const auto hash = line.find('#'); hash != std::string::npos) line.erase(hash);
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    const auto colon = line.find(':');
+    std::istringstream folder_text(line.substr(0, colon));
+    LayerRule r;
+    folder_text >> r.folder;
+    std::string extra;
+    if (colon == std::string::npos || r.folder.empty() || (folder_text >> extra))
+      throw std::invalid_argument("layer rules, line " + std::to_string(n) +
+                                  ": expected 'folder: allowed...'");
+    std::istringstream allowed(line.substr(colon + 1));
+    for (std::string a; allowed >> a;)
+      r.allowed.push_back(a);
+    rules.push_back(std::move(r));
+  }
+  return rules;
+}
+
+std::vector<LayerViolation> check_layers(const fs::path& root,
+                                         const std::vector<LayerRule>& rules) {
+  // A quoted include: the project's own headers.
+  static const std::regex kInclude("^\\s*#\\s*include\\s*\"([^\"]+)\"");
+  std::vector<LayerViolation> out;
+  std::vector<fs::path> files;
+  for (const auto& r : rules) {
+    const fs::path dir = root / r.folder;
+    if (!fs::is_directory(dir)) continue;
+    for (const auto& e : fs::recursive_directory_iterator(dir)) {
+      const auto ext = e.path().extension();
+      if (e.is_regular_file() && (ext == ".cpp" || ext == ".hpp")) files.push_back(e.path());
+    }
+  }
+  std::sort(files.begin(), files.end());
+  files.erase(std::unique(files.begin(), files.end()), files.end());
+  for (const auto& path : files) {
+    const std::string file = fs::relative(path, root).generic_string();
+    const LayerRule* rule = rule_of(file, rules);
+    if (!rule) continue;
+    std::ifstream in(path);
+    std::string line;
+    for (int n = 1; std::getline(in, line); ++n) {
+      std::smatch m;
+      if (!std::regex_search(line, m, kInclude)) continue;
+      const std::string included = m[1];
+      // Only the project's own folders are layers; other quoted includes are the file's siblings.
+      if (!rule_of(included, rules) && included.find('/') == std::string::npos) continue;
+      const bool own = under(included, rule->folder);
+      const bool allowed = own || std::any_of(rule->allowed.begin(), rule->allowed.end(),
+                                              [&](const auto& a) { return under(included, a); });
+      if (!allowed) out.push_back({file, n, included, rule->folder});
+    }
+  }
+  return out;
+}
+
+}  // namespace avk::testing
