@@ -25,6 +25,7 @@
 #include "support/sim_station.hpp"
 #include "support/spawn_avk.hpp"
 #include "support/temp_db.hpp"
+#include "support/ws_client.hpp"
 
 namespace {
 
@@ -61,7 +62,7 @@ TEST(ServeE2E, MissionOverRestFollowedOverTheStreamAndEveryTurnIsServed) {
   const unsigned short port = server.port();
 
   WsClient ws(port);
-  const json hello = json::parse(*ws.read(std::chrono::seconds(5)));
+  const json hello = json::parse(*ws.read_text(std::chrono::seconds(5)));
   EXPECT_EQ(hello["type"], "hello");
   EXPECT_EQ(hello["session_id"], hub.session_id());
   ws.send(R"({"subscribe":["turn","mission","nav"]})");
@@ -79,7 +80,7 @@ TEST(ServeE2E, MissionOverRestFollowedOverTheStreamAndEveryTurnIsServed) {
   std::set<double> sides_seen;
   const auto deadline = Clock::now() + std::chrono::seconds(90);
   while (state != "done" && Clock::now() < deadline) {
-    const auto text = ws.read(std::chrono::seconds(10));
+    const auto text = ws.read_text(std::chrono::seconds(10));
     ASSERT_TRUE(text.has_value()) << "the stream went quiet";
     const json m = json::parse(*text);
     if (!m.contains("topic")) continue;  // the subscription acknowledgement
