@@ -55,6 +55,7 @@
 #include "sim/sim_config.hpp"
 #include "store/store.hpp"
 #include "support/temp_db.hpp"
+#include "support/ws_client.hpp"
 
 namespace {
 
@@ -306,17 +307,10 @@ class Client : public std::enable_shared_from_this<Client> {
 // and the server's writes to it stay pending. Every operation has a deadline.
 class StalledClient {
  public:
-  explicit StalledClient(unsigned short port) : ws_(ioc_) {
-    auto& socket = ws_.next_layer();
-    socket.open(tcp::v4());
-    socket.set_option(net::socket_base::receive_buffer_size(4096));
-    socket.connect(loopback(port));
-    check(run([&](auto h) {
-            ws_.async_handshake("127.0.0.1:" + std::to_string(port), "/api/v1/stream", h);
-          }),
-          "handshake");
-    const std::string subscribe = R"({"subscribe":["nav","turn"]})";
-    check(run([&](auto h) { ws_.async_write(net::buffer(subscribe), h); }), "subscribe");
+  // A 4 KiB receive window: a client that stops reading stalls the server's writes soon.
+  explicit StalledClient(unsigned short port) : ws_(port, "", 4096) {
+    check(ws_.handshake_error(), "handshake");
+    ws_.send(R"({"subscribe":["nav","turn"]})");
   }
 
   struct Drain {
@@ -334,19 +328,17 @@ class StalledClient {
   Drain drain(std::uint64_t live_seq, std::chrono::milliseconds limit) {
     Drain d;
     const auto deadline = Clock::now() + limit;
-    beast::flat_buffer buffer;
     while (Clock::now() < deadline) {
-      buffer.consume(buffer.size());
       const auto left =
           std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
-      const auto ec = run([&](auto h) { ws_.async_read(buffer, h); }, std::max(left, 1ms));
-      if (ec) {
-        d.end = ec;
-        if (ec == websocket::error::closed) d.close = ws_.reason();
+      const auto text = ws_.read_text(std::max(left, 1ms));
+      if (!text) {
+        d.end = ws_.error();
+        if (d.end == websocket::error::closed) d.close = ws_.close_reason();
         break;
       }
       ++d.messages;
-      const json m = json::parse(beast::buffers_to_string(buffer.data()), nullptr, false);
+      const json m = json::parse(*text, nullptr, false);
       if (m.is_discarded() || !m.contains("topic")) continue;
       if (m["topic"] == "turn") ++d.turn_messages;
       if (m["topic"] == "nav") {
@@ -368,28 +360,7 @@ class StalledClient {
     if (ec) throw std::runtime_error(std::string("stalled client: ") + what + ": " + ec.message());
   }
 
-  template <class Start>
-  beast::error_code run(Start start, std::chrono::milliseconds limit = 5000ms) {
-    bool done = false;
-    beast::error_code result;
-    start([&](beast::error_code ec, auto&&...) {
-      done = true;
-      result = ec;
-    });
-    ioc_.restart();
-    ioc_.run_for(limit);
-    if (!done) {
-      beast::error_code ignored;
-      ws_.next_layer().close(ignored);
-      ioc_.restart();
-      ioc_.run();
-      return beast::error::timeout;
-    }
-    return result;
-  }
-
-  net::io_context ioc_;
-  websocket::stream<tcp::socket> ws_;
+  avk::testing::WsClient ws_;
 };
 
 double percentile_ms(const std::vector<std::int64_t>& sorted, double q) {
