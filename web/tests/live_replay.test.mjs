@@ -131,14 +131,16 @@ test('the report names the turn under way, and a page opened mid-turn draws it w
   assert.equal(drawn.legend, true, 'the close-up has a legend');
   for (const name of ['turn so far', 'instantaneous prediction', 'goal heading']) assert.ok(drawn.names.includes(name), `close-up legend lacks ${name}: ${drawn.names}`);
 
-  // The time series: the stored history was read, and the turn's start is marked.
+  // The time series: the stored history was read, and the turn's start is marked. The mark can be
+  // drawn before the history has arrived (a new mark redraws at once), so the wait is for both.
   const series = await until(
-    'the time series with the turn marked',
+    'the time series with the stored history and the turn marked',
     () =>
       page.evaluate((t0) => {
         const s = window.avkTest.series();
         const el = document.getElementById('live-series');
         const shapes = el._fullLayout?.shapes ?? [];
+        if (s.length <= 10) return null;
         if (!s.marks.some((m) => Math.abs(m.t - t0) < 1e-6) || !shapes.some((sh) => Math.abs(sh.x0 - t0) < 1e-6)) return null;
         return { s, traces: el.data.map((t) => t.name) };
       }, rt.t_s),
