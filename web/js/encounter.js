@@ -142,8 +142,19 @@ function methodToAsk() {
   return { method: m, note: '' };
 }
 
+// One evaluation in flight at a time: a question asked meanwhile (a contact dragged on) is asked
+// when it returns, the newest only. Each evaluation is one or two expensive requests, and a busy
+// station answering slowly must not collect the page's stale questions until its per-address
+// limit refuses the current one.
+let inFlight = false;
+let askAgain = false;
+
 async function evaluate() {
   if (!visible) return;
+  if (inFlight) {
+    askAgain = true;
+    return;
+  }
   const status = $('enc-status');
   if (!state.vehicleId) {
     setStatus(status, 'No vehicle.');
@@ -158,18 +169,25 @@ async function evaluate() {
   const mine = ++seq;
   const { method, note } = methodToAsk();
   const path = `/vehicles/${encodeURIComponent(state.vehicleId)}/maneuvers/evaluate`;
+  inFlight = true;
   try {
     const [main, inst] = await Promise.all([
       postJson(path, body(method)),
       method === 'instantaneous' ? null : postJson(path, body('instantaneous')),
     ]);
-    if (mine !== seq) return; // a newer question is on its way
+    if (mine !== seq || askAgain) return; // a newer question is on its way
     result = { main, inst: inst ?? main, method, note };
     setStatus(status, note || `${main.candidates.length} candidates, ${main.contacts.length} contact${main.contacts.length === 1 ? '' : 's'}.`);
   } catch (e) {
-    if (mine !== seq) return;
+    if (mine !== seq || askAgain) return;
     result = { main: null, inst: null, method, note };
     setStatus(status, e.message, 'error');
+  } finally {
+    inFlight = false;
+    if (askAgain) {
+      askAgain = false;
+      evaluate();
+    }
   }
   renderChoice();
   render();
