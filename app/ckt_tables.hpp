@@ -33,8 +33,8 @@ struct VehicleTable {
   std::shared_ptr<const kinematics::Ckt> table;
   // The fine table predictions look up; none when the table holds no turn.
   std::shared_ptr<const kinematics::MaterializedCkt> fine;
-  // Issue 17 part 2: the measured cells of the vehicle's speed-change turns, and the speed
-  // response averaged from them; empty for an imported table.
+  // The measured cells of the vehicle's speed-change turns, and the speed response averaged
+  // from them; empty for an imported table.
   std::shared_ptr<const kinematics::SpeedChangeTable> speed_changes;
   std::optional<kinematics::SpeedResponse> measured_speed_response;
 };

@@ -43,8 +43,8 @@ struct Comparison {
   std::vector<kinematics::PredictiveCell> predictive;
   // The table judged on the test missions' turns (empty without test missions).
   std::vector<kinematics::TestCell> test_cells;
-  // Issue 17 part 2: the turns with a speed change among the scored missions' turns, each
-  // predictor on turns it was not built from (kinematics/speed_change_comparison.hpp).
+  // The turns with a speed change among the scored missions' turns, each predictor on turns it
+  // was not built from (kinematics/speed_change_comparison.hpp).
   std::vector<kinematics::SpeedChangeCellScores> speed_change;
   double corridor_share = kinematics::kDefaultCorridorShare;
 };

@@ -1,7 +1,7 @@
 #pragma once
-// The current a mission flew in, estimated from its own navigation (issue 17, part 3: the first
-// piece): the steady legs before each turn, where the ConditionSet held course and speed, give the
-// velocity over ground on many headings (kinematics/current_estimate.hpp).
+// The current a mission flew in, estimated from its own navigation: the steady legs before each
+// turn, where the ConditionSet held course and speed, give the velocity over ground on many
+// headings (kinematics/current_estimate.hpp).
 
 #include <array>
 #include <cstdint>

@@ -1,6 +1,6 @@
 #pragma once
-// Does taking the current into account improve predictions? (issue 17, part 3, acceptance.) A
-// table learned in the missions of one current predicts the turns of missions flown in another:
+// Does taking the current into account improve predictions? A table learned in the missions of
+// one current predicts the turns of missions flown in another:
 //   uncompensated: the table built from the turns over ground, as navigated, predicts over ground;
 //   compensated:   the table built from the turns in the water frame (their mission's current
 //                  removed) predicts through the water, and the drift of the test mission's own

@@ -1,5 +1,5 @@
 #pragma once
-// A running mission's current, kept up to date as the mission runs (issue 17, part 3): the steady
+// A running mission's current, kept up to date as the mission runs: the steady
 // leg before each turn's command joins the evidence and the current is estimated again
 // (kinematics/current_estimate.hpp); the estimate is stored with the water-frame form of the
 // mission's ok turns so far (when it is significant, app/current.hpp) and handed to whoever shows

@@ -1,5 +1,5 @@
 #pragma once
-// The encounter test bench (issue 16): the thesis' question "does assuming instantaneous turns
+// The encounter test bench: the thesis' question "does assuming instantaneous turns
 // lead to poor guidance decisions?" answered in the simulator. For each scenario and method the
 // maneuver is chosen at t = 0 (evaluate_maneuvers), then flown closed-loop with the same plant,
 // controller and disturbances as a mission while the contacts move, and the actual CPA measured.

@@ -1,5 +1,5 @@
 #pragma once
-// Harvesting turns from a stored mission's navigation (issue 17 part 4): every step of the
+// Harvesting turns from a stored mission's navigation: every step of the
 // desired heading judged by the rules of a measured turn (mission/turn_harvester.hpp); the
 // accepted ones stored with the mission as source=harvested with their quality, the run
 // recorded with its counts. docs/harvest.md.

@@ -60,8 +60,8 @@ struct PredictQuery {
   // avk: the vehicle's table over initial yaw rate (yaw_rate_table.hpp); model: the model started
   // turning at that rate.
   std::optional<double> initial_yaw_rate_dps;
-  // Issue 17 part 2: the speed commanded with the new heading (u1); speed_mps is the speed held
-  // before the turn (u0). Empty (or equal to speed_mps): a constant-speed turn.
+  // The speed commanded with the new heading (u1); speed_mps is the speed held before the turn
+  // (u0). Empty (or equal to speed_mps): a constant-speed turn.
   std::optional<double> speed_after_mps;
   // A stored mission, or one stored turn, the answer must not have learnt from: a past turn is
   // shown as it would have been predicted without it (Replay: its mission; Live: the turn just

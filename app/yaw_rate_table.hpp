@@ -1,5 +1,5 @@
 #pragma once
-// A vehicle's CKT over (speed, heading change, initial yaw rate) (kinematics/ckt3.hpp, issue 17):
+// A vehicle's CKT over (speed, heading change, initial yaw rate) (kinematics/ckt3.hpp):
 // built from its stored turns, the cells no turn reached filled by its black-box yaw model
 // started at the slice's yaw rate, with the coverage and, where a cell has both measured turns
 // and a model turn, how far the model's path lies from the measured ones.

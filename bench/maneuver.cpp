@@ -1,4 +1,4 @@
-// Maneuver evaluation target (issue 16): 73 candidate heading changes x 10 contacts with the AVK
+// Maneuver evaluation target: 73 candidate heading changes x 10 contacts with the AVK
 // prediction and its corridor in under 1 ms (target 0.2 ms). Measured twice: the pure
 // computation over a materialised table, and the use case guidance calls (app::evaluate_maneuvers:
 // the vehicle's cached table from its stored turns, validation, the same computation).

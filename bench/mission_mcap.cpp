@@ -1,6 +1,6 @@
 // Exporting the Figure 4-1 mission (flown once on the simulated usim) as an MCAP recording: every
 // navigation sample on four channels, each turn with its predictions and its stored record, every
-// event; with zstd chunks and without. Issue 18 asks for the time and the file size.
+// event; with zstd chunks and without. Measures the time and the file size.
 
 #include <benchmark/benchmark.h>
 

@@ -221,8 +221,8 @@ Polyline blended_trajectory(const std::vector<WeightedProfile>& sources, double 
 
 // The fine table guidance uses (default 0.1 m/s x 1 deg), computed once so that a lookup is an
 // index computation. Between its rows and columns a query blends the neighbouring fine cells the
-// way Ckt::query blends table cells, so an answer does not jump to the nearer row (issue 15:
-// 0.75 m/s answered by the 0.8 m/s row moved a turn's error from 0.65 to 0.95 m).
+// way Ckt::query blends table cells, so an answer does not jump to the nearer row (answering
+// 0.75 m/s from the 0.8 m/s row moved a turn's error from 0.65 to 0.95 m).
 struct FineGridSpec {
   double speed_step_mps = 0.1;
   double dheading_step_deg = 1.0;

@@ -1,5 +1,5 @@
 #pragma once
-// The CKT over (speed, heading change, initial yaw rate) (thesis §6.2, issue 17): one 2-D table
+// The CKT over (speed, heading change, initial yaw rate) (thesis §6.2): one 2-D table
 // (Ckt) per initial-yaw-rate grid value, all on the same speed x heading-change grid. The initial
 // yaw rate is the normalised one: + into the turn (towards its side), - against it. Between two
 // slices a query blends the slices' answers as Ckt::query blends heading changes: heading

@@ -1,5 +1,5 @@
 #pragma once
-// A uniform current from steady legs (thesis §6.3; issue 17, part 3: the first piece).
+// A uniform current from steady legs (thesis §6.3).
 //
 // A vehicle with only GNSS and a compass sees its velocity over ground. On a steady leg (held
 // course and speed, as the ConditionSet establishes before every turn) that velocity is the

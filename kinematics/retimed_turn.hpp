@@ -1,5 +1,6 @@
 #pragma once
-// A constant-speed turn re-timed by a speed change (issue 17 part 2, prediction (b)).
+// A constant-speed turn re-timed by a speed change: how a speed-change turn is predicted where
+// no measured cell of its pair exists (speed_change_table.hpp).
 //
 // The constant-speed turn (a CKT answer at u0) says where the vehicle heads at each time: its
 // timing (turn_timing.hpp) gives the time at each length along the trajectory, so each segment's

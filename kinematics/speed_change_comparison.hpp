@@ -1,5 +1,5 @@
 #pragma once
-// The comparison of predictions for turns with a speed change (issue 17 part 2), scored like the
+// The comparison of predictions for turns with a speed change, scored like the
 // constant-speed ones (predictive_comparison.hpp): every predictor on turns it was not built
 // from, by mean distance at equal arc length (path_metric.hpp).
 //
@@ -12,7 +12,7 @@
 // - retimed_model: the same re-timed by the yaw model's speed model (with a model);
 // - model: the yaw model flown with its speed model and the command stepping to u1;
 // - constant_speed: the constant-speed CKT turn at u0 as it is, the speed change ignored (what
-//   the table answered before issue 17), for scale;
+//   the table answered before it knew speed changes), for scale;
 // - instantaneous: the ray along the goal heading.
 // The constant-speed CKT holds none of these turns (Ckt::build leaves them out). The observed
 // turn is stationed by its recorded speed (s = integral of speed dt), not by u0 x t as a

@@ -1,5 +1,5 @@
 #pragma once
-// Measured cells of turns with a speed change (issue 17 part 2, prediction (a)): for each
+// Measured cells of turns with a speed change: for each
 // collected pair (u0 -> u1), a CKT over the heading changes flown with it, built by Ckt::build
 // from those turns alone (the same mean turn, fit, corridor and timing as a constant-speed cell).
 // It answers only at a collected pair: anything else is the re-timed prediction's

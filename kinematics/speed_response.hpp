@@ -1,5 +1,5 @@
 #pragma once
-// How a vehicle's speed moves after its commanded speed steps from u0 to u1 (issue 17 part 2):
+// How a vehicle's speed moves after its commanded speed steps from u0 to u1:
 // the fraction of the change done, phi(t), 0 at the command and 1 once settled, so one response
 // serves any pair of speeds: u(t) = u0 + phi(t) (u1 - u0).
 //

@@ -56,9 +56,8 @@ struct TurnMeta {
   // Raw turn: + clockwise. Normalised turn: reflected with the turn, + into the turn (towards
   // its side), - against it. Empty for turns recorded before it was measured (read as 0).
   std::optional<double> initial_yaw_rate_dps;
-  // Issue 17 part 2: u1, the speed commanded with the new heading when it differs from
-  // commanded_speed_mps (u0, the speed the ConditionSet established before the turn). Empty for
-  // a constant-speed turn.
+  // u1, the speed commanded with the new heading when it differs from commanded_speed_mps (u0,
+  // the speed the ConditionSet established before the turn). Empty for a constant-speed turn.
   std::optional<double> speed_after_mps;
   friend bool operator==(const TurnMeta&, const TurnMeta&) = default;
 };

@@ -37,8 +37,8 @@ enum Key : std::size_t {
   k_warnings,
   k_n_samples,
   k_samples,
-  // Optional keys (issue 17): written only when the turn has the value, so records of turns
-  // without them read as they always did.
+  // Optional keys: written only when the turn has the value, so records of turns without them
+  // read as they always did.
   k_initial_yaw_rate_dps,
   k_speed_after_mps,
   k_key_count,

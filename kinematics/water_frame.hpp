@@ -1,5 +1,5 @@
 #pragma once
-// Turns and predictions in a current (thesis §6.3; issue 17, part 3).
+// Turns and predictions in a current (thesis §6.3).
 //
 // The CKT describes how the hull turns through the water. In a uniform current c everything the
 // vehicle does through the water is carried along at c, so an observed turn over ground is its

@@ -94,7 +94,7 @@ std::vector<PredictedStep> predict(const YawModel& m, const YawHistory& history,
 // With use_speed_model (and a model that has one) the speed follows the speed model towards
 // speed_mps instead of staying constant. A nonzero initial_yaw_rate_dps (+ into the turn, -
 // against it) starts the model turning at that rate (turning_history) instead of on a steady
-// course. speed_after_mps (issue 17 part 2): the turn starts at speed_mps and the speed model
+// course. speed_after_mps: the turn starts at speed_mps and the speed model
 // follows the commanded speed stepping to this with the new heading (it needs use_speed_model;
 // without it the speed stays at speed_mps).
 Polyline predict_normalized_turn(const YawModel& m, double speed_mps, double dheading_deg,

@@ -40,7 +40,7 @@ inline constexpr double kMinDheadingSpacingDeg = 0.5;
 inline constexpr double kMinYawRateSpacingDps = 0.5;
 inline constexpr double kMaxInitialYawRateDps = 60.0;
 
-// Issue 17 part 2: a turn that changes speed as it changes heading. The ConditionSet establishes
+// A turn that changes speed as it changes heading. The ConditionSet establishes
 // from_mps (u0) on a steady course; the turn command sends the new heading with to_mps (u1).
 inline constexpr std::size_t kMaxMissionSpeedChanges = 20;
 struct SpeedChange {
@@ -59,7 +59,7 @@ struct TurnArray {
   // A turn aborted by containment or a link loss is re-queued; after this many attempts it is
   // given up (and reported) so that a region too small for a turn cannot loop forever.
   int max_attempts = 10;
-  // Turns that start while the vehicle is already turning (issue 17, thesis §6.2): signed target
+  // Turns that start while the vehicle is already turning (thesis §6.2): signed target
   // yaw rates at the moment the turn is commanded, + into the coming turn, - against it, 0 the
   // ordinary steady start. Empty: only steady starts.
   std::vector<double> initial_yaw_rates_dps;
@@ -97,7 +97,7 @@ inline constexpr double kConditioningTurnRoomM = 10.0;
 
 // ConstantHeading's completion (thesis §4.4.3), relative to the commanded change: a turn is
 // complete within max(floor, min(threshold, fraction x |goal|)) of its goal heading. A fixed 5 deg
-// recorded a 10 deg turn as complete after about 5 deg, slow and drifting (issue 15 §5); the
+// recorded a 10 deg turn as complete after about 5 deg, slow and drifting; the
 // fraction records a small turn to its end, the threshold still spares a large one the slow
 // final approach, and the floor keeps a small turn above the heading noise.
 // mission::completion_threshold_deg (turn_monitor.hpp) computes it for every user.

@@ -473,7 +473,7 @@ void MissionRunner::start_turn(const vehicle::NavSample& s) {
   turn_start_s_ = s.t_s;
   turn_condition_set_time_s_ = cs_time;
   desired_heading_deg_ = turn_->goal_heading_deg();
-  // A speed-change turn sends the new heading with the new speed (issue 17 part 2).
+  // A speed-change turn sends the new heading with the new speed.
   desired_speed_mps_ = task.speed_after_mps.value_or(task.speed_mps);
   if (auto* c = cell_of(task)) c->running = true;
   set_mode(HelmMode::turning, s.t_s);

@@ -1,5 +1,5 @@
 #pragma once
-// Turns harvested from an ordinary navigation log (issue 17 part 4): every step of the desired
+// Turns harvested from an ordinary navigation log: every step of the desired
 // heading is judged by the rules of a measured turn — the ConditionSet held before it (steady
 // yaw rate and speed over the window, the desired heading held), the goal constant until
 // completion (the mission's completion rule), not an instantaneous turn (turn_anomaly). The

@@ -151,7 +151,7 @@ CREATE INDEX ckt_snapshots_by_vehicle ON ckt_snapshots (vehicle_id, id);
 ALTER TABLE turns ADD COLUMN start_heading_error_deg REAL;
 ALTER TABLE turns ADD COLUMN start_yaw_rate_dps REAL;
 )sql",
-    // Turns harvested from ordinary navigation logs (issue 17 part 4): each turn's source and
+    // Turns harvested from ordinary navigation logs: each turn's source and
     // quality, and a record of every harvest run with its counts. Older turns are collection.
     R"sql(
 ALTER TABLE turns ADD COLUMN source TEXT NOT NULL DEFAULT 'collection'
@@ -168,7 +168,7 @@ CREATE TABLE harvests (
 );
 CREATE INDEX harvests_by_mission ON harvests (mission_id, id);
 )sql",
-    // Issue 17 part 2: the speed commanded with the new heading when a turn changes speed (u1;
+    // The speed commanded with the new heading when a turn changes speed (u1;
     // commanded_speed_mps stays u0). NULL for a constant-speed turn and every older turn.
     R"sql(
 ALTER TABLE turns ADD COLUMN speed_after_mps REAL;
@@ -195,7 +195,7 @@ CREATE TABLE mission_currents (
 ALTER TABLE turns ADD COLUMN water_samples BLOB;
 ALTER TABLE turns ADD COLUMN water_meta_json TEXT;
 )sql",
-    // Issue 19: the wall-clock moments a mission started and ended, so a mission of an earlier
+    // The wall-clock moments a mission started and ended, so a mission of an earlier
     // server session (whose station clock no longer maps to wall time) still shows when it ran.
     // NULL for every mission stored before.
     R"sql(

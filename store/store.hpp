@@ -78,7 +78,7 @@ struct TurnRow {
   std::optional<double> start_yaw_rate_dps;
   kinematics::TurnSource source = kinematics::TurnSource::collection;
   std::optional<double> quality;          // harvested turns
-  std::optional<double> speed_after_mps;  // u1 of a speed-change turn (issue 17 part 2)
+  std::optional<double> speed_after_mps;  // u1 of a speed-change turn
 };
 
 // How steady the vehicle was when its turn was commanded, as the ConditionSet saw it.

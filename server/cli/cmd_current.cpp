@@ -1,4 +1,4 @@
-// avk current estimate|show: the current a mission flew in, from its steady legs (issue 17 §3).
+// avk current estimate|show: the current a mission flew in, from its steady legs.
 #include <iomanip>
 #include <nlohmann/json.hpp>
 #include <ostream>

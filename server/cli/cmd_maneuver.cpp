@@ -1,4 +1,4 @@
-// avk maneuver evaluate|ongoing|fly: the maneuver evaluation guidance asks for (issue 16), from
+// avk maneuver evaluate|ongoing|fly: the maneuver evaluation guidance asks for, from
 // the command line. `evaluate` and `fly` write their options as the body of POST
 // .../maneuvers/evaluate and .../maneuvers/simulate and read it with the same reader, so the two
 // front ends take the same questions and answer with the same document (--format json). `fly`

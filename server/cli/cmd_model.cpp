@@ -204,7 +204,7 @@ void print_test_cells(const app::Comparison& c, bool path, Io& io) {
   }
 }
 
-// Turns with a speed change (issue 17 part 2), each predictor on turns it was not built from.
+// Turns with a speed change, each predictor on turns it was not built from.
 void print_speed_change(const app::Comparison& c, Io& io) {
   using M = kin::SpeedChangeMethod;
   io.out << "\nturns with a speed change, held out, mean distance at equal arc length, m\n"

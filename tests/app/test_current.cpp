@@ -43,7 +43,7 @@ TEST_P(MissionCurrentTest, OneFigure41MissionFindsTheCurrentWithinTheAcceptance)
       "from %zu legs (speed through water / commanded %.3f)\n",
       c.speed_mps, c.toward_deg, e.speed_mps(), e.speed_sd_mps(), e.toward_deg(), e.toward_sd_deg(),
       r->legs_used, e.speed_scale);
-  // Issue 17: within 0.05 m/s and 15 deg of the truth after one Figure 4-1 mission.
+  // The required accuracy: within 0.05 m/s and 15 deg of the truth after one Figure 4-1 mission.
   EXPECT_NEAR(e.speed_mps(), c.speed_mps, 0.05);
   EXPECT_LT(std::abs(kinematics::angle180_deg(e.toward_deg() - c.toward_deg)), 15.0)
       << e.toward_deg();
@@ -139,8 +139,8 @@ TEST(MissionCurrent, TheRecorderStoresTheEstimateAndTheWaterFrameAsTheMissionRun
     EXPECT_FALSE(t.meta().removed_current);
 }
 
-// Issue 17's acceptance: a table collected in 0.2 m/s from the north predicts turns flown in
-// 0.2 m/s from the east with less path error when the current is compensated. The issue asks for
+// The acceptance test: a table collected in 0.2 m/s from the north predicts turns flown in
+// 0.2 m/s from the east with less path error when the current is compensated. The target was
 // 50 % less; measured here (GNSS 0.3 m, compass 1°) it is about 30-40 %, because most of what is
 // left is not the current: a table of the same current (another mission from the east) predicts
 // the same turns little better once compensated. The test holds what was measured: a clear

@@ -1,4 +1,4 @@
-// Harvesting turns from simulated missions (issue 17 part 4): the Figure 4-1 collection mission
+// Harvesting turns from simulated missions: the Figure 4-1 collection mission
 // on the calibrated M200 (its harvested turns are its collected turns, sample for sample, when
 // the collected ones are not skipped) and a persistent-excitation mission (thesis §3.4.2), whose
 // heading steps every 3-10 s mostly come while the vehicle is still swinging.

@@ -1,4 +1,4 @@
-// Turns that start while the vehicle is already turning (issue 17, thesis §6.2), on the
+// Turns that start while the vehicle is already turning (thesis §6.2), on the
 // calibrated M200 in the simulator: collected with a target initial yaw rate, stored with the
 // measured one, tabled over (speed, heading change, initial yaw rate), the empty slices filled by
 // the vehicle's yaw model, and predicted.

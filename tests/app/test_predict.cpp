@@ -186,7 +186,7 @@ TEST_F(Predict, BadQuestionsNameTheirParameter) {
   EXPECT_EQ(field_of(query("alpha", 1.0, 0.0)), "dheading");
   EXPECT_EQ(field_of(query("alpha", 1.0, 181.0)), "dheading");
   EXPECT_EQ(field_of(query("alpha", 3.5, 40.0)), "speed");  // beyond the table's speeds
-  // Issue 19: a heading change out of range and a speed beyond the table's: both named, the
+  // A heading change out of range and a speed beyond the table's: both named, the
   // speed with the table's range.
   const auto both = app::predict(ctx_, query("alpha", 3.5, 181.0));
   ASSERT_FALSE(both);

@@ -1,4 +1,4 @@
-// Issue 17 part 2 on the simulated M200: turns with a commanded speed change (u0 -> u1),
+// On the simulated M200: turns with a commanded speed change (u0 -> u1),
 // collected by a mission and compared with the vehicle's known speed response.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Issue 17 part 2: predict with a speed change (u0 -> u1), answered by the measured cells of the
+// Predict with a speed change (u0 -> u1), answered by the measured cells of the
 // pair where it was collected, else by the constant-speed turn re-timed by the measured speed
 // response; and the comparison scoring these turns held out.
 #include <gtest/gtest.h>

@@ -87,7 +87,7 @@ TEST_F(StationVehicle, AMissionStartsPausesResumesAndAborts) {
             app::ErrorCode::conflict);
 }
 
-// A page opened mid-turn reads the turn from the report (issue 19): while the helm is TURNING the
+// A page opened mid-turn reads the turn from the report: while the helm is TURNING the
 // live report names the turn as commanded; paused, it has none.
 TEST_F(StationVehicle, TheLiveReportCarriesTheTurnUnderWay) {
   const auto id = app::start_mission(ctx_, "sim-usim", avk::testing::kSmallMission);

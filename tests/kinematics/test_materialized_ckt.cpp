@@ -1,4 +1,4 @@
-// The fine table between its rows and columns (issue 15 §5): it must answer what the table itself
+// The fine table between its rows and columns: it must answer what the table itself
 // answers there (Ckt::query), not the nearest fine cell.
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-// Issue 17 part 2: the pieces that predict a turn with a speed change (u0 -> u1), against
+// The pieces that predict a turn with a speed change (u0 -> u1), against
 // analytic ground truth.
 #include <gtest/gtest.h>
 

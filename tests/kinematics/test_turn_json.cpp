@@ -298,7 +298,7 @@ TEST(TurnJsonMutation, MutatedDocumentsParseOrThrowParseErrorOnly) {
   EXPECT_GT(outcome.rejected, 10000);
 }
 
-// Issue 17 part 4: a harvested turn carries its source and quality; a document without them
+// A harvested turn carries its source and quality; a document without them
 // (every document written before) is a collection turn without quality.
 TEST(TurnJson, SourceAndQualityAreOptionalKeys) {
   EXPECT_EQ(example_json().count("source"), 0u);

@@ -71,7 +71,7 @@ void expect_parse_error(const std::string& line, const std::string& field, std::
 
 // ---- tests ----
 
-// Issue 17: the initial yaw rate and the speed after travel in the record when a turn has them,
+// The initial yaw rate and the speed after travel in the record when a turn has them,
 // and a record without them (every older one) reads as it always did.
 TEST(TurnText, OptionalYawRateAndSpeedAfterRoundTrip) {
   TurnSequence t = example_turn();

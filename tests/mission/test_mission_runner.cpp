@@ -342,7 +342,7 @@ TEST(MissionRunner, TwoTurnMissionGoesThroughTheModes) {
   EXPECT_EQ(turn_no, 2u);
 }
 
-// A page opened mid-turn draws the turn from this (issue 19): set exactly while TURNING, the
+// A page opened mid-turn draws the turn from this: set exactly while TURNING, the
 // commanded turn with its signed heading change and the sample it was commanded at.
 TEST(MissionRunner, RunningTurnIsTheCommandedTurnWhileTurning) {
   Sim r(turns_config({1.0}, {40, 90}, DirectionPolicy::alternate, square_region(200, 20, {0, -20})),
@@ -866,7 +866,7 @@ TEST(MissionRunner, ConditionsNeverSetTimeOutAndTheTaskIsGivenUp) {
   EXPECT_EQ(path[path.size() - 2], HelmMode::returning);
 }
 
-// ---- Turns that start while turning (issue 17) ------------------------------------------------
+// ---- Turns that start while turning -----------------------------------------------------------
 
 TEST(TurnPlan, InitialYawRatesAreAnAxisBetweenHeadingChangeAndRepeats) {
   MissionConfig c = turns_config({1.0}, {30, 90}, DirectionPolicy::right, square_region(100, 10));

@@ -161,7 +161,8 @@ TEST(CompletionThreshold, IsAFractionOfTheCommandedChangeBetweenTheFloorAndTheTh
   EXPECT_DOUBLE_EQ(completion_threshold_deg(rule(0.5), 10.0), 0.5);
 }
 
-// Issue 15 §5: with a fixed 5 deg a 10 deg turn was complete after about 5 deg.
+// A fixed 5 deg threshold ended a 10 deg turn after about 5 deg: the threshold is relative to
+// the commanded change, so a small turn is complete within a degree of its goal.
 TEST(TurnMonitor, ASmallTurnIsNotCompleteHalfWayButWithinADegree) {
   TurnMonitor t(nav(0, 100), 1.0, 10.0, CompletionRule{});  // goal 110
   EXPECT_DOUBLE_EQ(t.threshold_deg(), 1.0);

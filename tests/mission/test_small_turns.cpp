@@ -1,4 +1,4 @@
-// Issue 15 §5 end to end: a mission of 10 deg turns on the simulated usim records each turn to
+// Small turns end to end: a mission of 10 deg turns on the simulated usim records each turn to
 // its end now that completion is relative to the commanded change, where a fixed 5 deg threshold
 // recorded about half of it.
 #include <gtest/gtest.h>

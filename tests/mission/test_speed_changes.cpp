@@ -1,4 +1,4 @@
-// Issue 17 part 2: turn-array entries with a commanded speed change (u0 -> u1).
+// Turn-array entries with a commanded speed change (u0 -> u1).
 #include <gtest/gtest.h>
 
 #include <algorithm>

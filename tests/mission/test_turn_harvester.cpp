@@ -1,4 +1,4 @@
-// Harvesting turns from a navigation log with guidance (issue 17 part 4): synthetic logs with
+// Harvesting turns from a navigation log with guidance: synthetic logs with
 // known arcs, each way a step is refused counted under its reason, collected turns skipped.
 #include "mission/turn_harvester.hpp"
 

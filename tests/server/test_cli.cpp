@@ -213,7 +213,7 @@ TEST_F(CliFiles, OutOfRangeSpeedIsRefused) {
   const Result r =
       run({"ckt", "query", "--ckt", path("ckt.json"), "--speed", "2", "--dheading", "10"});
   EXPECT_EQ(r.rc, 1);
-  // Named with the table's range (issue 19: every parameter out of range, with its range).
+  // Named with the table's range: every parameter out of range is reported with its range.
   EXPECT_NE(r.err.find("speed: 2.0 m/s is outside the table's speed range [1.0, 1.0] m/s"),
             std::string::npos)
       << r.err;

@@ -135,7 +135,7 @@ TEST_F(MissionCli, Figure41OnUsimCompletesEveryTurnAndStoresEverything) {
   EXPECT_NE(list.out.find("done"), std::string::npos);
   EXPECT_NE(list.out.find("thesis-fig4-1"), std::string::npos);
 
-  // Issue 19: turns are numbered one way (k/N) and the database id is called an id; each turn
+  // Turns are numbered one way (k/N) and the database id is called an id; each turn
   // shows its side; a cell of one turn shows its value without a "± 0.00" spread.
   EXPECT_EQ(r.out.find(", turn "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find(", id "), std::string::npos) << r.out;

@@ -110,7 +110,7 @@ TEST(Router, AHandlersRequestErrorIsAProblem) {
   EXPECT_EQ(p["title"], "Bad Request");
 }
 
-// Content negotiation (issue 19): ?format= wins; q weights count, q=0 excludes; a type is
+// Content negotiation: ?format= wins; q weights count, q=0 excludes; a type is
 // weighed by the most specific range covering it; a tie goes to the more specific range, then
 // to the first offered; nothing acceptable is a 406 naming what is offered.
 TEST(Router, ChoosesARepresentationByFormatThenAccept) {

@@ -251,7 +251,7 @@ class RouteTable : public ::testing::Test {
   std::unique_ptr<Station> station_;
 };
 
-// Issue 19: the API doc and the server disagreed. Every route the server registers is in a
+// The API doc and the server must agree: every route the server registers is in a
 // route table of docs/api.md, and every route the doc lists is registered (method and pattern).
 TEST_F(RouteTable, EveryRouteIsDocumentedAndEveryDocumentedRouteExists) {
   std::set<std::pair<std::string, std::string>> served, documented;
@@ -285,7 +285,7 @@ TEST_F(RouteTable, TheDocSaysCsvWhereCsvIsServed) {
                                    << (offers_csv(r) ? " serves CSV; its row does not say so"
                                                      : " serves no CSV; its row says CSV");
   }
-  // The four that answered JSON to a CSV request before issue 19.
+  // The four that once answered JSON to a CSV request.
   for (const std::string p : {"/api/v1/vehicles", "/api/v1/missions/{id}/events",
                               "/api/v1/missions/{id}/nav", "/api/v1/vehicles/{vid}/models"}) {
     bool found = false;
@@ -334,7 +334,7 @@ TEST_F(RouteTable, EveryRouteRefusesAnUnacceptableAcceptAlike) {
   }
 }
 
-// Issue 19: an unauthenticated DELETE from afar got 401. A method the path does not take is a
+// An unauthenticated DELETE from afar once got 401. A method the path does not take is a
 // 405 with Allow from any address, token or not, before the body is read; a path that is no
 // route stays a 401 from afar without the token.
 // Which requests the transport answers on an I/O thread, runs on any request worker, or limits
@@ -395,7 +395,7 @@ TEST_F(StationApi, HealthAndVehicle) {
   EXPECT_EQ(h["status"], "ok");
   EXPECT_EQ(h["session_id"], hub_.session_id());
   EXPECT_EQ(h["vehicle_id"], "sim-usim");
-  // The station clock beside the wall clock (the dashboard's wall-clock times, issue 19).
+  // The station clock beside the wall clock (for the dashboard's wall-clock times).
   const auto now_ms = std::chrono::duration_cast<std::chrono::milliseconds>(
                           std::chrono::system_clock::now().time_since_epoch())
                           .count();
@@ -626,7 +626,7 @@ TEST_F(StationApi, CktCellsExportImportPredictModelsCompare) {
       call(get("/api/v1/vehicles/sim-usim/ckt/cells", {{"speed", "0.7"}, {"dheading", "100"}}))
           .status,
       404);
-  // Issue 19: a signed heading change, as predict takes it: the port cell is the cell of |Δψ|
+  // A signed heading change, as predict takes it: the port cell is the cell of |Δψ|
   // mirrored, and says so.
   EXPECT_EQ(cell["side"], "starboard");
   const ApiResponse port_res =
@@ -686,7 +686,7 @@ TEST_F(StationApi, CktCellsExportImportPredictModelsCompare) {
   EXPECT_EQ(body(too_fast)["parameter"], "speed");
   EXPECT_NE(body(too_fast)["detail"].get<std::string>().find("[0.5, 1.0] m/s"), std::string::npos)
       << too_fast.body;
-  // Issue 19: both off, both named, each with its range; the heading change alone, alone.
+  // Both off, both named, each with its range; the heading change alone, alone.
   const ApiResponse both =
       call(get("/api/v1/vehicles/sim-usim/predict", {{"speed", "3"}, {"dheading", "200"}}));
   ASSERT_EQ(both.status, 400) << both.body;
@@ -704,7 +704,7 @@ TEST_F(StationApi, CktCellsExportImportPredictModelsCompare) {
   EXPECT_FALSE(body(turn_only).contains("errors")) << turn_only.body;
   const ApiResponse missing_both = call(get("/api/v1/vehicles/sim-usim/predict"));
   EXPECT_EQ(body(missing_both)["errors"].size(), 2u) << missing_both.body;
-  // Issue 19: the doc's predict example is the real answer's shape.
+  // The doc's predict example is the real answer's shape.
   const std::string example =
       "GET /api/v1/vehicles/sim-usim/predict?speed=1&dheading=-75&x=10&y=20&heading=45";
   const ApiResponse real = call(example_request(example));
@@ -715,7 +715,7 @@ TEST_F(StationApi, CktCellsExportImportPredictModelsCompare) {
                 .status,
             404);  // no model yet
   const json missions = body(call(get("/api/v1/missions")));
-  // When each ran, in wall-clock time, kept with it (issue 19: for missions of earlier sessions).
+  // When each ran, in wall-clock time, kept with it (for missions of earlier sessions).
   for (const auto& m : missions) {
     ASSERT_TRUE(m["started_utc"].is_string()) << m.dump();
     ASSERT_TRUE(m["ended_utc"].is_string()) << m.dump();
@@ -772,7 +772,7 @@ TEST_F(StationApi, CktCellsExportImportPredictModelsCompare) {
                {{"speed", "1"}, {"dheading", "70"}, {"without_mission", "x"}}));
   EXPECT_EQ(bad_id.status, 400);
   EXPECT_EQ(body(bad_id)["parameter"], "without_mission") << bad_id.body;
-  // Issue 17 part 2: the speed after is a parameter named in its error; equal to the speed it is
+  // The speed after is a parameter named in its error; equal to the speed it is
   // a constant-speed turn; the model flies a change with its speed model (or says it has none).
   EXPECT_EQ(call(get("/api/v1/vehicles/sim-usim/predict",
                      {{"speed", "1"}, {"dheading", "70"}, {"speed_after", "-1"}}))
@@ -829,7 +829,7 @@ TEST_F(StationApi, NavPagesConcatenateToTheStoredTrack) {
          {"y_m", "heading_deg", "speed_mps", "desired_heading_deg", "desired_speed_mps"})
       EXPECT_TRUE(rows[i].contains(k)) << k;
   }
-  // Issue 19: the track as CSV, paged by X-Next-After, is the same rows as the JSON pages.
+  // The track as CSV, paged by X-Next-After, is the same rows as the JSON pages.
   const auto split = [](const std::string& text, char sep) {
     std::vector<std::string> out;
     std::string cell;
@@ -960,7 +960,7 @@ TEST_F(StationApi, ModelHeadingsOneStepAndSimulated) {
   EXPECT_EQ(none.status, 422) << none.body;
 }
 
-// Issue 17 part 4: harvesting is a write (the token always), and its counts come back; the CKT
+// Harvesting is a write (the token always), and its counts come back; the CKT
 // endpoints take include=collection|harvested.
 TEST_F(StationApi, HarvestIsAControlEndpointAndTheTableSaysWhatItIncludes) {
   const std::int64_t id = start_mission();

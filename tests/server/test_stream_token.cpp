@@ -173,7 +173,7 @@ std::optional<std::string> non_loopback_ipv4() {
 }
 
 // The whole way, as a client on another machine meets it: the real station behind the real
-// transport, reached from an address that is not loopback. Issue 19: the doc says every
+// transport, reached from an address that is not loopback. The doc says every
 // request from afar needs the token; the stream must take it (header or ?token=) and refuse
 // without it.
 TEST(StationStreamRule, FromAnotherAddressTheStreamTakesTheTokenAndRefusesWithoutIt) {

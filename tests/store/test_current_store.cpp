@@ -1,4 +1,4 @@
-// The current a mission flew in and its turns in the water frame (issue 17 §3): stored in one
+// The current a mission flew in and its turns in the water frame: stored in one
 // transaction, read back as the table reads them, and a database of the schema before them
 // upgrades with everything it held.
 #include <gtest/gtest.h>

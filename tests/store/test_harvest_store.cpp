@@ -1,4 +1,4 @@
-// Harvested turns in the store (issue 17 part 4): their source and quality, the CKT's turns
+// Harvested turns in the store: their source and quality, the CKT's turns
 // with or without them, harvest runs, and a database of the previous schema upgrading.
 #include <gtest/gtest.h>
 

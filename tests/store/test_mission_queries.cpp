@@ -615,7 +615,7 @@ TEST(MissionQueries, NewestOkTurnIdPerVehicle) {
   EXPECT_EQ(s.newest_ok_turn_id("other"), 0);
 }
 
-// Issue 17 part 2: a database at schema 7 (before speed_after_mps) upgrades, keeps its turns (with
+// A database at schema 7 (before speed_after_mps) upgrades, keeps its turns (with
 // no speed after), and then stores and reads back a speed-change turn and its cell.
 TEST(MissionQueries, MigratesSchemaEightDatabaseToSpeedAfter) {
   TempDb db;
@@ -657,7 +657,7 @@ TEST(MissionQueries, MigratesSchemaEightDatabaseToSpeedAfter) {
   EXPECT_TRUE(s.integrity_check());
 }
 
-// Issue 19: when a mission ran, in wall-clock time, kept with it: its first start (a resume keeps
+// When a mission ran, in wall-clock time, kept with it: its first start (a resume keeps
 // it) and its end, so a mission of an earlier server session still says when it ran.
 TEST(MissionQueries, AMissionKeepsTheWallClockMomentsItStartedAndEnded) {
   Store s(":memory:");

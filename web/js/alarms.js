@@ -1,4 +1,4 @@
-// Alarms (issue 19): what an operator must not miss while looking elsewhere. Containment entered,
+// Alarms: what an operator must not miss while looking elsewhere. Containment entered,
 // the link stale or lost while a mission runs, the M200's frontseat failsafe, a mission halted.
 // Each one shows in a bar under the header (every view) that stays until acknowledged, beeps until
 // then unless muted, and is listed in the event log.

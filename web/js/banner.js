@@ -1,6 +1,6 @@
-// The mission state banner at the top of Live (issue 19, defect 7) and the wall-clock readout
-// (defect 5): what the mission is doing, for how long, and how far it got, readable from across a
-// room and above the fold on a tablet. Updated at most once a frame, and only what changed.
+// The mission state banner at the top of Live and the wall-clock readout: what the mission is
+// doing, for how long, and how far it got, readable from across a room and above the fold on a
+// tablet. Updated at most once a frame, and only what changed.
 
 import { state, on } from './state.js';
 import { timeLabel, fmtElapsed, missionElapsed, missionWallElapsed, clockMapping } from './clock.js';

@@ -1,4 +1,4 @@
-// Time as an operator reads it (issue 19, defect 5). Every time the station sends (nav, events,
+// Time as an operator reads it. Every time the station sends (nav, events,
 // turns, a mission's start) is in the station clock, which runs ×realtime_factor on the simulator;
 // a new server session continues it from the last stored time. GET /health names the station clock
 // beside the wall clock at one moment, so this session's times map to wall-clock time:

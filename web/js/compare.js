@@ -46,7 +46,7 @@ export const METRICS = {
   },
 };
 
-/** What each metric scores against, said in the view (issue 19): an in-sample number on a
+/** What each metric scores against, said in the view: an in-sample number on a
  *  repeatable vehicle is near zero for AVK by construction, not because AVK is right. */
 export const BASIS = {
   held_out:

@@ -1,4 +1,4 @@
-// The running turn against its prediction (thesis §6.2, issue 16): about once a second while a
+// The running turn against its prediction (thesis §6.2): about once a second while a
 // turn runs, GET /vehicles/{vid}/maneuvers/ongoing with the turn's start pose, heading change and
 // speed, the time since it started and the vehicle's position now. The answer (where the vehicle
 // should be, how far it is from there, whether it is inside the corridor) goes to

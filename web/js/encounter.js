@@ -1,4 +1,4 @@
-// The Encounter view (issue 16): the own vehicle at the origin and contacts with their velocity
+// The Encounter view: the own vehicle at the origin and contacts with their velocity
 // vectors, placed and dragged with the mouse; every candidate heading change as a trajectory
 // coloured by its predicted CPA (POST /vehicles/{vid}/maneuvers/evaluate), the chosen one with
 // its AVK corridor against the instantaneous ray of the same heading change, both methods'

@@ -1,4 +1,4 @@
-// The event log as an operator reads it (issue 19, defect 6): a phrase for each kind instead of
+// The event log as an operator reads it: a phrase for each kind instead of
 // its internal name, one entry per happening, an entry per finished turn with its advance and
 // transfer, and a severity shown by a coloured border, a word and an icon, not a character alone.
 //

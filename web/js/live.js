@@ -487,7 +487,7 @@ function graticuleTrace() {
   return gratCache.trace;
 }
 
-/** "0.20 ± 0.01 m/s toward 182 ± 3°": the station's estimate of the current (issue 17). */
+/** "0.20 ± 0.01 m/s toward 182 ± 3°": the station's estimate of the current. */
 export function currentText(c) {
   if (!c) return 'not estimated yet';
   const still = c.significant ? '' : ' (not told apart from still water)';
@@ -564,7 +564,7 @@ function renderTurnPlot(turn, { turnX, turnY, goalRay, band, preds, nav, faded }
     : `${turn.start.t}|ended|${turnX.length}|${Object.keys(turn.predictions).length}`;
   if (key === turnPlotKey) return;
   turnPlotKey = key;
-  // Its own legend (issue 19): the close-up is read on its own, often without the track plot.
+  // Its own legend: the close-up is read on its own, often without the track plot.
   // Only what is drawn is listed; names without the track plot's "(last turn)" suffix.
   const plain = (name) => name.replace(/ \(last turn\)$/, '');
   const traces = [
@@ -664,7 +664,7 @@ function renderTurnPanel() {
     }
   } else {
     // Between turns (conditioning, containment, the return leg) nothing is a turn: the helm's
-    // desired values are in the Vehicle readout, not presented here as one (issue 19, defect 10).
+    // desired values are in the Vehicle readout, not presented here as one.
     for (const id of ['turn-cmd-speed', 'turn-cmd-dpsi', 'turn-cmd-goal', 'turn-meas-speed', 'turn-meas-dpsi', 'turn-meas-heading']) text(id, '–');
     text('turn-deviation', '–');
     text(

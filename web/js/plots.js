@@ -19,7 +19,7 @@ export const C = {
 /** The vehicle as a long, narrow arrow whose tip is the vehicle's position, rotated by its heading
  *  (Plotly turns a marker clockwise from up, as headings turn from north, and the axes are
  *  equal). An equilateral triangle looks the same turned by 120 deg, so it could be read as
- *  pointing two other ways (issue 19). */
+ *  pointing two other ways. */
 export function vehicleMarker(nav, size) {
   return { symbol: 'arrow', size, angle: nav?.heading_deg ?? 0, color: C.yellow, line: { color: C.black, width: 2 } };
 }

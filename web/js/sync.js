@@ -164,7 +164,7 @@ function turnFromServer(missionId, rt) {
   };
 }
 
-/** The turn under way as the server has it (issue 19): a page opened or reloaded mid-turn, or one
+/** The turn under way as the server has it: a page opened or reloaded mid-turn, or one
  *  that missed the stream's `started`, draws it from the report. `current`: no turn message came
  *  on the stream while the report was asked for, so the report is the newer word; then a report
  *  without a running turn ends the one the page still shows as running (its `finished` was lost:
@@ -503,7 +503,7 @@ export function applyNav(d, live) {
   emit('nav', d);
 }
 
-/** The current the vehicle is in (issue 17): drawn as an arrow in Live; when it is told apart from
+/** The current the vehicle is in: drawn as an arrow in Live; when it is told apart from
  *  still water the turn's predictions are asked with its drift (current=live). */
 function applyCurrent(d) {
   if (state.vehicleId && d?.vehicle_id && d.vehicle_id !== state.vehicleId) return;

@@ -1,4 +1,4 @@
-// A new mission started while the page is open gets a track of its own (issue 19, defect 8): the
+// A new mission started while the page is open gets a track of its own: the
 // previous mission's track is kept aside, simplified, and drawn faded grey under the new one,
 // which starts empty in the track colour. Without this the new track continued the old one in
 // the same colour and could not be told apart from it.

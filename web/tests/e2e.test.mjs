@@ -186,7 +186,7 @@ test('a bad mission shows its validation errors next to the fields', { timeout: 
   await page.click('#m-start');
   const speedErr = page.locator('.field[data-pointer="/turn_array/speeds_mps"] .field-error');
   await speedErr.first().waitFor({ state: 'visible', timeout: slow(10000) });
-  // The field's label, not the JSON pointer (issue 19, defect 9); the pointer stays in data-field.
+  // The field's label, not the JSON pointer; the pointer stays in data-field.
   assert.match(await speedErr.first().textContent(), /^Speeds \(m\/s\) — item 1: must be in/);
   assert.equal(await speedErr.first().getAttribute('data-field'), '/turn_array/speeds_mps/0');
   const dpsiErr = page.locator('.field[data-pointer="/turn_array/dheadings_deg"] .field-error');
@@ -882,8 +882,8 @@ test('a 72,000-point track in Live stays bounded, is drawn simplified and takes 
   }
 });
 
-// Issue 19 defect 2: an equilateral triangle rotated by the heading was read as pointing
-// elsewhere. The vehicle is now an arrow: its tip, as the browser draws it, lies along the
+// An equilateral triangle rotated by the heading was read as pointing elsewhere, so the
+// vehicle is an arrow: its tip, as the browser draws it, lies along the
 // heading (screen x right = east, y down = south on the equal axes).
 test('the vehicle icon points along the heading at any heading', { timeout: slow(60000) }, async () => {
   phase = 'icon';
@@ -995,7 +995,7 @@ test("the event log's levels are the ones the hello names", { timeout: slow(6000
   }
 });
 
-// Issue 19 defect 4: Abort asks inline before it acts, and the cells the aborted mission never
+// Abort asks inline before it acts, and the cells the aborted mission never
 // tried count as "not run", not as aborted.
 test('Abort asks first, and an aborted mission counts the cells it never tried as not run', { timeout: slow(90000) }, async () => {
   phase = 'abort';

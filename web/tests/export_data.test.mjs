@@ -1,4 +1,4 @@
-// Data out (issue 19): a mission's track (CSV) and event log (CSV and JSON) downloaded from the
+// Data out: a mission's track (CSV) and event log (CSV and JSON) downloaded from the
 // Export view, each checked row by row against the REST JSON. Its own `avk serve --sim` and
 // Debian's Chromium through playwright-core, as in e2e.test.mjs. Run with
 // `node --test web/tests/export_data.test.mjs` (CTest: web_export_data).

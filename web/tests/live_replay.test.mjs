@@ -1,6 +1,6 @@
-// Issue 19, in the browser against a real `avk serve --sim` at real time (×1, so a turn lasts long
-// enough to open a page in the middle of it), with a datum:
-// - a page opened mid-turn draws the turn under way from the server's state (defect 1), with its
+// Live and Replay in the browser against a real `avk serve --sim` at real time (×1, so a turn
+// lasts long enough to open a page in the middle of it), with a datum:
+// - a page opened mid-turn draws the turn under way from the server's state, with its
 //   predictions, the close-up's legend, the time series with the turn's start marked, the
 //   latitude/longitude readout, the lat/lon grid and the scale bar;
 // - a page opened after the mission shows its last turn (not "No turn yet");

@@ -1,4 +1,4 @@
-// The Live plot's offline map background (issue 19, Geography): a tile folder written here around
+// The Live plot's offline map background: a tile folder written here around
 // a datum, `avk serve --sim --datum … --tiles DIR`, the Map switch turned on in the page. The
 // plot's layout images must be the tiles of the view at the zoom whose tiles are about 256 px on
 // screen, each placed where geo.js puts its corners in the local grid, and every tile the page

@@ -1,5 +1,6 @@
-// Browser tests of what an operator on the shore reads and does (issue 19, defects 5–10, alarms,
-// keyboard shortcuts, the dark theme): a real `avk serve --sim` at a low real-time factor (×10, so
+// Browser tests of what an operator on the shore reads and does (times, the banner, the event
+// log, field errors, a new mission's track, the turn table, alarms, keyboard shortcuts, the dark
+// theme): a real `avk serve --sim` at a low real-time factor (×10, so
 // a mission is seen running) and Debian's Chromium through playwright-core. Run with
 // `node --test web/tests/operator.test.mjs` (CTest: web_operator).
 //
@@ -88,7 +89,7 @@ test('the event log merges one happening into one entry, names kinds in words an
   const mixed = logEntries([{ t: 5, kind: 'returning', level: 'info', message: 'x' }, { t: 50, kind: 'halted', level: 'warning', message: 'left the region' }], [{ t: 30, kind: 'turn_finished', level: 'info', message: 'turn 1/4' }]);
   assert.deepEqual(mixed.map((e) => [e.kind, e.severity]), [['returning', 'info'], ['turn_finished', 'ok'], ['halted', 'error']]);
   // Containment entered again within the same second, a little further on: the same words with
-  // other numbers are one entry ×2 (defect 14); a second later it is news again.
+  // other numbers are one entry ×2, not two entries; a second later it is news again.
   const buffer = (t, x) => ({ t, kind: 'containment', level: 'warning', message: `entered the buffer zone at (${x}, 3.0) m: heading for the interior` });
   const near = logEntries([buffer(100.1, '120.0'), buffer(100.7, '120.4'), buffer(101.6, '121.3')], []);
   assert.deepEqual(near.map((e) => [e.count, e.message]), [[2, buffer(0, '120.0').message], [1, buffer(0, '121.3').message]], JSON.stringify(near));
@@ -98,7 +99,7 @@ test('the event log merges one happening into one entry, names kinds in words an
   assert.equal(other.length, 2);
 });
 
-test('a turn has one number in every view: the ok turns done of the plan (defect 14)', async () => {
+test('a turn has one number in every view: the ok turns done of the plan', async () => {
   const { storedTurnLabel, plannedTurns } = await import(pathToFileURL(path.join(webDir, 'js/turnlabel.js')).href);
   const rows = [{ status: 'ok' }, { status: 'aborted' }, { status: 'rejected' }, { status: 'ok' }, { status: 'ok' }];
   const planned = plannedTurns([{ planned: 2 }, { planned: 2 }, {}]);
@@ -159,7 +160,7 @@ test('the station clock maps to wall time by /health, and only for missions of t
 
 // ---------------------------------------------------------------- the page
 
-test('Live shows wall-clock time with UTC and the station clock on hover (defect 5)', { timeout: slow(60000) }, async () => {
+test('Live shows wall-clock time with UTC and the station clock on hover', { timeout: slow(60000) }, async () => {
   errors.phase = 'clock';
   const mapping = await until('the clock mapping from /health', () => hook('clock'), 15000);
   assert.equal(mapping.factor, Number(FACTOR));
@@ -176,7 +177,7 @@ test('Live shows wall-clock time with UTC and the station clock on hover (defect
   assert.match(await page.textContent('#live-t'), /^\d+\.\d$/, 'the station clock stays in the readout');
 });
 
-test('a bad mission names the field by its label, not a JSON pointer (defect 9)', { timeout: slow(60000) }, async () => {
+test('a bad mission names the field by its label, not a JSON pointer', { timeout: slow(60000) }, async () => {
   errors.phase = 'bad-mission';
   await showView(page, 'mission');
   await page.fill('#m-name', 'bad');
@@ -200,7 +201,7 @@ test('a bad mission names the field by its label, not a JSON pointer (defect 9)'
 let missionA = null;
 const N_TURNS = 8;
 
-test('a running mission: the state banner above the fold on a tablet, Start disabled and why (defects 7, 9)', { timeout: slow(90000) }, async () => {
+test('a running mission: the state banner above the fold on a tablet, Start disabled and why', { timeout: slow(90000) }, async () => {
   errors.phase = 'mission';
   await showView(page, 'mission');
   await page.fill('#m-name', 'operator-a');
@@ -256,7 +257,7 @@ test('a running mission: the state banner above the fold on a tablet, Start disa
   await shot('operator-running-tablet');
 });
 
-test('finished turns are listed with advance and transfer, times as local wall time (defects 5, 6)', { timeout: slow(120000) }, async () => {
+test('finished turns are listed with advance and transfer, times as local wall time', { timeout: slow(120000) }, async () => {
   errors.phase = 'mission';
   await showView(page, 'live');
   const li = await until('a finished turn in the event log', () =>
@@ -274,7 +275,7 @@ test('finished turns are listed with advance and transfer, times as local wall t
   assert.match(li.title, /UTC · station clock \d+\.\d s · mission T\+\d\d:\d\d/);
 });
 
-test('pause and abort are one entry each, with their severity in words (defect 6)', { timeout: slow(90000) }, async () => {
+test('pause and abort are one entry each, with their severity in words', { timeout: slow(90000) }, async () => {
   errors.phase = 'mission';
   await api(`/missions/${missionA}/pause`, { method: 'POST' });
   await until('the paused banner', () => page.evaluate(() => document.getElementById('mission-banner').dataset.state === 'paused'), 15000);
@@ -305,7 +306,7 @@ test('pause and abort are one entry each, with their severity in words (defect 6
   await until('Start enabled again', async () => !(await page.isDisabled('#m-start')), 15000);
 });
 
-test('Live and Replay give a turn of mission A the same number (defect 14)', { timeout: slow(90000) }, async () => {
+test('Live and Replay give a turn of mission A the same number', { timeout: slow(90000) }, async () => {
   errors.phase = 'mission';
   const a = await api(`/missions/${missionA}`);
   const okRows = a.turn_list.filter((r) => r.status === 'ok');
@@ -356,7 +357,7 @@ async function replayNumbers(a, live) {
 
 let missionB = null;
 
-test("a new mission draws its own track; the previous one's is faded grey (defect 8)", { timeout: slow(90000) }, async () => {
+test("a new mission draws its own track; the previous one's is faded grey", { timeout: slow(90000) }, async () => {
   errors.phase = 'mission';
   const before = await page.evaluate(() => window.avkTest.trackLength());
   assert.ok(before > 10, `mission ${missionA} left a track of ${before} points`);
@@ -381,7 +382,7 @@ test("a new mission draws its own track; the previous one's is faded grey (defec
   await shot('operator-new-mission');
 });
 
-test('between turns the turn table shows no commanded turn (defect 10)', { timeout: slow(90000) }, async () => {
+test('between turns the turn table shows no commanded turn', { timeout: slow(90000) }, async () => {
   errors.phase = 'mission';
   await showView(page, 'live');
   const seen = await until('a moment between turns with a desired heading', () =>
@@ -393,7 +394,7 @@ test('between turns the turn table shows no commanded turn (defect 10)', { timeo
   assert.deepEqual([seen.goal, seen.dpsi, seen.speed], ['–', '–', '–'], JSON.stringify(seen));
 });
 
-test('the Model view gives history in seconds; the CKT n colour bar has whole-number ticks (defect 10)', { timeout: slow(60000) }, async () => {
+test('the Model view gives history in seconds; the CKT n colour bar has whole-number ticks', { timeout: slow(60000) }, async () => {
   errors.phase = 'views';
   const text = await page.evaluate(async () => (await import('/js/model.js')).historyText({ history: 100, rate_hz: 10 }));
   assert.equal(text, '10.0 s (100 samples)');
@@ -415,7 +416,7 @@ test('the Model view gives history in seconds; the CKT n colour bar has whole-nu
   assert.ok(Number.isInteger(bar.dtick) && bar.dtick >= 1, JSON.stringify(bar));
 });
 
-test('the missions table stays inside its panel at 1280×800 and 768×1024, every time labelled with its clock (defect 9)', { timeout: slow(60000) }, async () => {
+test('the missions table stays inside its panel at 1280×800 and 768×1024, every time labelled with its clock', { timeout: slow(60000) }, async () => {
   errors.phase = 'layout';
   const clock = await import(pathToFileURL(path.join(webDir, 'js/clock.js')).href);
   for (const vp of [DESKTOP, TABLET]) {
@@ -567,7 +568,7 @@ test('the dark theme: toggled by button or t, remembered, the plots follow, the 
     }), 10000);
   assert.notEqual(dark.body, 'rgb(246, 247, 249)');
   assert.notEqual(dark.region, '#000000', 'what is black on white is light on dark');
-  // The scale bar's label reads on the dark plot (defect 14): its ink against its backing laid
+  // The scale bar's label must read on the dark plot: its ink against its backing laid
   // over the plot's paper, WCAG's contrast ratio (4.5:1 for small text).
   const bar = await until('the scale bar in dark colours', () =>
     page.evaluate(() => {
@@ -609,7 +610,7 @@ test('the dark theme: toggled by button or t, remembered, the plots follow, the 
   }
 });
 
-test('the link lost while a mission runs is an alarm; after a restart an older mission shows its stored start in wall-clock time (defects 5, alarms)', { timeout: slow(120000) }, async () => {
+test('the link lost while a mission runs is an alarm; after a restart an older mission shows its stored start in wall-clock time', { timeout: slow(120000) }, async () => {
   errors.phase = 'restart';
   await showView(page, 'live');
   await page.click('#mb-state');

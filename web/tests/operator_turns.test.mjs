@@ -61,7 +61,7 @@ before(async () => {
 after(() => tearDown({ browser, server, dir: tmp }));
 killServerOnExit(() => server);
 
-// ---------------------------------------------------------------- defect 14: the corridor band
+// ---------------------------------------------------------------- the corridor band
 
 /** What is wrong with a drawn band (a closed ring: the left boundary from the path's start, the
  *  right one back): edges that cross (a fold) and spikes, where a boundary turns back outwards
@@ -103,7 +103,7 @@ function bandFaults(xs, ys, path) {
   return { crossings, spikes };
 }
 
-test('the corridor of a 130–160° turn is drawn as a smooth band, without spikes or folds (defect 14)', { timeout: slow(90000) }, async () => {
+test('the corridor of a 130–160° turn is drawn as a smooth band, without spikes or folds', { timeout: slow(90000) }, async () => {
   errors.phase = 'band';
   const page = await openLive({ hooks: false });
   try {
@@ -147,9 +147,9 @@ test('the corridor of a 130–160° turn is drawn as a smooth band, without spik
   }
 });
 
-// ---------------------------------------------------------------- defect 12: the fitted view
+// ---------------------------------------------------------------- the fitted view
 
-test("Live fits the current mission and the vehicle; the previous mission's track is faded outside (defect 12)", { timeout: slow(90000) }, async () => {
+test("Live fits the current mission and the vehicle; the previous mission's track is faded outside", { timeout: slow(90000) }, async () => {
   errors.phase = 'fit';
   const page = await openLive();
   try {
@@ -184,9 +184,9 @@ test("Live fits the current mission and the vehicle; the previous mission's trac
   }
 });
 
-// ---------------------------------------------------------------- defect 13: the turn panel
+// ---------------------------------------------------------------- the turn panel
 
-test('the turn panel leaves "Turn running" when the server says the turn ended (defect 13)', { timeout: slow(90000) }, async () => {
+test('the turn panel leaves "Turn running" when the server says the turn ended', { timeout: slow(90000) }, async () => {
   errors.phase = 'panel';
   const page = await openLive();
   const status = () => page.textContent('#turn-status');
@@ -213,7 +213,7 @@ test('the turn panel leaves "Turn running" when the server says the turn ended (
   }
 });
 
-test("a small offset at a turn's start is inside the band at that time, a large one outside (defect 13)", { timeout: slow(90000) }, async () => {
+test("a small offset at a turn's start is inside the band at that time, a large one outside", { timeout: slow(90000) }, async () => {
   errors.phase = 'deviation';
   const answers = [];
   const page = await openLive();
@@ -254,7 +254,7 @@ test("a small offset at a turn's start is inside the band at that time, a large 
   }
 });
 
-test('a page opened mid-turn judges the turn by the table from its first question (defect 13)', { timeout: slow(300000) }, async () => {
+test('a page opened mid-turn judges the turn by the table from its first question', { timeout: slow(300000) }, async () => {
   errors.phase = 'mid-turn';
   const m = await api(`/vehicles/${vid}/missions`, { method: 'POST', body: { name: 'mid-turn', turn_array: { speeds_mps: [1.0], dheadings_deg: [90], repeats: 4 }, operating_region: REGION } });
   try {
