@@ -166,7 +166,7 @@ async function evaluate() {
     render();
     return;
   }
-  const mine = ++seq;
+  ++seq;
   const { method, note } = methodToAsk();
   const path = `/vehicles/${encodeURIComponent(state.vehicleId)}/maneuvers/evaluate`;
   inFlight = true;
@@ -175,11 +175,11 @@ async function evaluate() {
       postJson(path, body(method)),
       method === 'instantaneous' ? null : postJson(path, body('instantaneous')),
     ]);
-    if (mine !== seq || askAgain) return; // a newer question is on its way
+    if (askAgain) return; // a newer question is on its way
     result = { main, inst: inst ?? main, method, note };
     setStatus(status, note || `${main.candidates.length} candidates, ${main.contacts.length} contact${main.contacts.length === 1 ? '' : 's'}.`);
   } catch (e) {
-    if (mine !== seq || askAgain) return;
+    if (askAgain) return;
     result = { main: null, inst: null, method, note };
     setStatus(status, e.message, 'error');
   } finally {
