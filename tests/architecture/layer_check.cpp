@@ -33,6 +33,21 @@ std::string LayerViolation::text() const {
          "/ may not use (tests/architecture/layer_rules.txt)";
 }
 
+std::vector<fs::path> source_files(const fs::path& root, const std::vector<std::string>& folders,
+                                   const std::vector<std::string>& extensions) {
+  std::vector<fs::path> files;
+  for (const auto& folder : folders) {
+    if (!fs::is_directory(root / folder)) continue;
+    for (const auto& e : fs::recursive_directory_iterator(root / folder))
+      if (e.is_regular_file() &&
+          std::ranges::find(extensions, e.path().extension().string()) != extensions.end())
+        files.push_back(e.path());
+  }
+  std::sort(files.begin(), files.end());
+  files.erase(std::unique(files.begin(), files.end()), files.end());
+  return files;
+}
+
 std::vector<LayerRule> parse_layer_rules(std::istream& in) {
   std::vector<LayerRule> rules;
   std::string line;
@@ -60,18 +75,10 @@ std::vector<LayerViolation> check_layers(const fs::path& root,
   // A quoted include: the project's own headers.
   static const std::regex kInclude("^\\s*#\\s*include\\s*\"([^\"]+)\"");
   std::vector<LayerViolation> out;
-  std::vector<fs::path> files;
-  for (const auto& r : rules) {
-    const fs::path dir = root / r.folder;
-    if (!fs::is_directory(dir)) continue;
-    for (const auto& e : fs::recursive_directory_iterator(dir)) {
-      const auto ext = e.path().extension();
-      if (e.is_regular_file() && (ext == ".cpp" || ext == ".hpp")) files.push_back(e.path());
-    }
-  }
-  std::sort(files.begin(), files.end());
-  files.erase(std::unique(files.begin(), files.end()), files.end());
-  for (const auto& path : files) {
+  std::vector<std::string> folders;
+  for (const auto& r : rules)
+    folders.push_back(r.folder);
+  for (const auto& path : source_files(root, folders, {".cpp", ".hpp"})) {
     const std::string file = fs::relative(path, root).generic_string();
     const LayerRule* rule = rule_of(file, rules);
     if (!rule) continue;

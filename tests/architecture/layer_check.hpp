@@ -23,6 +23,12 @@ struct LayerViolation {
   std::string text() const;
 };
 
+// The regular files below root/folder for each folder (missing folders skipped) whose extension
+// is one of `extensions` ("" for none), sorted and without repeats.
+std::vector<std::filesystem::path> source_files(const std::filesystem::path& root,
+                                                const std::vector<std::string>& folders,
+                                                const std::vector<std::string>& extensions);
+
 // Parses the rules; throws std::invalid_argument naming the line of a malformed one.
 std::vector<LayerRule> parse_layer_rules(std::istream& in);
 

@@ -7,6 +7,8 @@
 #include <regex>
 #include <string>
 
+#include "architecture/layer_check.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -15,24 +17,20 @@ TEST(SourceComments, CiteNoIssueOrDefectNumbers) {
   const fs::path root(AVK_SOURCE_DIR);
   const std::regex cited(R"(\b([Ii]ssues?|[Dd]efects?) ?#?[0-9]+)");
   std::string found;
-  std::size_t files = 0;
-  for (const char* folder : {"kinematics", "vehicle", "mission", "store", "sim", "app", "server",
-                             "tests", "bench", "web/js", "web/tests", "web/bench", "scripts"}) {
-    if (!fs::is_directory(root / folder)) continue;
-    for (const auto& e : fs::recursive_directory_iterator(root / folder)) {
-      const auto ext = e.path().extension();
-      if (!e.is_regular_file() || !(ext == ".cpp" || ext == ".hpp" || ext == ".js" ||
-                                    ext == ".mjs" || ext == ".txt" || ext.empty()))
-        continue;
-      ++files;
-      std::ifstream in(e.path());
-      std::string line;
-      for (int n = 1; std::getline(in, line); ++n)
-        if (std::regex_search(line, cited))
-          found += fs::relative(e.path(), root).generic_string() + ":" + std::to_string(n) + ": " +
-                   line + "\n";
-    }
+  const auto paths = avk::testing::source_files(
+      root,
+      {"kinematics", "vehicle", "mission", "store", "sim", "app", "server", "tests", "bench",
+       "web/js", "web/tests", "web/bench", "scripts"},
+      {".cpp", ".hpp", ".js", ".mjs", ".txt", ""});
+  for (const auto& path : paths) {
+    std::ifstream in(path);
+    std::string line;
+    for (int n = 1; std::getline(in, line); ++n)
+      if (std::regex_search(line, cited))
+        found += fs::relative(path, root).generic_string() + ":" + std::to_string(n) + ": " + line +
+                 "\n";
   }
+  const std::size_t files = paths.size();
   EXPECT_GT(files, 100u);
   EXPECT_TRUE(found.empty()) << found;
 }
