@@ -322,6 +322,13 @@ Result<QueryCurrent> query_current(Context& ctx, const std::string& vehicle_id,
   return out;
 }
 
+Result<std::optional<store::StoredCurrent>> stored_mission_current(Context& ctx,
+                                                                   std::int64_t mission_id) {
+  store::Store& db = ctx.db();
+  if (!db.get_mission(mission_id)) return not_found("no mission " + std::to_string(mission_id));
+  return db.mission_current(mission_id);
+}
+
 Result<store::StoredCurrent> vehicle_current(Context& ctx, const std::string& vehicle_id) {
   if (auto c = ctx.db().latest_vehicle_current(vehicle_id)) return *c;
   return not_found("no current has been estimated for vehicle '" + vehicle_id + "'");

@@ -142,6 +142,10 @@ Result<QueryCurrent> query_current(Context& ctx, const std::string& vehicle_id,
                                    const std::optional<kinematics::WaterCurrent>& given, bool live,
                                    const std::string& field, bool none = false);
 
+// The mission's stored estimate (none without one); not_found for an unknown mission.
+Result<std::optional<store::StoredCurrent>> stored_mission_current(Context& ctx,
+                                                                   std::int64_t mission_id);
+
 // The station's estimate for a vehicle: the newest stored estimate of any of its missions (the
 // running one's is updated at every turn). not_found when it has none.
 Result<store::StoredCurrent> vehicle_current(Context& ctx, const std::string& vehicle_id);

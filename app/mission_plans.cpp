@@ -2,6 +2,7 @@
 
 #include <stdexcept>
 
+#include "app/context.hpp"
 #include "app/mission_liveness.hpp"
 #include "kinematics/angles.hpp"
 #include "mission/container.hpp"
@@ -19,10 +20,22 @@ kinematics::Pose start_pose(const mission::MissionConfig& c) {
   return {rp.x_m, rp.y_m, heading};
 }
 
-MissionPlan create_mission_plan(store::Store& db, const std::string& config_text,
-                                const vehicle::VehicleInfo& vehicle) {
+Error mission_config_error(const mission::MissionConfigError& e) {
+  Error out = invalid_argument("", "the mission is not valid");
+  for (const auto& f : e.errors())
+    out.fields.push_back({f.field, f.message});
+  return out;
+}
+
+Result<MissionPlan> create_mission_plan(Context& ctx, const std::string& config_text,
+                                        const vehicle::VehicleInfo& vehicle) {
+  store::Store& db = ctx.db();
   MissionPlan p;
-  p.config = mission::parse_mission_config(config_text, vehicle.max_speed_mps);
+  try {
+    p.config = mission::parse_mission_config(config_text, vehicle.max_speed_mps);
+  } catch (const mission::MissionConfigError& e) {
+    return mission_config_error(e);
+  }
   // Everything that can fail is done before the mission is stored: a start that throws must not
   // leave a row behind (the validation bounds the plan, so planning is cheap).
   p.tasks = mission::plan_turns(p.config);
@@ -32,21 +45,29 @@ MissionPlan create_mission_plan(store::Store& db, const std::string& config_text
   return p;
 }
 
-MissionPlan resume_mission_plan(store::Store& db, std::int64_t mission_id, double max_speed_mps) {
+Result<MissionPlan> resume_mission_plan(Context& ctx, std::int64_t mission_id,
+                                        double max_speed_mps) {
+  store::Store& db = ctx.db();
   const auto m = db.get_mission(mission_id);
-  if (!m) throw std::runtime_error("no mission " + std::to_string(mission_id) + " in the database");
+  if (!m) return not_found("no mission " + std::to_string(mission_id) + " in the database");
   const store::MissionStatus status = effective_status(*m);
   if (status == store::MissionStatus::done || status == store::MissionStatus::aborted) {
-    throw std::runtime_error("mission " + std::to_string(m->id) + " is " +
-                             store::to_string(status) + "; there is nothing to resume");
+    return conflict("mission " + std::to_string(m->id) + " is " + store::to_string(status) +
+                        "; there is nothing to resume",
+                    m->id);
   }
   if (status == store::MissionStatus::running) {
-    throw std::runtime_error("mission " + std::to_string(m->id) + " is running in process " +
-                             std::to_string(m->runner_pid.value_or(0)));
+    return conflict("mission " + std::to_string(m->id) + " is running in process " +
+                        std::to_string(m->runner_pid.value_or(0)),
+                    m->id);
   }
   MissionPlan p;
   p.mission_id = m->id;
-  p.config = mission::parse_mission_config(m->config_json, max_speed_mps);
+  try {
+    p.config = mission::parse_mission_config(m->config_json, max_speed_mps);
+  } catch (const mission::MissionConfigError& e) {
+    return mission_config_error(e);
+  }
   std::vector<mission::CellCount> done;
   for (const auto& c : db.mission_cell_stats(m->id)) {
     done.push_back({c.speed_mps, c.dheading_deg, static_cast<int>(c.n_ok), c.speed_after_mps});

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <set>
 
 #include "app/context.hpp"
 #include "app/mission_liveness.hpp"
@@ -15,13 +16,6 @@ namespace {
 
 // How long a control request waits for the helm to apply it: the report then shows its effect.
 constexpr std::chrono::milliseconds kCommandWait{2000};
-
-Error config_error(const mission::MissionConfigError& e) {
-  Error out = invalid_argument("", "the mission is not valid");
-  for (const auto& f : e.errors())
-    out.fields.push_back({f.field, f.message});
-  return out;
-}
 
 store::TurnCounts totals_of(const std::vector<store::CellStats>& stats) {
   store::TurnCounts t;
@@ -87,7 +81,7 @@ Result<mission::MissionConfig> validate_mission(const std::string& config_text,
   try {
     return mission::parse_mission_config(config_text, max_speed_mps);
   } catch (const mission::MissionConfigError& e) {
-    return config_error(e);
+    return mission_config_error(e);
   }
 }
 
@@ -200,14 +194,10 @@ Result<std::int64_t> start_mission(Context& ctx, const std::string& vehicle_id,
     return conflict("vehicle '" + vehicle_id + "' is not connected to this station");
   if (const auto busy = loop->attached_mission())
     return conflict("mission " + std::to_string(*busy) + " is running", *busy);
-  MissionPlan plan;
-  try {
-    plan = create_mission_plan(ctx.db(), config_text, loop->info());
-  } catch (const mission::MissionConfigError& e) {
-    return config_error(e);
-  }
-  const std::int64_t id = plan.mission_id;
-  if (!loop->attach(std::move(plan))) {
+  auto plan = create_mission_plan(ctx, config_text, loop->info());
+  if (!plan) return plan.error();
+  const std::int64_t id = plan->mission_id;
+  if (!loop->attach(std::move(*plan))) {
     ctx.db().set_mission_status(id, store::MissionStatus::aborted, "another mission started first",
                                 0.0);
     return conflict("another mission is running");
@@ -225,6 +215,31 @@ const char* to_string(MissionCommand c) {
       return "abort";
   }
   return "pause";
+}
+
+Result<std::string> vehicle_of_missions(Context& ctx,
+                                        const std::vector<std::int64_t>& mission_ids) {
+  store::Store& db = ctx.db();
+  for (const auto id : mission_ids)
+    if (!db.get_mission(id)) return not_found("no mission " + std::to_string(id));
+  std::set<std::string> vehicles;
+  for (const auto& m : db.list_missions()) {
+    if (mission_ids.empty() || std::ranges::find(mission_ids, m.id) != mission_ids.end())
+      vehicles.insert(m.vehicle_id);
+  }
+  if (vehicles.empty()) return not_found("the database holds no missions");
+  if (vehicles.size() > 1) {
+    std::string names;
+    for (const auto& v : vehicles)
+      names += (names.empty() ? "" : ", ") + v;
+    return invalid_argument("vehicle",
+                            "the missions are of several vehicles (" + names + "): choose one");
+  }
+  return *vehicles.begin();
+}
+
+double station_clock_start_s(Context& ctx) {
+  return ctx.db().station_clock_end_s() + 1.0;
 }
 
 Result<MissionReport> command_mission(Context& ctx, std::int64_t mission_id, MissionCommand c) {
@@ -247,13 +262,9 @@ Result<MissionReport> command_mission(Context& ctx, std::int64_t mission_id, Mis
     return conflict("vehicle '" + m->vehicle_id + "' is not connected to this station");
   if (const auto busy = loop->attached_mission())
     return conflict("mission " + std::to_string(*busy) + " is running", *busy);
-  MissionPlan plan;
-  try {
-    plan = resume_mission_plan(db, mission_id, loop->info().max_speed_mps);
-  } catch (const std::exception& e) {
-    return conflict(e.what());
-  }
-  if (!loop->attach(std::move(plan))) return conflict("another mission is running");
+  auto plan = resume_mission_plan(ctx, mission_id, loop->info().max_speed_mps);
+  if (!plan) return plan.error();
+  if (!loop->attach(std::move(*plan))) return conflict("another mission is running");
   loop->wait_for_tick(kCommandWait);
   return mission_report(ctx, mission_id);
 }

@@ -76,6 +76,12 @@ std::string status_text(const MissionReport& r);
 
 std::vector<MissionSummary> list_missions(Context& ctx,
                                           const std::optional<std::string>& vehicle_id);
+// The one vehicle the missions were run on (every stored mission when none are named):
+// not_found for an unknown mission or an empty database, invalid_argument (field "vehicle")
+// naming them when they are of several vehicles.
+Result<std::string> vehicle_of_missions(Context& ctx, const std::vector<std::int64_t>& mission_ids);
+// Where the station clock continues: after every time stored, so that times never repeat.
+double station_clock_start_s(Context& ctx);
 Result<MissionSummary> mission_summary(Context& ctx, std::int64_t mission_id);
 Result<MissionReport> mission_report(Context& ctx, std::int64_t mission_id);
 

@@ -7,8 +7,6 @@
 
 #include "app/mission_recorder.hpp"
 #include "sim/scheduler.hpp"
-#include "sim/sim_mission.hpp"
-#include "sim/sim_vehicle.hpp"
 #include "store/store.hpp"
 
 namespace avk::app {
@@ -23,25 +21,12 @@ sim::SchedulerOptions scheduler_options(const VehicleLoopOptions& o) {
 
 }  // namespace
 
-// Paces the loop's scheduler to the M200's clock, so helm ticks and navigation share one time.
-class ClockPacer final : public sim::Pacer {
- public:
-  explicit ClockPacer(const vehicle::ScaledClock& clock) : clock_(clock) {}
-  void wait_until(double t_s) override { clock_.sleep_until(t_s); }
-
- private:
-  const vehicle::ScaledClock& clock_;
-};
-
 struct VehicleLoop::Impl {
   VehicleLoopOptions options;
   std::string db_path;
   LiveFeed& feed;
   sim::Scheduler scheduler;
-  std::unique_ptr<sim::SimVehicle> sim_vehicle;
-  std::unique_ptr<vehicle::ScaledClock> clock;
-  std::unique_ptr<vehicle::M200> m200;
-  vehicle::Vehicle* vehicle_ptr = nullptr;
+  std::unique_ptr<VehicleSource> source;
   std::thread thread;
   std::atomic<bool> stop_requested{false};
   std::string stop_reason;
@@ -84,19 +69,11 @@ struct VehicleLoop::Impl {
         db_path(std::move(path)),
         feed(f),
         scheduler(scheduler_options(options)) {
-    if (options.m200) {
-      clock =
-          std::make_unique<vehicle::ScaledClock>(options.realtime_factor, options.start_clock_s);
-      m200 = std::make_unique<vehicle::M200>(*options.m200, *clock);
-      vehicle_ptr = m200.get();
-    } else {
-      sim_vehicle = std::make_unique<sim::SimVehicle>(
-          sim::vehicle_at_rest(options.setup, options.start), scheduler);
-      vehicle_ptr = sim_vehicle.get();
-    }
+    options.realtime = true;  // the station's vehicle lives on the wall clock
+    source = make_vehicle_source(options, scheduler);
   }
 
-  vehicle::Vehicle& vehicle() { return *vehicle_ptr; }
+  vehicle::Vehicle& vehicle() { return source->vehicle(); }
 
   void helm_tick(double now) {
     std::deque<std::function<void(double)>> todo;
@@ -187,7 +164,7 @@ struct VehicleLoop::Impl {
     s.info = vehicle().info();
     s.link = vehicle().link_state(now);
     s.nav = vehicle().last_nav();
-    if (m200) s.m200 = m200->status();
+    s.frontseat = source->frontseat_status();
     s.t_s = now;
     if (running) {
       s.helm_mode = running->runner->mode();
@@ -202,21 +179,11 @@ struct VehicleLoop::Impl {
 
   void run() {
     store = std::make_unique<store::Store>(db_path);
-    std::unique_ptr<sim::Pacer> pacer;
-    if (clock) {
-      pacer = std::make_unique<ClockPacer>(*clock);
-    } else {
-      pacer = std::make_unique<sim::RealtimePacer>(options.realtime_factor);
-    }
+    const std::unique_ptr<sim::Pacer> pacer = source->pacer();
     while (!stop_requested.load() || running) {
       if (!scheduler.run_until(scheduler.now_s() + 1.0, *pacer)) break;
     }
-    if (m200) {
-      // Stopped by our own command before the link closes, not by the frontseat's watchdog.
-      m200->all_stop(clock->now_s());
-      clock->sleep_until(clock->now_s() + 3.0 / options.m200->config.controller_hz);
-      m200->stop();
-    }
+    source->park();
     store.reset();
   }
 };

@@ -1,9 +1,9 @@
 #pragma once
-// The station's vehicle, always running (at rest under all stop when no mission runs): the
-// simulator paced to the wall clock x a factor, or an M200 over its frontseat link on a clock at
-// the same factor. Missions attach to it; the helm ticks the attached mission,
-// a 10 Hz telemetry tick tells the live feed where the vehicle is. Operator commands from other
-// threads are queued and applied at the next helm tick, on the loop's own thread.
+// The station's vehicle, always running (at rest under all stop when no mission runs): a vehicle
+// source of any kind (the simulator paced to the wall clock x a factor, or a real vehicle over
+// its link on a clock at the same factor). Missions attach to it; the helm ticks the attached
+// mission, a 10 Hz telemetry tick tells the live feed where the vehicle is. Operator commands from
+// other threads are queued and applied at the next helm tick, on the loop's own thread.
 
 #include <atomic>
 #include <cstdint>
@@ -19,20 +19,15 @@
 #include "app/live_feed.hpp"
 #include "app/mission_plans.hpp"
 #include "app/vehicle_snapshot.hpp"
+#include "app/vehicle_source.hpp"
 #include "mission/mission_runner.hpp"
-#include "sim/sim_config.hpp"
-#include "vehicle/m200.hpp"
 #include "vehicle/vehicle.hpp"
 
 namespace avk::app {
 
-struct VehicleLoopOptions {
-  sim::SimSetup setup;  // the simulated vehicle, and the helm rate for either kind
-  // Set: the station drives an M200 over its frontseat link instead of simulating a vehicle.
-  std::optional<vehicle::M200Options> m200;
-  double realtime_factor = 1.0;
-  double start_clock_s = 0.0;  // the station clock continues after everything stored
-  kinematics::Pose start{};
+// The vehicle (any kind with a source: the station clock continues after everything stored,
+// in start_clock_s), always paced in real time x realtime_factor, and the telemetry rate.
+struct VehicleLoopOptions : VehicleSourceOptions {
   double telemetry_hz = 10.0;
 };
 

@@ -23,7 +23,8 @@ struct VehicleSnapshot {
   std::optional<mission::HelmMode> helm_mode;
   std::optional<std::int64_t> mission_id;
   double t_s = 0.0;
-  std::optional<vehicle::M200Status> m200;  // link counters and battery of a real vehicle
+  // A real vehicle's frontseat: link counters and battery.
+  std::optional<vehicle::M200Status> frontseat;
 };
 
 struct MissionLive {

@@ -44,7 +44,7 @@ struct Overrides {
 bool g_print_events = false;  // --events: every mission event, for diagnosis
 
 void apply_overrides(avk::sim::SimSetup& s) {
-  if (s.vehicle.kind != "catamaran:m200" || !s.vehicle.catamaran) return;
+  if (s.vehicle.kind != avk::vehicle::VehicleKind::catamaran_m200 || !s.vehicle.catamaran) return;
   if (g_overrides.yaw_ki) s.vehicle.pid.yaw.ki = *g_overrides.yaw_ki;
   if (g_overrides.yaw_integral_limit)
     s.vehicle.pid.yaw.integral_limit = *g_overrides.yaw_integral_limit;

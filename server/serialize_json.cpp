@@ -113,7 +113,7 @@ json vehicle_json(const app::VehicleStatus& v) {
                           {"speed_mps", s.nav->speed_mps}}
                    : json();
   // A real vehicle's link health: what an operator checks before trusting the turns.
-  if (s.m200) j["frontseat"] = frontseat_json(*s.m200);
+  if (s.frontseat) j["frontseat"] = frontseat_json(*s.frontseat);
   return j;
 }
 
@@ -128,7 +128,7 @@ json nav_topic_json(const app::VehicleSnapshot& s) {
   }
   // A real vehicle's battery and link health ride along with its navigation, so an operator
   // sees a sagging pack or a noisy link live.
-  if (s.m200) j["frontseat"] = frontseat_json(*s.m200);
+  if (s.frontseat) j["frontseat"] = frontseat_json(*s.frontseat);
   return j;
 }
 

@@ -335,7 +335,10 @@ void Station::add_routes() {
     return answer(turns ? app::estimate_mission_current_from_turns(ctx, id)
                         : app::estimate_mission_current(ctx, id),
                   false, [&ctx, id](const app::MissionCurrent& c) {
-                    return json_response(mission_current_json(c, ctx.db().mission_current(id)));
+                    return answer(app::stored_mission_current(ctx, id), false,
+                                  [&c](const std::optional<store::StoredCurrent>& stored) {
+                                    return json_response(mission_current_json(c, stored));
+                                  });
                   });
   });
   post("/api/v1/missions/{id}/current", [&ctx](const ApiRequest&, const PathParams& p) {
@@ -573,14 +576,15 @@ void Station::add_routes() {
     // The station's simulated vehicle flies its own setup; anything else (a real
     // boat, another vehicle's id) the calibrated M200's defaults.
     const auto& v = options_.vehicle;
-    const bool own_setup = v && !v->m200 && v->setup.vehicle.id == vid;
+    const bool own_setup =
+        v && vehicle::is_simulated(app::kind_of(*v)) && v->setup.vehicle.id == vid;
     request->query.setup = own_setup ? v->setup : sim::default_sim_setup(kDefaultManeuverSimKind);
     return answer(
         app::simulate_maneuver(request->query), true, [&](const app::SimulatedManeuver& m) {
           json j = simulated_maneuver_json(m, request->own_position, request->standoff_m,
                                            request->path_step_s);
           j["vehicle_id"] = vid;
-          j["sim_vehicle"] = request->query.setup.vehicle.kind;
+          j["sim_vehicle"] = vehicle::to_string(request->query.setup.vehicle.kind);
           j["station_setup"] = own_setup;
           if (!own_setup)
             j["note"] =

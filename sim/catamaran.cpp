@@ -194,6 +194,21 @@ std::optional<CatamaranParams> CatamaranParams::by_name(std::string_view name) {
   return std::nullopt;
 }
 
+std::optional<CatamaranParams> CatamaranParams::for_kind(vehicle::VehicleKind kind) {
+  switch (kind) {
+    case vehicle::VehicleKind::catamaran_m200:
+      return m200();
+    case vehicle::VehicleKind::catamaran_heron:
+      return heron();
+    case vehicle::VehicleKind::catamaran_otter:
+      return otter();
+    case vehicle::VehicleKind::usim:
+    case vehicle::VehicleKind::m200:
+      break;
+  }
+  return std::nullopt;
+}
+
 double CatamaranParams::actuator_target(double pct) const {
   const double f = std::clamp(pct, -100.0, 100.0) / 100.0;
   if (thruster == ThrusterKind::thrust) {

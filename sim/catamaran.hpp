@@ -17,6 +17,7 @@
 
 #include "sim/environment.hpp"
 #include "sim/sensors.hpp"
+#include "vehicle/vehicle_kind.hpp"
 
 namespace avk::sim {
 
@@ -87,6 +88,8 @@ struct CatamaranParams {
   static CatamaranParams otter();
   // "m200", "heron" or "otter"; nullopt for anything else.
   static std::optional<CatamaranParams> by_name(std::string_view name);
+  // The hull a simulated catamaran kind stands for; nullopt for the other kinds.
+  static std::optional<CatamaranParams> for_kind(vehicle::VehicleKind kind);
 
   // Actuator state (thrust N, shaft or impeller speed rad/s) a command settles to; pct clamped to
   // ±100.

@@ -79,11 +79,16 @@ void check_faults(const FrontseatFaults& f) {
           "burst_max_lines must be in [0, " + std::to_string(kMaxBurstLines) + "]");
 }
 
+bool simulated_differential_drive(vehicle::VehicleKind k) {
+  return vehicle::is_simulated(k) && vehicle::has_differential_drive(k);
+}
+
 FrontseatEmulatorOptions checked(FrontseatEmulatorOptions o) {
-  if (o.vehicle.kind == "usim") {
-    throw std::invalid_argument(
-        "frontseat emulator: vehicle kind usim has no left and right thrusters for $PYDIR; use "
-        "catamaran, catamaran:m200, catamaran:heron or catamaran:otter");
+  if (!simulated_differential_drive(o.vehicle.kind)) {
+    throw std::invalid_argument(std::string("frontseat emulator: vehicle kind ") +
+                                vehicle::to_string(o.vehicle.kind) +
+                                " has no simulated left and right thrusters for $PYDIR; use " +
+                                vehicle::vehicle_kind_names(simulated_differential_drive));
   }
   o.vehicle = with_kind_defaults(std::move(o.vehicle));
   require(o.plant_hz > 0.0 && o.plant_hz <= 1000.0, "plant_hz must be in (0, 1000]");

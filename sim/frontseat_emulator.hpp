@@ -37,7 +37,7 @@ struct FrontseatEmulatorOptions {
   // A SimVehicleConfig kind with differential thrust: "catamaran:m200" (default, the waterjet
   // M200), "catamaran", "catamaran:heron", "catamaran:otter". Sensor noise and environment come
   // from the config as for the simulator; its PID settings do not apply (the backseat controls).
-  SimVehicleConfig vehicle = sim_vehicle_defaults("catamaran:m200");
+  SimVehicleConfig vehicle = sim_vehicle_defaults(vehicle::VehicleKind::catamaran_m200);
   vehicle::LatLon datum{42.358456, -71.087589};  // MIT Sailing Pavilion, the MOOS-IvP datum
   double start_x_m = 0.0, start_y_m = 0.0, start_heading_deg = 0.0;
   std::uint64_t seed = 1;

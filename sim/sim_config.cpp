@@ -102,13 +102,17 @@ double SimSetup::vehicle_max_speed_mps() const {
   return max_speed_mps(vehicle);
 }
 
-SimSetup default_sim_setup(const std::string& kind) {
+SimSetup default_sim_setup(vehicle::VehicleKind kind) {
   SimSetup s;
   s.vehicle = sim_vehicle_defaults(kind);
   // In the water the thesis ran pHelmIvP at 10 Hz (§3.4.2), having seen turns pass their goal
   // between helm ticks at 4 Hz (§4.5).
-  if (s.vehicle.kind == "catamaran:m200") s.helm_hz = 10.0;
+  if (kind == vehicle::VehicleKind::catamaran_m200) s.helm_hz = 10.0;
   return s;
+}
+
+SimSetup default_sim_setup(std::string_view kind) {
+  return default_sim_setup(sim_vehicle_defaults(kind).kind);
 }
 
 SimSetup parse_sim_config(std::string_view json_text, const std::string& default_kind) {

@@ -11,14 +11,16 @@
 namespace avk::sim {
 
 struct SimSetup {
-  SimVehicleConfig vehicle = sim_vehicle_defaults("usim");
+  SimVehicleConfig vehicle = sim_vehicle_defaults(vehicle::VehicleKind::usim);
   SchedulerOptions scheduler{};
   double helm_hz = 4.0;  // pHelmIvP / mission AppTick
   double vehicle_max_speed_mps() const;
 };
 
-// Defaults of a vehicle kind; throws std::invalid_argument naming an unknown kind.
-SimSetup default_sim_setup(const std::string& kind);
+// Defaults of a simulated vehicle kind (given as text: vehicle_kind_from_string); throws
+// std::invalid_argument naming an unknown kind or one the simulator does not drive.
+SimSetup default_sim_setup(vehicle::VehicleKind kind);
+SimSetup default_sim_setup(std::string_view kind);
 
 // Reads a sim config document over the defaults of its "vehicle" (or of default_kind). Throws
 // kinematics::ParseError naming the JSON pointer of the bad field; unknown fields are errors.

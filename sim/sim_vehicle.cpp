@@ -8,7 +8,7 @@ namespace avk::sim {
 namespace {
 
 std::variant<UsimPlant, CatamaranPlant> make_plant(const SimVehicleConfig& c) {
-  if (c.kind == "usim") {
+  if (c.kind == vehicle::VehicleKind::usim) {
     return UsimPlant(c.usim,
                      UsimState{c.start_x_m, c.start_y_m, c.start_heading_deg, c.start_speed_mps});
   }
@@ -18,7 +18,9 @@ std::variant<UsimPlant, CatamaranPlant> make_plant(const SimVehicleConfig& c) {
 }  // namespace
 
 CatamaranPlant make_catamaran_plant(const SimVehicleConfig& c) {
-  if (!c.catamaran) throw std::invalid_argument("vehicle kind '" + c.kind + "' is no catamaran");
+  if (!c.catamaran)
+    throw std::invalid_argument(std::string("vehicle kind '") + vehicle::to_string(c.kind) +
+                                "' is no catamaran");
   CatamaranState s;
   s.x_m = c.start_x_m;
   s.y_m = c.start_y_m;
@@ -35,44 +37,41 @@ NavSensor make_nav_sensor(const SimVehicleConfig& c) {
 }
 
 SimVehicleConfig with_kind_defaults(SimVehicleConfig config) {
-  if (config.kind != "usim" && !config.catamaran) {
-    const SimVehicleConfig d = sim_vehicle_defaults(config.kind);
-    config.catamaran = d.catamaran;
-    config.kind = d.kind;
-  }
+  if (config.kind != vehicle::VehicleKind::usim && !config.catamaran)
+    config.catamaran = sim_vehicle_defaults(config.kind).catamaran;
   return config;
 }
 
-SimVehicleConfig sim_vehicle_defaults(const std::string& kind) {
+SimVehicleConfig sim_vehicle_defaults(std::string_view kind) {
+  const auto k = vehicle::vehicle_kind_from_string(kind);
+  if (!k || !vehicle::is_simulated(*k)) {
+    throw std::invalid_argument("unknown vehicle kind '" + std::string(kind) + "' (" +
+                                vehicle::vehicle_kind_names(vehicle::is_simulated) + ")");
+  }
+  return sim_vehicle_defaults(*k);
+}
+
+SimVehicleConfig sim_vehicle_defaults(vehicle::VehicleKind kind) {
   SimVehicleConfig c;
-  if (kind == "usim") {
-    c.kind = "usim";
+  c.kind = kind;
+  if (kind == vehicle::VehicleKind::usim) {
     c.usim.turn_rate = 30.0;  // thesis Table 5.1
     c.sensors.speed_quantum_mps = 0.01;
     return c;
   }
-  std::string model = "m200";
-  if (kind.rfind("catamaran", 0) == 0) {
-    if (kind.size() > 9) {
-      if (kind[9] != ':') throw std::invalid_argument("unknown vehicle kind '" + kind + "'");
-      model = kind.substr(10);
-    }
-  } else {
-    throw std::invalid_argument("unknown vehicle kind '" + kind +
-                                "' (usim, catamaran, catamaran:m200, catamaran:heron, "
-                                "catamaran:otter)");
-  }
-  const auto params = CatamaranParams::by_name(model);
+  const auto params = CatamaranParams::for_kind(kind);
   if (!params) {
-    throw std::invalid_argument("unknown catamaran model '" + model + "' (m200, heron, otter)");
+    throw std::invalid_argument(std::string("the simulator does not drive vehicle kind '") +
+                                vehicle::to_string(kind) + "' (" +
+                                vehicle::vehicle_kind_names(vehicle::is_simulated) + ")");
   }
-  c.kind = "catamaran:" + model;
   c.catamaran = *params;
   c.plant_hz = 10.0;  // iM200 AppTick (thesis Table 3.1): navigation at 10 Hz
   // The thesis collected its M200 turns with Table 3.1's controller (pMarinePID at AppTick 4,
   // the struct's default); the turns the CKT learns are shaped by it. The other hulls keep the
   // simulation settings of Table 5.1.
-  if (model == "m200") c.pid = vehicle::MarinePidConfig::m200_in_water();
+  if (kind == vehicle::VehicleKind::catamaran_m200)
+    c.pid = vehicle::MarinePidConfig::m200_in_water();
   c.sensors.gnss_sigma_m = 0.3;
   c.sensors.compass_sigma_deg = 1.0;
   return c;
@@ -90,7 +89,7 @@ SimVehicle::SimVehicle(SimVehicleConfig config, Scheduler& scheduler)
       sensor_(make_nav_sensor(config_)),
       pid_(config_.pid) {
   info_.id = config_.id;
-  info_.kind = config_.kind;
+  info_.kind = vehicle::to_string(config_.kind);
   info_.max_speed_mps = max_speed_mps(config_);
   if (config_.catamaran) info_.length_m = config_.catamaran->length_m;
   scheduler.add(config_.id + "/plant", config_.plant_hz, [this](double t) { plant_tick(t); });

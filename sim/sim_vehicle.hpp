@@ -18,14 +18,13 @@
 #include "vehicle/marine_pid.hpp"
 #include "vehicle/thrust_mixing.hpp"
 #include "vehicle/vehicle.hpp"
+#include "vehicle/vehicle_kind.hpp"
 
 namespace avk::sim {
 
 struct SimVehicleConfig {
   std::string id = "sim-1";
-  // "usim", "catamaran" (= catamaran:m200), "catamaran:m200", "catamaran:heron",
-  // "catamaran:otter"
-  std::string kind = "usim";
+  vehicle::VehicleKind kind = vehicle::VehicleKind::usim;  // a simulated kind
   UsimConfig usim{};
   std::optional<CatamaranParams> catamaran;  // filled from kind when empty
   EnvironmentConfig environment{};
@@ -45,11 +44,14 @@ struct SimVehicleConfig {
 // Defaults for a kind: the thesis' uSimMarine (turn rate 30, exact navigation at the plant tick)
 // or a catamaran with GNSS/compass noise published at 10 Hz. The M200 gets the thesis' in-water
 // controller (Table 3.1, MarinePidConfig::m200_in_water), every other kind the simulation one
-// (Table 5.1). Throws std::invalid_argument for an unknown kind, naming it.
-SimVehicleConfig sim_vehicle_defaults(const std::string& kind);
+// (Table 5.1). Throws std::invalid_argument for a kind the simulator does not drive, naming it.
+SimVehicleConfig sim_vehicle_defaults(vehicle::VehicleKind kind);
+// The same for a kind given as text (vehicle_kind_from_string); std::invalid_argument naming an
+// unknown one and the accepted kinds.
+SimVehicleConfig sim_vehicle_defaults(std::string_view kind);
 
-// The config with the catamaran parameters of its kind filled in when absent (kind "catamaran"
-// becomes "catamaran:m200"); usim configs unchanged.
+// The config with the catamaran parameters of its kind filled in when absent; usim configs
+// unchanged.
 SimVehicleConfig with_kind_defaults(SimVehicleConfig config);
 
 // A catamaran config's plant at its start pose and its navigation sensor, seeded from

@@ -14,7 +14,7 @@
 namespace avk::sim {
 
 struct TurnScenarioConfig {
-  SimVehicleConfig vehicle = sim_vehicle_defaults("usim");
+  SimVehicleConfig vehicle = sim_vehicle_defaults(vehicle::VehicleKind::usim);
   SchedulerOptions scheduler{};
   double speed_mps = 1.0;
   double dheading_deg = 90.0;  // signed: + right

@@ -48,7 +48,7 @@ int band_coverage(const std::vector<std::string>& rest, Io& io) {
                {"mission", "test-mission"});
   app::Context ctx(a.require("db"));
   app::BandCoverageQuery q;
-  q.vehicle_id = vehicle_of(a, ctx.db(), {}, "vehicle");
+  q.vehicle_id = vehicle_of(a, ctx, {}, "vehicle");
   q.table_missions = mission_ids(a);
   for (const std::string& s : a.all("test-mission"))
     q.test_missions.push_back(parse_id(s, "--test-mission"));

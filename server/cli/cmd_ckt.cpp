@@ -80,7 +80,7 @@ app::BuiltTable build_table(const Args& a, Io& io) {
   } else {
     app::Context ctx(*a.get("db"));
     const auto missions = mission_ids(a);
-    const std::string vehicle = vehicle_of(a, ctx.db(), missions);
+    const std::string vehicle = vehicle_of(a, ctx, missions);
     out = value_or_fail(app::build_ckt(ctx, vehicle, missions, build_options(a),
                                        a.number("vehicle-length"), a.flag("include-harvested")));
   }
@@ -169,7 +169,7 @@ int yaw_rate(const std::vector<std::string>& rest, Io& io) {
   o.fill_with_model = !a.flag("no-model");
   o.model_id = model_option(a);
   o.check_model = o.fill_with_model;
-  const std::string vehicle = vehicle_of(a, ctx.db(), {});
+  const std::string vehicle = vehicle_of(a, ctx, {});
   const app::YawRateTable t = value_or_fail(app::vehicle_yaw_rate_table(ctx, vehicle, o));
   kin::YawRateCkt table = t.table;
   emit(a, io, kin::yaw_rate_ckt_to_json_string(table));

@@ -46,7 +46,7 @@ int estimate(const std::vector<std::string>& rest, Io& io) {
     c = value_or_fail(app::estimate_mission_current_from_turns(ctx, id));
   } else {
     c = value_or_fail(app::estimate_mission_current(ctx, id, leg_s));
-    stored = ctx.db().mission_current(id);
+    stored = value_or_fail(app::stored_mission_current(ctx, id));
   }
   if (format == "json") {
     nlohmann::json j = mission_current_json(c, stored);
@@ -99,7 +99,7 @@ int compare(const std::vector<std::string>& rest, Io& io) {
   if (table.empty() || test.empty())
     throw UsageError(
         "name the table's missions (--mission) and the test missions (--test-mission)");
-  const std::string vid = vehicle_of(a, ctx.db(), table);
+  const std::string vid = vehicle_of(a, ctx, table);
   const app::CompensationComparison c =
       value_or_fail(app::compare_current_compensation(ctx, vid, table, test));
   if (format == "json") {
@@ -151,7 +151,7 @@ int show(const std::vector<std::string>& rest, Io& io) {
   const Args a(rest, {"db", "vehicle", "format"});
   const std::string format = format_of(a);
   app::Context ctx(a.require("db"));
-  const std::string vid = vehicle_of(a, ctx.db(), {});
+  const std::string vid = vehicle_of(a, ctx, {});
   const store::StoredCurrent c = value_or_fail(app::vehicle_current(ctx, vid));
   if (format == "json") {
     io.out << current_json(vid, c).dump() << "\n";

@@ -28,11 +28,14 @@ int cmd_frontseat_emulator(const std::vector<std::string>& args, Io& io) {
                       "start", "drop", "corrupt", "nav-delay", "burst", "watchdog"});
   if (!a.positional().empty()) throw UsageError("unexpected argument '" + a.positional()[0] + "'");
   const sim::SimSetup setup = sim_setup_from(a, io, "catamaran:m200");
-  if (setup.vehicle.kind == "usim") {
-    throw UsageError(
-        "vehicle usim cannot be a frontseat: $PYDIR drives left and right thrusters, which only "
-        "the differential-drive kinds have (catamaran, catamaran:m200, catamaran:heron, "
-        "catamaran:otter)");
+  if (!vehicle::has_differential_drive(setup.vehicle.kind)) {
+    throw UsageError(std::string("vehicle ") + vehicle::to_string(setup.vehicle.kind) +
+                     " cannot be a frontseat: $PYDIR drives left and right thrusters, which only "
+                     "the differential-drive kinds have (" +
+                     vehicle::vehicle_kind_names([](vehicle::VehicleKind k) {
+                       return vehicle::is_simulated(k) && vehicle::has_differential_drive(k);
+                     }) +
+                     ")");
   }
 
   sim::FrontseatEmulatorOptions o;
@@ -71,10 +74,10 @@ int cmd_frontseat_emulator(const std::vector<std::string>& args, Io& io) {
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
   sim::FrontseatEmulator emulator(o);
-  io.out << "frontseat emulator (" << o.vehicle.kind << ") listening on " << o.bind_address << ":"
-         << emulator.port() << ", datum " << num(o.datum.lat_deg) << "," << num(o.datum.lon_deg)
-         << ", clock x" << num(o.realtime_factor) << ", watchdog " << num(o.watchdog_s) << " s"
-         << std::endl;
+  io.out << "frontseat emulator (" << vehicle::to_string(o.vehicle.kind) << ") listening on "
+         << o.bind_address << ":" << emulator.port() << ", datum " << num(o.datum.lat_deg) << ","
+         << num(o.datum.lon_deg) << ", clock x" << num(o.realtime_factor) << ", watchdog "
+         << num(o.watchdog_s) << " s" << std::endl;
   int signal_number = 0;
   sigwait(&signals, &signal_number);
   emulator.stop();

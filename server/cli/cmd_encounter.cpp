@@ -117,7 +117,7 @@ json bench_json(const app::EncounterBench& b, const app::EncounterBenchQuery& q)
                        {"calibration", calibration_json(m.calibration)}});
   }
   return {{"vehicle_id", q.vehicle_id},
-          {"plant", q.setup.vehicle.kind},
+          {"plant", vehicle::to_string(q.setup.vehicle.kind)},
           {"seed", q.seed},
           {"sea_seeds", q.sea_seeds},
           {"max_risk", q.max_risk},
@@ -255,7 +255,7 @@ int encounter_run(const std::vector<std::string>& rest, Io& io) {
   q.prefer_starboard = a.flag("colregs");
   q.ray_band = a.flag("ray-band");
   q.speed_over_ground = speed_reference_option(a);
-  q.vehicle_id = vehicle_of(a, ctx.db(), {}, "vehicle-id");
+  q.vehicle_id = vehicle_of(a, ctx, {}, "vehicle-id");
   const app::EncounterFile file =
       value_or_fail(app::parse_encounter_file(read_file(scenarios_path, io.in)));
   const auto started = std::chrono::steady_clock::now();
@@ -276,8 +276,8 @@ int encounter_run(const std::vector<std::string>& rest, Io& io) {
   }
   io.err << "encounter run: " << file.scenarios.size() << " scenarios, " << bench.flights
          << " maneuvers flown on " << q.threads << " thread(s) in " << fixed(took.count(), 1)
-         << " s (vehicle " << q.vehicle_id << ", plant " << q.setup.vehicle.kind << ", seed "
-         << q.seed << ", current "
+         << " s (vehicle " << q.vehicle_id << ", plant " << vehicle::to_string(q.setup.vehicle.kind)
+         << ", seed " << q.seed << ", current "
          << (bench.current ? water_current_json(bench.current, "estimated").dump() : "none")
          << ")\n";
   return 0;

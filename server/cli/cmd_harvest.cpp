@@ -34,7 +34,7 @@ int cmd_harvest(const std::vector<std::string>& args, Io& io) {
   app::Context ctx(a.require("db"));
   std::vector<app::HarvestReport> reports;
   if (all) {
-    const std::string vehicle = vehicle_of(a, ctx.db(), {});
+    const std::string vehicle = vehicle_of(a, ctx, {});
     reports = value_or_fail(app::harvest_vehicle(ctx, vehicle));
   } else {
     reports.push_back(

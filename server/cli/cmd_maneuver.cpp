@@ -130,8 +130,7 @@ int evaluate(const std::vector<std::string>& rest, Io& io) {
   const std::string format = format_option(a);
   const json body = evaluate_body(a);
   app::Context ctx(a.require("db"));
-  const ManeuverRequest request =
-      value_or_fail(maneuver_request(body, vehicle_of(a, ctx.db(), {})));
+  const ManeuverRequest request = value_or_fail(maneuver_request(body, vehicle_of(a, ctx, {})));
   const app::ManeuverEvaluation e = value_or_fail(app::evaluate_maneuvers(ctx, request.query));
   if (format == "json")
     io.out << maneuver_evaluation_text(e, request.path_step_s) << "\n";
@@ -185,7 +184,7 @@ int ongoing(const std::vector<std::string>& rest, Io& io) {
   q.live_current = current.live;
   q.no_current = current.none;
   app::Context ctx(a.require("db"));
-  q.vehicle_id = vehicle_of(a, ctx.db(), {});
+  q.vehicle_id = vehicle_of(a, ctx, {});
   const app::OngoingManeuver o = value_or_fail(app::evaluate_ongoing(ctx, q));
   if (format == "json")
     io.out << ongoing_maneuver_json(o).dump() << "\n";
@@ -226,7 +225,7 @@ int fly(const std::vector<std::string>& rest, Io& io) {
   if (format == "json") {
     json j =
         simulated_maneuver_json(m, request.own_position, request.standoff_m, request.path_step_s);
-    j["sim_vehicle"] = setup.vehicle.kind;
+    j["sim_vehicle"] = vehicle::to_string(setup.vehicle.kind);
     j["seed"] = request.query.seed;
     j["dheading_deg"] = request.query.dheading_deg;
     j["horizon_s"] = request.query.horizon_s;
@@ -239,7 +238,7 @@ int fly(const std::vector<std::string>& rest, Io& io) {
              << '\n';
   }
   io.err << "maneuver fly: " << signed_deg(request.query.dheading_deg) << " deg on "
-         << setup.vehicle.kind << " (seed " << request.query.seed << ")";
+         << vehicle::to_string(setup.vehicle.kind) << " (seed " << request.query.seed << ")";
   for (std::size_t k = 0; k < m.cpa.size(); ++k)
     io.err << "; contact " << k << " CPA " << fixed(m.cpa[k].distance_m, 1) << " m at "
            << fixed(m.cpa[k].time_s, 1) << " s";

@@ -27,9 +27,7 @@
 #include "server/cli/sim_options.hpp"
 #include "server/serialize.hpp"
 #include "sim/sim_config.hpp"
-#include "store/store.hpp"
-#include "vehicle/m200.hpp"
-#include "vehicle/scaled_clock.hpp"
+#include "vehicle/vehicle_kind.hpp"
 
 namespace avk::server {
 
@@ -77,8 +75,13 @@ std::string signed_deg(const mission::TurnTask& t, const kinematics::TurnSequenc
 // One line per turn and the events an operator must read.
 class ProgressPrinter final : public mission::MissionObserver {
  public:
-  ProgressPrinter(std::ostream& out, int planned, int done_before, bool quiet)
-      : out_(out), planned_(planned), ok_(done_before), quiet_(quiet) {}
+  ProgressPrinter(std::ostream& out, bool quiet) : out_(out), quiet_(quiet) {}
+
+  // The run's plan: the turns of the whole mission, and those done before this run.
+  void start(int planned, int done_before) {
+    planned_ = planned;
+    ok_ = done_before;
+  }
 
   void on_turn(mission::TurnOutcome& t) override {
     if (t.status == kinematics::TurnStatus::ok) ++ok_;
@@ -129,66 +132,66 @@ class ProgressPrinter final : public mission::MissionObserver {
   }
 
   std::ostream& out_;
-  int planned_;
-  int ok_;
+  int planned_ = 0;
+  int ok_ = 0;
   bool quiet_;
 };
 
-struct RunSpec {
-  app::MissionPlan plan;
-  sim::SimSetup setup;
-  std::string vehicle_id;
-  // Set: the mission drives an M200 over its frontseat link instead of the simulator.
-  std::optional<vehicle::M200Options> m200;
-};
-
-// Connects before anything is stored, so an unreachable vehicle leaves no mission behind.
-std::unique_ptr<vehicle::M200> connect_m200(const vehicle::M200Options& o,
-                                            const vehicle::ScaledClock& clock, Io& io) {
-  auto m = std::make_unique<vehicle::M200>(o, clock);
-  io.out << "connecting to the M200 frontseat at " << o.endpoint.host << ":" << o.endpoint.port
-         << std::endl;
-  if (!m->wait_for_nav(std::chrono::seconds(10))) {
-    const auto st = m->status();
-    throw std::runtime_error("no navigation from the M200 at " + o.endpoint.host + ":" +
-                             std::to_string(o.endpoint.port) + " within 10 s" +
-                             (st.last_link_error.empty()
-                                  ? std::string(" (connected, but no $CPNVG with a position)")
-                                  : " (" + st.last_link_error + ")"));
+// The vehicle the options name: --m200 HOST:PORT for a real M200, the simulator (--vehicle,
+// --sim-config, ...) otherwise, with default_kind when --vehicle is not given.
+app::VehicleSourceOptions vehicle_from(const Args& a, Io& io, const std::string& default_kind) {
+  app::VehicleSourceOptions v;
+  v.m200 = m200_options_from(a);
+  if (v.m200) {
+    v.kind = vehicle::VehicleKind::m200;
+    v.realtime_factor = realtime_factor_from(a);
+  } else {
+    v.setup = sim_setup_from(a, io, default_kind);
+    v.realtime = a.flag("realtime");
+    v.realtime_factor = v.realtime ? realtime_factor_from(a) : 1.0;
   }
-  return m;
+  return v;
 }
 
-int execute(app::Context& ctx, RunSpec spec, const Args& a, Io& io,
-            const vehicle::ScaledClock* clock = nullptr, vehicle::M200* m200 = nullptr) {
+app::MissionRunOptions run_options(const Args& a, Io& io, ProgressPrinter& printer) {
   app::MissionRunOptions options;
   if (const auto limit = a.number("max-sim-time")) {
     if (!(*limit > 0.0)) throw UsageError("--max-sim-time must be positive (s)");
     options.max_duration_s = *limit;
   }
-  app::LocalVehicle local;
-  local.id = spec.vehicle_id;
-  local.setup = spec.setup;
-  local.realtime = a.flag("realtime");
-  local.realtime_factor = local.realtime ? realtime_factor_from(a) : 1.0;
-  local.m200 = m200;
-  local.clock = clock;
-  if (spec.m200) local.controller_hz = spec.m200->config.controller_hz;
-  const int planned = static_cast<int>(mission::plan_turns(spec.plan.config).size());
-  ProgressPrinter printer(io.out, planned, spec.plan.done_before, a.flag("quiet"));
   options.observers.push_back(&printer);
   options.stop = &g_stop;
+  options.on_connecting = [&io](const std::string& what) {
+    io.out << "connecting to " << what << std::endl;
+  };
+  options.on_start = [&io, &printer](const app::MissionPlan& plan, int planned) {
+    printer.start(planned, plan.done_before);
+    io.out << "mission " << plan.mission_id << " '" << plan.config.name
+           << "': " << plan.tasks.size() << " turns to do"
+           << (plan.done_before ? " (" + std::to_string(plan.done_before) + " done before)" : "")
+           << "\n";
+  };
+  return options;
+}
 
-  io.out << "mission " << spec.plan.mission_id << " '" << spec.plan.config.name << "' on "
-         << spec.vehicle_id << ": " << spec.plan.tasks.size() << " turns to do"
-         << (spec.plan.done_before ? " (" + std::to_string(spec.plan.done_before) + " done before)"
-                                   : "")
-         << "\n";
-  app::MissionRunOutcome r;
+void print_config_errors(const app::Error& e, const std::string& name, Io& io);
+
+// Runs (or resumes) through the use case and prints its outcome; the exit code.
+int execute(const std::function<app::Result<app::MissionRunOutcome>()>& run,
+            const std::string& what, Io& io) {
+  app::Result<app::MissionRunOutcome> result = app::internal_error("not run");
   {
     StopSignals signals;
-    r = value_or_fail(app::run_mission_here(ctx, spec.plan, local, options));
+    result = run();
   }
+  if (!result) {
+    if (!result.error().fields.empty()) {
+      print_config_errors(result.error(), what, io);
+      return 1;
+    }
+    value_or_fail(std::move(result));
+  }
+  const app::MissionRunOutcome& r = *result;
   const store::Mission& m = r.summary.mission;
   const double run_s = r.end_time_s - r.start_time_s;
   io.out << "mission " << m.id << " " << store::to_string(m.status);
@@ -196,21 +199,10 @@ int execute(app::Context& ctx, RunSpec spec, const Args& a, Io& io,
   io.out << ": " << r.summary.turns.ok << "/" << r.planned << " turns ok, "
          << r.summary.turns.aborted << " aborted, " << r.summary.turns.rejected << " rejected";
   if (r.turns_given_up) io.out << ", " << r.turns_given_up << " given up";
-  io.out << "; " << (m200 ? "ran " : "simulated ") << fixed(run_s, 1) << " s in "
+  io.out << "; " << (r.simulated ? "simulated " : "ran ") << fixed(run_s, 1) << " s in "
          << fixed(r.wall_s, 3) << " s of wall time (" << fixed(run_s / std::max(r.wall_s, 1e-9), 0)
          << "x)\n";
-  if (m200) {
-    const auto st = m200->status();
-    const auto& c = st.counters;
-    io.out << "M200 link: " << c.sentences << " sentences, " << c.errors << " bad lines";
-    for (const auto& [code, n] : c.errors_by_code)
-      io.out << (code == c.errors_by_code.begin()->first ? " (" : ", ") << code << " " << n;
-    if (!c.errors_by_code.empty()) io.out << ")";
-    io.out << ", " << c.nav_samples << " nav samples, " << c.pydir_sent << " $PYDIR sent, "
-           << c.failsafe_stops << " failsafe stops, " << c.disconnects << " disconnects";
-    if (st.battery) io.out << ", battery " << fixed(st.battery->stack_v, 2) << " V";
-    io.out << "\n";
-  }
+  if (!r.link_report.empty()) io.out << r.link_report << "\n";
   if (r.stopped) return 130;
   return m.status == store::MissionStatus::done ? 0 : 1;
 }
@@ -240,33 +232,16 @@ int run(const std::vector<std::string>& rest, Io& io) {
   require_vehicle(a);
   const std::string path = a.require("config");
   const std::string db_path = a.require("db");
-  RunSpec spec;
-  spec.m200 = m200_options_from(a);
-  vehicle::VehicleInfo info;
-  if (spec.m200) {
-    info = vehicle::m200_info(spec.m200->config);
-  } else {
-    spec.setup = sim_setup_from(a, io);
-    spec.setup.vehicle.id = vehicle_id_option(a, "sim-" + spec.setup.vehicle.kind);
-    info = {spec.setup.vehicle.id, spec.setup.vehicle.kind, spec.setup.vehicle_max_speed_mps(),
-            std::nullopt};
+  app::VehicleSourceOptions vehicle = vehicle_from(a, io, "usim");
+  if (!vehicle.m200) {
+    vehicle.setup.vehicle.id =
+        vehicle_id_option(a, std::string("sim-") + vehicle::to_string(vehicle.setup.vehicle.kind));
   }
-  spec.vehicle_id = info.id;
   const std::string text = read_file(path, io.in);
-  // Validate before connecting: a mission file with mistakes needs no vehicle to say so.
-  if (const auto checked = app::validate_mission(text, info.max_speed_mps); !checked) {
-    print_config_errors(checked.error(), path, io);
-    return 1;
-  }
   app::Context ctx(db_path);
-  std::optional<vehicle::ScaledClock> clock;
-  std::unique_ptr<vehicle::M200> m200;
-  if (spec.m200) {
-    clock.emplace(realtime_factor_from(a), ctx.db().station_clock_end_s() + 1.0);
-    m200 = connect_m200(*spec.m200, *clock, io);
-  }
-  spec.plan = app::create_mission_plan(ctx.db(), text, info);
-  return execute(ctx, std::move(spec), a, io, clock ? &*clock : nullptr, m200.get());
+  ProgressPrinter printer(io.out, a.flag("quiet"));
+  const app::MissionRunOptions options = run_options(a, io, printer);
+  return execute([&] { return app::run_new_mission(ctx, text, vehicle, options); }, path, io);
 }
 
 std::int64_t mission_id_arg(const Args& a) {
@@ -278,49 +253,18 @@ int resume(const std::vector<std::string>& rest, Io& io) {
   const Args a(rest, kRunValues, kRunFlags);
   require_vehicle(a);
   app::Context ctx(a.require("db"));
-  store::Store& db = ctx.db();
   const std::int64_t id = mission_id_arg(a);
-  const auto m = db.get_mission(id);
-  if (!m) throw std::runtime_error("no mission " + std::to_string(id) + " in the database");
-  const auto vehicle = db.get_vehicle(m->vehicle_id);
-  if (!vehicle) throw std::runtime_error("mission's vehicle '" + m->vehicle_id + "' is not stored");
-  RunSpec spec;
-  spec.m200 = m200_options_from(a);
-  if (spec.m200.has_value() != (vehicle->kind == "m200")) {
-    throw UsageError("mission " + std::to_string(id) + " ran on " + vehicle->kind +
-                     (spec.m200 ? "; resume it with --sim" : "; resume it with --m200 HOST:PORT"));
-  }
-  std::optional<vehicle::ScaledClock> clock;
-  std::unique_ptr<vehicle::M200> m200;
-  double max_speed = 0.0;
-  if (spec.m200) {
-    spec.m200->config.id = m->vehicle_id;
-    max_speed = spec.m200->config.max_speed_mps;
-  } else {
-    if (const auto kind = a.get("vehicle");
-        kind && *kind != vehicle->kind &&
-        "catamaran:" + kind->substr(kind->find(':') + 1) != vehicle->kind) {
-      throw UsageError("--vehicle " + *kind + " differs from the mission's vehicle (" +
-                       vehicle->kind + ")");
-    }
-    spec.setup = sim_setup_from(a, io, vehicle->kind);
-    spec.setup.vehicle.id = m->vehicle_id;
-    max_speed = spec.setup.vehicle_max_speed_mps();
-  }
-  spec.vehicle_id = m->vehicle_id;
-  if (spec.m200) {
-    clock.emplace(realtime_factor_from(a), db.station_clock_end_s() + 1.0);
-    m200 = connect_m200(*spec.m200, *clock, io);
-  }
-  try {
-    spec.plan = app::resume_mission_plan(db, id, max_speed);
-  } catch (const mission::MissionConfigError& e) {
-    for (const auto& f : e.errors())
-      io.err << "mission " << id << ": " << f.field << ": " << f.message << "\n";
-    return 1;
-  }
-  spec.plan.clock_after_s += 1.0;
-  return execute(ctx, std::move(spec), a, io, clock ? &*clock : nullptr, m200.get());
+  // A simulated mission resumes on the simulator of its own kind unless --vehicle names one.
+  const app::MissionSummary s = value_or_fail(app::mission_summary(ctx, id));
+  const app::VehicleStatus stored = value_or_fail(app::get_vehicle(ctx, s.mission.vehicle_id));
+  const auto stored_kind = vehicle::vehicle_kind_from_string(stored.info.kind);
+  const bool simulated_kind = stored_kind && vehicle::is_simulated(*stored_kind);
+  const app::VehicleSourceOptions vehicle =
+      vehicle_from(a, io, simulated_kind ? stored.info.kind : "usim");
+  ProgressPrinter printer(io.out, a.flag("quiet"));
+  const app::MissionRunOptions options = run_options(a, io, printer);
+  return execute([&] { return app::resume_mission_run(ctx, id, vehicle, options); },
+                 "mission " + std::to_string(id), io);
 }
 
 int list(const std::vector<std::string>& rest, Io& io) {

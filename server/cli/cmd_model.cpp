@@ -61,7 +61,7 @@ int model_fit(const std::vector<std::string>& rest, Io& io) {
   app::Context ctx(a.require("db"));
   const auto missions = mission_ids(a);
   if (missions.empty()) throw UsageError("give the training data: --mission ID (repeatable)");
-  const std::string vehicle = vehicle_of(a, ctx.db(), missions);
+  const std::string vehicle = vehicle_of(a, ctx, missions);
   const app::FittedModel fitted = value_or_fail(
       app::fit_model(ctx, vehicle, missions, identification_options(a), resample_options(a)));
   const auto& r = fitted.result;
@@ -98,7 +98,7 @@ int model_sweep(const std::vector<std::string>& rest, Io& io) {
   app::Context ctx(a.require("db"));
   const auto missions = mission_ids(a);
   if (missions.empty()) throw UsageError("give the data: --mission ID (repeatable)");
-  const std::string vehicle = vehicle_of(a, ctx.db(), missions);
+  const std::string vehicle = vehicle_of(a, ctx, missions);
   const std::string format = a.get("format").value_or("table");
   if (format != "table" && format != "csv" && format != "json")
     throw UsageError("--format must be table, csv or json");
@@ -235,7 +235,7 @@ int compare(const std::vector<std::string>& rest, Io& io) {
   app::CompareQuery q;
   q.completion_threshold_deg = a.number("threshold").value_or(5.0);
   q.missions = mission_ids(a);
-  q.vehicle_id = vehicle_of(a, ctx.db(), q.missions);
+  q.vehicle_id = vehicle_of(a, ctx, q.missions);
   q.model_id = model_option(a);
   q.without_model = a.flag("no-model");
   for (const auto& v : a.all("test-mission"))
@@ -348,7 +348,7 @@ int predict(const std::vector<std::string>& rest, Io& io) {
   q.initial_yaw_rate_dps = a.number("initial-yaw-rate");
   if (const auto held_out = a.get("without-mission"))
     q.without_mission_id = parse_id(*held_out, "--without-mission");
-  q.vehicle_id = vehicle_of(a, ctx.db(), {});
+  q.vehicle_id = vehicle_of(a, ctx, {});
   const app::Prediction p = value_or_fail(app::predict(ctx, q));
   io.out << (format == "csv" ? trajectory_csv(p.trajectory) : prediction_json(p).dump() + "\n");
   return 0;

@@ -17,7 +17,9 @@
 #include <ranges>
 #include <string_view>
 
+#include "app/context.hpp"
 #include "app/map_tiles.hpp"
+#include "app/missions.hpp"
 #include "server/cli/args.hpp"
 #include "server/cli/commands.hpp"
 #include "server/cli/database_location.hpp"
@@ -26,7 +28,6 @@
 #include "server/http/http_server.hpp"
 #include "server/station.hpp"
 #include "server/token_strength.hpp"
-#include "store/store.hpp"
 
 namespace avk::server {
 
@@ -113,7 +114,7 @@ bool is_unspecified(const std::string& address) {
 }
 
 std::string vehicle_id(const app::VehicleLoopOptions& v) {
-  return v.m200 ? v.m200->config.id : v.setup.vehicle.id;
+  return app::planned_vehicle_info(v).id;
 }
 
 }  // namespace
@@ -239,22 +240,26 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
     so.token = user_token;
   }
 
-  const double clock = store::Store(db_path).station_clock_end_s();
+  // The station clock continues after everything stored, so mission times never repeat.
+  const double clock_start_s = [&db_path] {
+    app::Context stored(db_path);
+    return app::station_clock_start_s(stored);
+  }();
   so.datum = datum_from(a);
   so.tiles = tiles;
   if (a.flag("sim")) {
     app::VehicleLoopOptions v;
     v.setup = sim_setup_from(a, io);
-    v.setup.vehicle.id = "sim-" + v.setup.vehicle.kind;
+    v.setup.vehicle.id = std::string("sim-") + vehicle::to_string(v.setup.vehicle.kind);
     v.realtime_factor = factor;
-    // The station clock continues after everything stored, so mission times never repeat.
-    v.start_clock_s = clock + 1.0;
+    v.start_clock_s = clock_start_s;
     so.vehicle = v;
   } else if (m200) {
     app::VehicleLoopOptions v;
+    v.kind = vehicle::VehicleKind::m200;
     v.m200 = std::move(m200);
     v.realtime_factor = factor;
-    v.start_clock_s = clock + 1.0;
+    v.start_clock_s = clock_start_s;
     so.vehicle = v;
   }
   ho.bind_address = a.get("bind").value_or("127.0.0.1");

@@ -72,9 +72,9 @@ int sim_turn(const std::vector<std::string>& rest, Io& io) {
   } else {
     io.out << csv.str();
   }
-  io.err << "sim turn: " << setup.vehicle.kind << ", " << num(c.speed_mps) << " m/s, "
-         << num(c.dheading_deg) << " deg, commanded at t=" << num(r.command_time_s) << " s, "
-         << (r.completed ? "completed" : "NOT completed");
+  io.err << "sim turn: " << vehicle::to_string(setup.vehicle.kind) << ", " << num(c.speed_mps)
+         << " m/s, " << num(c.dheading_deg) << " deg, commanded at t=" << num(r.command_time_s)
+         << " s, " << (r.completed ? "completed" : "NOT completed");
   if (r.turn.samples().size() >= 2) {
     const auto at = kinematics::advance_transfer(r.turn);
     io.err << " after " << num(r.turn.samples().back().t_s - r.command_time_s) << " s; advance "

@@ -33,7 +33,7 @@ int motion(const std::vector<std::string>& rest, Io& io) {
   const std::string format = a.get("format").value_or("text");
   if (format != "text" && format != "json") throw UsageError("--format must be text or json");
   app::Context ctx(a.require("db"));
-  const std::string vid = vehicle_of(a, ctx.db(), {});
+  const std::string vid = vehicle_of(a, ctx, {});
   const app::VehicleMotion m = value_or_fail(app::vehicle_motion(ctx, vid));
   if (format == "json") {
     io.out << vehicle_motion_json(m).dump() << "\n";

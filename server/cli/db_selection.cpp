@@ -5,6 +5,8 @@
 #include <set>
 #include <stdexcept>
 
+#include "app/missions.hpp"
+#include "server/cli/app_error.hpp"
 #include "server/serialize.hpp"
 #include "vehicle/vehicle.hpp"
 
@@ -63,26 +65,13 @@ std::vector<std::int64_t> mission_ids(const Args& a) {
   return ids;
 }
 
-std::string vehicle_of(const Args& a, store::Store& db, const std::vector<std::int64_t>& ids,
+std::string vehicle_of(const Args& a, app::Context& ctx, const std::vector<std::int64_t>& ids,
                        const std::string& option) {
   if (const auto v = a.get(option)) return *v;
-  std::set<std::string> vehicles;
-  for (const auto& m : db.list_missions()) {
-    if (ids.empty() || std::find(ids.begin(), ids.end(), m.id) != ids.end())
-      vehicles.insert(m.vehicle_id);
-  }
-  for (const auto id : ids) {
-    if (!db.get_mission(id)) throw std::runtime_error("no mission " + std::to_string(id));
-  }
-  if (vehicles.empty()) throw std::runtime_error("the database holds no missions");
-  if (vehicles.size() > 1) {
-    std::string names;
-    for (const auto& v : vehicles)
-      names += (names.empty() ? "" : ", ") + v;
-    throw UsageError("the missions are of several vehicles (" + names + "): choose one with --" +
-                     option);
-  }
-  return *vehicles.begin();
+  auto vehicle = app::vehicle_of_missions(ctx, ids);
+  if (!vehicle && vehicle.error().code == app::ErrorCode::invalid_argument)
+    throw UsageError(vehicle.error().message + " with --" + option);
+  return value_or_fail(std::move(vehicle));
 }
 
 std::string vehicle_id_option(const Args& a, const std::string& fallback) {

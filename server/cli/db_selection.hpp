@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
+#include "app/context.hpp"
 #include "app/predict.hpp"
 #include "server/cli/args.hpp"
-#include "store/store.hpp"
 
 namespace avk::server {
 
@@ -44,8 +44,8 @@ std::vector<std::int64_t> mission_ids(const Args& a);
 
 // --vehicle (or the option named), or the only vehicle of the chosen missions (all missions when
 // none are chosen). Mixing vehicles would average different hulls: several vehicles without the
-// option is a UsageError naming them; an unknown mission or an empty database a runtime_error.
-std::string vehicle_of(const Args& a, store::Store& db, const std::vector<std::int64_t>& ids,
+// option is a UsageError naming them; an unknown mission or an empty database an app error.
+std::string vehicle_of(const Args& a, app::Context& ctx, const std::vector<std::int64_t>& ids,
                        const std::string& option = "vehicle");
 
 }  // namespace avk::server

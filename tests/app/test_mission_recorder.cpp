@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "app/context.hpp"
 #include "app/mission_plans.hpp"
 #include "app/mission_recorder.hpp"
 #include "mission/mission_config.hpp"
@@ -42,13 +43,15 @@ constexpr const char* kMission = R"({
 
 TEST(MissionRecorder, EveryAbortedAndRejectedTurnIsStoredWithItsReason) {
   avk::testing::TempDb db_file("avk_recorder");
-  store::Store db(db_file.path());
+  app::Context ctx(db_file.path());
+  store::Store& db = ctx.db();
   sim::SimMissionOptions so;
   so.setup = sim::default_sim_setup("usim");
   const auto config = mission::parse_mission_config(kMission, 2.0);
   so.start = app::start_pose(config);
   sim::SimMission sim(so);
-  const app::MissionPlan plan = app::create_mission_plan(db, kMission, sim.vehicle().info());
+  const app::MissionPlan plan =
+      app::create_mission_plan(ctx, kMission, sim.vehicle().info()).value();
 
   mission::RunnerOptions ro;
   ro.vehicle_id = sim.vehicle().info().id;

@@ -201,46 +201,44 @@ namespace {
 
 using namespace avk;
 
-app::LocalVehicle simulated_usim(const std::string& id) {
-  app::LocalVehicle v;
-  v.id = id;
+app::VehicleSourceOptions simulated_usim(const std::string& id) {
+  app::VehicleSourceOptions v;
   v.setup = sim::default_sim_setup("usim");
   v.setup.vehicle.id = id;
+  v.realtime = false;
   return v;
 }
 
 TEST(MissionRunHere, RunsThePlanToItsEndAndRecordsIt) {
   avk::testing::TempDb db("avk_app_run");
   app::Context ctx(db.path());
-  app::LocalVehicle v = simulated_usim("sim-here");
-  const auto plan = app::create_mission_plan(ctx.db(), avk::testing::kSmallMission,
-                                             {v.id, "usim", 2.0, std::nullopt});
-  const auto r = app::run_mission_here(ctx, plan, v, {});
+  const auto r =
+      app::run_new_mission(ctx, avk::testing::kSmallMission, simulated_usim("sim-here"), {});
   ASSERT_TRUE(r) << r.error().message;
   EXPECT_FALSE(r->stopped);
+  EXPECT_TRUE(r->simulated);
   EXPECT_EQ(r->planned, 8);
-  EXPECT_EQ(r->summary.mission.id, plan.mission_id);
+  EXPECT_EQ(r->summary.mission.vehicle_id, "sim-here");
   EXPECT_EQ(r->summary.status, store::MissionStatus::done);
   EXPECT_EQ(r->summary.turns.ok, 8);
   EXPECT_GT(r->end_time_s, r->start_time_s);
-  EXPECT_FALSE(ctx.db().get_mission(plan.mission_id)->runner_pid);  // no longer running here
+  EXPECT_FALSE(ctx.db().get_mission(r->summary.mission.id)->runner_pid);  // no longer running here
 }
 
 TEST(MissionRunHere, ARaisedStopFlagInterruptsItResumably) {
   avk::testing::TempDb db("avk_app_run");
   app::Context ctx(db.path());
-  app::LocalVehicle v = simulated_usim("sim-here");
-  const auto plan = app::create_mission_plan(ctx.db(), avk::testing::kSmallMission,
-                                             {v.id, "usim", 2.0, std::nullopt});
   const std::atomic<bool> stop{true};
   app::MissionRunOptions o;
   o.stop = &stop;
-  const auto r = app::run_mission_here(ctx, plan, v, o);
+  const auto r =
+      app::run_new_mission(ctx, avk::testing::kSmallMission, simulated_usim("sim-here"), o);
   ASSERT_TRUE(r) << r.error().message;
   EXPECT_TRUE(r->stopped);
   EXPECT_EQ(r->summary.status, store::MissionStatus::interrupted);
-  const auto resumed = app::resume_mission_plan(ctx.db(), plan.mission_id, 2.0);
-  EXPECT_EQ(resumed.tasks.size(), 8u);
+  const auto resumed = app::resume_mission_plan(ctx, r->summary.mission.id, 2.0);
+  ASSERT_TRUE(resumed) << resumed.error().message;
+  EXPECT_EQ(resumed->tasks.size(), 8u);
 }
 
 }  // namespace

@@ -18,6 +18,7 @@
 #include <numeric>
 #include <thread>
 
+#include "app/context.hpp"
 #include "app/mission_plans.hpp"
 #include "app/mission_recorder.hpp"
 #include "mission/helm_loop.hpp"
@@ -137,11 +138,12 @@ DriverRun run_through_emulator(
     sim::FrontseatEmulator& emulator,
     const std::function<void(double, const mission::MissionRunner&)>& during = {}) {
   avk::testing::TempDb db_file("avk_m200");
-  store::Store db(db_file.path());
+  app::Context ctx(db_file.path());
+  store::Store& db = ctx.db();
   vehicle::ScaledClock clock(kFactor, 0.0);
   vehicle::M200 m200(driver_options(emulator), clock);
   EXPECT_TRUE(m200.wait_for_nav(std::chrono::seconds(5)));
-  app::MissionPlan plan = app::create_mission_plan(db, mission_text(), m200.info());
+  app::MissionPlan plan = app::create_mission_plan(ctx, mission_text(), m200.info()).value();
   DriverRun out;
   {
     app::MissionRecorder recorder(db, plan.mission_id);
@@ -476,6 +478,7 @@ TEST(M200Mission, TheStationServesAnM200AndRunsAMissionOnIt) {
   so.token = "m200-test-token-0000";
   so.server_version = "test";
   app::VehicleLoopOptions v;
+  v.kind = vehicle::VehicleKind::m200;
   v.m200 = driver_options(emulator);
   v.realtime_factor = kFactor;
   so.vehicle = v;

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "app/context.hpp"
 #include "app/mission_plans.hpp"
 #include "mission/mission_config.hpp"
 #include "server/station.hpp"
@@ -47,15 +48,19 @@ std::string oversized_mission() {
 
 TEST(MissionLimitsStore, AMissionTooLargeToPlanLeavesNoRowBehind) {
   avk::testing::TempDb path{"avk_mission_limits"};
-  avk::store::Store db(path.path());
+  avk::app::Context ctx(path.path());
+  avk::store::Store& db = ctx.db();
   const avk::vehicle::VehicleInfo info{"sim-usim", "usim", 2.0, std::nullopt};
-  EXPECT_THROW(avk::app::create_mission_plan(db, oversized_mission(), info),
-               avk::mission::MissionConfigError);
+  const auto refused = avk::app::create_mission_plan(ctx, oversized_mission(), info);
+  ASSERT_FALSE(refused);
+  EXPECT_EQ(refused.error().code, avk::app::ErrorCode::invalid_argument);
+  EXPECT_FALSE(refused.error().fields.empty());
   EXPECT_TRUE(db.list_missions().empty());
   // A mission within the limits is stored with its plan.
   const auto plan =
-      avk::app::create_mission_plan(db, mission({0.5, 1.0}, {40, 100}, 2).dump(), info);
-  EXPECT_EQ(plan.tasks.size(), 8u);
+      avk::app::create_mission_plan(ctx, mission({0.5, 1.0}, {40, 100}, 2).dump(), info);
+  ASSERT_TRUE(plan);
+  EXPECT_EQ(plan->tasks.size(), 8u);
   EXPECT_EQ(db.list_missions().size(), 1u);
 }
 

@@ -27,7 +27,7 @@ TEST(SimConfig, OverridesTheKindDefaults) {
     "seed": 9, "jitter_fraction": 0.1, "random_phases": true
   })",
                                       "usim");
-  EXPECT_EQ(s.vehicle.kind, "catamaran:otter");
+  EXPECT_EQ(s.vehicle.kind, avk::vehicle::VehicleKind::catamaran_otter);
   ASSERT_TRUE(s.vehicle.catamaran.has_value());
   EXPECT_EQ(s.vehicle.plant_hz, 20.0);
   EXPECT_EQ(s.vehicle.controller_hz, 10.0);
@@ -45,7 +45,7 @@ TEST(SimConfig, OverridesTheKindDefaults) {
 
 TEST(SimConfig, EmptyDocumentGivesTheDefaults) {
   const SimSetup s = parse_sim_config("{}", "usim");
-  EXPECT_EQ(s.vehicle.kind, "usim");
+  EXPECT_EQ(s.vehicle.kind, avk::vehicle::VehicleKind::usim);
   EXPECT_EQ(s.vehicle.usim.turn_rate, 30.0);
   EXPECT_EQ(s.vehicle_max_speed_mps(), 5.0);
 }

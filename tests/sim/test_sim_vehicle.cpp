@@ -179,7 +179,7 @@ TEST(SimVehicle, KindDefaultsNameTheirPlantAndController) {
   const auto table51 = avk::vehicle::MarinePidConfig::thesis_sim();
   for (const char* kind : {"catamaran", "catamaran:m200"}) {
     const SimVehicleConfig c = sim_vehicle_defaults(kind);
-    EXPECT_EQ(c.kind, "catamaran:m200");
+    EXPECT_EQ(c.kind, avk::vehicle::VehicleKind::catamaran_m200);
     ASSERT_TRUE(c.catamaran);
     EXPECT_EQ(c.catamaran->thruster, ThrusterKind::waterjet);
     EXPECT_EQ(c.pid.yaw.kp, table31.yaw.kp);
@@ -190,7 +190,7 @@ TEST(SimVehicle, KindDefaultsNameTheirPlantAndController) {
   }
   for (const char* kind : {"catamaran:heron", "catamaran:otter", "usim"}) {
     const SimVehicleConfig c = sim_vehicle_defaults(kind);
-    EXPECT_EQ(c.kind, kind);
+    EXPECT_STREQ(avk::vehicle::to_string(c.kind), kind);
     EXPECT_EQ(c.pid.yaw.kp, table51.yaw.kp) << kind;
     EXPECT_EQ(c.pid.yaw.ki, table51.yaw.ki) << kind;
   }

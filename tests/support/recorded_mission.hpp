@@ -9,6 +9,7 @@
 #include "app/mission_recorder.hpp"
 #include "mission/mission_config.hpp"
 #include "mission/mission_runner.hpp"
+#include "mission/turn_plan.hpp"
 #include "sim/sim_config.hpp"
 #include "sim/sim_mission.hpp"
 #include "store/store.hpp"
@@ -33,7 +34,13 @@ inline std::int64_t run_recorded_mission(store::Store& db, const std::string& ve
   // The mission clock continues after everything stored, as the station's does.
   so.start_time_s = db.station_clock_end_s() + 1.0;
   sim::SimMission sim(so);
-  const app::MissionPlan plan = app::create_mission_plan(db, mission_text, sim.vehicle().info());
+  // Stored as create_mission_plan stores it (the use case wants a station Context; the callers
+  // hold a bare Store).
+  app::MissionPlan plan;
+  plan.config = config;
+  plan.tasks = mission::plan_turns(config);
+  db.upsert_vehicle(sim.vehicle().info());
+  plan.mission_id = db.create_mission(vehicle_id, config.name, mission_text);
   mission::RunnerOptions ro;
   ro.vehicle_id = vehicle_id;
   mission::MissionRunner runner(plan.config, sim.vehicle(), plan.tasks, ro);
