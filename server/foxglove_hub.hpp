@@ -16,47 +16,21 @@
 #include <vector>
 
 #include "app/foxglove_live.hpp"
+#include "server/http/live_sources.hpp"
 
 namespace avk::server {
 
-inline constexpr const char* kFoxgloveSubprotocol = "foxglove.websocket.v1";
-
-// One message of a channel, as every client sends it (each with its own subscription id).
-struct FoxgloveFrame {
-  std::uint32_t channel_id = 0;
-  std::uint64_t t_ns = 0;
-  bool latest_value_wins = true;
-  std::shared_ptr<const std::string> payload;
-};
-
-// A connected client as the hub sees it. Calls come from the publisher's thread: they must hand
-// the work to the client's own strand and return at once.
-class FoxgloveClient {
- public:
-  virtual ~FoxgloveClient() = default;
-  virtual void send_text(std::shared_ptr<const std::string> json) = 0;
-  virtual void deliver(std::shared_ptr<const FoxgloveFrame> frame) = 0;
-  virtual void send_time(std::uint64_t t_ns) = 0;
-  // The channels went away (their vehicle did): forget the subscriptions, then tell the client.
-  virtual void channels_removed(std::vector<std::uint32_t> ids,
-                                std::shared_ptr<const std::string> unadvertise_json) = 0;
-};
-
-class FoxgloveHub final : public app::foxglove::FoxgloveSink {
+class FoxgloveHub final : public app::foxglove::FoxgloveSink, public FoxgloveSource {
  public:
   explicit FoxgloveHub(std::string session_id);
 
-  std::string server_info(const std::string& server_version) const;
-  // Registers a client and returns the advertise message of every channel now offered (sent
-  // even when empty: the protocol promises one at connection).
-  std::string join(const std::shared_ptr<FoxgloveClient>& client);
-  void leave(const FoxgloveClient* client);
-
-  enum class SubscribeOutcome { ok, unknown_channel };
-  // On success the channel's latched message (if any) is given back to send at once.
+  // FoxgloveSource
+  std::string server_info(const std::string& server_version) const override;
+  std::string join(const std::shared_ptr<FoxgloveClient>& client) override;
+  void leave(const FoxgloveClient* client) override;
   SubscribeOutcome subscribe(const FoxgloveClient* client, std::uint32_t channel_id,
-                             std::shared_ptr<const FoxgloveFrame>* latched);
-  void unsubscribe(const FoxgloveClient* client, std::uint32_t channel_id);
+                             std::shared_ptr<const FoxgloveFrame>* latched) override;
+  void unsubscribe(const FoxgloveClient* client, std::uint32_t channel_id) override;
 
   // app::foxglove::FoxgloveSink
   void advertise(const std::string& vehicle_id,

@@ -16,25 +16,28 @@
 #include "mission/event_kind.hpp"
 #include "server/api_types.hpp"
 #include "server/foxglove_hub.hpp"
+#include "server/http/live_sources.hpp"
 
 namespace avk::server {
 
-class StreamHub {
+class StreamHub final : public StreamSource {
  public:
   StreamHub();
 
   static const std::vector<std::string>& topics();
   static bool is_topic(const std::string& topic);
+  const std::vector<std::string>& topic_names() const override { return topics(); }
+  bool has_topic(const std::string& topic) const override { return is_topic(topic); }
 
   // A random id per server start: a client that sees a new one knows the server restarted.
   const std::string& session_id() const { return session_id_; }
   // The hello a new connection receives; it carries vocabulary_json() for the dashboard.
-  std::string hello(const std::string& server_version) const;
+  std::string hello(const std::string& server_version) const override;
 
   // The hub keeps weak references: a closed session simply stops receiving.
-  void subscribe(const std::shared_ptr<StreamSink>& sink, const std::string& topic);
-  void unsubscribe(const StreamSink* sink, const std::string& topic);
-  void unsubscribe_all(const StreamSink* sink);
+  void subscribe(const std::shared_ptr<StreamSink>& sink, const std::string& topic) override;
+  void unsubscribe(const StreamSink* sink, const std::string& topic) override;
+  void unsubscribe_all(const StreamSink* sink) override;
 
   // data_json is the "data" member, already serialised. t_s is the mission (or wall) clock.
   void publish(const std::string& topic, double t_s, const std::string& data_json);
@@ -52,6 +55,7 @@ class StreamHub {
 
   // The same live data for clients of the Foxglove WebSocket protocol (docs/foxglove.md).
   FoxgloveHub& foxglove() { return foxglove_; }
+  FoxgloveSource& foxglove_source() override { return foxglove_; }
 
  private:
   std::string session_id_;

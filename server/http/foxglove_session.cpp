@@ -4,8 +4,8 @@
 #include <utility>
 #include <vector>
 
+#include "server/http/live_sources.hpp"
 #include "server/http/server_state.hpp"
-#include "server/stream_hub.hpp"
 
 namespace avk::server {
 
@@ -179,7 +179,7 @@ void FoxgloveSession::subscribe(const json& command) {
     }
     std::shared_ptr<const FoxgloveFrame> latched;
     if (hub.subscribe(client_.get(), *channel, &latched) ==
-        FoxgloveHub::SubscribeOutcome::unknown_channel) {
+        FoxgloveSource::SubscribeOutcome::unknown_channel) {
       send_status(error, "subscribe: unknown channel id " + std::to_string(*channel) +
                              " (not advertised, or its vehicle went away)");
       continue;

@@ -15,7 +15,7 @@
 #include <variant>
 #include <vector>
 
-#include "server/foxglove_hub.hpp"
+#include "server/http/live_sources.hpp"
 #include "server/http/live_websocket.hpp"
 
 namespace avk::server {

@@ -16,7 +16,7 @@ namespace avk::server {
 
 class HttpServer::Impl {
  public:
-  Impl(HttpServerOptions options, Api& api, StreamHub& hub)
+  Impl(HttpServerOptions options, Api& api, StreamSource& hub)
       : threads_count_(std::max(1, options.threads)),
         state_(std::make_shared<ServerState>(std::move(options), api, hub)),
         ioc_(threads_count_) {}
@@ -97,7 +97,7 @@ class HttpServer::Impl {
   std::vector<std::thread> threads_;
 };
 
-HttpServer::HttpServer(HttpServerOptions options, Api& api, StreamHub& hub)
+HttpServer::HttpServer(HttpServerOptions options, Api& api, StreamSource& hub)
     : impl_(std::make_unique<Impl>(std::move(options), api, hub)) {}
 
 HttpServer::~HttpServer() = default;

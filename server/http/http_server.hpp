@@ -1,6 +1,6 @@
 #pragma once
 // The station's HTTP/WebSocket transport: REST under /api/v1 (handed to an Api), the live stream
-// at /api/v1/stream (fed by a StreamHub) and static files for the dashboard. Beast stays behind
+// at /api/v1/stream (fed by a StreamSource) and static files for the dashboard. Beast stays behind
 // the pimpl so that whoever starts a server does not compile it.
 
 #include <chrono>
@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "server/api_types.hpp"
-#include "server/stream_hub.hpp"
+#include "server/http/live_sources.hpp"
 
 namespace avk::server {
 
@@ -80,7 +80,7 @@ struct HttpServerOptions {
 class HttpServer {
  public:
   // api and hub must outlive the server.
-  HttpServer(HttpServerOptions options, Api& api, StreamHub& hub);
+  HttpServer(HttpServerOptions options, Api& api, StreamSource& hub);
   ~HttpServer();  // stops
   HttpServer(const HttpServer&) = delete;
   HttpServer& operator=(const HttpServer&) = delete;

@@ -9,7 +9,7 @@
 
 namespace avk::server {
 
-ServerState::ServerState(HttpServerOptions options, Api& api, StreamHub& hub)
+ServerState::ServerState(HttpServerOptions options, Api& api, StreamSource& hub)
     : options_(std::move(options)),
       api_(api),
       hub_(hub),

@@ -13,11 +13,10 @@
 #include <string>
 
 #include "server/api_types.hpp"
-#include "server/foxglove_hub.hpp"
 #include "server/http/http_server.hpp"
+#include "server/http/live_sources.hpp"
 #include "server/http/request_pool.hpp"
 #include "server/http/static_files.hpp"
-#include "server/stream_hub.hpp"
 
 namespace avk::server {
 
@@ -27,12 +26,12 @@ class DetachableSink;
 
 class ServerState {
  public:
-  ServerState(HttpServerOptions options, Api& api, StreamHub& hub);
+  ServerState(HttpServerOptions options, Api& api, StreamSource& hub);
 
   const HttpServerOptions& options() const { return options_; }
   Api& api() { return api_; }
-  StreamHub& hub() { return hub_; }
-  FoxgloveHub& foxglove() { return hub_.foxglove(); }
+  StreamSource& hub() { return hub_; }
+  FoxgloveSource& foxglove() { return hub_.foxglove_source(); }
   const StaticFiles& static_files() const { return static_files_; }
   RequestPool& pool() { return pool_; }
   bool stopping() const { return stopping_.load(); }
@@ -78,7 +77,7 @@ class ServerState {
  private:
   HttpServerOptions options_;
   Api& api_;
-  StreamHub& hub_;
+  StreamSource& hub_;
   StaticFiles static_files_;
   RequestPool pool_;
   std::atomic<bool> stopping_{false};

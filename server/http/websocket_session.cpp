@@ -5,9 +5,9 @@
 #include <utility>
 #include <vector>
 
+#include "server/http/live_sources.hpp"
 #include "server/http/server_state.hpp"
 #include "server/http/websocket_stream_sink.hpp"
-#include "server/stream_hub.hpp"
 
 namespace avk::server {
 
@@ -74,7 +74,7 @@ void WebSocketSession::on_text(const std::string& text) {
       if (!t.is_string())
         return send_control(error_message(std::string(key) + " takes an array of topic names"));
       const auto& topic = t.get_ref<const std::string&>();
-      if (!StreamHub::is_topic(topic))
+      if (!state_->hub().has_topic(topic))
         unknown.push_back(topic);
       else
         change.topics.push_back(topic);
@@ -89,7 +89,7 @@ void WebSocketSession::on_text(const std::string& text) {
     for (const auto& t : unknown)
       list += (list.empty() ? "" : ", ") + t;
     std::string offered;
-    for (const auto& t : StreamHub::topics())
+    for (const auto& t : state_->hub().topic_names())
       offered += (offered.empty() ? "" : ", ") + t;
     return send_control(error_message("unknown topic: " + list + " (topics: " + offered + ")"));
   }

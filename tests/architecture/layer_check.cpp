@@ -90,7 +90,9 @@ std::vector<LayerViolation> check_layers(const fs::path& root,
       const std::string included = m[1];
       // Only the project's own folders are layers; other quoted includes are the file's siblings.
       if (!rule_of(included, rules) && included.find('/') == std::string::npos) continue;
-      const bool own = under(included, rule->folder);
+      // A file's own folder is the one whose rule it falls under: a sub-folder with a rule of
+      // its own (server/http under server) is another layer, reached only when listed.
+      const bool own = rule_of(included, rules) == rule;
       const bool allowed = own || std::any_of(rule->allowed.begin(), rule->allowed.end(),
                                               [&](const auto& a) { return under(included, a); });
       if (!allowed) out.push_back({file, n, included, rule->folder});
