@@ -39,7 +39,7 @@ Result<MissionRunOutcome> run_mission_here(Context& ctx, const MissionPlan& plan
     runner.add_observer(*o);
 
   // The process is the mission's runner: if it dies, the mission reads as interrupted.
-  db.set_mission_runner(plan.mission_id, static_cast<std::int64_t>(::getpid()));
+  db.missions().set_runner(plan.mission_id, static_cast<std::int64_t>(::getpid()));
   MissionRunOutcome out;
   const auto wall_start = std::chrono::steady_clock::now();
   if (local.m200) {
@@ -64,7 +64,7 @@ Result<MissionRunOutcome> run_mission_here(Context& ctx, const MissionPlan& plan
   }
   out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   recorder.flush();
-  db.set_mission_runner(plan.mission_id, std::nullopt);
+  db.missions().set_runner(plan.mission_id, std::nullopt);
   out.planned = static_cast<int>(mission::plan_turns(plan.config).size());
   out.turns_given_up = runner.turns_given_up();
   auto summary = mission_summary(ctx, plan.mission_id);

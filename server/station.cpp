@@ -332,11 +332,12 @@ void Station::add_routes() {
     const bool turns = from != r.query.end() && from->second == "turns";
     if (from != r.query.end() && !turns && from->second != "legs")
       throw bad_parameter("from", "must be legs or turns");
-    return answer(turns ? app::estimate_mission_current_from_turns(ctx, id)
-                        : app::estimate_mission_current(ctx, id),
-                  false, [&ctx, id](const app::MissionCurrent& c) {
-                    return json_response(mission_current_json(c, ctx.db().mission_current(id)));
-                  });
+    return answer(
+        turns ? app::estimate_mission_current_from_turns(ctx, id)
+              : app::estimate_mission_current(ctx, id),
+        false, [&ctx, id](const app::MissionCurrent& c) {
+          return json_response(mission_current_json(c, ctx.db().currents().for_mission(id)));
+        });
   });
   post("/api/v1/missions/{id}/current", [&ctx](const ApiRequest&, const PathParams& p) {
     return answer(app::apply_mission_current(ctx, path_id(p, "id", "mission")), true,

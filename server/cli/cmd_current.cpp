@@ -46,7 +46,7 @@ int estimate(const std::vector<std::string>& rest, Io& io) {
     c = value_or_fail(app::estimate_mission_current_from_turns(ctx, id));
   } else {
     c = value_or_fail(app::estimate_mission_current(ctx, id, leg_s));
-    stored = ctx.db().mission_current(id);
+    stored = ctx.db().currents().for_mission(id);
   }
   if (format == "json") {
     nlohmann::json j = mission_current_json(c, stored);

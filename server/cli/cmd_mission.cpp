@@ -262,7 +262,7 @@ int run(const std::vector<std::string>& rest, Io& io) {
   std::optional<vehicle::ScaledClock> clock;
   std::unique_ptr<vehicle::M200> m200;
   if (spec.m200) {
-    clock.emplace(realtime_factor_from(a), ctx.db().station_clock_end_s() + 1.0);
+    clock.emplace(realtime_factor_from(a), ctx.db().missions().station_clock_end_s() + 1.0);
     m200 = connect_m200(*spec.m200, *clock, io);
   }
   spec.plan = app::create_mission_plan(ctx.db(), text, info);
@@ -280,9 +280,9 @@ int resume(const std::vector<std::string>& rest, Io& io) {
   app::Context ctx(a.require("db"));
   store::Store& db = ctx.db();
   const std::int64_t id = mission_id_arg(a);
-  const auto m = db.get_mission(id);
+  const auto m = db.missions().get(id);
   if (!m) throw std::runtime_error("no mission " + std::to_string(id) + " in the database");
-  const auto vehicle = db.get_vehicle(m->vehicle_id);
+  const auto vehicle = db.vehicles().get(m->vehicle_id);
   if (!vehicle) throw std::runtime_error("mission's vehicle '" + m->vehicle_id + "' is not stored");
   RunSpec spec;
   spec.m200 = m200_options_from(a);
@@ -309,7 +309,7 @@ int resume(const std::vector<std::string>& rest, Io& io) {
   }
   spec.vehicle_id = m->vehicle_id;
   if (spec.m200) {
-    clock.emplace(realtime_factor_from(a), db.station_clock_end_s() + 1.0);
+    clock.emplace(realtime_factor_from(a), db.missions().station_clock_end_s() + 1.0);
     m200 = connect_m200(*spec.m200, *clock, io);
   }
   try {

@@ -239,7 +239,7 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
     so.token = user_token;
   }
 
-  const double clock = store::Store(db_path).station_clock_end_s();
+  const double clock = store::Store(db_path).missions().station_clock_end_s();
   so.datum = datum_from(a);
   so.tiles = tiles;
   if (a.flag("sim")) {

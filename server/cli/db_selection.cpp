@@ -67,12 +67,12 @@ std::string vehicle_of(const Args& a, store::Store& db, const std::vector<std::i
                        const std::string& option) {
   if (const auto v = a.get(option)) return *v;
   std::set<std::string> vehicles;
-  for (const auto& m : db.list_missions()) {
+  for (const auto& m : db.missions().list()) {
     if (ids.empty() || std::find(ids.begin(), ids.end(), m.id) != ids.end())
       vehicles.insert(m.vehicle_id);
   }
   for (const auto id : ids) {
-    if (!db.get_mission(id)) throw std::runtime_error("no mission " + std::to_string(id));
+    if (!db.missions().get(id)) throw std::runtime_error("no mission " + std::to_string(id));
   }
   if (vehicles.empty()) throw std::runtime_error("the database holds no missions");
   if (vehicles.size() > 1) {

@@ -51,12 +51,12 @@ TEST(MissionLimitsStore, AMissionTooLargeToPlanLeavesNoRowBehind) {
   const avk::vehicle::VehicleInfo info{"sim-usim", "usim", 2.0, std::nullopt};
   EXPECT_THROW(avk::app::create_mission_plan(db, oversized_mission(), info),
                avk::mission::MissionConfigError);
-  EXPECT_TRUE(db.list_missions().empty());
+  EXPECT_TRUE(db.missions().list().empty());
   // A mission within the limits is stored with its plan.
   const auto plan =
       avk::app::create_mission_plan(db, mission({0.5, 1.0}, {40, 100}, 2).dump(), info);
   EXPECT_EQ(plan.tasks.size(), 8u);
-  EXPECT_EQ(db.list_missions().size(), 1u);
+  EXPECT_EQ(db.missions().list().size(), 1u);
 }
 
 class MissionLimitsApi : public ::testing::Test {

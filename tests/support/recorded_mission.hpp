@@ -31,7 +31,7 @@ inline std::int64_t run_recorded_mission(store::Store& db, const std::string& ve
   const auto config = mission::parse_mission_config(mission_text, 2.0);
   so.start = app::start_pose(config);
   // The mission clock continues after everything stored, as the station's does.
-  so.start_time_s = db.station_clock_end_s() + 1.0;
+  so.start_time_s = db.missions().station_clock_end_s() + 1.0;
   sim::SimMission sim(so);
   const app::MissionPlan plan = app::create_mission_plan(db, mission_text, sim.vehicle().info());
   mission::RunnerOptions ro;
