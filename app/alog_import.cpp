@@ -51,7 +51,7 @@ class AlogImport {
     // for logs without them.
     if (!records_seen_ && store_extracted_) {
       for (const auto& t : extracted_) {
-        db_.store_turn(mission_id_, t, t.meta().status, t.meta().status_reason);
+        db_.turns().add(mission_id_, t, t.meta().status, t.meta().status_reason);
         from_extraction_.add(t.meta().status);
       }
     }
@@ -83,7 +83,7 @@ class AlogImport {
 
   void flush_nav() {
     if (nav_.empty()) return;
-    db_.append_nav(mission_id_, nav_);
+    db_.navigation().append(mission_id_, nav_);
     nav_stored_ += nav_.size();
     nav_.clear();
   }
@@ -105,7 +105,7 @@ class AlogImport {
         continue;
       }
       try {
-        db_.store_turn(mission_id_, turn, turn.meta().status, turn.meta().status_reason);
+        db_.turns().add(mission_id_, turn, turn.meta().status, turn.meta().status_reason);
       } catch (const kinematics::TurnError& e) {
         // An ok record that cannot be normalised; a database failure still ends the import.
         record_problems_.add(r.line, "turn record cannot be stored: " + std::string(e.what()));
@@ -175,15 +175,15 @@ Result<AlogImportReport> import_alog(Context& ctx, std::istream& log,
     return invalid_argument("name", "the mission's name " + *why);
   store::Store& db = ctx.db();
   // The speed limit is not known until the log has been read; 0 says so meanwhile.
-  const auto existing = db.get_vehicle(request.vehicle_id);
+  const auto existing = db.vehicles().get(request.vehicle_id);
   vehicle::VehicleInfo info{request.vehicle_id, "alog", existing ? existing->max_speed_mps : 0.0,
                             existing ? existing->length_m : std::nullopt};
-  db.upsert_vehicle(info);
+  db.vehicles().upsert(info);
   const std::int64_t mission_id =
-      db.create_mission(request.vehicle_id, request.mission_name, import_config(request));
+      db.missions().create(request.vehicle_id, request.mission_name, import_config(request));
   // Running until done: an import that dies midway is listed as interrupted, not as complete.
-  db.set_mission_status(mission_id, store::MissionStatus::running, "importing " + request.source,
-                        0.0);
+  db.missions().set_status(mission_id, store::MissionStatus::running, "importing " + request.source,
+                           0.0);
 
   AlogImport import(db, mission_id, request.names, request.extraction, request.vehicle_id,
                     !request.harvest);
@@ -191,9 +191,9 @@ Result<AlogImportReport> import_alog(Context& ctx, std::istream& log,
 
   if (const auto top = import.nav_stats().max_speed_mps)
     info.max_speed_mps = std::max(info.max_speed_mps, *top);
-  db.upsert_vehicle(info);
-  db.set_mission_status(mission_id, store::MissionStatus::done, "imported from " + request.source,
-                        import.last_t_s().value_or(0.0));
+  db.vehicles().upsert(info);
+  db.missions().set_status(mission_id, store::MissionStatus::done,
+                           "imported from " + request.source, import.last_t_s().value_or(0.0));
   AlogImportReport r;
   r.mission_id = mission_id;
   r.reader = import.reader_stats();

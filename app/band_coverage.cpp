@@ -81,17 +81,17 @@ Result<BandCoverage> band_coverage(Context& ctx, const BandCoverageQuery& q) {
     return invalid_argument("after_turn_s", "must be within [0, 600] s");
   store::Store& db = ctx.db();
   for (const auto id : q.test_missions)
-    if (!db.get_mission(id)) return not_found("no mission " + std::to_string(id));
+    if (!db.missions().get(id)) return not_found("no mission " + std::to_string(id));
   std::vector<std::int64_t> table_missions = q.table_missions;
   if (table_missions.empty())
-    for (const auto& m : db.list_missions())
+    for (const auto& m : db.missions().list())
       if (m.vehicle_id == q.vehicle_id) table_missions.push_back(m.id);
   // The table never holds a turn it is judged on.
   std::erase_if(table_missions, [&](std::int64_t id) {
     return std::find(q.test_missions.begin(), q.test_missions.end(), id) != q.test_missions.end();
   });
-  const auto turns = db.load_normalized_turns(table_missions, q.vehicle_id, false,
-                                              store::TurnFrameChoice::water_where_known);
+  const auto turns = db.turns().load_normalized(table_missions, q.vehicle_id, false,
+                                                store::TurnFrameChoice::water_where_known);
   if (turns.empty()) return not_found("no ok turns of '" + q.vehicle_id + "' to build from");
   const kin::Ckt table = kin::Ckt::build(turns);
   if (!table.speed_range_mps()) return not_found("the table holds no turn to predict from");
@@ -115,17 +115,17 @@ Result<BandCoverage> band_coverage(Context& ctx, const BandCoverageQuery& q) {
     // from still water; its uncertainty either way.
     std::optional<kin::WaterCurrent> current;
     std::optional<std::array<double, 3>> covariance;
-    if (const auto c = db.mission_current(mission_id)) {
+    if (const auto c = db.currents().for_mission(mission_id)) {
       covariance = c->estimate.covariance;
       if (current_is_significant(c->estimate)) current = water_current(c->estimate);
     }
     const kin::BandSources sources = band_sources(motion, covariance);
-    const std::vector<store::NavRow> nav = db.nav_for_mission(mission_id);
+    const std::vector<store::NavRow> nav = db.navigation().for_mission(mission_id);
     std::vector<store::TurnRow> rows;
     for_each_mission_turn(db, mission_id, kin::TurnStatus::ok,
                           [&](const store::TurnRow& r) { rows.push_back(r); });
     for (const auto& row : rows) {
-      const auto stored = db.get_turn(row.id);
+      const auto stored = db.turns().get(row.id);
       if (!stored || stored->raw.samples().size() < 2) continue;
       const kin::TurnSequence& raw = stored->raw;
       const kin::TurnMeta& meta = raw.meta();

@@ -46,12 +46,12 @@ const TableCache::Revision& TableCache::revision(Context& ctx, Entry& e,
   e.checked = now;
   store::Store& db = ctx.db();
   Revision r;
-  r.turns = db.newest_ok_turn_id(vehicle_id, include_harvested);
+  r.turns = db.turns().newest_ok_id(vehicle_id, include_harvested);
   // A new estimate of a mission's current moves its turns into (or out of) the water frame.
-  r.current = r.turns > 0 ? db.current_revision(vehicle_id) : 0;
+  r.current = r.turns > 0 ? db.currents().revision(vehicle_id) : 0;
   // Only a vehicle without turns is answered by an imported table, so only then is it looked up;
   // its document is read only when the newest id changed.
-  r.snapshot = r.turns == 0 ? db.latest_ckt_snapshot_id(vehicle_id) : 0;
+  r.snapshot = r.turns == 0 ? db.ckt_snapshots().latest_id(vehicle_id) : 0;
   e.seen = r;
   return e.seen;
 }
@@ -69,15 +69,15 @@ Result<VehicleTable> TableCache::get(Context& ctx, const std::string& vehicle_id
   if (rev.turns > 0) {
     // Turns in the water frame where their mission's current is known: the table then predicts
     // through the water, and a query adds the drift of the current it is asked in.
-    const auto turns = db.load_normalized_turns({}, vehicle_id, include_harvested,
-                                                store::TurnFrameChoice::water_where_known);
+    const auto turns = db.turns().load_normalized({}, vehicle_id, include_harvested,
+                                                  store::TurnFrameChoice::water_where_known);
     auto built = std::make_shared<kin::Ckt>(kin::Ckt::build(turns));
     built->vehicle_id = vehicle_id;
     t.speed_changes = std::make_shared<kin::SpeedChangeTable>(kin::SpeedChangeTable::build(turns));
     t.measured_speed_response = kin::measured_speed_response(turns);
     t.table = std::move(built);
     t.source = TableSource::turns;
-  } else if (auto snap = rev.snapshot ? db.latest_ckt_snapshot(vehicle_id) : std::nullopt) {
+  } else if (auto snap = rev.snapshot ? db.ckt_snapshots().latest(vehicle_id) : std::nullopt) {
     t.table = std::make_shared<kin::Ckt>(std::move(snap->table));
     t.source = TableSource::imported;
     t.snapshot_id = snap->id;
@@ -111,7 +111,7 @@ std::shared_ptr<const kin::Ckt> TableCache::held_out(Context& ctx, const std::st
   }
   // Built outside the lock: two requests for the same new set may both build it, and the
   // second's table replaces the first's (the same turns give the same table).
-  const auto turns = ctx.db().load_normalized_turns(
+  const auto turns = ctx.db().turns().load_normalized(
       {}, vehicle_id, include_harvested, store::TurnFrameChoice::water_where_known, left_out);
   if (turns.empty()) return nullptr;
   // Kept for queries alone: without the observed turns a table is a fraction of its size.
@@ -187,7 +187,7 @@ Result<ImportedTable> import_ckt(Context& ctx, const std::string& vehicle_id,
                                               "', not '" + vehicle_id + "'");
   if (const auto why = kin::text_too_long(t.created_utc, kMaxCreatedUtcBytes))
     return invalid_argument("created_utc", "the file's created_utc " + *why);
-  const auto id = ctx.db().save_ckt_snapshot(t, {});
+  const auto id = ctx.db().ckt_snapshots().save(t, {});
   ctx.tables().forget(vehicle_id);
   return ImportedTable{id, vehicle_id};
 }
@@ -198,9 +198,9 @@ Result<BuiltTable> build_ckt(Context& ctx, const std::string& vehicle_id,
                              bool include_harvested) {
   store::Store& db = ctx.db();
   for (const auto id : missions)
-    if (!db.get_mission(id)) return not_found("no mission " + std::to_string(id));
-  const auto turns = db.load_normalized_turns(missions, vehicle_id, include_harvested,
-                                              store::TurnFrameChoice::water_where_known);
+    if (!db.missions().get(id)) return not_found("no mission " + std::to_string(id));
+  const auto turns = db.turns().load_normalized(missions, vehicle_id, include_harvested,
+                                                store::TurnFrameChoice::water_where_known);
   if (turns.empty()) return not_found("no ok turns of '" + vehicle_id + "' to build from");
   BuiltTable out;
   out.harvested_turns = static_cast<std::size_t>(std::count_if(
@@ -210,7 +210,7 @@ Result<BuiltTable> build_ckt(Context& ctx, const std::string& vehicle_id,
   out.table.vehicle_id = vehicle_id;
   out.table.vehicle_length_m = vehicle_length_m;
   out.table.created_utc = utc_now_iso8601();
-  out.snapshot_id = db.save_ckt_snapshot(out.table, missions);
+  out.snapshot_id = db.ckt_snapshots().save(out.table, missions);
   return out;
 }
 

@@ -41,18 +41,18 @@ Result<Comparison> compare(Context& ctx, const CompareQuery& q) {
       if (!m) return m.error();
       c.model = std::move(*m);
     } else {
-      c.model = ctx.db().latest_model(q.vehicle_id);  // none stored: compared without
+      c.model = ctx.db().models().latest(q.vehicle_id);  // none stored: compared without
     }
   }
   for (const auto id : q.missions)
-    if (!ctx.db().get_mission(id)) return not_found("no mission " + std::to_string(id));
+    if (!ctx.db().missions().get(id)) return not_found("no mission " + std::to_string(id));
   for (const auto id : q.test_missions)
-    if (!ctx.db().get_mission(id)) return not_found("no mission " + std::to_string(id));
+    if (!ctx.db().missions().get(id)) return not_found("no mission " + std::to_string(id));
   std::vector<std::int64_t> table_missions = q.missions;
   if (!q.test_missions.empty()) {
     // The table never holds a turn it is judged on.
     if (table_missions.empty()) {
-      for (const auto& m : ctx.db().list_missions())
+      for (const auto& m : ctx.db().missions().list())
         if (m.vehicle_id == q.vehicle_id) table_missions.push_back(m.id);
     }
     std::erase_if(table_missions, [&](std::int64_t id) {
@@ -61,7 +61,7 @@ Result<Comparison> compare(Context& ctx, const CompareQuery& q) {
     if (table_missions.empty())
       return invalid_argument("mission", "no mission is left to build the table from");
   }
-  const auto turns = ctx.db().load_normalized_turns(table_missions, q.vehicle_id);
+  const auto turns = ctx.db().turns().load_normalized(table_missions, q.vehicle_id);
   if (turns.empty()) return not_found("no ok turns of '" + q.vehicle_id + "' to compare");
   c.table = kin::Ckt::build(turns);
   kin::TurnPredictor predictor;
@@ -92,7 +92,7 @@ Result<Comparison> compare(Context& ctx, const CompareQuery& q) {
         kin::compare_speed_changes(turns, c.table, model_response, model_sc ? &model_sc : nullptr);
   }
   if (!q.test_missions.empty()) {
-    const auto test = ctx.db().load_normalized_turns(q.test_missions, q.vehicle_id);
+    const auto test = ctx.db().turns().load_normalized(q.test_missions, q.vehicle_id);
     if (test.empty())
       return not_found("no ok turns of '" + q.vehicle_id + "' in the test missions");
     kin::TurnPredictor test_predictor;

@@ -23,7 +23,7 @@ void for_each_mission_turn(store::Store& db, std::int64_t mission_id,
   f.status = status;
   f.limit = 1000;
   for (;;) {
-    const auto page = db.list_turns(f);
+    const auto page = db.turns().list(f);
     for (const auto& row : page)
       fn(row);
     if (page.size() < static_cast<std::size_t>(f.limit)) break;
@@ -160,7 +160,7 @@ std::vector<kin::SteadyLeg> steady_stretches_before(const std::vector<double>& t
 Result<MissionCurrent> estimate_mission_current(Context& ctx, std::int64_t mission_id,
                                                 double leg_s) {
   store::Store& db = ctx.db();
-  if (!db.get_mission(mission_id)) return not_found("no mission " + std::to_string(mission_id));
+  if (!db.missions().get(mission_id)) return not_found("no mission " + std::to_string(mission_id));
   MissionCurrent out;
   out.mission_id = mission_id;
   std::vector<double> starts;
@@ -168,7 +168,7 @@ Result<MissionCurrent> estimate_mission_current(Context& ctx, std::int64_t missi
                         [&](const store::TurnRow& t) { starts.push_back(t.start_time_s); });
   out.turns = starts.size();
   std::sort(starts.begin(), starts.end());
-  const auto nav = db.nav_for_mission(mission_id);
+  const auto nav = db.navigation().for_mission(mission_id);
   const auto legs = steady_legs_before(starts, nav, leg_s);
   out.legs_used = legs.size();
   out.result = kin::estimate_current(legs);
@@ -182,11 +182,11 @@ Result<MissionCurrent> estimate_mission_current(Context& ctx, std::int64_t missi
 
 Result<MissionCurrent> estimate_mission_current_from_turns(Context& ctx, std::int64_t mission_id) {
   store::Store& db = ctx.db();
-  const auto mission = db.get_mission(mission_id);
+  const auto mission = db.missions().get(mission_id);
   if (!mission) return not_found("no mission " + std::to_string(mission_id));
   store::TurnsLeftOut others;
   others.mission_id = mission_id;
-  const auto table_turns = db.load_normalized_turns(
+  const auto table_turns = db.turns().load_normalized(
       {}, mission->vehicle_id, false, store::TurnFrameChoice::water_where_known, others);
   if (table_turns.empty())
     return not_found("no other mission of '" + mission->vehicle_id +
@@ -197,7 +197,7 @@ Result<MissionCurrent> estimate_mission_current_from_turns(Context& ctx, std::in
   std::vector<kin::TurnResidual> residuals;
   for_each_mission_turn(db, mission_id, kin::TurnStatus::ok, [&](const store::TurnRow& row) {
     ++out.turns;
-    const auto stored = db.get_turn(row.id);
+    const auto stored = db.turns().get(row.id);
     if (!stored || stored->raw.samples().size() < 2) return;
     const kin::TurnSequence& raw = stored->raw;
     const double speed = raw.meta().commanded_speed_mps;
@@ -260,18 +260,18 @@ Result<AppliedCurrent> apply_mission_current(Context& ctx, std::int64_t mission_
   std::vector<std::pair<std::int64_t, kin::TurnSequence>> raw;
   if (current_is_significant(*est->result.estimate)) {
     for_each_mission_turn(db, mission_id, kin::TurnStatus::ok, [&](const store::TurnRow& t) {
-      if (auto stored = db.get_turn(t.id)) raw.emplace_back(t.id, std::move(stored->raw));
+      if (auto stored = db.turns().get(t.id)) raw.emplace_back(t.id, std::move(stored->raw));
     });
   }
   const auto water = water_frame_turns(raw, water_current(*est->result.estimate));
   store::StoredCurrent sc;
   sc.mission_id = mission_id;
-  sc.t_s = db.mission_clock_end_s(mission_id).value_or(0.0);
+  sc.t_s = db.missions().clock_end_s(mission_id).value_or(0.0);
   sc.method = "legs";
   sc.estimate = *est->result.estimate;
   sc.speed_reference = est->speed_reference;
   sc.drift_scatter = est->drift_scatter;
-  sc.revision = db.save_mission_current(sc, water);
+  sc.revision = db.currents().save(sc, water);
   out.stored = sc;
   out.water_turns = water.size();
   return out;
@@ -306,7 +306,7 @@ Result<QueryCurrent> query_current(Context& ctx, const std::string& vehicle_id,
   } else if (none) {
     out.source = "none";
     out.frame = "water";
-  } else if (const auto c = ctx.db().latest_vehicle_current(vehicle_id)) {
+  } else if (const auto c = ctx.db().currents().latest_for_vehicle(vehicle_id)) {
     out.frame = "ground";
     out.covariance = c->estimate.covariance;
     if (current_is_significant(c->estimate)) {
@@ -325,12 +325,12 @@ Result<QueryCurrent> query_current(Context& ctx, const std::string& vehicle_id,
 Result<std::optional<store::StoredCurrent>> stored_mission_current(Context& ctx,
                                                                    std::int64_t mission_id) {
   store::Store& db = ctx.db();
-  if (!db.get_mission(mission_id)) return not_found("no mission " + std::to_string(mission_id));
-  return db.mission_current(mission_id);
+  if (!db.missions().get(mission_id)) return not_found("no mission " + std::to_string(mission_id));
+  return db.currents().for_mission(mission_id);
 }
 
 Result<store::StoredCurrent> vehicle_current(Context& ctx, const std::string& vehicle_id) {
-  if (auto c = ctx.db().latest_vehicle_current(vehicle_id)) return *c;
+  if (auto c = ctx.db().currents().latest_for_vehicle(vehicle_id)) return *c;
   return not_found("no current has been estimated for vehicle '" + vehicle_id + "'");
 }
 

@@ -44,15 +44,15 @@ Result<CompensationComparison> compare_current_compensation(
   store::Store& db = ctx.db();
   for (const auto& list : {table_missions, test_missions})
     for (const auto id : list)
-      if (!db.get_mission(id)) return not_found("no mission " + std::to_string(id));
+      if (!db.missions().get(id)) return not_found("no mission " + std::to_string(id));
 
   CompensationComparison out;
   out.table_missions = table_missions;
   out.test_missions = test_missions;
-  const auto ground_turns = db.load_normalized_turns(table_missions, vehicle_id);
+  const auto ground_turns = db.turns().load_normalized(table_missions, vehicle_id);
   if (ground_turns.empty()) return not_found("the table's missions hold no ok turns");
-  const auto water_turns = db.load_normalized_turns(table_missions, vehicle_id, false,
-                                                    store::TurnFrameChoice::water_where_known);
+  const auto water_turns = db.turns().load_normalized(table_missions, vehicle_id, false,
+                                                      store::TurnFrameChoice::water_where_known);
   out.table_turns = water_turns.size();
   for (const auto& t : water_turns)
     out.table_water_turns += t.meta().removed_current ? 1 : 0;
@@ -69,7 +69,7 @@ Result<CompensationComparison> compare_current_compensation(
     const kin::WaterCurrent c = water_current(*est->result.estimate);
     out.test_currents.emplace_back(mission, *est->result.estimate);
     for_each_mission_turn(db, mission, kin::TurnStatus::ok, [&](const store::TurnRow& row) {
-      const auto stored = db.get_turn(row.id);
+      const auto stored = db.turns().get(row.id);
       if (!stored || !stored->normalized) return;
       const kin::TurnSequence& raw = stored->raw;
       const double speed = raw.meta().commanded_speed_mps;

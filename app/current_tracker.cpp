@@ -59,7 +59,7 @@ void CurrentTracker::save(double t_s) {
   const auto water = current_is_significant(*estimate_)
                          ? water_frame_turns(ok_turns_, water_current(*estimate_))
                          : std::vector<std::pair<std::int64_t, kin::TurnSequence>>{};
-  sc.revision = store_.save_mission_current(sc, water);
+  sc.revision = store_.currents().save(sc, water);
   if (publish_) publish_(sc);
 }
 

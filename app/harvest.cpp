@@ -44,8 +44,8 @@ mission::HarvestOptions options_for(const store::Mission& m) {
 }
 
 HarvestReport harvest(store::Store& db, const store::Mission& m) {
-  const auto rows = db.nav_for_mission(m.id);
-  const auto recorded = db.turn_start_times(m.id);
+  const auto rows = db.navigation().for_mission(m.id);
+  const auto recorded = db.turns().start_times(m.id);
   const auto log = guided_log(rows);
   const auto result =
       mission::harvest_turns(log, recorded, options_for(m), m.vehicle_id, std::to_string(m.id));
@@ -70,13 +70,13 @@ HarvestReport harvest(store::Store& db, const store::Mission& m) {
   for (const auto& h : result.turns) {
     store::TurnStart start;
     start.yaw_rate_dps = h.start.yaw_rate_dps;
-    r.turn_ids.push_back(db.store_turn(m.id, h.turn, kinematics::TurnStatus::ok, "", start));
+    r.turn_ids.push_back(db.turns().add(m.id, h.turn, kinematics::TurnStatus::ok, "", start));
     quality_sum += h.turn.meta().quality.value_or(0.0);
   }
   r.harvested = r.turn_ids.size();
   if (r.harvested > 0) r.mean_quality = quality_sum / static_cast<double>(r.harvested);
   record.harvested = static_cast<std::int64_t>(r.harvested);
-  r.harvest_id = db.save_harvest(record);
+  r.harvest_id = db.harvests().save(record);
   return r;
 }
 
@@ -101,7 +101,7 @@ std::vector<vehicle::GuidedNav> guided_log(const std::vector<store::NavRow>& row
 
 Result<HarvestReport> harvest_mission(Context& ctx, std::int64_t mission_id) {
   store::Store& db = ctx.db();
-  const auto m = db.get_mission(mission_id);
+  const auto m = db.missions().get(mission_id);
   if (!m) return not_found("no mission " + std::to_string(mission_id));
   return harvest(db, *m);
 }
@@ -109,7 +109,7 @@ Result<HarvestReport> harvest_mission(Context& ctx, std::int64_t mission_id) {
 Result<std::vector<HarvestReport>> harvest_vehicle(Context& ctx, const std::string& vehicle_id) {
   store::Store& db = ctx.db();
   std::vector<HarvestReport> out;
-  for (const auto& m : db.list_missions())
+  for (const auto& m : db.missions().list())
     if (m.vehicle_id == vehicle_id) out.push_back(harvest(db, m));
   if (out.empty()) return not_found("vehicle '" + vehicle_id + "' has no missions");
   return out;

@@ -69,7 +69,7 @@ Result<Predictor> predictor_for(Context& ctx, const std::string& vehicle_id,
     p.table_source = to_string(t->source);
   } else if (method == PredictionMethod::model) {
     store::Store& db = ctx.db();
-    p.model = model_id ? db.get_model(*model_id) : db.latest_model(vehicle_id);
+    p.model = model_id ? db.models().get(*model_id) : db.models().latest(vehicle_id);
     if (!p.model)
       return not_found(model_id ? "no model " + std::to_string(*model_id)
                                 : "no model of '" + vehicle_id + "' is stored");

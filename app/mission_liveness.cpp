@@ -33,12 +33,12 @@ store::MissionStatus effective_status(const store::Mission& m) {
 
 int mark_orphaned_missions_interrupted(store::Store& db) {
   int n = 0;
-  for (const auto& m : db.list_missions()) {
+  for (const auto& m : db.missions().list()) {
     if (held_by_a_process(m.status) && effective_status(m) == store::MissionStatus::interrupted) {
       // Nothing recorded: it ended where it started.
-      const auto end_s = db.mission_clock_end_s(m.id);
-      db.close_orphaned_mission(m.id, "the process running it stopped",
-                                end_s ? end_s : m.started_s);
+      const auto end_s = db.missions().clock_end_s(m.id);
+      db.missions().close_orphaned(m.id, "the process running it stopped",
+                                   end_s ? end_s : m.started_s);
       ++n;
     }
   }

@@ -52,19 +52,20 @@ struct MissionData {
 MissionData load_mission(store::Store& db, const store::Mission& m) {
   MissionData d;
   d.mission = m;
-  d.vehicle = db.get_vehicle(m.vehicle_id)
+  d.vehicle = db.vehicles()
+                  .get(m.vehicle_id)
                   .value_or(vehicle::VehicleInfo{m.vehicle_id, "", 0.0, std::nullopt});
   constexpr int kPage = 1000;
   for (std::int64_t after = 0;;) {
-    auto page = db.list_events(m.id, after, kPage);
+    auto page = db.missions().events(m.id, after, kPage);
     if (page.empty()) break;
     after = page.back().id;
     d.events.insert(d.events.end(), page.begin(), page.end());
   }
   for_each_mission_turn(db, m.id, std::nullopt,
                         [&](const store::TurnRow& t) { d.turns.push_back(t); });
-  d.condition_sets = db.condition_sets(m.id);
-  d.current = db.mission_current(m.id);
+  d.condition_sets = db.missions().condition_sets(m.id);
+  d.current = db.currents().for_mission(m.id);
   return d;
 }
 
@@ -281,7 +282,7 @@ class TurnsInFlight {
   const store::StoredTurn& get(std::size_t i) {
     auto it = held_.find(i);
     if (it != held_.end()) return it->second;
-    auto turn = db_.get_turn(d_.turns[i].id);
+    auto turn = db_.turns().get(d_.turns[i].id);
     if (!turn) throw std::runtime_error("turn " + std::to_string(d_.turns[i].id) + " was deleted");
     return held_.emplace(i, std::move(*turn)).first->second;
   }
@@ -711,7 +712,7 @@ Result<McapExport> export_mission_mcap(Context& ctx, std::int64_t mission_id,
                                        const McapExportOptions& options,
                                        const mcap::Writer::Sink& sink) {
   store::Store& db = ctx.db();
-  const auto mission = db.get_mission(mission_id);
+  const auto mission = db.missions().get(mission_id);
   if (!mission) return not_found("no mission " + std::to_string(mission_id));
   std::optional<vehicle::LocalGrid> grid;
   if (options.datum) {
@@ -753,7 +754,7 @@ Result<McapExport> export_mission_mcap(Context& ctx, std::int64_t mission_id,
   // A datum too far from the track is the request's mistake: said before anything is written.
   if (grid) {
     std::optional<std::string> too_far;
-    db.for_each_nav(mission_id, [&](const store::NavRow& r) {
+    db.navigation().for_each(mission_id, [&](const store::NavRow& r) {
       if (too_far) return;
       try {
         (void)grid->to_geodetic(r.x_m, r.y_m);
@@ -791,7 +792,7 @@ Result<McapExport> export_mission_mcap(Context& ctx, std::int64_t mission_id,
     region_written = true;
   };
   std::optional<store::NavRow> previous;
-  db.for_each_nav(mission_id, [&](const store::NavRow& r) {
+  db.navigation().for_each(mission_id, [&](const store::NavRow& r) {
     if (!region_written) write_region(r.t_s);
     const std::uint64_t t_ns = fg::to_ns(r.t_s);
     others_before(t_ns);

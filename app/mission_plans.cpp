@@ -40,15 +40,15 @@ Result<MissionPlan> create_mission_plan(Context& ctx, const std::string& config_
   // leave a row behind (the validation bounds the plan, so planning is cheap).
   p.tasks = mission::plan_turns(p.config);
   p.start = start_pose(p.config);
-  db.upsert_vehicle(vehicle);
-  p.mission_id = db.create_mission(vehicle.id, p.config.name, config_text);
+  db.vehicles().upsert(vehicle);
+  p.mission_id = db.missions().create(vehicle.id, p.config.name, config_text);
   return p;
 }
 
 Result<MissionPlan> resume_mission_plan(Context& ctx, std::int64_t mission_id,
                                         double max_speed_mps) {
   store::Store& db = ctx.db();
-  const auto m = db.get_mission(mission_id);
+  const auto m = db.missions().get(mission_id);
   if (!m) return not_found("no mission " + std::to_string(mission_id) + " in the database");
   const store::MissionStatus status = effective_status(*m);
   if (status == store::MissionStatus::done || status == store::MissionStatus::aborted) {
@@ -69,20 +69,20 @@ Result<MissionPlan> resume_mission_plan(Context& ctx, std::int64_t mission_id,
     return mission_config_error(e);
   }
   std::vector<mission::CellCount> done;
-  for (const auto& c : db.mission_cell_stats(m->id)) {
+  for (const auto& c : db.missions().cell_stats(m->id)) {
     done.push_back({c.speed_mps, c.dheading_deg, static_cast<int>(c.n_ok), c.speed_after_mps});
     p.done_before += static_cast<int>(c.n_ok);
   }
   p.tasks = mission::remaining_turns(mission::plan_turns(p.config), done);
-  p.clock_after_s = db.mission_clock_end_s(m->id).value_or(0.0);
+  p.clock_after_s = db.missions().clock_end_s(m->id).value_or(0.0);
   // A restarted simulator puts the vehicle where it was last seen; its motion is not stored.
-  const auto nav = db.nav_for_mission(m->id);
+  const auto nav = db.navigation().for_mission(m->id);
   p.start = nav.empty() ? start_pose(p.config)
                         : kinematics::Pose{nav.back().x_m, nav.back().y_m, nav.back().heading_deg};
-  db.append_event(m->id, p.clock_after_s + 1.0,
-                  std::string(mission::to_string(mission::EventKind::resume)),
-                  "resumed from " + std::string(store::to_string(status)) + " with " +
-                      std::to_string(p.tasks.size()) + " turns to do");
+  db.missions().append_event(m->id, p.clock_after_s + 1.0,
+                             std::string(mission::to_string(mission::EventKind::resume)),
+                             "resumed from " + std::string(store::to_string(status)) + " with " +
+                                 std::to_string(p.tasks.size()) + " turns to do");
   return p;
 }
 

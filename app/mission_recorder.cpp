@@ -54,29 +54,30 @@ void MissionRecorder::on_turn_started(const mission::TurnTask&, const mission::R
 
 void MissionRecorder::flush() {
   if (pending_.empty()) return;
-  store_.append_nav(mission_id_, pending_);
+  store_.navigation().append(mission_id_, pending_);
   pending_.clear();
 }
 
 void MissionRecorder::on_turn(mission::TurnOutcome& t) {
   t.stored_id =
-      store_.store_turn(mission_id_, t.raw, t.status, t.reason,
-                        {t.condition_set_time_s, t.start_heading_error_deg, t.start_yaw_rate_dps});
+      store_.turns().add(mission_id_, t.raw, t.status, t.reason,
+                         {t.condition_set_time_s, t.start_heading_error_deg, t.start_yaw_rate_dps});
   current_.turn_stored(*t.stored_id, t.raw, t.status);
 }
 
 void MissionRecorder::on_condition_set(const mission::ConditionSetEpisode& e) {
-  store_.append_condition_set(mission_id_,
-                              {e.start_s, e.end_s, e.target_speed_mps, to_string(e.outcome)});
+  store_.missions().append_condition_set(
+      mission_id_, {e.start_s, e.end_s, e.target_speed_mps, to_string(e.outcome)});
 }
 
 void MissionRecorder::on_event(const mission::MissionEventRecord& e) {
-  store_.append_event(mission_id_, e.t_s, std::string(mission::to_string(e.kind)), e.message);
+  store_.missions().append_event(mission_id_, e.t_s, std::string(mission::to_string(e.kind)),
+                                 e.message);
 }
 
 void MissionRecorder::on_state(mission::MissionState s, const std::string& reason, double t_s) {
   flush();
-  store_.set_mission_status(mission_id_, to_store_status(s), reason, t_s);
+  store_.missions().set_status(mission_id_, to_store_status(s), reason, t_s);
 }
 
 }  // namespace avk::app

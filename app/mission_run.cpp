@@ -66,7 +66,7 @@ Result<MissionRunOutcome> run_on(Context& ctx, const MissionPlan& plan, LocalVeh
   if (options.on_start) options.on_start(plan, out.planned);
 
   // The process is the mission's runner: if it dies, the mission reads as interrupted.
-  db.set_mission_runner(plan.mission_id, static_cast<std::int64_t>(::getpid()));
+  db.missions().set_runner(plan.mission_id, static_cast<std::int64_t>(::getpid()));
   const auto wall_start = std::chrono::steady_clock::now();
   mission::HelmLoopResult r;
   if (const vehicle::ScaledClock* clock = source.wall_clock()) {
@@ -91,7 +91,7 @@ Result<MissionRunOutcome> run_on(Context& ctx, const MissionPlan& plan, LocalVeh
   out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   out.link_report = source.link_report();
   recorder.flush();
-  db.set_mission_runner(plan.mission_id, std::nullopt);
+  db.missions().set_runner(plan.mission_id, std::nullopt);
   out.turns_given_up = runner.turns_given_up();
   auto summary = mission_summary(ctx, plan.mission_id);
   if (!summary) return summary.error();
@@ -106,7 +106,7 @@ Result<MissionRunOutcome> plan_and_run(Context& ctx, VehicleSourceOptions vo,
                                        const std::function<Result<MissionPlan>()>& make_plan) {
   std::unique_ptr<LocalVehicle> real;
   if (!vehicle::is_simulated(kind_of(vo))) {
-    vo.start_clock_s = ctx.db().station_clock_end_s() + 1.0;
+    vo.start_clock_s = ctx.db().missions().station_clock_end_s() + 1.0;
     auto opened = open_vehicle(vo, options);
     if (!opened) return opened.error();
     real = std::move(*opened);
@@ -143,9 +143,9 @@ Result<MissionRunOutcome> resume_mission_run(Context& ctx, std::int64_t mission_
                                              VehicleSourceOptions vehicle,
                                              const MissionRunOptions& options) {
   store::Store& db = ctx.db();
-  const auto m = db.get_mission(mission_id);
+  const auto m = db.missions().get(mission_id);
   if (!m) return not_found("no mission " + std::to_string(mission_id) + " in the database");
-  const auto stored = db.get_vehicle(m->vehicle_id);
+  const auto stored = db.vehicles().get(m->vehicle_id);
   if (!stored) return not_found("mission's vehicle '" + m->vehicle_id + "' is not stored");
   const auto stored_kind = vehicle::vehicle_kind_from_string(stored->kind);
   const vehicle::VehicleKind kind = kind_of(vehicle);

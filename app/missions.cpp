@@ -112,9 +112,9 @@ std::string status_text(const MissionReport& r) {
 std::vector<MissionSummary> list_missions(Context& ctx,
                                           const std::optional<std::string>& vehicle_id) {
   store::Store& db = ctx.db();
-  const auto counts = db.turn_counts_by_mission();
+  const auto counts = db.missions().turn_counts();
   std::vector<MissionSummary> out;
-  for (auto& m : db.list_missions()) {
+  for (auto& m : db.missions().list()) {
     if (vehicle_id && m.vehicle_id != *vehicle_id) continue;
     const auto it = counts.find(m.id);
     out.push_back(summary_of(std::move(m), it == counts.end() ? store::TurnCounts{} : it->second));
@@ -123,17 +123,17 @@ std::vector<MissionSummary> list_missions(Context& ctx,
 }
 
 Result<MissionSummary> mission_summary(Context& ctx, std::int64_t mission_id) {
-  auto m = ctx.db().get_mission(mission_id);
+  auto m = ctx.db().missions().get(mission_id);
   if (!m) return not_found("no mission " + std::to_string(mission_id));
-  return summary_of(std::move(*m), totals_of(ctx.db().mission_cell_stats(mission_id)));
+  return summary_of(std::move(*m), totals_of(ctx.db().missions().cell_stats(mission_id)));
 }
 
 Result<MissionReport> mission_report(Context& ctx, std::int64_t mission_id) {
   store::Store& db = ctx.db();
-  auto m = db.get_mission(mission_id);
+  auto m = db.missions().get(mission_id);
   if (!m) return not_found("no mission " + std::to_string(mission_id));
   MissionReport r;
-  const auto stats = db.mission_cell_stats(mission_id);
+  const auto stats = db.missions().cell_stats(mission_id);
   VehicleLoop* loop = ctx.vehicle_loop();
   const auto live = loop ? loop->live(mission_id) : std::nullopt;
   if (live && loop->attached_mission() == mission_id) {
@@ -166,7 +166,7 @@ Result<MissionReport> mission_report(Context& ctx, std::int64_t mission_id) {
     c->condition_set_time_s = s.condition_set_time_s;
   }
   std::vector<double> set;
-  for (const auto& cs : db.condition_sets(mission_id)) {
+  for (const auto& cs : db.missions().condition_sets(mission_id)) {
     ++r.condition_set_episodes[cs.outcome];
     if (cs.outcome == "set") set.push_back(cs.duration_s());
   }
@@ -177,7 +177,7 @@ Result<MissionReport> mission_report(Context& ctx, std::int64_t mission_id) {
   filter.mission_id = mission_id;
   filter.limit = 1000;
   for (;;) {
-    auto page = db.list_turns(filter);
+    auto page = db.turns().list(filter);
     const bool last = static_cast<int>(page.size()) < filter.limit;
     if (!page.empty()) filter.after_id = page.back().id;
     r.turns.insert(r.turns.end(), page.begin(), page.end());
@@ -198,8 +198,8 @@ Result<std::int64_t> start_mission(Context& ctx, const std::string& vehicle_id,
   if (!plan) return plan.error();
   const std::int64_t id = plan->mission_id;
   if (!loop->attach(std::move(*plan))) {
-    ctx.db().set_mission_status(id, store::MissionStatus::aborted, "another mission started first",
-                                0.0);
+    ctx.db().missions().set_status(id, store::MissionStatus::aborted,
+                                   "another mission started first", 0.0);
     return conflict("another mission is running");
   }
   return id;
@@ -221,9 +221,9 @@ Result<std::string> vehicle_of_missions(Context& ctx,
                                         const std::vector<std::int64_t>& mission_ids) {
   store::Store& db = ctx.db();
   for (const auto id : mission_ids)
-    if (!db.get_mission(id)) return not_found("no mission " + std::to_string(id));
+    if (!db.missions().get(id)) return not_found("no mission " + std::to_string(id));
   std::set<std::string> vehicles;
-  for (const auto& m : db.list_missions()) {
+  for (const auto& m : db.missions().list()) {
     if (mission_ids.empty() || std::ranges::find(mission_ids, m.id) != mission_ids.end())
       vehicles.insert(m.vehicle_id);
   }
@@ -239,12 +239,12 @@ Result<std::string> vehicle_of_missions(Context& ctx,
 }
 
 double station_clock_start_s(Context& ctx) {
-  return ctx.db().station_clock_end_s() + 1.0;
+  return ctx.db().missions().station_clock_end_s() + 1.0;
 }
 
 Result<MissionReport> command_mission(Context& ctx, std::int64_t mission_id, MissionCommand c) {
   store::Store& db = ctx.db();
-  const auto m = db.get_mission(mission_id);
+  const auto m = db.missions().get(mission_id);
   if (!m) return not_found("no mission " + std::to_string(mission_id));
   VehicleLoop* loop = ctx.vehicle_loop();
   if (loop && loop->attached_mission() == mission_id) {
@@ -276,7 +276,7 @@ template <class T, class Read, class Cursor>
 Result<Page<T>> mission_page(Context& ctx, std::int64_t mission_id, int limit, Read read,
                              Cursor cursor) {
   if (limit < 1) return invalid_argument("limit", "must be at least 1");
-  if (!ctx.db().get_mission(mission_id))
+  if (!ctx.db().missions().get(mission_id))
     return not_found("no mission " + std::to_string(mission_id));
   return make_page<T>(read(), limit, cursor);
 }
@@ -286,14 +286,14 @@ Result<Page<T>> mission_page(Context& ctx, std::int64_t mission_id, int limit, R
 Result<Page<store::MissionEvent>> mission_events(Context& ctx, std::int64_t mission_id,
                                                  std::int64_t after, int limit) {
   return mission_page<store::MissionEvent>(
-      ctx, mission_id, limit, [&] { return ctx.db().list_events(mission_id, after, limit); },
+      ctx, mission_id, limit, [&] { return ctx.db().missions().events(mission_id, after, limit); },
       [](const store::MissionEvent& e) { return e.id; });
 }
 
 Result<Page<store::NavPageRow>> mission_track(Context& ctx, std::int64_t mission_id,
                                               std::int64_t after, int limit) {
   return mission_page<store::NavPageRow>(
-      ctx, mission_id, limit, [&] { return ctx.db().nav_page(mission_id, after, limit); },
+      ctx, mission_id, limit, [&] { return ctx.db().navigation().page(mission_id, after, limit); },
       [](const store::NavPageRow& r) { return r.rowid; });
 }
 

@@ -29,7 +29,7 @@ std::optional<Error> check_missions(Context& ctx, const std::string& vehicle_id,
   if (missions.empty()) return invalid_argument("missions", "give at least one mission id");
   for (const auto id : missions) {
     if (id <= 0) return invalid_argument("missions", "holds a bad id: " + std::to_string(id));
-    const auto m = ctx.db().get_mission(id);
+    const auto m = ctx.db().missions().get(id);
     if (!m) return invalid_argument("missions", "no mission " + std::to_string(id));
     if (m->vehicle_id != vehicle_id)
       return invalid_argument("missions", "mission " + std::to_string(id) + " is of vehicle '" +
@@ -45,15 +45,15 @@ Result<std::vector<kin::IdentSegment>> identification_data(
   store::Store& db = ctx.db();
   std::vector<kin::IdentSegment> out;
   for (const std::int64_t id : missions) {
-    if (!db.get_mission(id)) return not_found("no mission " + std::to_string(id));
+    if (!db.missions().get(id)) return not_found("no mission " + std::to_string(id));
     kin::NavStreams s;
     // Read row by row into streams reserved to the row count: a long mission's navigation is
     // held once, without the slack of vectors that grow as they are filled.
-    const auto rows = static_cast<std::size_t>(db.nav_count(id));
+    const auto rows = static_cast<std::size_t>(db.navigation().count(id));
     for (auto* v : {&s.heading_deg, &s.desired_heading_deg, &s.x_m, &s.y_m, &s.speed_mps,
                     &s.desired_speed_mps})
       v->reserve(rows);
-    db.for_each_nav(id, [&](const store::NavRow& r) {
+    db.navigation().for_each(id, [&](const store::NavRow& r) {
       if (!guided(r.helm_mode) || !r.desired_heading_deg) return;
       s.heading_deg.push_back({r.t_s, r.heading_deg});
       s.desired_heading_deg.push_back({r.t_s, *r.desired_heading_deg});
@@ -75,7 +75,7 @@ Result<ModelHeadings> model_headings(Context& ctx, std::int64_t model_id, std::i
   const auto stored = get_model(ctx, model_id);
   if (!stored) return stored.error();
   const kin::YawModel& model = stored->model;
-  if (!ctx.db().get_mission(mission)) return not_found("no mission " + std::to_string(mission));
+  if (!ctx.db().missions().get(mission)) return not_found("no mission " + std::to_string(mission));
   kin::ResampleOptions resample;
   resample.rate_hz = model.rate_hz;  // the model steps at its own rate only
   auto data = identification_data(ctx, {mission}, resample);
@@ -159,7 +159,7 @@ Result<FittedModel> fit_model(Context& ctx, const std::string& vehicle_id,
     m.validation_mse_m2 = f.result.validation.position_mse_m2;
     m.validation_heading_rms_deg = f.result.validation.heading_rms_deg;
   }
-  m.id = ctx.db().save_model(m);
+  m.id = ctx.db().models().save(m);
   return f;
 }
 
@@ -178,11 +178,11 @@ Result<std::vector<kin::HistorySweepRow>> sweep_model_history(
 
 std::vector<store::StoredModel> list_models(Context& ctx,
                                             const std::optional<std::string>& vehicle_id) {
-  return ctx.db().list_models(vehicle_id);
+  return ctx.db().models().list(vehicle_id);
 }
 
 Result<store::StoredModel> get_model(Context& ctx, std::int64_t model_id) {
-  auto m = ctx.db().get_model(model_id);
+  auto m = ctx.db().models().get(model_id);
   if (!m) return not_found("no model " + std::to_string(model_id));
   return std::move(*m);
 }
@@ -190,7 +190,7 @@ Result<store::StoredModel> get_model(Context& ctx, std::int64_t model_id) {
 Result<store::StoredModel> model_or_latest(Context& ctx, std::optional<std::int64_t> model_id,
                                            const std::string& vehicle_id) {
   if (model_id) return get_model(ctx, *model_id);
-  auto m = ctx.db().latest_model(vehicle_id);
+  auto m = ctx.db().models().latest(vehicle_id);
   if (!m) return not_found("no model of '" + vehicle_id + "' is stored (fit one first)");
   return std::move(*m);
 }

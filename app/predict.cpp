@@ -184,13 +184,13 @@ Result<HeldOut> held_out_of(Context& ctx, const PredictQuery& q) {
   h.left_out.turn_id = q.without_turn_id;
   store::Store& db = ctx.db();
   if (h.left_out.mission_id) {
-    if (!db.get_mission(*h.left_out.mission_id))
+    if (!db.missions().get(*h.left_out.mission_id))
       return not_found("no mission " + std::to_string(*h.left_out.mission_id));
     h.unseen_missions.push_back(*h.left_out.mission_id);
     h.text = "mission " + std::to_string(*h.left_out.mission_id);
   }
   if (h.left_out.turn_id) {
-    const auto row = db.get_turn_row(*h.left_out.turn_id);
+    const auto row = db.turns().get_row(*h.left_out.turn_id);
     if (!row) return not_found("no turn " + std::to_string(*h.left_out.turn_id));
     if (row->vehicle_id != q.vehicle_id)
       return invalid_argument("without_turn", "turn " + std::to_string(*h.left_out.turn_id) +
@@ -237,7 +237,7 @@ Result<store::StoredModel> answering_model(Context& ctx, const PredictQuery& q,
     return std::nullopt;
   };
   if (q.model_id) {
-    auto m = db.get_model(*q.model_id);
+    auto m = db.models().get(*q.model_id);
     if (!m) return not_found("no model " + std::to_string(*q.model_id));
     if (const auto seen = trained_on(*m))
       return invalid_argument("model", "model " + std::to_string(m->id) +
@@ -245,12 +245,12 @@ Result<store::StoredModel> answering_model(Context& ctx, const PredictQuery& q,
     return std::move(*m);
   }
   if (unseen.empty()) {
-    auto m = db.latest_model(q.vehicle_id);
+    auto m = db.models().latest(q.vehicle_id);
     if (!m) return not_found("no model of '" + q.vehicle_id + "' is stored");
     return std::move(*m);
   }
   std::optional<store::StoredModel> best;
-  for (auto& m : db.list_models(q.vehicle_id))
+  for (auto& m : db.models().list(q.vehicle_id))
     if (!trained_on(m) && (!best || m.id > best->id)) best = std::move(m);
   if (!best) {
     std::string missions;
@@ -319,7 +319,7 @@ struct ResponseChoice {
 std::optional<ResponseChoice> speed_response_for(Context& ctx, const VehicleTable& t,
                                                  const std::string& vehicle_id) {
   if (t.measured_speed_response) return ResponseChoice{*t.measured_speed_response, "measured"};
-  const auto m = ctx.db().latest_model(vehicle_id);
+  const auto m = ctx.db().models().latest(vehicle_id);
   if (!m) return std::nullopt;
   if (auto r = kin::speed_response_of_model(m->model)) return ResponseChoice{*r, "model"};
   return std::nullopt;

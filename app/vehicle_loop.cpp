@@ -119,7 +119,7 @@ struct VehicleLoop::Impl {
     r.follower = feed.follow(plan.mission_id, *r.runner);
     r.runner->add_observer(*r.recorder);
     r.runner->add_observer(*r.follower);
-    store->set_mission_runner(plan.mission_id, static_cast<std::int64_t>(::getpid()));
+    store->missions().set_runner(plan.mission_id, static_cast<std::int64_t>(::getpid()));
     idle_stopped = false;
     running = std::move(r);
     feed.station_event(now, mission::EventKind::mission_attached,
@@ -129,7 +129,7 @@ struct VehicleLoop::Impl {
 
   void finish_running(double now) {
     running->recorder->flush();
-    store->set_mission_runner(running->id, std::nullopt);
+    store->missions().set_runner(running->id, std::nullopt);
     update_live();
     feed.station_event(
         now, mission::EventKind::mission_detached,

@@ -33,7 +33,7 @@ Result<VehicleMotion> vehicle_motion(Context& ctx, const std::string& vehicle_id
   std::vector<kin::DriftScatter> scatters;
   std::optional<store::StoredCurrent> undetermined;  // the newest evaluated, undetermined
   // Oldest first: whatever comes later replaces what came before.
-  for (const store::StoredCurrent& c : db.vehicle_currents(vehicle_id)) {
+  for (const store::StoredCurrent& c : db.currents().for_vehicle(vehicle_id)) {
     if (!missions.empty() &&
         std::find(missions.begin(), missions.end(), c.mission_id) == missions.end())
       continue;

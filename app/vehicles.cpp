@@ -10,7 +10,7 @@ namespace {
 
 VehicleStatus stored_vehicle(Context& ctx, const std::string& id) {
   VehicleStatus s;
-  if (auto v = ctx.db().get_vehicle(id)) s.info = std::move(*v);
+  if (auto v = ctx.db().vehicles().get(id)) s.info = std::move(*v);
   s.info.id = id;
   return s;
 }
@@ -23,7 +23,7 @@ std::vector<VehicleStatus> list_vehicles(Context& ctx) {
     VehicleSnapshot snap = loop->snapshot();
     out.push_back({snap.info, std::move(snap)});
   }
-  for (const auto& m : ctx.db().list_missions()) {
+  for (const auto& m : ctx.db().missions().list()) {
     const bool listed = std::any_of(
         out.begin(), out.end(), [&](const VehicleStatus& v) { return v.info.id == m.vehicle_id; });
     if (!listed) out.push_back(stored_vehicle(ctx, m.vehicle_id));
@@ -36,7 +36,7 @@ Result<VehicleStatus> get_vehicle(Context& ctx, const std::string& vehicle_id) {
     VehicleSnapshot snap = loop->snapshot();
     return VehicleStatus{snap.info, std::move(snap)};
   }
-  if (ctx.db().get_vehicle(vehicle_id)) return stored_vehicle(ctx, vehicle_id);
+  if (ctx.db().vehicles().get(vehicle_id)) return stored_vehicle(ctx, vehicle_id);
   return not_found("no vehicle '" + vehicle_id + "'");
 }
 

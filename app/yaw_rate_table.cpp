@@ -68,7 +68,7 @@ double mean_error_m(const kin::StationedPath& path, const std::vector<kin::Stati
 Result<YawRateTable> vehicle_yaw_rate_table(Context& ctx, const std::string& vehicle_id,
                                             const YawRateTableOptions& options) {
   // In the water frame where the mission's current is known, as the 2-D table (ckt_tables.hpp).
-  std::vector<kin::TurnSequence> turns = ctx.db().load_normalized_turns(
+  std::vector<kin::TurnSequence> turns = ctx.db().turns().load_normalized(
       {}, vehicle_id, false, store::TurnFrameChoice::water_where_known);
   std::erase_if(turns,
                 [](const kin::TurnSequence& t) { return t.meta().status != kin::TurnStatus::ok; });

@@ -48,7 +48,7 @@ struct BenchStation {
     v.setup = sim::default_sim_setup("usim");
     v.setup.vehicle.id = vehicle_id;
     v.realtime_factor = realtime_factor;
-    v.start_clock_s = store::Store(db.path()).station_clock_end_s() + 1.0;
+    v.start_clock_s = store::Store(db.path()).missions().station_clock_end_s() + 1.0;
     v.start = {0.0, -70.0, 0.0};
     so.vehicle = v;
     station = std::make_unique<server::Station>(so, hub);

@@ -37,8 +37,8 @@ void run_mission(benchmark::State& state, const std::string& kind, const std::st
   for (auto _ : state) {
     avk::testing::TempDb file("avk_bench_mission");
     avk::store::Store db(file.path());
-    db.upsert_vehicle({"bench", kind, setup.vehicle_max_speed_mps(), std::nullopt});
-    const auto id = db.create_mission("bench", config.name, text);
+    db.vehicles().upsert({"bench", kind, setup.vehicle_max_speed_mps(), std::nullopt});
+    const auto id = db.missions().create("bench", config.name, text);
     avk::sim::SimMissionOptions so;
     so.setup = setup;
     so.start = {config.region.return_point.x_m, config.region.return_point.y_m, 0.0};

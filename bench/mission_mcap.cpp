@@ -20,7 +20,7 @@ struct Figure41 {
   Figure41() : ctx(db.path()) {
     mission = avk::testing::run_recorded_mission(ctx.db(), "usim",
                                                  avk::testing::example_text("thesis-fig4-1.json"));
-    nav = ctx.db().nav_for_mission(mission).size();
+    nav = ctx.db().navigation().for_mission(mission).size();
     // The vehicle's table is built once, as a running station holds it in its cache.
     (void)avk::app::export_mission_mcap(ctx, mission);
   }

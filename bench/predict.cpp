@@ -40,12 +40,12 @@ class Vehicle {
   explicit Vehicle(int per_cell)
       : file_("avk_bench_predict_" + std::to_string(per_cell)), ctx_(file_.path()) {
     store::Store& s = ctx_.db();
-    s.upsert_vehicle({"bench", "usim", 2.0, 1.0});
+    s.vehicles().upsert({"bench", "usim", 2.0, 1.0});
     constexpr double kSpeeds[] = {0.5, 1.0, 1.5};
     constexpr double kDheadings[] = {10.0, 40.0, 70.0, 100.0, 130.0, 160.0};
     std::int64_t mission = 0;
     for (int i = 0; i < 18 * per_cell; ++i) {
-      if (i % 60 == 0) mission = s.create_mission("bench", "bench", "{}");
+      if (i % 60 == 0) mission = s.missions().create("bench", "bench", "{}");
       if (first_mission == 0) first_mission = mission;
       const int cell = i % 18;
       testing::ArcTurnSpec spec;
@@ -57,8 +57,8 @@ class Vehicle {
       spec.position_noise_m = 0.1;
       spec.seed = static_cast<unsigned>(i + 1);
       spec.vehicle_id = "bench";
-      const auto id = s.store_turn(mission, testing::make_arc_turn(spec),
-                                   kinematics::TurnStatus::ok, "", {2.0, {}, {}});
+      const auto id = s.turns().add(mission, testing::make_arc_turn(spec),
+                                    kinematics::TurnStatus::ok, "", {2.0, {}, {}});
       if (first_turn == 0) first_turn = id;
     }
   }

@@ -22,8 +22,8 @@ namespace {
 using avk::testing::TempDb;
 
 std::int64_t mission(avk::store::Store& s) {
-  s.upsert_vehicle({"bench", "usim", 2.0, 1.0});
-  return s.create_mission("bench", "bench", "{}");
+  s.vehicles().upsert({"bench", "usim", 2.0, 1.0});
+  return s.missions().create("bench", "bench", "{}");
 }
 
 void BM_NavIngestBatch1000(benchmark::State& state) {
@@ -37,7 +37,7 @@ void BM_NavIngestBatch1000(benchmark::State& state) {
       t_s += 0.1;
       rows[i] = {t_s, std::sin(t_s), std::cos(t_s), std::fmod(t_s, 360.0), 1.0, 90.0, 1.0, "turn"};
     }
-    s.append_nav(m, rows);
+    s.navigation().append(m, rows);
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(rows.size()));
 }
@@ -54,7 +54,7 @@ void BM_StoreTurn(benchmark::State& state) {
   state.counters["samples"] = static_cast<double>(turn.samples().size());
   for (auto _ : state)
     benchmark::DoNotOptimize(
-        s.store_turn(m, turn, avk::kinematics::TurnStatus::ok, "", {1.0, {}, {}}));
+        s.turns().add(m, turn, avk::kinematics::TurnStatus::ok, "", {1.0, {}, {}}));
 }
 BENCHMARK(BM_StoreTurn)->Unit(benchmark::kMicrosecond);
 
@@ -92,7 +92,7 @@ class StoredTurns {
       spec.vehicle_id = "bench";
       const auto turn = avk::testing::make_arc_turn(spec);
       samples_ += turn.samples().size();
-      s.store_turn(m, turn, avk::kinematics::TurnStatus::ok, "", {2.0, {}, {}});
+      s.turns().add(m, turn, avk::kinematics::TurnStatus::ok, "", {2.0, {}, {}});
     }
   }
   TempDb file_;
@@ -103,7 +103,7 @@ void BM_CktFrom10000StoredTurns(benchmark::State& state) {
   auto& data = StoredTurns::get();
   avk::store::Store s(data.path());
   for (auto _ : state) {
-    const auto turns = s.load_normalized_turns({});
+    const auto turns = s.turns().load_normalized({});
     benchmark::DoNotOptimize(avk::kinematics::Ckt::build(turns));
   }
   state.counters["samples"] = static_cast<double>(data.samples());
@@ -114,14 +114,14 @@ void BM_LoadNormalized10000Turns(benchmark::State& state) {
   auto& data = StoredTurns::get();
   avk::store::Store s(data.path());
   for (auto _ : state)
-    benchmark::DoNotOptimize(s.load_normalized_turns({}));
+    benchmark::DoNotOptimize(s.turns().load_normalized({}));
   state.SetItemsProcessed(state.iterations() * 10000);
 }
 BENCHMARK(BM_LoadNormalized10000Turns)->Unit(benchmark::kMillisecond);
 
 void BM_CktBuild10000Turns(benchmark::State& state) {
   auto& data = StoredTurns::get();
-  const auto turns = avk::store::Store(data.path()).load_normalized_turns({});
+  const auto turns = avk::store::Store(data.path()).turns().load_normalized({});
   for (auto _ : state)
     benchmark::DoNotOptimize(avk::kinematics::Ckt::build(turns));
 }

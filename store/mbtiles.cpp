@@ -36,7 +36,7 @@ Connection open_read_only(const std::string& path) {
   try {
     return Connection(read_only_name(path));
   } catch (const StoreError& e) {
-    throw StoreError("cannot open the MBTiles file '" + path + "': " + e.what(), e.sqlite_code());
+    throw StoreError("cannot open the MBTiles file '" + path + "': " + e.what(), e.engine_code());
   }
 }
 
@@ -50,7 +50,7 @@ bool has_relation(const Connection& db, const std::string& path, const char* nam
   } catch (const StoreError& e) {
     throw StoreError(
         "'" + path + "' is not an MBTiles file (not an SQLite database: " + e.what() + ")",
-        e.sqlite_code());
+        e.engine_code());
   }
 }
 

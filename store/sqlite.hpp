@@ -6,25 +6,15 @@
 #include <cstdint>
 #include <optional>
 #include <span>
-#include <stdexcept>
 #include <string>
 #include <string_view>
+
+#include "store/store_error.hpp"
 
 struct sqlite3;
 struct sqlite3_stmt;
 
 namespace avk::store {
-
-// Any failure of the database: the SQLite message and its extended result code.
-class StoreError : public std::runtime_error {
- public:
-  explicit StoreError(const std::string& message, int sqlite_code = 0)
-      : std::runtime_error(message), code_(sqlite_code) {}
-  int sqlite_code() const { return code_; }
-
- private:
-  int code_;
-};
 
 class Statement;
 

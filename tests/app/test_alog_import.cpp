@@ -51,12 +51,12 @@ TEST(AlogImport, StoresTheNavigationAsAFinishedMissionAndNamesBadLines) {
   ASSERT_TRUE(m);
   EXPECT_EQ(m->summary.status, store::MissionStatus::done);
   EXPECT_TRUE(m->cells.empty());  // an imported log plans no turn array
-  const auto nav = ctx.db().nav_for_mission(report->mission_id);
+  const auto nav = ctx.db().navigation().for_mission(report->mission_id);
   ASSERT_EQ(nav.size(), 40u);
   EXPECT_EQ(nav[0].helm_mode, mission::kImportedHelmMode);
   EXPECT_DOUBLE_EQ(nav.back().x_m, 19.5);
   // The top speed seen becomes the vehicle's.
-  EXPECT_DOUBLE_EQ(ctx.db().get_vehicle("kf")->max_speed_mps, 2.0);
+  EXPECT_DOUBLE_EQ(ctx.db().vehicles().get("kf")->max_speed_mps, 2.0);
 }
 
 TEST(AlogImport, WithoutAVehicleNothingIsStored) {
@@ -66,7 +66,7 @@ TEST(AlogImport, WithoutAVehicleNothingIsStored) {
   const auto report = app::import_alog(ctx, in, {});
   ASSERT_FALSE(report);
   EXPECT_EQ(report.error().field, "vehicle");
-  EXPECT_TRUE(ctx.db().list_missions().empty());
+  EXPECT_TRUE(ctx.db().missions().list().empty());
 }
 
 // The vehicle id (--vehicle, else the file's stem) is bounded like every vehicle id.
@@ -80,8 +80,8 @@ TEST(AlogImport, AVehicleIdTooLongIsRefusedNamingTheLimit) {
   EXPECT_EQ(report.error().field, "vehicle");
   EXPECT_NE(report.error().message.find("at most 64 bytes"), std::string::npos)
       << report.error().message;
-  EXPECT_TRUE(ctx.db().list_missions().empty());
-  EXPECT_FALSE(ctx.db().get_vehicle(r.vehicle_id));
+  EXPECT_TRUE(ctx.db().missions().list().empty());
+  EXPECT_FALSE(ctx.db().vehicles().get(r.vehicle_id));
 }
 
 }  // namespace

@@ -21,13 +21,13 @@ namespace kin = avk::kinematics;
 // The samples after each ok turn of the mission while the command of the turn's last sample
 // holds, within after_s: counted from the navigation independently of band_coverage.
 std::size_t after_turn_samples(store::Store& db, std::int64_t mission, double after_s) {
-  const auto nav = db.nav_for_mission(mission);
+  const auto nav = db.navigation().for_mission(mission);
   std::size_t n = 0;
   std::vector<store::TurnRow> rows;
   app::for_each_mission_turn(db, mission, kin::TurnStatus::ok,
                              [&](const store::TurnRow& r) { rows.push_back(r); });
   for (const auto& row : rows) {
-    const auto stored = db.get_turn(row.id);
+    const auto stored = db.turns().get(row.id);
     const double end = stored->raw.samples().back().t_s;
     const auto last = std::find_if(nav.rbegin(), nav.rend(),
                                    [&](const store::NavRow& r) { return r.t_s <= end; });

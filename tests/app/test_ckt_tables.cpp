@@ -85,7 +85,7 @@ TEST_F(CktTables, AHeldOutTableIsKeptPerLeftOutSetUntilTheTurnsChange) {
 TEST_F(CktTables, HeldOutTablesAreBoundedAndTheLeastRecentlyUsedGoesFirst) {
   avk::testing::store_arc_turns(ctx_.db(), "alpha", 1.0, 2);
   app::TableCache cache(std::chrono::hours(1));
-  const auto turn_ids = ctx_.db().list_turns({});
+  const auto turn_ids = ctx_.db().turns().list({});
   ASSERT_GT(turn_ids.size(), app::TableCache::kHeldOutTables + 1);
   const auto without = [&](std::size_t i) {
     store::TurnsLeftOut l;
@@ -159,11 +159,11 @@ TEST_F(CktTables, AWrongFileIsRefusedAndNothingIsStored) {
   const auto truncated = app::import_ckt(ctx_, "alpha", file.substr(0, file.size() / 2));
   ASSERT_FALSE(truncated);
   EXPECT_NE(truncated.error().message.find("not a CKT file"), std::string::npos);
-  EXPECT_FALSE(ctx_.db().latest_ckt_snapshot("alpha"));
-  EXPECT_FALSE(ctx_.db().latest_ckt_snapshot("bravo"));
+  EXPECT_FALSE(ctx_.db().ckt_snapshots().latest("alpha"));
+  EXPECT_FALSE(ctx_.db().ckt_snapshots().latest("bravo"));
   const auto ok = app::import_ckt(ctx_, "alpha", file);
   ASSERT_TRUE(ok);
-  EXPECT_EQ(ctx_.db().latest_ckt_snapshot("alpha")->id, ok->snapshot_id);
+  EXPECT_EQ(ctx_.db().ckt_snapshots().latest("alpha")->id, ok->snapshot_id);
 }
 
 TEST_F(CktTables, BuildKeepsASnapshotOfTheMissionsItCameFrom) {
@@ -174,7 +174,7 @@ TEST_F(CktTables, BuildKeepsASnapshotOfTheMissionsItCameFrom) {
   EXPECT_EQ(built->report.turns_used, 18u);
   EXPECT_EQ(built->table.vehicle_length_m, 0.9);
   EXPECT_FALSE(built->table.created_utc.empty());
-  const auto snap = ctx_.db().latest_ckt_snapshot("alpha");
+  const auto snap = ctx_.db().ckt_snapshots().latest("alpha");
   ASSERT_TRUE(snap);
   EXPECT_EQ(snap->id, built->snapshot_id);
   EXPECT_EQ(snap->mission_ids, std::vector<std::int64_t>{m});

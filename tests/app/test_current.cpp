@@ -86,13 +86,13 @@ TEST(MissionCurrent, TheRecorderStoresTheEstimateAndTheWaterFrameAsTheMissionRun
   setup.vehicle.environment.current = {0.2, 180.0};
   const std::int64_t mission = avk::testing::run_recorded_mission(
       ctx.db(), "m200", avk::testing::example_text("thesis-fig4-1.json"), setup);
-  const auto stored = ctx.db().mission_current(mission);
+  const auto stored = ctx.db().currents().for_mission(mission);
   ASSERT_TRUE(stored);
   EXPECT_NEAR(stored->estimate.speed_mps(), 0.2, 0.05);
   EXPECT_LT(std::abs(kinematics::angle180_deg(stored->estimate.toward_deg() - 180.0)), 15.0);
   // Every ok turn is read in the water frame, with the stored estimate removed.
-  const auto water = ctx.db().load_normalized_turns({mission}, "m200", false,
-                                                    store::TurnFrameChoice::water_where_known);
+  const auto water = ctx.db().turns().load_normalized({mission}, "m200", false,
+                                                      store::TurnFrameChoice::water_where_known);
   ASSERT_FALSE(water.empty());
   for (const auto& t : water) {
     ASSERT_TRUE(t.meta().removed_current);
@@ -100,7 +100,7 @@ TEST(MissionCurrent, TheRecorderStoresTheEstimateAndTheWaterFrameAsTheMissionRun
     EXPECT_NEAR(t.meta().removed_current->north_mps, stored->estimate.north_mps, 1e-12);
   }
   // The ground form is untouched.
-  for (const auto& t : ctx.db().load_normalized_turns({mission}, "m200"))
+  for (const auto& t : ctx.db().turns().load_normalized({mission}, "m200"))
     EXPECT_FALSE(t.meta().removed_current);
   // The station's table is built from them and predicts through the water (current=none); the
   // live estimate is what `current=live` adds, and what an answer not asked for a current gets.
@@ -134,8 +134,8 @@ TEST(MissionCurrent, TheRecorderStoresTheEstimateAndTheWaterFrameAsTheMissionRun
   app::Context calm(calm_db.path());
   const std::int64_t still = avk::testing::run_recorded_mission(
       calm.db(), "m200", avk::testing::kSmallMission, sim::default_sim_setup("catamaran:m200"));
-  for (const auto& t : calm.db().load_normalized_turns({still}, "m200", false,
-                                                       store::TurnFrameChoice::water_where_known))
+  for (const auto& t : calm.db().turns().load_normalized({still}, "m200", false,
+                                                         store::TurnFrameChoice::water_where_known))
     EXPECT_FALSE(t.meta().removed_current);
 }
 

@@ -42,7 +42,7 @@ TEST(Harvest, TheFigure41MissionsHarvestedTurnsAreItsCollectedTurns) {
   f.mission_id = mission;
   f.status = kinematics::TurnStatus::ok;
   f.limit = 1000;
-  const auto collected = s.list_turns(f);
+  const auto collected = s.turns().list(f);
   ASSERT_GE(collected.size(), 15u);
 
   // Not skipping the collected turns: the harvester finds each of them again.
@@ -51,11 +51,11 @@ TEST(Harvest, TheFigure41MissionsHarvestedTurnsAreItsCollectedTurns) {
   mission::HarvestOptions options;
   options.extraction.condition_set = config.condition_set;
   options.extraction.completion = config.completion;
-  const auto log = app::guided_log(s.nav_for_mission(mission));
+  const auto log = app::guided_log(s.navigation().for_mission(mission));
   const auto fresh = mission::harvest_turns(log, {}, options, "m200", std::to_string(mission));
   std::size_t matched = 0;
   for (const auto& row : collected) {
-    const auto stored = s.get_turn(row.id);
+    const auto stored = s.turns().get(row.id);
     ASSERT_TRUE(stored);
     for (const auto& h : fresh.turns) {
       if (std::abs(h.turn.meta().start_time_s - row.start_time_s) > 1e-6) continue;
@@ -81,7 +81,7 @@ TEST(Harvest, TheFigure41MissionsHarvestedTurnsAreItsCollectedTurns) {
   print("Figure 4-1 on the M200", *r);
   EXPECT_GE(r->already_recorded, collected.size());
   EXPECT_EQ(r->steps, r->harvested + r->already_recorded + r->rejected);
-  EXPECT_EQ(ctx.db().list_harvests(mission).size(), 1u);
+  EXPECT_EQ(ctx.db().harvests().list(mission).size(), 1u);
   // A second harvest finds its own turns recorded.
   const auto again = app::harvest_mission(ctx, mission);
   ASSERT_TRUE(again);
@@ -111,9 +111,9 @@ TEST(Harvest, ExcitationStepsMidSwingAreRejectedAndTheSteadyOnesHarvested) {
 
   // Ground truth for the accepted ones: the recorded heading was steady over the 2 s before
   // each harvested turn (not mid-swing), and the turn reached its goal.
-  const auto nav = ctx.db().nav_for_mission(mission);
+  const auto nav = ctx.db().navigation().for_mission(mission);
   for (const auto id : r->turn_ids) {
-    const auto t = ctx.db().get_turn(id);
+    const auto t = ctx.db().turns().get(id);
     ASSERT_TRUE(t);
     const double t0 = t->raw.meta().start_time_s;
     for (const auto& n : nav) {
@@ -147,8 +147,8 @@ TEST(Harvest, HarvestedTurnsEnterTheTableOnlyWhenAskedFor) {
   avk::testing::TempDb db("avk_app_harvest_table");
   app::Context ctx(db.path());
   store::Store& s = ctx.db();
-  s.upsert_vehicle({"boat", "usim", 2.0, 1.0});
-  const auto mission = s.create_mission("boat", "log", "{}");
+  s.vehicles().upsert({"boat", "usim", 2.0, 1.0});
+  const auto mission = s.missions().create("boat", "log", "{}");
   avk::testing::Boat boat(0.0, 1.0);
   std::vector<store::NavRow> rows;
   double desired = 0.0;
@@ -160,7 +160,7 @@ TEST(Harvest, HarvestedTurnsEnterTheTableOnlyWhenAskedFor) {
     }
     desired = kinematics::wrap360_deg(desired + 90.0);
   }
-  s.append_nav(mission, rows);
+  s.navigation().append(mission, rows);
   const auto r = app::harvest_mission(ctx, mission);
   ASSERT_TRUE(r) << r.error().message;
   EXPECT_EQ(r->steps, 3u);

@@ -54,7 +54,7 @@ double nearest_target(double rate) {
 }
 
 TEST_F(InitialYawRate, StoredTurnsCarryAnInitialYawRateWithinTheBandOfTheirTarget) {
-  const auto turns = ctx_.db().load_normalized_turns({mission_}, "m200");
+  const auto turns = ctx_.db().turns().load_normalized({mission_}, "m200");
   std::map<double, int> per_target;
   int ok = 0;
   for (const auto& t : turns) {

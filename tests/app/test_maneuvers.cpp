@@ -40,7 +40,7 @@ class Maneuvers : public ::testing::Test {
     m.model.rate_hz = 4.0;
     m.model.error_coeffs = {0.1};  // a tenth of the heading error each quarter second
     m.model.heading_coeffs = {0.0};
-    return ctx_.db().save_model(m);
+    return ctx_.db().models().save(m);
   }
 
   avk::testing::TempDb db_{"avk_app_maneuvers"};

@@ -26,16 +26,16 @@ std::int64_t a_dead_pid() {
 }
 
 std::int64_t mission_held(store::Store& db, MissionStatus status, std::int64_t pid) {
-  const auto id = db.create_mission("usim-1", "collection", R"({"speeds":[1.0]})");
-  db.set_mission_status(id, MissionStatus::running, "", 1.0);
-  if (status != MissionStatus::running) db.set_mission_status(id, status, "operator", 2.0);
-  db.set_mission_runner(id, pid);
+  const auto id = db.missions().create("usim-1", "collection", R"({"speeds":[1.0]})");
+  db.missions().set_status(id, MissionStatus::running, "", 1.0);
+  if (status != MissionStatus::running) db.missions().set_status(id, status, "operator", 2.0);
+  db.missions().set_runner(id, pid);
   return id;
 }
 
 TEST(MissionLiveness, RunningOrPausedWithoutTheirProcessAreInterrupted) {
   store::Store db(":memory:");
-  db.upsert_vehicle({"usim-1", "usim", 2.0, 1.2});
+  db.vehicles().upsert({"usim-1", "usim", 2.0, 1.2});
   const std::int64_t dead = a_dead_pid();
   const std::int64_t alive = ::getpid();
   const auto running_dead = mission_held(db, MissionStatus::running, dead);
@@ -44,20 +44,20 @@ TEST(MissionLiveness, RunningOrPausedWithoutTheirProcessAreInterrupted) {
   const auto paused_alive = mission_held(db, MissionStatus::paused, alive);
   const auto done = mission_held(db, MissionStatus::done, dead);
 
-  EXPECT_EQ(app::effective_status(*db.get_mission(paused_dead)), MissionStatus::interrupted);
-  EXPECT_EQ(app::effective_status(*db.get_mission(paused_alive)), MissionStatus::paused);
+  EXPECT_EQ(app::effective_status(*db.missions().get(paused_dead)), MissionStatus::interrupted);
+  EXPECT_EQ(app::effective_status(*db.missions().get(paused_alive)), MissionStatus::paused);
   EXPECT_EQ(app::mark_orphaned_missions_interrupted(db), 2);
   for (const auto id : {running_dead, paused_dead}) {
-    const auto m = db.get_mission(id);
+    const auto m = db.missions().get(id);
     EXPECT_EQ(m->status, MissionStatus::interrupted) << id;
     EXPECT_FALSE(m->runner_pid) << id;
     // Nothing recorded: it ended where it started.
     ASSERT_TRUE(m->ended_s) << id;
     EXPECT_EQ(*m->ended_s, 1.0) << id;
   }
-  EXPECT_EQ(db.get_mission(running_alive)->status, MissionStatus::running);
-  EXPECT_EQ(db.get_mission(paused_alive)->status, MissionStatus::paused);
-  EXPECT_EQ(db.get_mission(done)->status, MissionStatus::done);
+  EXPECT_EQ(db.missions().get(running_alive)->status, MissionStatus::running);
+  EXPECT_EQ(db.missions().get(paused_alive)->status, MissionStatus::paused);
+  EXPECT_EQ(db.missions().get(done)->status, MissionStatus::done);
   // Closed once: a second start finds nothing more to close.
   EXPECT_EQ(app::mark_orphaned_missions_interrupted(db), 0);
 }

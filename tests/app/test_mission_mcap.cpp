@@ -38,7 +38,7 @@ class MissionMcapTest : public ::testing::Test {
     mission_ = avk::testing::run_recorded_mission(db, kVehicle);
     store::StoredCurrent c;
     c.mission_id = mission_;
-    c.t_s = db.mission_clock_end_s(mission_).value_or(0.0);
+    c.t_s = db.missions().clock_end_s(mission_).value_or(0.0);
     c.estimate.east_mps = 0.21;
     c.estimate.north_mps = -0.13;
     c.estimate.covariance = {1e-4, 2e-6, 1.5e-4};
@@ -52,8 +52,8 @@ class MissionMcapTest : public ::testing::Test {
     std::vector<std::pair<std::int64_t, kinematics::TurnSequence>> ok;
     app::for_each_mission_turn(
         db, mission_, kinematics::TurnStatus::ok,
-        [&](const store::TurnRow& t) { ok.emplace_back(t.id, db.get_turn(t.id)->raw); });
-    db.save_mission_current(c, app::water_frame_turns(ok, app::water_current(c.estimate)));
+        [&](const store::TurnRow& t) { ok.emplace_back(t.id, db.turns().get(t.id)->raw); });
+    db.currents().save(c, app::water_frame_turns(ok, app::water_current(c.estimate)));
   }
   static void TearDownTestSuite() {
     delete ctx_;
@@ -95,14 +95,14 @@ std::map<std::string, std::int64_t> all_counts(const std::string& db_path) {
 }
 
 std::vector<store::MissionEvent> events_of(store::Store& db, std::int64_t mission) {
-  return db.list_events(mission, 0, 100000);
+  return db.missions().events(mission, 0, 100000);
 }
 
 std::vector<store::TurnRow> turns_of(store::Store& db, std::int64_t mission) {
   store::TurnFilter f;
   f.mission_id = mission;
   f.limit = 100000;
-  return db.list_turns(f);
+  return db.turns().list(f);
 }
 
 void expect_same_row(const store::TurnRow& a, const store::TurnRow& b) {
@@ -168,8 +168,8 @@ TEST_F(MissionMcapTest, ExportThenImportGivesTheSameMissionFieldByField) {
 
   store::Store& a = ctx_->db();
   store::Store& b = to.db();
-  const auto ma = *a.get_mission(mission_);
-  const auto mb = *b.get_mission(id);
+  const auto ma = *a.missions().get(mission_);
+  const auto mb = *b.missions().get(id);
   EXPECT_EQ(mb.vehicle_id, ma.vehicle_id);
   EXPECT_EQ(mb.name, ma.name);
   EXPECT_EQ(mb.config_json, ma.config_json);
@@ -178,15 +178,15 @@ TEST_F(MissionMcapTest, ExportThenImportGivesTheSameMissionFieldByField) {
   EXPECT_EQ(mb.created_utc, ma.created_utc);
   EXPECT_EQ(mb.started_s, ma.started_s);
   EXPECT_EQ(mb.ended_s, ma.ended_s);
-  const auto va = *a.get_vehicle(kVehicle);
-  const auto vb = *b.get_vehicle(kVehicle);
+  const auto va = *a.vehicles().get(kVehicle);
+  const auto vb = *b.vehicles().get(kVehicle);
   EXPECT_EQ(vb.kind, va.kind);
   EXPECT_EQ(vb.max_speed_mps, va.max_speed_mps);
   EXPECT_EQ(vb.length_m, va.length_m);
 
-  const auto nav = a.nav_for_mission(mission_);
+  const auto nav = a.navigation().for_mission(mission_);
   ASSERT_GT(nav.size(), 100u);
-  EXPECT_EQ(b.nav_for_mission(id), nav);  // doubles compared exactly
+  EXPECT_EQ(b.navigation().for_mission(id), nav);  // doubles compared exactly
   EXPECT_EQ(imported->nav_samples, nav.size());
 
   const auto ea = events_of(a, mission_);
@@ -198,8 +198,8 @@ TEST_F(MissionMcapTest, ExportThenImportGivesTheSameMissionFieldByField) {
     EXPECT_EQ(eb[i].kind, ea[i].kind) << i;
     EXPECT_EQ(eb[i].message, ea[i].message) << i;
   }
-  EXPECT_EQ(b.condition_sets(id), a.condition_sets(mission_));
-  EXPECT_FALSE(a.condition_sets(mission_).empty());
+  EXPECT_EQ(b.missions().condition_sets(id), a.missions().condition_sets(mission_));
+  EXPECT_FALSE(a.missions().condition_sets(mission_).empty());
 
   const auto ta = turns_of(a, mission_);
   const auto tb = turns_of(b, id);
@@ -208,8 +208,8 @@ TEST_F(MissionMcapTest, ExportThenImportGivesTheSameMissionFieldByField) {
   for (std::size_t i = 0; i < ta.size(); ++i) {
     SCOPED_TRACE("turn " + std::to_string(ta[i].id));
     expect_same_row(tb[i], ta[i]);
-    const auto sa = *a.get_turn(ta[i].id);
-    const auto sb = *b.get_turn(tb[i].id);
+    const auto sa = *a.turns().get(ta[i].id);
+    const auto sb = *b.turns().get(tb[i].id);
     EXPECT_TRUE(sb.raw == sa.raw);
     ASSERT_EQ(sb.normalized.has_value(), sa.normalized.has_value());
     if (sa.normalized) {
@@ -217,8 +217,8 @@ TEST_F(MissionMcapTest, ExportThenImportGivesTheSameMissionFieldByField) {
     }
   }
 
-  const auto ca = *a.mission_current(mission_);
-  const auto cb = b.mission_current(id);
+  const auto ca = *a.currents().for_mission(mission_);
+  const auto cb = b.currents().for_mission(id);
   ASSERT_TRUE(cb);
   EXPECT_EQ(cb->t_s, ca.t_s);
   EXPECT_EQ(cb->method, ca.method);
@@ -232,10 +232,10 @@ TEST_F(MissionMcapTest, ExportThenImportGivesTheSameMissionFieldByField) {
   EXPECT_EQ(cb->speed_reference, ca.speed_reference);
   EXPECT_EQ(cb->drift_scatter, ca.drift_scatter);
   // What the table is built from: the turns in the water frame.
-  const auto wa = a.load_normalized_turns({mission_}, std::nullopt, false,
-                                          store::TurnFrameChoice::water_where_known);
-  const auto wb =
-      b.load_normalized_turns({id}, std::nullopt, false, store::TurnFrameChoice::water_where_known);
+  const auto wa = a.turns().load_normalized({mission_}, std::nullopt, false,
+                                            store::TurnFrameChoice::water_where_known);
+  const auto wb = b.turns().load_normalized({id}, std::nullopt, false,
+                                            store::TurnFrameChoice::water_where_known);
   ASSERT_EQ(wb.size(), wa.size());
   for (std::size_t i = 0; i < wa.size(); ++i) {
     EXPECT_TRUE(wa[i].meta().removed_current.has_value());
@@ -256,7 +256,7 @@ TEST_F(MissionMcapTest, MessagesAreInLogTimeOrderWithOneChannelPerKind) {
 
   store::Store& db = ctx_->db();
   using K = app::foxglove::ChannelKind;
-  const auto nav = db.nav_for_mission(mission_).size();
+  const auto nav = db.navigation().for_mission(mission_).size();
   const auto turns = turns_of(db, mission_).size();
   EXPECT_EQ(e.messages.of(topic(K::pose)), nav);
   EXPECT_EQ(e.messages.of(topic(K::transform)), nav);
@@ -311,7 +311,7 @@ TEST_F(MissionMcapTest, LocationIsWrittenOnlyWithADatum) {
   o.datum = vehicle::LatLon{47.6, -122.3};
   o.compression = app::mcap::Compression::none;
   const auto with = exported(o);
-  const auto nav = ctx_->db().nav_for_mission(mission_);
+  const auto nav = ctx_->db().navigation().for_mission(mission_);
   EXPECT_EQ(with.messages.of(topic(K::location)), nav.size());
   const auto c = app::mcap::read_mcap(with.bytes);
   const auto location = channel_id(c, K::location);

@@ -106,12 +106,12 @@ TEST(MissionRecorder, EveryAbortedAndRejectedTurnIsStoredWithItsReason) {
     f.status = status;
     f.limit = 1000;
     std::vector<std::string> stored;
-    for (const auto& row : db.list_turns(f))
+    for (const auto& row : db.turns().list(f))
       stored.push_back(row.reason);
     EXPECT_EQ(stored, reported.reasons[status]) << kinematics::to_string(status);
   }
   std::int64_t n_aborted = 0, n_rejected = 0;
-  for (const auto& c : db.mission_cell_stats(plan.mission_id)) {
+  for (const auto& c : db.missions().cell_stats(plan.mission_id)) {
     n_aborted += c.n_aborted;
     n_rejected += c.n_rejected;
   }

@@ -106,7 +106,7 @@ TEST_F(Missions, ListingFiltersByVehicle) {
 }
 
 TEST_F(Missions, TrackAndEventPagesNeitherSkipNorRepeat) {
-  const auto all = ctx_.db().nav_for_mission(mission_);
+  const auto all = ctx_.db().navigation().for_mission(mission_);
   ASSERT_GT(all.size(), 100u);
   std::size_t seen = 0;
   std::int64_t after = 0;
@@ -124,7 +124,7 @@ TEST_F(Missions, TrackAndEventPagesNeitherSkipNorRepeat) {
     after = *page->next;
   }
   EXPECT_EQ(seen, all.size());
-  const auto events = ctx_.db().list_events(mission_);
+  const auto events = ctx_.db().missions().events(mission_);
   const auto first = app::mission_events(ctx_, mission_, 0, 1);
   ASSERT_TRUE(first);
   ASSERT_EQ(first->items.size(), 1u);
@@ -154,7 +154,7 @@ TEST_F(Missions, TurnPagesCoverEveryStoredTurnOnce) {
   store::TurnFilter all;
   all.mission_id = mission_;
   all.limit = 1000;
-  EXPECT_EQ(ids.size(), ctx_.db().list_turns(all).size());
+  EXPECT_EQ(ids.size(), ctx_.db().turns().list(all).size());
   const auto one = app::get_turn(ctx_, *ids.begin());
   ASSERT_TRUE(one);
   EXPECT_TRUE(one->normalized || one->row.status != kinematics::TurnStatus::ok);
@@ -222,7 +222,8 @@ TEST(MissionRunHere, RunsThePlanToItsEndAndRecordsIt) {
   EXPECT_EQ(r->summary.status, store::MissionStatus::done);
   EXPECT_EQ(r->summary.turns.ok, 8);
   EXPECT_GT(r->end_time_s, r->start_time_s);
-  EXPECT_FALSE(ctx.db().get_mission(r->summary.mission.id)->runner_pid);  // no longer running here
+  EXPECT_FALSE(
+      ctx.db().missions().get(r->summary.mission.id)->runner_pid);  // no longer running here
 }
 
 TEST(MissionRunHere, ARaisedStopFlagInterruptsItResumably) {

@@ -53,7 +53,7 @@ TEST_F(Predict, AvkAnswersFromTheVehiclesOwnTurnsThroughTheFineTable) {
   EXPECT_EQ(p->table_source, "turns");
   EXPECT_FALSE(p->snapshot_id);
   // The same table built here, independently of the cache.
-  const auto table = kinematics::Ckt::build(ctx_.db().load_normalized_turns({}, "alpha"));
+  const auto table = kinematics::Ckt::build(ctx_.db().turns().load_normalized({}, "alpha"));
   const kinematics::MaterializedCkt fine(table);
   const auto expected = fine.query(1.0, 100.0);
   expect_same_line(p->trajectory, expected.trajectory);
@@ -81,7 +81,7 @@ TEST_F(Predict, SaysWhenOneCellAnswersAndWhenTheTableIsExtrapolated) {
 // flags say what the table's own query says.
 TEST_F(Predict, ASpeedBetweenFineRowsIsInterpolatedAndFlaggedAsTheTableWould) {
   avk::testing::store_arc_turns(ctx_.db(), "alpha");  // heading changes 40, 100, 160 deg
-  const auto table = kinematics::Ckt::build(ctx_.db().load_normalized_turns({}, "alpha"));
+  const auto table = kinematics::Ckt::build(ctx_.db().turns().load_normalized({}, "alpha"));
   for (const auto& [u, d] : {std::pair{0.75, 100.0}, std::pair{1.25, -55.5}, std::pair{0.83, 175.5},
                              std::pair{1.0, 100.0}}) {
     const auto p = app::predict(ctx_, query("alpha", u, d));
@@ -142,7 +142,7 @@ TEST_F(Predict, InstantaneousIsARayOnTheNewHeading) {
 
 TEST_F(Predict, AVehicleWithOnlyAnImportedTableIsAnsweredByIt) {
   avk::testing::store_arc_turns(ctx_.db(), "donor", 1.5);
-  kinematics::Ckt table = kinematics::Ckt::build(ctx_.db().load_normalized_turns({}, "donor"));
+  kinematics::Ckt table = kinematics::Ckt::build(ctx_.db().turns().load_normalized({}, "donor"));
   table.vehicle_id = "bravo";
   const auto imported = app::import_ckt(ctx_, "bravo", kinematics::ckt_to_json_string(table));
   ASSERT_TRUE(imported) << imported.error().message;
@@ -159,7 +159,7 @@ TEST_F(Predict, EachVehicleOfADatabaseIsAnsweredByItsOwnTable) {
   avk::testing::store_arc_turns(ctx_.db(), "small", 1.0);
   avk::testing::store_arc_turns(ctx_.db(), "large", 2.0);
   // A table imported last, for a third vehicle, must not answer for the others.
-  kinematics::Ckt other = kinematics::Ckt::build(ctx_.db().load_normalized_turns({}, "small"));
+  kinematics::Ckt other = kinematics::Ckt::build(ctx_.db().turns().load_normalized({}, "small"));
   other.vehicle_id = "third";
   ASSERT_TRUE(app::import_ckt(ctx_, "third", kinematics::ckt_to_json_string(other)));
   const auto small = app::predict(ctx_, query("small", 1.0, 100.0));
@@ -219,7 +219,7 @@ TEST_F(Predict, WithoutAMissionTheTableHoldsOnlyTheOtherMissionsTurns) {
     auto q = query("alpha", 1.0, -100.0);
     q.pose = kinematics::Pose{5.0, -3.0, 30.0};
     return app::predict_with_table(
-        kinematics::Ckt::build(ctx_.db().load_normalized_turns({mission}, "alpha")), q);
+        kinematics::Ckt::build(ctx_.db().turns().load_normalized({mission}, "alpha")), q);
   };
   const auto without_tight = held_out(tight);
   const auto without_wide = held_out(wide);
@@ -266,7 +266,7 @@ TEST_F(Predict, WithoutAMissionTheModelIsOneNotTrainedOnIt) {
     m.model.rate_hz = 4.0;
     m.model.error_coeffs = {0.1};
     m.model.heading_coeffs = {0.0};
-    return ctx_.db().save_model(m);
+    return ctx_.db().models().save(m);
   };
   const auto on_b = save({b});
   const auto on_both = save({a, b});  // the latest
@@ -295,7 +295,7 @@ std::int64_t first_turn_in_cell(app::Context& ctx, std::int64_t mission, double 
   f.mission_id = mission;
   f.speed_mps = speed_mps;
   f.dheading_deg = dheading_deg;
-  const auto rows = ctx.db().list_turns(f);
+  const auto rows = ctx.db().turns().list(f);
   return rows.empty() ? 0 : rows.front().id;
 }
 
@@ -305,11 +305,11 @@ TEST_F(Predict, WithoutATurnTheTableHoldsEveryOtherTurn) {
   avk::testing::store_arc_turns(ctx_.db(), "beta");
   const std::int64_t turn = first_turn_in_cell(ctx_, mission, 1.0, 100.0);
   ASSERT_GT(turn, 0);
-  const auto all = ctx_.db().load_normalized_turns({}, "alpha");
+  const auto all = ctx_.db().turns().load_normalized({}, "alpha");
   store::TurnsLeftOut left_out;
   left_out.turn_id = turn;
-  const auto others =
-      ctx_.db().load_normalized_turns({}, "alpha", false, store::TurnFrameChoice::ground, left_out);
+  const auto others = ctx_.db().turns().load_normalized({}, "alpha", false,
+                                                        store::TurnFrameChoice::ground, left_out);
   ASSERT_EQ(others.size() + 1, all.size());
 
   auto q = query("alpha", 1.0, 100.0);
@@ -329,7 +329,7 @@ TEST_F(Predict, WithoutATurnTheTableHoldsEveryOtherTurn) {
 
   q.without_turn_id = 9999;
   EXPECT_NE(app::predict(ctx_, q).error().message.find("no turn 9999"), std::string::npos);
-  q.without_turn_id = ctx_.db().list_turns({}).back().id;  // beta's
+  q.without_turn_id = ctx_.db().turns().list({}).back().id;  // beta's
   const auto foreign = app::predict(ctx_, q);
   ASSERT_FALSE(foreign);
   EXPECT_EQ(foreign.error().field, "without_turn");
@@ -377,7 +377,7 @@ void store_current(store::Store& db, std::int64_t mission, double east, double n
   c.estimate.north_mps = north;
   c.estimate.covariance = {sd * sd, 0.0, sd * sd};
   c.estimate.legs = 6;
-  db.save_mission_current(c, {});
+  db.currents().save(c, {});
 }
 
 app::PredictQuery ray_east(kinematics::WaterCurrent c, std::optional<bool> over_ground) {
@@ -449,7 +449,7 @@ TEST_F(Predict, ATurnInACurrentKeepsItsStillWaterSpeedOverGroundWhenTheLoopHolds
   EXPECT_EQ(through_water->current_source, "none");
   EXPECT_FALSE(through_water->current);
   // The water path's times, as the table recorded its turns.
-  const auto table = kinematics::Ckt::build(ctx_.db().load_normalized_turns({}, "alpha"));
+  const auto table = kinematics::Ckt::build(ctx_.db().turns().load_normalized({}, "alpha"));
   const auto fine = kinematics::MaterializedCkt(table).query(1.0, 100.0);
   ASSERT_TRUE(fine.timing);
   const kinematics::TimedPath water =
@@ -543,7 +543,7 @@ TEST_F(Predict, UnaskedTheAnswerIsOverGroundWithTheStoredEstimate) {
 // (else the default), and without one the answer is through the water.
 TEST_F(Predict, ATableFileAppliesAGivenCurrentWithTheAskedSpeedReference) {
   avk::testing::store_arc_turns(ctx_.db(), "alpha");
-  const auto table = kinematics::Ckt::build(ctx_.db().load_normalized_turns({}, "alpha"));
+  const auto table = kinematics::Ckt::build(ctx_.db().turns().load_normalized({}, "alpha"));
   app::PredictQuery q = query("alpha", 1.0, 100.0);
   const auto plain = app::predict_with_table(table, q);
   q.current = kinematics::WaterCurrent{0.2, 0.0};

@@ -24,7 +24,7 @@ constexpr double kTau = 2.5;  // the stored turns' known speed response (first o
 // Speed-change turns 1.5 -> 0.75 m/s at 40 and 100 deg, two each, whose recorded speed follows
 // u0 + (u1 - u0)(1 - exp(-t / kTau)); tighter than the constant-speed turns at 1.5 m/s.
 void store_speed_change_turns(store::Store& db, const std::string& vid) {
-  const std::int64_t mission = db.create_mission(vid, "speed changes", "{}");
+  const std::int64_t mission = db.missions().create(vid, "speed changes", "{}");
   unsigned seed = 100;
   for (double d : {40.0, 100.0}) {
     for (int r = 0; r < 2; ++r) {
@@ -57,7 +57,7 @@ void store_speed_change_turns(store::Store& db, const std::string& vid) {
       m.speed_after_mps = 0.75;
       kin::TurnSequence turn(m, samples);
       turn.fill_derived_metadata();
-      db.store_turn(mission, turn, kin::TurnStatus::ok, "");
+      db.turns().add(mission, turn, kin::TurnStatus::ok, "");
     }
   }
 }
@@ -87,7 +87,7 @@ TEST_F(SpeedChangePredict, ACollectedPairIsAnsweredByItsMeasuredCells) {
   const auto p = app::predict(ctx_, query(1.5, 100.0, 0.75));
   ASSERT_TRUE(p) << p.error().message;
   EXPECT_EQ(p->speed_change_source, app::SpeedChangeSource::measured);
-  const auto table = kin::SpeedChangeTable::build(ctx_.db().load_normalized_turns({}, "sc"));
+  const auto table = kin::SpeedChangeTable::build(ctx_.db().turns().load_normalized({}, "sc"));
   const auto expected = table.query(1.5, 0.75, 100.0);
   ASSERT_TRUE(expected);
   ASSERT_EQ(p->trajectory.size(), expected->trajectory.size());
@@ -107,7 +107,7 @@ TEST_F(SpeedChangePredict, ElsewhereTheConstantSpeedTurnIsRetimedByTheMeasuredRe
   ASSERT_TRUE(p) << p.error().message;
   EXPECT_EQ(p->speed_change_source, app::SpeedChangeSource::retimed);
   EXPECT_EQ(p->speed_response, "measured");
-  const auto turns = ctx_.db().load_normalized_turns({}, "sc");
+  const auto turns = ctx_.db().turns().load_normalized({}, "sc");
   const auto response = kin::measured_speed_response(turns);
   ASSERT_TRUE(response);
   EXPECT_NEAR(response->fraction_at(3.0), 1.0 - std::exp(-3.0 / kTau), 0.02);
@@ -151,7 +151,7 @@ TEST_F(SpeedChangePredict, ErrorsNameSpeedAfter) {
   EXPECT_FALSE(app::predict(ctx_, q));
   // A CKT file holds constant-speed turns only.
   const auto file = app::predict_with_table(
-      kin::Ckt::build(ctx_.db().load_normalized_turns({}, "sc")), query(1.0, 40.0, 0.5));
+      kin::Ckt::build(ctx_.db().turns().load_normalized({}, "sc")), query(1.0, 40.0, 0.5));
   ASSERT_FALSE(file);
   EXPECT_EQ(file.error().field, "speed_after");
 }

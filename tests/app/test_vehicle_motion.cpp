@@ -107,7 +107,7 @@ TEST(VehicleMotion, TheSimulatedM200HoldsTheSpeedOverGround) {
   setup.vehicle.environment.current = {0.3, 315.0};
   const std::int64_t mission = avk::testing::run_recorded_mission(
       ctx.db(), "m200", avk::testing::example_text("thesis-fig4-1.json"), setup);
-  const auto stored = ctx.db().mission_current(mission);
+  const auto stored = ctx.db().currents().for_mission(mission);
   ASSERT_TRUE(stored && stored->speed_reference);
   const auto r = app::estimate_mission_current(ctx, mission);
   ASSERT_TRUE(r && r->speed_reference && r->drift_scatter);
@@ -185,22 +185,22 @@ TEST(VehicleMotion, TheNewestIdentificationWinsAndTheScatterIsPooled) {
   avk::testing::TempDb db("avk_app_motion_pool");
   app::Context ctx(db.path());
   store::Store& s = ctx.db();
-  s.upsert_vehicle({"v", "usim", 2.0, 1.2});
-  const auto a = s.create_mission("v", "a", "{}");
-  const auto b = s.create_mission("v", "b", "{}");
-  const auto c = s.create_mission("v", "c", "{}");
-  const auto d = s.create_mission("v", "d", "{}");
-  s.save_mission_current(
+  s.vehicles().upsert({"v", "usim", 2.0, 1.2});
+  const auto a = s.missions().create("v", "a", "{}");
+  const auto b = s.missions().create("v", "b", "{}");
+  const auto c = s.missions().create("v", "c", "{}");
+  const auto d = s.missions().create("v", "d", "{}");
+  s.currents().save(
       stored(a, 0.2, 0.0, kin::SpeedReference::over_ground, kin::DriftScatter{0.1, 0.0, 1, 10.0}),
       {});
-  s.save_mission_current(
+  s.currents().save(
       stored(b, 0.0, 0.2, kin::SpeedReference::through_water, kin::DriftScatter{0.0, 0.1, 3, 20.0}),
       {});
-  s.save_mission_current(stored(c, 0.01, 0.0, std::nullopt, std::nullopt), {});
+  s.currents().save(stored(c, 0.01, 0.0, std::nullopt, std::nullopt), {});
   // Not evaluated (stored before schema 12): counts for nothing.
   store::StoredCurrent old = stored(d, 0.0, 0.0, std::nullopt, std::nullopt);
   old.speed_reference.reset();
-  s.save_mission_current(old, {});
+  s.currents().save(old, {});
 
   const auto m = app::vehicle_motion(ctx, "v");
   ASSERT_TRUE(m);
@@ -237,7 +237,7 @@ TEST(VehicleMotion, DefaultsUntilMeasuredAndUnknownVehiclesAreNotFound) {
   app::Context ctx(db.path());
   store::Store& s = ctx.db();
   EXPECT_EQ(app::vehicle_motion(ctx, "nobody").error().code, app::ErrorCode::not_found);
-  s.upsert_vehicle({"v", "usim", 2.0, 1.2});
+  s.vehicles().upsert({"v", "usim", 2.0, 1.2});
   auto m = app::vehicle_motion(ctx, "v");
   ASSERT_TRUE(m);
   EXPECT_EQ(m->speed_reference.value, app::kDefaultSpeedReference);
@@ -248,8 +248,8 @@ TEST(VehicleMotion, DefaultsUntilMeasuredAndUnknownVehiclesAreNotFound) {
   EXPECT_EQ(m->drift_scatter.scatter, app::kDefaultDriftScatter);
   EXPECT_FALSE(m->current);
   // An undetermined mission is shown as the evidence behind the default.
-  const auto a = s.create_mission("v", "a", "{}");
-  s.save_mission_current(stored(a, 0.01, 0.0, std::nullopt, std::nullopt), {});
+  const auto a = s.missions().create("v", "a", "{}");
+  s.currents().save(stored(a, 0.01, 0.0, std::nullopt, std::nullopt), {});
   m = app::vehicle_motion(ctx, "v");
   ASSERT_TRUE(m);
   EXPECT_EQ(m->speed_reference.source, "default");

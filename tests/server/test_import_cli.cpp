@@ -61,8 +61,8 @@ std::vector<avk::store::StoredTurn> turns_of(Store& s, std::int64_t mission_id) 
   f.mission_id = mission_id;
   f.limit = 100000;
   std::vector<avk::store::StoredTurn> out;
-  for (const auto& row : s.list_turns(f))
-    out.push_back(*s.get_turn(row.id));
+  for (const auto& row : s.turns().list(f))
+    out.push_back(*s.turns().get(row.id));
   return out;
 }
 
@@ -137,7 +137,7 @@ class ImportCli : public ::testing::Test {
                           mission_db_.path(), "--sim", "--quiet"});
     ASSERT_EQ(r.rc, 0) << r.out << r.err;
     Store s(mission_db_.path());
-    nav_ = s.nav_for_mission(1);
+    nav_ = s.navigation().for_mission(1);
     turns_ = turns_of(s, 1);
     ASSERT_GT(nav_.size(), 1400u);
     ASSERT_EQ(count(turns_, TurnStatus::ok), 18u);
@@ -168,7 +168,7 @@ TEST_F(ImportCli, ExtractsTheTurnsTheMissionRecordedFromItsNavigationLog) {
 
   Store s(import_db_.path());
   EXPECT_TRUE(s.integrity_check());
-  const auto m = s.get_mission(1);
+  const auto m = s.missions().get(1);
   ASSERT_TRUE(m);
   EXPECT_EQ(m->status, avk::store::MissionStatus::done);
   EXPECT_EQ(m->status_reason, "imported from " + alog.path());
@@ -178,7 +178,7 @@ TEST_F(ImportCli, ExtractsTheTurnsTheMissionRecordedFromItsNavigationLog) {
   EXPECT_EQ(config["kind"], "import");
   EXPECT_EQ(config["source"], "alog");
   EXPECT_EQ(config["names"]["NAV_X"], "NAV_X");
-  const auto vehicle = s.get_vehicle(m->vehicle_id);
+  const auto vehicle = s.vehicles().get(m->vehicle_id);
   ASSERT_TRUE(vehicle);
   EXPECT_EQ(vehicle->kind, "alog");
   double top = 0.0;
@@ -188,7 +188,7 @@ TEST_F(ImportCli, ExtractsTheTurnsTheMissionRecordedFromItsNavigationLog) {
 
   // Navigation is the mission's, sample for sample; guidance is held where the mission had none
   // (an .alog cannot say "no desired heading" once one was posted).
-  const auto nav = s.nav_for_mission(1);
+  const auto nav = s.navigation().for_mission(1);
   ASSERT_EQ(nav.size(), nav_.size());
   for (std::size_t i = 0; i < nav.size(); ++i) {
     EXPECT_EQ(nav[i].t_s, nav_[i].t_s);
@@ -274,8 +274,8 @@ TEST_F(ImportCli, TurnRecordsInTheLogAreImportedExactlyAndReplaceExtraction) {
       << r.out;
 
   Store s(import_db_.path());
-  EXPECT_EQ(s.get_mission(1)->vehicle_id, "m200-alpha");
-  EXPECT_EQ(s.nav_for_mission(1).size(), nav_.size());
+  EXPECT_EQ(s.missions().get(1)->vehicle_id, "m200-alpha");
+  EXPECT_EQ(s.navigation().for_mission(1).size(), nav_.size());
   const auto imported = turns_of(s, 1);
   ASSERT_EQ(imported.size(), turns_.size());
   for (std::size_t i = 0; i < imported.size(); ++i) {
@@ -300,7 +300,7 @@ TEST(ImportCliErrors, UsageErrorsAndAMissingFile) {
   EXPECT_NE(missing.err.find("cannot open '/nonexistent/dir/x.alog'"), std::string::npos)
       << missing.err;
   EXPECT_EQ(run({"import", "alog", fs::temp_directory_path().string(), "--db", db.path()}).rc, 1);
-  EXPECT_TRUE(Store(db.path()).list_missions().empty());
+  EXPECT_TRUE(Store(db.path()).missions().list().empty());
 }
 
 TEST(ImportCliBatches, ALongStraightRunIsStoredInBatchesWithRenamedVariables) {
@@ -328,12 +328,12 @@ TEST(ImportCliBatches, ALongStraightRunIsStoredInBatchesWithRenamedVariables) {
             std::string::npos)
       << r.out;
   Store s(db.path());
-  const auto nav = s.nav_for_mission(1);
+  const auto nav = s.navigation().for_mission(1);
   ASSERT_EQ(nav.size(), static_cast<std::size_t>(kSamples));
   EXPECT_DOUBLE_EQ(nav.back().x_m, (kSamples - 1) * 0.1 * 1.2);
   EXPECT_FALSE(nav.back().desired_heading_deg);
-  EXPECT_DOUBLE_EQ(s.get_vehicle("kf")->max_speed_mps, 1.2);
-  EXPECT_EQ(nlohmann::json::parse(s.get_mission(1)->config_json)["names"]["NAV_HEADING"],
+  EXPECT_DOUBLE_EQ(s.vehicles().get("kf")->max_speed_mps, 1.2);
+  EXPECT_EQ(nlohmann::json::parse(s.missions().get(1)->config_json)["names"]["NAV_HEADING"],
             "COMPASS");
   EXPECT_TRUE(turns_of(s, 1).empty());
 }

@@ -160,12 +160,12 @@ DriverRun run_through_emulator(
     out.starved_s = r.starved_s;
     recorder.flush();
   }
-  for (const auto& c : db.mission_cell_stats(plan.mission_id)) {
+  for (const auto& c : db.missions().cell_stats(plan.mission_id)) {
     out.stored_ok += c.n_ok;
     out.stored_aborted += c.n_aborted;
     out.stored_rejected += c.n_rejected;
   }
-  for (const auto& e : db.list_events(plan.mission_id, 0, 10000))
+  for (const auto& e : db.missions().events(plan.mission_id, 0, 10000))
     if (e.kind == "link") out.link_events.push_back(e.message);
   out.status = m200.status();
   return out;
@@ -550,7 +550,7 @@ TEST(M200Mission, TheStationServesAnM200AndRunsAMissionOnIt) {
   station.shutdown();
   store::Store db(db_file.path());
   std::int64_t ok = 0;
-  for (const auto& c : db.mission_cell_stats(id))
+  for (const auto& c : db.missions().cell_stats(id))
     ok += c.n_ok;
   EXPECT_EQ(ok, 2);
 }

@@ -39,7 +39,7 @@ std::int64_t count_turns(Store& s, std::optional<avk::kinematics::TurnStatus> st
   avk::store::TurnFilter f;
   f.status = status;
   f.limit = 100000;
-  return static_cast<std::int64_t>(s.list_turns(f).size());
+  return static_cast<std::int64_t>(s.turns().list(f).size());
 }
 
 // Per (speed, dheading) cell of the CKT: advance and transfer means.
@@ -92,13 +92,13 @@ TEST_F(MissionCli, Figure41OnUsimCompletesEveryTurnAndStoresEverything) {
   EXPECT_NE(r.out.find("18/18 turns ok"), std::string::npos) << r.out;
   Store s(db_.path());
   EXPECT_TRUE(s.integrity_check());
-  const auto missions = s.list_missions();
+  const auto missions = s.missions().list();
   ASSERT_EQ(missions.size(), 1u);
   EXPECT_EQ(missions[0].status, avk::store::MissionStatus::done);
   EXPECT_FALSE(missions[0].runner_pid.has_value());
   EXPECT_EQ(count_turns(s, avk::kinematics::TurnStatus::ok), 18);
   // Every cell once, each with its normalised form and a ConditionSet time.
-  const auto cells = s.mission_cell_stats(missions[0].id);
+  const auto cells = s.missions().cell_stats(missions[0].id);
   ASSERT_EQ(cells.size(), 18u);
   for (const auto& c : cells) {
     EXPECT_EQ(c.n_ok, 1) << c.speed_mps << " " << c.dheading_deg;
@@ -110,7 +110,7 @@ TEST_F(MissionCli, Figure41OnUsimCompletesEveryTurnAndStoresEverything) {
   EXPECT_EQ(all, 18 + count_turns(s, avk::kinematics::TurnStatus::aborted) +
                      count_turns(s, avk::kinematics::TurnStatus::rejected));
   // The navigation log has every mode of the mission, in time order.
-  const auto nav = s.nav_for_mission(missions[0].id);
+  const auto nav = s.navigation().for_mission(missions[0].id);
   ASSERT_GT(nav.size(), 1000u);
   std::set<std::string> modes;
   for (std::size_t i = 0; i < nav.size(); ++i) {
@@ -177,7 +177,7 @@ TEST_F(MissionCli, CatamaranInCurrentAndWindIsContainedAndLosesNoTurn) {
   // Containment aborted at least one turn, which was stored with its reason and run again.
   avk::store::TurnFilter f;
   f.status = avk::kinematics::TurnStatus::aborted;
-  const auto aborted = s.list_turns(f);
+  const auto aborted = s.turns().list(f);
   ASSERT_FALSE(aborted.empty());
   for (const auto& t : aborted) {
     EXPECT_EQ(t.reason.rfind("containment", 0), 0u) << t.reason;
@@ -186,9 +186,9 @@ TEST_F(MissionCli, CatamaranInCurrentAndWindIsContainedAndLosesNoTurn) {
     same.dheading_deg = t.goal_dheading_deg;
     same.status = avk::kinematics::TurnStatus::ok;
     same.after_id = t.id;  // the retry comes after the abort
-    EXPECT_EQ(s.list_turns(same).size(), 1u);
+    EXPECT_EQ(s.turns().list(same).size(), 1u);
   }
-  const auto events = s.list_events(1);
+  const auto events = s.missions().events(1);
   EXPECT_TRUE(std::any_of(events.begin(), events.end(),
                           [](const auto& e) { return e.kind == "containment"; }));
   // In wind and current the catamaran overshoots and swings; no turn may start in a swing: the
@@ -304,7 +304,7 @@ TEST_F(MissionCli, DirectionAutoLosesFewerTurnsToContainmentThanAlternate) {
   std::int64_t aborted[2] = {0, 0};
   std::set<double> sides;
   for (std::int64_t m : {1, 2}) {
-    for (const auto& c : s.mission_cell_stats(m)) {
+    for (const auto& c : s.missions().cell_stats(m)) {
       EXPECT_EQ(c.n_ok, 1);
       aborted[m - 1] += c.n_aborted;
     }
@@ -315,7 +315,7 @@ TEST_F(MissionCli, DirectionAutoLosesFewerTurnsToContainmentThanAlternate) {
   // Auto still turns both ways.
   avk::store::TurnFilter f;
   f.mission_id = 2;
-  for (const auto& t : s.list_turns(f))
+  for (const auto& t : s.turns().list(f))
     sides.insert(t.goal_dheading_deg > 0 ? 1.0 : -1.0);
   EXPECT_EQ(sides.size(), 2u);
 }
@@ -331,7 +331,7 @@ TEST_F(MissionCli, InvalidMissionNamesTheFieldAndStoresNothing) {
   EXPECT_NE(r.err.find("/turn_array/dheadings_deg/0"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("/operating_region/polygon_m"), std::string::npos) << r.err;
   Store s(db_.path());
-  EXPECT_TRUE(s.list_missions().empty());
+  EXPECT_TRUE(s.missions().list().empty());
   fs::remove(bad);
 }
 
@@ -367,7 +367,7 @@ TEST_F(MissionCli, PersistentExcitationLogsNavigationForIdentification) {
                         db_.path(), "--sim", "--quiet"});
   ASSERT_EQ(r.rc, 0) << r.out << r.err;
   Store s(db_.path());
-  const auto nav = s.nav_for_mission(1);
+  const auto nav = s.navigation().for_mission(1);
   std::size_t exciting = 0;
   std::set<double> desired;
   for (const auto& n : nav) {
@@ -422,11 +422,11 @@ TEST_F(MissionCli, KillNineLosesNoFinishedTurnAndResumeCompletesTheMission) {
     EXPECT_TRUE(s.integrity_check());
     avk::store::TurnFilter f;
     f.limit = 1000;
-    for (const auto& row : s.list_turns(f))
-      before.push_back(*s.get_turn(row.id));
+    for (const auto& row : s.turns().list(f))
+      before.push_back(*s.turns().get(row.id));
     ASSERT_GE(before.size(), 4u);
-    EXPECT_EQ(s.get_mission(1)->status, avk::store::MissionStatus::running);  // as it was left
-    EXPECT_GT(s.nav_for_mission(1).size(), 100u);
+    EXPECT_EQ(s.missions().get(1)->status, avk::store::MissionStatus::running);  // as it was left
+    EXPECT_GT(s.navigation().for_mission(1).size(), 100u);
   }
   const Result list = run({"mission", "list", "--db", db_.path()});
   EXPECT_NE(list.out.find("interrupted"), std::string::npos) << list.out;
@@ -436,19 +436,19 @@ TEST_F(MissionCli, KillNineLosesNoFinishedTurnAndResumeCompletesTheMission) {
   Store s(db_.path());
   EXPECT_TRUE(s.integrity_check());
   EXPECT_EQ(count_turns(s, avk::kinematics::TurnStatus::ok), 18);
-  const auto cells = s.mission_cell_stats(1);
+  const auto cells = s.missions().cell_stats(1);
   for (const auto& c : cells)
     EXPECT_EQ(c.n_ok, 1) << c.speed_mps << " " << c.dheading_deg;
   for (const auto& t : before) {
-    const auto now = s.get_turn(t.row.id);
+    const auto now = s.turns().get(t.row.id);
     ASSERT_TRUE(now.has_value());
     EXPECT_EQ(now->raw, t.raw);
   }
   // The resumed clock continues after everything stored before the kill.
-  const auto nav = s.nav_for_mission(1);
+  const auto nav = s.navigation().for_mission(1);
   for (std::size_t i = 1; i < nav.size(); ++i)
     ASSERT_GE(nav[i].t_s, nav[i - 1].t_s);
-  EXPECT_EQ(s.get_mission(1)->status, avk::store::MissionStatus::done);
+  EXPECT_EQ(s.missions().get(1)->status, avk::store::MissionStatus::done);
   fs::remove(log);
 }
 
@@ -466,7 +466,7 @@ TEST_F(MissionCli, SigtermStopsTheMissionAsInterruptedAndResumable) {
   ASSERT_TRUE(WIFEXITED(status));
   EXPECT_EQ(WEXITSTATUS(status), 130);
   Store s(db_.path());
-  const auto m = s.get_mission(1);
+  const auto m = s.missions().get(1);
   EXPECT_EQ(m->status, avk::store::MissionStatus::interrupted);
   EXPECT_FALSE(m->runner_pid.has_value());
   EXPECT_NE(m->status_reason.find("signal"), std::string::npos);

@@ -55,13 +55,13 @@ TEST(MissionLimitsStore, AMissionTooLargeToPlanLeavesNoRowBehind) {
   ASSERT_FALSE(refused);
   EXPECT_EQ(refused.error().code, avk::app::ErrorCode::invalid_argument);
   EXPECT_FALSE(refused.error().fields.empty());
-  EXPECT_TRUE(db.list_missions().empty());
+  EXPECT_TRUE(db.missions().list().empty());
   // A mission within the limits is stored with its plan.
   const auto plan =
       avk::app::create_mission_plan(ctx, mission({0.5, 1.0}, {40, 100}, 2).dump(), info);
   ASSERT_TRUE(plan);
   EXPECT_EQ(plan->tasks.size(), 8u);
-  EXPECT_EQ(db.list_missions().size(), 1u);
+  EXPECT_EQ(db.missions().list().size(), 1u);
 }
 
 class MissionLimitsApi : public ::testing::Test {

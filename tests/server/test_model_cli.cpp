@@ -47,7 +47,7 @@ TEST_F(ModelCli, FitStoresTheModelWithItsValidationErrors) {
   EXPECT_NE(r.out.find("thesis form, 20 samples"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("40 coefficients"), std::string::npos) << r.out;
   avk::store::Store s(db_->path());
-  const auto m = s.latest_model();
+  const auto m = s.models().latest();
   ASSERT_TRUE(m.has_value());
   EXPECT_EQ(m->model.form, avk::kinematics::YawModelForm::thesis);
   EXPECT_EQ(m->model.history, 20u);

@@ -80,9 +80,9 @@ class PredictParity : public ::testing::Test {
   }
   void import_table_of(const std::string& donor, const std::string& vid) {
     store::Store db(db_.path());
-    kinematics::Ckt t = kinematics::Ckt::build(db.load_normalized_turns({}, donor));
+    kinematics::Ckt t = kinematics::Ckt::build(db.turns().load_normalized({}, donor));
     t.vehicle_id = vid;
-    db.save_ckt_snapshot(t, {});
+    db.ckt_snapshots().save(t, {});
   }
 
   avk::testing::TempDb db_{"avk_predict_parity"};
@@ -140,7 +140,7 @@ TEST_F(PredictParity, ACurrentAndASpeedReferenceAnswerTheSameWayAndSaySo) {
     c.estimate.north_mps = 0.0;
     c.estimate.covariance = {0.0004, 0.0, 0.0001};  // 0.02 m/s east, 0.01 m/s north
     c.estimate.legs = 5;
-    db.save_mission_current(c, {});
+    db.currents().save(c, {});
   }
   for (const std::string current : {"", "none", "live", "0,0.3"})
     for (const std::string reference : {"", "over_ground", "through_water"})

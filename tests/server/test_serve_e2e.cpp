@@ -173,7 +173,7 @@ std::optional<double> last_nav_t_s(const std::string& db, std::int64_t mission_i
   std::optional<double> last;
   std::int64_t after = 0;
   for (;;) {
-    const auto page = store.nav_page(mission_id, after, 10000);
+    const auto page = store.navigation().page(mission_id, after, 10000);
     if (page.empty()) return last;
     for (const auto& row : page)
       last = std::max(last.value_or(row.row.t_s), row.row.t_s);
@@ -203,7 +203,7 @@ TEST(ServeE2E, KillNineDuringAMissionLosesNoFinishedTurnAndTheMissionResumes) {
   // What the killed process left: its last navigation, and the latest time of anything stored.
   const auto nav_end_s = last_nav_t_s(db.path(), 1);
   ASSERT_TRUE(nav_end_s.has_value());
-  const auto stored_end_s = avk::store::Store(db.path()).mission_clock_end_s(1);
+  const auto stored_end_s = avk::store::Store(db.path()).missions().clock_end_s(1);
   ASSERT_TRUE(stored_end_s.has_value());
 
   ServeProcess second = spawn_serve(db.path(), log);
@@ -259,7 +259,7 @@ TEST(ServeE2E, SigtermEndsARunningMissionAsInterruptedWithItsEndStored) {
 
   const auto nav_end_s = last_nav_t_s(db.path(), 1);
   ASSERT_TRUE(nav_end_s.has_value());
-  const auto m = avk::store::Store(db.path()).get_mission(1);
+  const auto m = avk::store::Store(db.path()).missions().get(1);
   ASSERT_TRUE(m.has_value());
   EXPECT_EQ(m->status, avk::store::MissionStatus::interrupted);
   EXPECT_EQ(m->status_reason, "the server stopped");

@@ -567,7 +567,7 @@ TEST_F(StationApi, ShutdownInterruptsAndANewStationResumes) {
   station_->shutdown();
   {
     avk::store::Store s(db_.path());
-    EXPECT_EQ(s.get_mission(id)->status, avk::store::MissionStatus::interrupted);
+    EXPECT_EQ(s.missions().get(id)->status, avk::store::MissionStatus::interrupted);
     EXPECT_TRUE(s.integrity_check());
   }
   station_.reset();
@@ -801,7 +801,7 @@ TEST_F(StationApi, CktCellsExportImportPredictModelsCompare) {
 TEST_F(StationApi, NavPagesConcatenateToTheStoredTrack) {
   const std::int64_t id = start_mission();
   wait_for(id, {"done"});
-  const auto stored = avk::store::Store(db_.path()).nav_for_mission(id);
+  const auto stored = avk::store::Store(db_.path()).navigation().for_mission(id);
   ASSERT_GT(stored.size(), 1000u);
   const std::string path = "/api/v1/missions/" + std::to_string(id) + "/nav";
   std::vector<json> rows;
@@ -820,7 +820,8 @@ TEST_F(StationApi, NavPagesConcatenateToTheStoredTrack) {
   }
   EXPECT_EQ(pages, static_cast<int>(stored.size() / 400 + 1));
   ASSERT_EQ(rows.size(), stored.size());
-  // Insertion order is the recorder's time order for one run: the same rows as nav_for_mission.
+  // Insertion order is the recorder's time order for one run: the same rows as
+  // navigation().for_mission.
   for (std::size_t i = 0; i < rows.size(); i += 97) {
     EXPECT_EQ(rows[i]["t_s"].get<double>(), stored[i].t_s);
     EXPECT_EQ(rows[i]["x_m"].get<double>(), stored[i].x_m);
@@ -954,7 +955,7 @@ TEST_F(StationApi, ModelHeadingsOneStepAndSimulated) {
   std::int64_t empty = 0;
   {
     avk::store::Store s(db_.path());
-    empty = s.create_mission("sim-usim", "no nav", "{}");
+    empty = s.missions().create("sim-usim", "no nav", "{}");
   }
   const ApiResponse none = call(get(path, {{"mission", std::to_string(empty)}}));
   EXPECT_EQ(none.status, 422) << none.body;

@@ -44,60 +44,60 @@ StoredCurrent current_of(std::int64_t mission, double east, double north) {
 
 TEST(CurrentStore, EstimateAndWaterTurnsRoundTripAndTheGroundFormStays) {
   Store s(":memory:");
-  s.upsert_vehicle({"usim-1", "usim", 2.0, 1.2});
-  const auto m = s.create_mission("usim-1", "collection", "{}");
+  s.vehicles().upsert({"usim-1", "usim", 2.0, 1.2});
+  const auto m = s.missions().create("usim-1", "collection", "{}");
   const TurnSequence raw = arc(90.0, 1);
-  const auto id = s.store_turn(m, raw, TurnStatus::ok, "");
-  EXPECT_FALSE(s.mission_current(m));
-  EXPECT_EQ(s.current_revision("usim-1"), 0);
+  const auto id = s.turns().add(m, raw, TurnStatus::ok, "");
+  EXPECT_FALSE(s.currents().for_mission(m));
+  EXPECT_EQ(s.currents().revision("usim-1"), 0);
 
   const WaterCurrent c{0.1, -0.2};
   const TurnSequence water = avk::kinematics::in_water_frame(raw, c).normalized();
-  const auto rev = s.save_mission_current(current_of(m, c.east_mps, c.north_mps), {{id, water}});
+  const auto rev = s.currents().save(current_of(m, c.east_mps, c.north_mps), {{id, water}});
   EXPECT_GT(rev, 0);
-  EXPECT_EQ(s.current_revision("usim-1"), rev);
-  const auto got = s.mission_current(m);
+  EXPECT_EQ(s.currents().revision("usim-1"), rev);
+  const auto got = s.currents().for_mission(m);
   ASSERT_TRUE(got);
   EXPECT_EQ(got->estimate.east_mps, 0.1);
   EXPECT_EQ(got->estimate.covariance[1], 2e-5);
   EXPECT_EQ(got->estimate.legs, 9u);
   EXPECT_EQ(got->method, "legs");
   EXPECT_EQ(got->revision, rev);
-  EXPECT_EQ(s.latest_vehicle_current("usim-1")->mission_id, m);
-  EXPECT_FALSE(s.latest_vehicle_current("other"));
+  EXPECT_EQ(s.currents().latest_for_vehicle("usim-1")->mission_id, m);
+  EXPECT_FALSE(s.currents().latest_for_vehicle("other"));
 
   const auto as_water =
-      s.load_normalized_turns({m}, "usim-1", false, TurnFrameChoice::water_where_known);
+      s.turns().load_normalized({m}, "usim-1", false, TurnFrameChoice::water_where_known);
   ASSERT_EQ(as_water.size(), 1u);
   EXPECT_EQ(as_water[0], water);
-  const auto as_ground = s.load_normalized_turns({m}, "usim-1");
+  const auto as_ground = s.turns().load_normalized({m}, "usim-1");
   ASSERT_EQ(as_ground.size(), 1u);
   EXPECT_EQ(as_ground[0], raw.normalized());
 
   // A new estimate without water turns (no longer significant) takes the water form away.
-  const auto rev2 = s.save_mission_current(current_of(m, 0.01, 0.0), {});
+  const auto rev2 = s.currents().save(current_of(m, 0.01, 0.0), {});
   EXPECT_GT(rev2, rev);
-  EXPECT_EQ(s.load_normalized_turns({m}, "usim-1", false, TurnFrameChoice::water_where_known)[0],
+  EXPECT_EQ(s.turns().load_normalized({m}, "usim-1", false, TurnFrameChoice::water_where_known)[0],
             raw.normalized());
 }
 
 TEST(CurrentStore, AnotherMissionsTurnIsRefusedAndNothingChanges) {
   Store s(":memory:");
-  s.upsert_vehicle({"usim-1", "usim", 2.0, 1.2});
-  const auto m = s.create_mission("usim-1", "a", "{}");
-  const auto other = s.create_mission("usim-1", "b", "{}");
+  s.vehicles().upsert({"usim-1", "usim", 2.0, 1.2});
+  const auto m = s.missions().create("usim-1", "a", "{}");
+  const auto other = s.missions().create("usim-1", "b", "{}");
   const TurnSequence raw = arc(45.0, 2);
-  const auto mine = s.store_turn(m, raw, TurnStatus::ok, "");
-  const auto theirs = s.store_turn(other, raw, TurnStatus::ok, "");
+  const auto mine = s.turns().add(m, raw, TurnStatus::ok, "");
+  const auto theirs = s.turns().add(other, raw, TurnStatus::ok, "");
   const TurnSequence water = avk::kinematics::in_water_frame(raw, {0.2, 0.0}).normalized();
-  s.save_mission_current(current_of(m, 0.2, 0.0), {{mine, water}});
-  EXPECT_THROW(s.save_mission_current(current_of(m, 0.3, 0.0), {{mine, water}, {theirs, water}}),
+  s.currents().save(current_of(m, 0.2, 0.0), {{mine, water}});
+  EXPECT_THROW(s.currents().save(current_of(m, 0.3, 0.0), {{mine, water}, {theirs, water}}),
                StoreError);
-  EXPECT_EQ(s.mission_current(m)->estimate.east_mps, 0.2);
-  EXPECT_EQ(s.load_normalized_turns({m}, "usim-1", false, TurnFrameChoice::water_where_known)[0],
+  EXPECT_EQ(s.currents().for_mission(m)->estimate.east_mps, 0.2);
+  EXPECT_EQ(s.turns().load_normalized({m}, "usim-1", false, TurnFrameChoice::water_where_known)[0],
             water);
   EXPECT_EQ(
-      s.load_normalized_turns({other}, "usim-1", false, TurnFrameChoice::water_where_known)[0],
+      s.turns().load_normalized({other}, "usim-1", false, TurnFrameChoice::water_where_known)[0],
       raw.normalized());
 }
 
@@ -108,9 +108,9 @@ TEST(CurrentStore, MigratesASchemaNineDatabase) {
   std::int64_t id = 0;
   {
     Store s(db.path());
-    s.upsert_vehicle({"usim-1", "usim", 2.0, 1.2});
-    const auto m = s.create_mission("usim-1", "old", "{}");
-    id = s.store_turn(m, raw, TurnStatus::ok, "");
+    s.vehicles().upsert({"usim-1", "usim", 2.0, 1.2});
+    const auto m = s.missions().create("usim-1", "old", "{}");
+    id = s.turns().add(m, raw, TurnStatus::ok, "");
   }
   {
     // Undo the newest step by hand, as if the file had been written before it existed.
@@ -120,53 +120,53 @@ TEST(CurrentStore, MigratesASchemaNineDatabase) {
   Store s(db.path());
   EXPECT_EQ(s.user_version(), schema_version());
   EXPECT_TRUE(s.integrity_check());
-  const auto turn = s.get_turn(id);
+  const auto turn = s.turns().get(id);
   ASSERT_TRUE(turn);
   EXPECT_EQ(turn->raw.meta().goal_dheading_deg, raw.meta().goal_dheading_deg);
   const auto loaded =
-      s.load_normalized_turns({}, "usim-1", false, TurnFrameChoice::water_where_known);
+      s.turns().load_normalized({}, "usim-1", false, TurnFrameChoice::water_where_known);
   ASSERT_EQ(loaded.size(), 1u);
   EXPECT_FALSE(loaded[0].meta().removed_current);
-  EXPECT_FALSE(s.latest_vehicle_current("usim-1"));
+  EXPECT_FALSE(s.currents().latest_for_vehicle("usim-1"));
 }
 
 // The speed reference and drift scatter judged in a current travel with it; an estimate without
 // them reads back without them, and an undetermined reference stays undetermined.
 TEST(CurrentStore, SpeedReferenceAndDriftScatterRoundTrip) {
   Store s(":memory:");
-  s.upsert_vehicle({"usim-1", "usim", 2.0, 1.2});
-  const auto a = s.create_mission("usim-1", "a", "{}");
-  const auto b = s.create_mission("usim-1", "b", "{}");
-  const auto other = s.create_mission("usim-1", "c", "{}");
+  s.vehicles().upsert({"usim-1", "usim", 2.0, 1.2});
+  const auto a = s.missions().create("usim-1", "a", "{}");
+  const auto b = s.missions().create("usim-1", "b", "{}");
+  const auto other = s.missions().create("usim-1", "c", "{}");
   StoredCurrent ca = current_of(a, 0.2, 0.1);
   ca.speed_reference = avk::kinematics::SpeedReferenceEvidence{
       7, 0.012, 0.15, 0.14, avk::kinematics::SpeedReference::through_water};
   ca.drift_scatter = avk::kinematics::DriftScatter{0.04, 0.03, 6, 12.5};
-  s.save_mission_current(ca, {});
+  s.currents().save(ca, {});
   StoredCurrent cb = current_of(b, 0.01, 0.0);
   cb.speed_reference = avk::kinematics::SpeedReferenceEvidence{4, 0.05, 0.051, 0.004, {}};
-  s.save_mission_current(cb, {});
-  s.save_mission_current(current_of(other, 0.0, 0.02), {});
+  s.currents().save(cb, {});
+  s.currents().save(current_of(other, 0.0, 0.02), {});
 
-  const auto got_a = s.mission_current(a);
+  const auto got_a = s.currents().for_mission(a);
   ASSERT_TRUE(got_a);
   EXPECT_EQ(got_a->speed_reference, ca.speed_reference);
   EXPECT_EQ(got_a->drift_scatter, ca.drift_scatter);
-  const auto got_b = s.mission_current(b);
+  const auto got_b = s.currents().for_mission(b);
   ASSERT_TRUE(got_b && got_b->speed_reference);
   EXPECT_EQ(got_b->speed_reference, cb.speed_reference);
   EXPECT_FALSE(got_b->speed_reference->identified);
   EXPECT_FALSE(got_b->drift_scatter);
-  const auto got_other = s.mission_current(other);
+  const auto got_other = s.currents().for_mission(other);
   EXPECT_FALSE(got_other->speed_reference);
   EXPECT_FALSE(got_other->drift_scatter);
 
-  const auto all = s.vehicle_currents("usim-1");
+  const auto all = s.currents().for_vehicle("usim-1");
   ASSERT_EQ(all.size(), 3u);
   EXPECT_EQ(all[0].mission_id, a);
   EXPECT_EQ(all[2].mission_id, other);
   EXPECT_LT(all[0].revision, all[1].revision);
-  EXPECT_TRUE(s.vehicle_currents("nobody").empty());
+  EXPECT_TRUE(s.currents().for_vehicle("nobody").empty());
 }
 
 // A file as schema 11 left it, with an estimate stored then: it upgrades, the estimate reads back
@@ -176,8 +176,8 @@ TEST(CurrentStore, MigratesASchemaElevenDatabase) {
   std::int64_t m = 0;
   {
     Store s(db.path());
-    s.upsert_vehicle({"usim-1", "usim", 2.0, 1.2});
-    m = s.create_mission("usim-1", "old", "{}");
+    s.vehicles().upsert({"usim-1", "usim", 2.0, 1.2});
+    m = s.missions().create("usim-1", "old", "{}");
   }
   {
     Connection c(db.path());
@@ -190,7 +190,7 @@ TEST(CurrentStore, MigratesASchemaElevenDatabase) {
   Store s(db.path());
   EXPECT_EQ(s.user_version(), schema_version());
   EXPECT_TRUE(s.integrity_check());
-  const auto old = s.mission_current(m);
+  const auto old = s.currents().for_mission(m);
   ASSERT_TRUE(old);
   EXPECT_EQ(old->estimate.east_mps, 0.2);
   EXPECT_EQ(old->estimate.legs, 12u);
@@ -200,9 +200,9 @@ TEST(CurrentStore, MigratesASchemaElevenDatabase) {
   fresh.speed_reference = avk::kinematics::SpeedReferenceEvidence{
       5, 0.02, 0.2, 0.15, avk::kinematics::SpeedReference::over_ground};
   fresh.drift_scatter = avk::kinematics::DriftScatter{0.08, 0.05, 5, 7.0};
-  EXPECT_GT(s.save_mission_current(fresh, {}), 3);
-  EXPECT_EQ(s.mission_current(m)->speed_reference, fresh.speed_reference);
-  EXPECT_EQ(s.mission_current(m)->drift_scatter, fresh.drift_scatter);
+  EXPECT_GT(s.currents().save(fresh, {}), 3);
+  EXPECT_EQ(s.currents().for_mission(m)->speed_reference, fresh.speed_reference);
+  EXPECT_EQ(s.currents().for_mission(m)->drift_scatter, fresh.drift_scatter);
 }
 
 }  // namespace

@@ -35,42 +35,42 @@ TurnSequence harvested(TurnSequence t, double quality) {
 
 TEST(HarvestStore, TheCktLoadsCollectionTurnsUnlessAskedForHarvestedOnes) {
   Store s(":memory:");
-  s.upsert_vehicle({"m200", "catamaran", 2.0, 1.0});
-  const auto mission = s.create_mission("m200", "log", "{}");
-  const auto collected = s.store_turn(mission, arc(90.0, 1), TurnStatus::ok, "");
-  EXPECT_EQ(s.newest_ok_turn_id("m200"), collected);
-  const auto picked = s.store_turn(mission, harvested(arc(60.0, 2), 0.75), TurnStatus::ok, "");
-  EXPECT_EQ(s.newest_ok_turn_id("m200"), collected);
-  EXPECT_EQ(s.newest_ok_turn_id("m200", true), picked);
+  s.vehicles().upsert({"m200", "catamaran", 2.0, 1.0});
+  const auto mission = s.missions().create("m200", "log", "{}");
+  const auto collected = s.turns().add(mission, arc(90.0, 1), TurnStatus::ok, "");
+  EXPECT_EQ(s.turns().newest_ok_id("m200"), collected);
+  const auto picked = s.turns().add(mission, harvested(arc(60.0, 2), 0.75), TurnStatus::ok, "");
+  EXPECT_EQ(s.turns().newest_ok_id("m200"), collected);
+  EXPECT_EQ(s.turns().newest_ok_id("m200", true), picked);
 
-  ASSERT_EQ(s.load_normalized_turns({}, "m200").size(), 1u);
-  const auto both = s.load_normalized_turns({mission}, "m200", true);
+  ASSERT_EQ(s.turns().load_normalized({}, "m200").size(), 1u);
+  const auto both = s.turns().load_normalized({mission}, "m200", true);
   ASSERT_EQ(both.size(), 2u);
   EXPECT_EQ(both[1].meta().source, TurnSource::harvested);
   EXPECT_EQ(both[1].meta().quality, 0.75);
 
-  const auto rows = s.list_turns({});
+  const auto rows = s.turns().list({});
   ASSERT_EQ(rows.size(), 2u);
   EXPECT_EQ(rows[0].source, TurnSource::collection);
   EXPECT_FALSE(rows[0].quality);
   EXPECT_EQ(rows[1].source, TurnSource::harvested);
   EXPECT_EQ(rows[1].quality, 0.75);
-  EXPECT_EQ(s.get_turn(picked)->raw.meta().source, TurnSource::harvested);
-  EXPECT_EQ(s.turn_start_times(mission).size(), 2u);
+  EXPECT_EQ(s.turns().get(picked)->raw.meta().source, TurnSource::harvested);
+  EXPECT_EQ(s.turns().start_times(mission).size(), 2u);
 }
 
 TEST(HarvestStore, HarvestRunsAreKeptWithTheirCounts) {
   Store s(":memory:");
-  s.upsert_vehicle({"m200", "catamaran", 2.0, 1.0});
-  const auto mission = s.create_mission("m200", "log", "{}");
+  s.vehicles().upsert({"m200", "catamaran", 2.0, 1.0});
+  const auto mission = s.missions().create("m200", "log", "{}");
   HarvestRecord h;
   h.mission_id = mission;
   h.steps = 9;
   h.harvested = 3;
   h.already_recorded = 2;
   h.rejected = {{"not_steady_before", 3}, {"too_small", 1}};
-  const auto id = s.save_harvest(h);
-  const auto runs = s.list_harvests(mission);
+  const auto id = s.harvests().save(h);
+  const auto runs = s.harvests().list(mission);
   ASSERT_EQ(runs.size(), 1u);
   EXPECT_EQ(runs[0].id, id);
   EXPECT_EQ(runs[0].steps, 9);
@@ -78,7 +78,7 @@ TEST(HarvestStore, HarvestRunsAreKeptWithTheirCounts) {
   EXPECT_EQ(runs[0].already_recorded, 2);
   EXPECT_EQ(runs[0].rejected, h.rejected);
   EXPECT_FALSE(runs[0].created_utc.empty());
-  EXPECT_TRUE(s.list_harvests(mission + 1).empty());
+  EXPECT_TRUE(s.harvests().list(mission + 1).empty());
 }
 
 // A file as schema 7 left it: its turns become collection turns without quality, and keep
@@ -109,18 +109,18 @@ TEST(HarvestStore, ASchemaSevenDatabaseUpgradesAndKeepsItsTurns) {
   Store s(db.path());
   EXPECT_EQ(s.user_version(), schema_version());
   EXPECT_TRUE(s.integrity_check());
-  const auto rows = s.list_turns({});
+  const auto rows = s.turns().list({});
   ASSERT_EQ(rows.size(), 1u);
   EXPECT_EQ(rows[0].source, TurnSource::collection);
   EXPECT_FALSE(rows[0].quality);
-  ASSERT_EQ(s.load_normalized_turns({}, "m200").size(), 1u);
-  EXPECT_EQ(s.load_normalized_turns({}, "m200")[0], old.normalized());
-  s.store_turn(4, harvested(arc(45.0, 5), 0.5), TurnStatus::ok, "");
-  EXPECT_EQ(s.load_normalized_turns({}, "m200").size(), 1u);
-  EXPECT_EQ(s.load_normalized_turns({}, "m200", true).size(), 2u);
+  ASSERT_EQ(s.turns().load_normalized({}, "m200").size(), 1u);
+  EXPECT_EQ(s.turns().load_normalized({}, "m200")[0], old.normalized());
+  s.turns().add(4, harvested(arc(45.0, 5), 0.5), TurnStatus::ok, "");
+  EXPECT_EQ(s.turns().load_normalized({}, "m200").size(), 1u);
+  EXPECT_EQ(s.turns().load_normalized({}, "m200", true).size(), 2u);
   HarvestRecord h;
   h.mission_id = 4;
-  EXPECT_GT(s.save_harvest(h), 0);
+  EXPECT_GT(s.harvests().save(h), 0);
   // The column refuses a source outside the list.
   EXPECT_THROW(Connection(db.path()).exec("UPDATE turns SET source = 'guessed'"), StoreError);
 }

@@ -24,8 +24,8 @@ namespace {
 using avk::testing::TempDb;
 
 std::int64_t make_mission(Store& s, const std::string& vehicle = "usim-1") {
-  s.upsert_vehicle({vehicle, "usim", 2.0, 1.2});
-  return s.create_mission(vehicle, "collection", R"({"speeds":[1.0]})");
+  s.vehicles().upsert({vehicle, "usim", 2.0, 1.2});
+  return s.missions().create(vehicle, "collection", R"({"speeds":[1.0]})");
 }
 
 TurnSequence arc(double speed_mps, double dheading_deg, unsigned seed = 1) {
@@ -53,9 +53,9 @@ TEST(Store, MigrationCreatesSchemaAndVersion) {
   EXPECT_EQ(s.user_version(), schema_version());
   EXPECT_GE(schema_version(), 1);
   const auto m = make_mission(s);
-  EXPECT_TRUE(s.list_turns({}).empty());
-  EXPECT_TRUE(s.nav_for_mission(m).empty());
-  EXPECT_FALSE(s.latest_ckt_snapshot("").has_value());
+  EXPECT_TRUE(s.turns().list({}).empty());
+  EXPECT_TRUE(s.navigation().for_mission(m).empty());
+  EXPECT_FALSE(s.ckt_snapshots().latest("").has_value());
 }
 
 TEST(Store, FileDatabaseUsesWal) {
@@ -71,14 +71,14 @@ TEST(Store, ReopeningKeepsData) {
   {
     Store s(db.path());
     mission = make_mission(s);
-    turn = s.store_turn(mission, arc(1.0, 90.0), TurnStatus::ok, "");
+    turn = s.turns().add(mission, arc(1.0, 90.0), TurnStatus::ok, "");
   }
   Store s(db.path());
   EXPECT_EQ(s.user_version(), schema_version());
-  ASSERT_TRUE(s.get_mission(mission));
-  EXPECT_EQ(s.get_mission(mission)->name, "collection");
-  ASSERT_TRUE(s.get_turn(turn));
-  EXPECT_EQ(s.get_vehicle("usim-1")->length_m, 1.2);
+  ASSERT_TRUE(s.missions().get(mission));
+  EXPECT_EQ(s.missions().get(mission)->name, "collection");
+  ASSERT_TRUE(s.turns().get(turn));
+  EXPECT_EQ(s.vehicles().get("usim-1")->length_m, 1.2);
 }
 
 TEST(Store, NewerSchemaRefused) {
@@ -102,21 +102,21 @@ TEST(Store, NewerSchemaRefused) {
 TEST(Store, MissionLifecycle) {
   Store s(":memory:");
   const auto id = make_mission(s);
-  auto m = s.get_mission(id);
+  auto m = s.missions().get(id);
   ASSERT_TRUE(m);
   EXPECT_EQ(m->status, MissionStatus::created);
   EXPECT_FALSE(m->created_utc.empty());
-  s.set_mission_status(id, MissionStatus::running, "", 1.5);
-  s.set_mission_status(id, MissionStatus::paused, "operator", 2.0);
-  s.set_mission_status(id, MissionStatus::running, "", 3.0);
-  s.set_mission_status(id, MissionStatus::aborted, "link lost", 9.0);
-  m = s.get_mission(id);
+  s.missions().set_status(id, MissionStatus::running, "", 1.5);
+  s.missions().set_status(id, MissionStatus::paused, "operator", 2.0);
+  s.missions().set_status(id, MissionStatus::running, "", 3.0);
+  s.missions().set_status(id, MissionStatus::aborted, "link lost", 9.0);
+  m = s.missions().get(id);
   EXPECT_EQ(m->status, MissionStatus::aborted);
   EXPECT_EQ(m->status_reason, "link lost");
   EXPECT_EQ(m->started_s, 1.5);
   EXPECT_EQ(m->ended_s, 9.0);
-  EXPECT_THROW(s.set_mission_status(id + 100, MissionStatus::done, "", 0.0), StoreError);
-  EXPECT_EQ(s.list_missions().size(), 1u);
+  EXPECT_THROW(s.missions().set_status(id + 100, MissionStatus::done, "", 0.0), StoreError);
+  EXPECT_EQ(s.missions().list().size(), 1u);
   for (auto st : {MissionStatus::created, MissionStatus::interrupted, MissionStatus::halted,
                   MissionStatus::done})
     EXPECT_EQ(mission_status_from_string(to_string(st)), st);
@@ -125,16 +125,16 @@ TEST(Store, MissionLifecycle) {
 
 TEST(Store, MissionNeedsKnownVehicle) {
   Store s(":memory:");
-  EXPECT_THROW(s.create_mission("ghost", "x", "{}"), StoreError);
-  EXPECT_TRUE(s.list_missions().empty());
+  EXPECT_THROW(s.missions().create("ghost", "x", "{}"), StoreError);
+  EXPECT_TRUE(s.missions().list().empty());
 }
 
 TEST(Store, TurnRoundTripIsBitExact) {
   Store s(":memory:");
   const auto mission = make_mission(s);
   const TurnSequence turn = arc(1.25, -70.0, 7);
-  const auto id = s.store_turn(mission, turn, TurnStatus::ok, "", {4.75, -1.25, 0.375});
-  const auto got = s.get_turn(id);
+  const auto id = s.turns().add(mission, turn, TurnStatus::ok, "", {4.75, -1.25, 0.375});
+  const auto got = s.turns().get(id);
   ASSERT_TRUE(got);
   EXPECT_EQ(got->raw, turn);
   ASSERT_TRUE(got->normalized);
@@ -151,18 +151,18 @@ TEST(Store, TurnRoundTripIsBitExact) {
   ASSERT_TRUE(got->row.advance_m && got->row.transfer_m);
   EXPECT_GT(*got->row.advance_m, 0.0);
   EXPECT_GT(*got->row.transfer_m, 0.0);
-  EXPECT_FALSE(s.get_turn(id + 1));
+  EXPECT_FALSE(s.turns().get(id + 1));
 }
 
 TEST(Store, AbortedAndRejectedTurnsKeepReasons) {
   Store s(":memory:");
   const auto mission = make_mission(s);
-  const auto a = s.store_turn(mission, arc(1.0, 40.0), TurnStatus::aborted, "obstacle ahead");
+  const auto a = s.turns().add(mission, arc(1.0, 40.0), TurnStatus::aborted, "obstacle ahead");
   // Too short to normalise: still kept, without the normalised form.
   TurnSequence tiny(arc(1.0, 40.0).meta(), {});
-  const auto r = s.store_turn(mission, tiny, TurnStatus::rejected, "too few samples");
-  const auto ga = s.get_turn(a);
-  const auto gr = s.get_turn(r);
+  const auto r = s.turns().add(mission, tiny, TurnStatus::rejected, "too few samples");
+  const auto ga = s.turns().get(a);
+  const auto gr = s.turns().get(r);
   ASSERT_TRUE(ga && gr);
   EXPECT_EQ(ga->row.status, TurnStatus::aborted);
   EXPECT_EQ(ga->row.reason, "obstacle ahead");
@@ -173,8 +173,8 @@ TEST(Store, AbortedAndRejectedTurnsKeepReasons) {
   EXPECT_FALSE(gr->normalized);
   EXPECT_FALSE(gr->row.advance_m);
   // An ok turn must normalise.
-  EXPECT_ANY_THROW(s.store_turn(mission, tiny, TurnStatus::ok, ""));
-  EXPECT_EQ(s.list_turns({}).size(), 2u);
+  EXPECT_ANY_THROW(s.turns().add(mission, tiny, TurnStatus::ok, ""));
+  EXPECT_EQ(s.turns().list({}).size(), 2u);
 }
 
 TEST(Store, KeysetPaginationReturnsEveryIdOnceInOrder) {
@@ -183,13 +183,13 @@ TEST(Store, KeysetPaginationReturnsEveryIdOnceInOrder) {
   const TurnSequence turn = arc(1.0, 90.0);
   std::vector<std::int64_t> stored;
   for (int i = 0; i < 250; ++i)
-    stored.push_back(s.store_turn(mission, turn, TurnStatus::ok, ""));
+    stored.push_back(s.turns().add(mission, turn, TurnStatus::ok, ""));
   std::vector<std::int64_t> seen;
   TurnFilter f;
   f.limit = 100;
   int pages = 0;
   for (;;) {
-    const auto page = s.list_turns(f);
+    const auto page = s.turns().list(f);
     if (page.empty()) break;
     ++pages;
     EXPECT_LE(page.size(), 100u);
@@ -206,11 +206,11 @@ TEST(Store, FiltersByMissionSpeedHeadingStatus) {
   Store s(":memory:");
   const auto m1 = make_mission(s);
   const auto m2 = make_mission(s);
-  s.store_turn(m1, arc(1.0, 90.0), TurnStatus::ok, "");
-  s.store_turn(m1, arc(1.5, 90.0), TurnStatus::ok, "");
-  s.store_turn(m1, arc(1.0, -40.0), TurnStatus::aborted, "halt");
-  s.store_turn(m2, arc(1.0, 90.0), TurnStatus::rejected, "noisy");
-  auto count = [&](TurnFilter f) { return s.list_turns(f).size(); };
+  s.turns().add(m1, arc(1.0, 90.0), TurnStatus::ok, "");
+  s.turns().add(m1, arc(1.5, 90.0), TurnStatus::ok, "");
+  s.turns().add(m1, arc(1.0, -40.0), TurnStatus::aborted, "halt");
+  s.turns().add(m2, arc(1.0, 90.0), TurnStatus::rejected, "noisy");
+  auto count = [&](TurnFilter f) { return s.turns().list(f).size(); };
   TurnFilter f;
   EXPECT_EQ(count(f), 4u);
   f.mission_id = m1;
@@ -224,7 +224,7 @@ TEST(Store, FiltersByMissionSpeedHeadingStatus) {
   EXPECT_EQ(count(f), 1u);
   f = {};
   f.status = TurnStatus::rejected;
-  const auto rej = s.list_turns(f);
+  const auto rej = s.turns().list(f);
   ASSERT_EQ(rej.size(), 1u);
   EXPECT_EQ(rej[0].mission_id, m2);
   EXPECT_EQ(rej[0].reason, "noisy");
@@ -238,27 +238,27 @@ TEST(Store, NavBatchAppendReadsBackInOrder) {
   const auto m2 = make_mission(s);
   const auto first = nav_rows(500);
   const auto second = nav_rows(300, 50.0);
-  s.append_nav(m1, first);
-  s.append_nav(m2, nav_rows(10));
-  s.append_nav(m1, second);
+  s.navigation().append(m1, first);
+  s.navigation().append(m2, nav_rows(10));
+  s.navigation().append(m1, second);
   auto expected = first;
   expected.insert(expected.end(), second.begin(), second.end());
-  EXPECT_EQ(s.nav_for_mission(m1), expected);
-  EXPECT_EQ(s.nav_for_mission(m2).size(), 10u);
+  EXPECT_EQ(s.navigation().for_mission(m1), expected);
+  EXPECT_EQ(s.navigation().for_mission(m2).size(), 10u);
 }
 
 TEST(Store, NavForMissingMissionStoresNothing) {
   Store s(":memory:");
   const auto m = make_mission(s);
-  EXPECT_THROW(s.append_nav(m + 1, nav_rows(5)), StoreError);
-  EXPECT_TRUE(s.nav_for_mission(m + 1).empty());
+  EXPECT_THROW(s.navigation().append(m + 1, nav_rows(5)), StoreError);
+  EXPECT_TRUE(s.navigation().for_mission(m + 1).empty());
 }
 
 TEST(Store, TurnForMissingMissionThrowsAndStoresNothing) {
   Store s(":memory:");
   const auto m = make_mission(s);
-  EXPECT_THROW(s.store_turn(m + 42, arc(1.0, 90.0), TurnStatus::ok, ""), StoreError);
-  EXPECT_TRUE(s.list_turns({}).empty());
+  EXPECT_THROW(s.turns().add(m + 42, arc(1.0, 90.0), TurnStatus::ok, ""), StoreError);
+  EXPECT_TRUE(s.turns().list({}).empty());
   EXPECT_TRUE(s.integrity_check());
 }
 
@@ -268,13 +268,13 @@ TEST(Store, FailureInsideStoreTurnLeavesNothing) {
   s.set_store_turn_hook_for_testing([](std::string_view step) {
     if (step == "turn_inserted") throw std::runtime_error("injected failure");
   });
-  EXPECT_THROW(s.store_turn(m, arc(1.0, 90.0), TurnStatus::ok, ""), std::runtime_error);
-  EXPECT_TRUE(s.list_turns({}).empty());
+  EXPECT_THROW(s.turns().add(m, arc(1.0, 90.0), TurnStatus::ok, ""), std::runtime_error);
+  EXPECT_TRUE(s.turns().list({}).empty());
   // The store stays usable: the rollback released the write transaction.
   s.set_store_turn_hook_for_testing({});
-  const auto id = s.store_turn(m, arc(1.0, 90.0), TurnStatus::ok, "");
-  EXPECT_EQ(s.list_turns({}).size(), 1u);
-  EXPECT_TRUE(s.get_turn(id));
+  const auto id = s.turns().add(m, arc(1.0, 90.0), TurnStatus::ok, "");
+  EXPECT_EQ(s.turns().list({}).size(), 1u);
+  EXPECT_TRUE(s.turns().get(id));
 }
 
 TEST(Store, ConcurrentReaderSeesCommittedTurns) {
@@ -282,33 +282,33 @@ TEST(Store, ConcurrentReaderSeesCommittedTurns) {
   Store writer(db.path());
   Store reader(db.path());
   const auto m = make_mission(writer);
-  const auto first = writer.store_turn(m, arc(1.0, 90.0), TurnStatus::ok, "");
-  ASSERT_EQ(reader.list_turns({}).size(), 1u);
-  EXPECT_EQ(reader.get_turn(first)->raw, arc(1.0, 90.0));
+  const auto first = writer.turns().add(m, arc(1.0, 90.0), TurnStatus::ok, "");
+  ASSERT_EQ(reader.turns().list({}).size(), 1u);
+  EXPECT_EQ(reader.turns().get(first)->raw, arc(1.0, 90.0));
   // While the writer is inside its transaction the reader is not blocked (WAL) and does not see
   // the uncommitted turn.
   std::size_t seen_during_write = 99;
   writer.set_store_turn_hook_for_testing(
-      [&](std::string_view) { seen_during_write = reader.list_turns({}).size(); });
-  writer.store_turn(m, arc(1.5, 40.0), TurnStatus::ok, "");
+      [&](std::string_view) { seen_during_write = reader.turns().list({}).size(); });
+  writer.turns().add(m, arc(1.5, 40.0), TurnStatus::ok, "");
   EXPECT_EQ(seen_during_write, 1u);
-  EXPECT_EQ(reader.list_turns({}).size(), 2u);
+  EXPECT_EQ(reader.turns().list({}).size(), 2u);
 }
 
 TEST(Store, CorruptTurnJsonNamesTheTurn) {
   Store s(":memory:");
   const auto m = make_mission(s);
-  const auto id = s.store_turn(m, arc(1.0, 90.0), TurnStatus::ok, "");
+  const auto id = s.turns().add(m, arc(1.0, 90.0), TurnStatus::ok, "");
   s.overwrite_turn_json_for_testing(id, R"({"samples": [1, 2)");
   try {
-    s.get_turn(id);
+    s.turns().get(id);
     FAIL() << "corrupt turn was read";
   } catch (const StoreError& e) {
     EXPECT_NE(std::string(e.what()).find("turn " + std::to_string(id)), std::string::npos)
         << e.what();
   }
   // The summary row is still listable.
-  EXPECT_EQ(s.list_turns({}).size(), 1u);
+  EXPECT_EQ(s.turns().list({}).size(), 1u);
 }
 
 TEST(Store, CktSnapshotRoundTrip) {
@@ -316,9 +316,9 @@ TEST(Store, CktSnapshotRoundTrip) {
   const auto m = make_mission(s);
   const auto turns = avk::testing::thesis_grid_turns(2, 0.25, 0.02);
   const auto table = avk::kinematics::Ckt::build(turns);
-  s.save_ckt_snapshot(avk::kinematics::Ckt{}, {});
-  const auto id = s.save_ckt_snapshot(table, {m, m + 7});
-  const auto snap = s.latest_ckt_snapshot("");
+  s.ckt_snapshots().save(avk::kinematics::Ckt{}, {});
+  const auto id = s.ckt_snapshots().save(table, {m, m + 7});
+  const auto snap = s.ckt_snapshots().latest("");
   ASSERT_TRUE(snap);
   EXPECT_EQ(snap->id, id);
   EXPECT_EQ(snap->mission_ids, (std::vector<std::int64_t>{m, m + 7}));
@@ -332,8 +332,8 @@ TEST(Store, IntegrityCheckPasses) {
   TempDb db;
   Store s(db.path());
   const auto m = make_mission(s);
-  s.store_turn(m, arc(1.0, 90.0), TurnStatus::ok, "");
-  s.append_nav(m, nav_rows(100));
+  s.turns().add(m, arc(1.0, 90.0), TurnStatus::ok, "");
+  s.navigation().append(m, nav_rows(100));
   EXPECT_TRUE(s.integrity_check());
 }
 
@@ -345,16 +345,16 @@ TEST(Store, CktSnapshotIsTheVehiclesOwn) {
   avk::kinematics::Ckt b = a;
   a.vehicle_id = "alpha";
   b.vehicle_id = "bravo";
-  const auto a1 = s.save_ckt_snapshot(a, {});
-  const auto b1 = s.save_ckt_snapshot(b, {});
-  EXPECT_EQ(s.latest_ckt_snapshot("alpha")->id, a1);
-  EXPECT_EQ(s.latest_ckt_snapshot("alpha")->table.vehicle_id, "alpha");
-  EXPECT_EQ(s.latest_ckt_snapshot("bravo")->id, b1);
-  EXPECT_FALSE(s.latest_ckt_snapshot("charlie").has_value());
-  EXPECT_EQ(s.latest_ckt_snapshot_id("charlie"), 0);
-  const auto a2 = s.save_ckt_snapshot(a, {});
-  EXPECT_EQ(s.latest_ckt_snapshot("alpha")->id, a2);
-  EXPECT_EQ(s.latest_ckt_snapshot_id("alpha"), a2);
-  EXPECT_EQ(s.latest_ckt_snapshot_id("bravo"), b1);
-  EXPECT_EQ(s.latest_ckt_snapshot("bravo")->id, b1);
+  const auto a1 = s.ckt_snapshots().save(a, {});
+  const auto b1 = s.ckt_snapshots().save(b, {});
+  EXPECT_EQ(s.ckt_snapshots().latest("alpha")->id, a1);
+  EXPECT_EQ(s.ckt_snapshots().latest("alpha")->table.vehicle_id, "alpha");
+  EXPECT_EQ(s.ckt_snapshots().latest("bravo")->id, b1);
+  EXPECT_FALSE(s.ckt_snapshots().latest("charlie").has_value());
+  EXPECT_EQ(s.ckt_snapshots().latest_id("charlie"), 0);
+  const auto a2 = s.ckt_snapshots().save(a, {});
+  EXPECT_EQ(s.ckt_snapshots().latest("alpha")->id, a2);
+  EXPECT_EQ(s.ckt_snapshots().latest_id("alpha"), a2);
+  EXPECT_EQ(s.ckt_snapshots().latest_id("bravo"), b1);
+  EXPECT_EQ(s.ckt_snapshots().latest("bravo")->id, b1);
 }

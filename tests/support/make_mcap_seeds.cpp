@@ -46,14 +46,14 @@ int main(int argc, char** argv) {
   testing::TempDb db("avk_mcap_seeds");
   app::Context ctx(db.path());
   store::Store& st = ctx.db();
-  st.upsert_vehicle({"seed", "usim", 2.0, 1.2});
-  const std::int64_t mission = st.create_mission("seed", "seed", "{}");
-  st.set_mission_status(mission, store::MissionStatus::running, "", 10.0);
+  st.vehicles().upsert({"seed", "usim", 2.0, 1.2});
+  const std::int64_t mission = st.missions().create("seed", "seed", "{}");
+  st.missions().set_status(mission, store::MissionStatus::running, "", 10.0);
   const store::NavRow nav[] = {{10.0, 0.0, 0.0, 90.0, 1.5, 90.0, 1.5, "SURVEY"},
                                {10.5, 0.75, 0.0, 91.0, 1.5, 95.0, 1.5, "SURVEY"}};
-  st.append_nav(mission, nav);
-  st.append_event(mission, 10.25, "note", "a seed");
-  st.set_mission_status(mission, store::MissionStatus::done, "", 11.0);
+  st.navigation().append(mission, nav);
+  st.missions().append_event(mission, 10.25, "note", "a seed");
+  st.missions().set_status(mission, store::MissionStatus::done, "", 11.0);
   const auto exported = app::export_mission_mcap(ctx, mission);
   if (!exported) {
     std::cerr << exported.error().message << "\n";

@@ -32,15 +32,15 @@ inline std::int64_t run_recorded_mission(store::Store& db, const std::string& ve
   const auto config = mission::parse_mission_config(mission_text, 2.0);
   so.start = app::start_pose(config);
   // The mission clock continues after everything stored, as the station's does.
-  so.start_time_s = db.station_clock_end_s() + 1.0;
+  so.start_time_s = db.missions().station_clock_end_s() + 1.0;
   sim::SimMission sim(so);
   // Stored as create_mission_plan stores it (the use case wants a station Context; the callers
   // hold a bare Store).
   app::MissionPlan plan;
   plan.config = config;
   plan.tasks = mission::plan_turns(config);
-  db.upsert_vehicle(sim.vehicle().info());
-  plan.mission_id = db.create_mission(vehicle_id, config.name, mission_text);
+  db.vehicles().upsert(sim.vehicle().info());
+  plan.mission_id = db.missions().create(vehicle_id, config.name, mission_text);
   mission::RunnerOptions ro;
   ro.vehicle_id = vehicle_id;
   mission::MissionRunner runner(plan.config, sim.vehicle(), plan.tasks, ro);

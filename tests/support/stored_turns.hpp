@@ -13,8 +13,8 @@ namespace avk::testing {
 
 inline std::int64_t store_arc_turns(store::Store& db, const std::string& vehicle_id,
                                     double scale = 1.0, int per_cell = 2) {
-  db.upsert_vehicle({vehicle_id, "usim", 2.0, std::nullopt});
-  const std::int64_t mission = db.create_mission(vehicle_id, "arcs", "{}");
+  db.vehicles().upsert({vehicle_id, "usim", 2.0, std::nullopt});
+  const std::int64_t mission = db.missions().create(vehicle_id, "arcs", "{}");
   unsigned seed = 1;
   for (double u : {0.5, 1.0, 1.5}) {
     for (double d : {40.0, 100.0, 160.0}) {
@@ -30,7 +30,7 @@ inline std::int64_t store_arc_turns(store::Store& db, const std::string& vehicle
         s.vehicle_id = vehicle_id;
         s.mission_id = std::to_string(mission);
         ++seed;
-        db.store_turn(mission, make_arc_turn(s), kinematics::TurnStatus::ok, "");
+        db.turns().add(mission, make_arc_turn(s), kinematics::TurnStatus::ok, "");
       }
     }
   }
@@ -48,7 +48,7 @@ inline void store_one_arc_turn(store::Store& db, std::int64_t mission,
   s.lead_in_m = 1.5;
   s.radius_m = 3.0;
   s.vehicle_id = vehicle_id;
-  db.store_turn(mission, make_arc_turn(s), kinematics::TurnStatus::ok, "");
+  db.turns().add(mission, make_arc_turn(s), kinematics::TurnStatus::ok, "");
 }
 
 }  // namespace avk::testing

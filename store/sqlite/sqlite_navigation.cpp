@@ -1,0 +1,82 @@
+#include "store/sqlite/sqlite_navigation.hpp"
+
+#include "store/sqlite/columns.hpp"
+
+namespace avk::store::sqlite {
+
+namespace {
+
+constexpr auto kNav = columns("t_s", "x_m", "y_m", "heading_deg", "speed_mps",
+                              "desired_heading_deg", "desired_speed_mps", "helm_mode");
+
+// The row's columns start at result column `first` (after the rowid in a page).
+NavRow read_nav(const Statement& s, int first) {
+  return {s.column_double(first + kNav["t_s"]),
+          s.column_double(first + kNav["x_m"]),
+          s.column_double(first + kNav["y_m"]),
+          s.column_double(first + kNav["heading_deg"]),
+          s.column_double(first + kNav["speed_mps"]),
+          s.column_optional_double(first + kNav["desired_heading_deg"]),
+          s.column_optional_double(first + kNav["desired_speed_mps"]),
+          s.column_text(first + kNav["helm_mode"])};
+}
+
+}  // namespace
+
+void insert_nav(Connection& db, std::int64_t mission_id, std::span<const NavRow> rows) {
+  auto s = db.prepare("INSERT INTO nav_samples (mission_id, " + kNav.list() + ") VALUES (?, " +
+                      kNav.placeholders() + ")");
+  // The mission is parameter 1; the row's columns follow it.
+  for (const NavRow& r : rows) {
+    s.bind(1, mission_id).bind(1 + kNav.param("t_s"), r.t_s).bind(1 + kNav.param("x_m"), r.x_m);
+    s.bind(1 + kNav.param("y_m"), r.y_m).bind(1 + kNav.param("heading_deg"), r.heading_deg);
+    s.bind(1 + kNav.param("speed_mps"), r.speed_mps);
+    s.bind(1 + kNav.param("desired_heading_deg"), r.desired_heading_deg);
+    s.bind(1 + kNav.param("desired_speed_mps"), r.desired_speed_mps);
+    s.bind(1 + kNav.param("helm_mode"), r.helm_mode);
+    s.run();
+    s.reset();
+  }
+}
+
+void SqliteNavigation::append(std::int64_t mission_id, std::span<const NavRow> rows) {
+  Transaction tx(db_);
+  insert_nav(db_, mission_id, rows);
+  tx.commit();
+}
+
+std::vector<NavRow> SqliteNavigation::for_mission(std::int64_t mission_id) {
+  std::vector<NavRow> out;
+  for_each(mission_id, [&](const NavRow& r) { out.push_back(r); });
+  return out;
+}
+
+void SqliteNavigation::for_each(std::int64_t mission_id,
+                                const std::function<void(const NavRow&)>& fn) {
+  // rowid breaks ties between samples stamped with the same time: insertion order.
+  auto s = db_.prepare("SELECT " + kNav.list() +
+                       " FROM nav_samples WHERE mission_id = ? ORDER BY t_s, rowid");
+  s.bind(1, mission_id);
+  while (s.step())
+    fn(read_nav(s, 0));
+}
+
+std::int64_t SqliteNavigation::count(std::int64_t mission_id) {
+  auto s = db_.prepare("SELECT COUNT(*) FROM nav_samples WHERE mission_id = ?");
+  s.bind(1, mission_id);
+  return s.step() ? s.column_int64(0) : 0;
+}
+
+std::vector<NavPageRow> SqliteNavigation::page(std::int64_t mission_id, std::int64_t after_rowid,
+                                               int limit) {
+  auto s = db_.prepare("SELECT rowid, " + kNav.list() +
+                       " FROM nav_samples WHERE mission_id = ? AND rowid > ? "
+                       "ORDER BY rowid LIMIT ?");
+  s.bind(1, mission_id).bind(2, after_rowid).bind(3, limit);
+  std::vector<NavPageRow> out;
+  while (s.step())
+    out.push_back({s.column_int64(0), read_nav(s, 1)});
+  return out;
+}
+
+}  // namespace avk::store::sqlite

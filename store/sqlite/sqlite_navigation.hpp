@@ -1,0 +1,27 @@
+#pragma once
+// NavigationRepository on SQLite: the nav_samples table.
+
+#include "store/navigation.hpp"
+#include "store/sqlite.hpp"
+
+namespace avk::store::sqlite {
+
+// Inside the caller's transaction, one prepared statement for the whole batch.
+void insert_nav(Connection& db, std::int64_t mission_id, std::span<const NavRow> rows);
+
+class SqliteNavigation final : public NavigationRepository {
+ public:
+  explicit SqliteNavigation(Connection& db) : db_(db) {}
+
+  void append(std::int64_t mission_id, std::span<const NavRow> rows) override;
+  std::vector<NavRow> for_mission(std::int64_t mission_id) override;
+  void for_each(std::int64_t mission_id, const std::function<void(const NavRow&)>& fn) override;
+  std::int64_t count(std::int64_t mission_id) override;
+  std::vector<NavPageRow> page(std::int64_t mission_id, std::int64_t after_rowid,
+                               int limit) override;
+
+ private:
+  Connection& db_;
+};
+
+}  // namespace avk::store::sqlite
