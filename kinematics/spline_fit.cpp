@@ -7,6 +7,7 @@
 #include "kinematics/bspline.hpp"
 #include "kinematics/curve_fit.hpp"
 #include "kinematics/fit_points.hpp"
+#include "kinematics/median.hpp"
 
 // The arc length spline fit: samples are placed by chord length, then by their foot points on
 // the last curve, and control points solved by banded least squares with a jerk penalty.
@@ -247,11 +248,10 @@ double estimate_position_noise_m(const Polyline& points) {
     };
     d3.push_back(norm({third(&Point::x_m), third(&Point::y_m)}));
   }
-  const auto mid = d3.begin() + static_cast<std::ptrdiff_t>(d3.size() / 2);
-  std::nth_element(d3.begin(), mid, d3.end());
+  const double median = upper_median(d3);
   // Each coordinate of the third difference has variance (1 + 9 + 9 + 1) sigma^2, so its norm is
   // Rayleigh with scale sqrt(20) sigma and median sqrt(20) * sqrt(2 ln 2) sigma.
-  return *mid / (std::sqrt(20.0) * std::sqrt(2.0 * std::log(2.0)));
+  return median / (std::sqrt(20.0) * std::sqrt(2.0 * std::log(2.0)));
 }
 
 CurveFit fit_arc_length_spline(const Polyline& points, const ArcSplineOptions& options) {
