@@ -1,3 +1,6 @@
+// The arc length spline fit of kinematics/curve_fit.hpp: samples are placed by chord length, then
+// by their foot points on the last curve, and control points solved by banded least squares with
+// a jerk penalty.
 #include <Eigen/Dense>
 #include <algorithm>
 #include <cmath>
@@ -8,9 +11,6 @@
 #include "kinematics/curve_fit.hpp"
 #include "kinematics/fit_points.hpp"
 #include "kinematics/median.hpp"
-
-// The arc length spline fit: samples are placed by chord length, then by their foot points on
-// the last curve, and control points solved by banded least squares with a jerk penalty.
 
 namespace avk::kinematics {
 

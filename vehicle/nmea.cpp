@@ -22,7 +22,6 @@ using namespace nmea;
 // Beyond the protocol's own limits (thrust, latitudes), the bounds of the others are far outside
 // anything a small boat reports: they catch garbage that passed the checksum (a firmware bug, a
 // corrupted but consistent relay), not unusual motion.
-
 constexpr Range kThrust{-100.0, 100.0};
 constexpr Range kAcceleration{-1000.0, 1000.0};
 constexpr Range kRoll{-180.0, 180.0};
