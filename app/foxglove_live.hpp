@@ -1,5 +1,5 @@
 #pragma once
-// The station's live feed as Foxglove channels (app/foxglove_channels.hpp): the vehicle's pose,
+// The station's live feed as Foxglove channels (app/foxglove/channels.hpp): the vehicle's pose,
 // frame transform, position and navigation at the telemetry rate, the turn being flown with its
 // predictions, the operating region, and events as logs. What is sent and when is decided here;
 // the transport (server/foxglove_hub.hpp) only fans the messages out to its clients.
@@ -13,8 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "app/foxglove_channels.hpp"
-#include "app/foxglove_messages.hpp"
+#include "app/foxglove/channels.hpp"
+#include "app/foxglove/messages.hpp"
 #include "app/foxglove_scene.hpp"
 #include "app/live_feed.hpp"
 #include "vehicle/local_grid.hpp"

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "app/foxglove_messages.hpp"
+#include "app/foxglove/messages.hpp"
 #include "kinematics/geometry.hpp"
 
 namespace avk::app {

@@ -1,6 +1,6 @@
 #pragma once
 // A mission as an MCAP recording (docs/foxglove.md, "MCAP recordings"): the channels and schemas
-// of the live Foxglove connection (app/foxglove_channels.hpp) with every stored navigation
+// of the live Foxglove connection (app/foxglove/channels.hpp) with every stored navigation
 // sample, turn and event, plus the stored turns themselves and metadata records holding the
 // rest of the mission, so that a file written by one station imports into another unchanged.
 
@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "app/mcap_writer.hpp"
+#include "app/mcap/writer.hpp"
 #include "app/result.hpp"
 #include "vehicle/local_grid.hpp"
 

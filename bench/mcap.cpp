@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "app/mcap_reader.hpp"
-#include "app/mcap_writer.hpp"
+#include "app/mcap/reader.hpp"
+#include "app/mcap/writer.hpp"
 
 namespace {
 

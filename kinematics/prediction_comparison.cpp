@@ -167,59 +167,26 @@ std::vector<bool> robust_outliers(const std::vector<double>& values, double z_th
   return flagged;
 }
 
-std::optional<double> median_of(std::vector<double> values) {
-  std::erase_if(values, [](double v) { return !std::isfinite(v); });
-  if (values.empty()) return std::nullopt;
-  const std::size_t mid = values.size() / 2;
-  std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid), values.end());
-  const double upper = values[mid];
-  if (values.size() % 2 == 1) return upper;
-  const double lower =
-      *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid));
-  return 0.5 * (lower + upper);
-}
-
 const MethodError* method_error(const CellComparison& cell, PredictionMethod method,
                                 bool drop_outliers) {
-  if (drop_outliers && cell.without_outliers) {
-    const auto& w = *cell.without_outliers;
-    switch (method) {
-      case PredictionMethod::avk:
-        return &w.avk;
-      case PredictionMethod::instantaneous:
-        return &w.instantaneous;
-      case PredictionMethod::model:
-        return w.model ? &*w.model : nullptr;
-    }
-  }
-  switch (method) {
-    case PredictionMethod::avk:
-      return &cell.avk;
-    case PredictionMethod::instantaneous:
-      return &cell.instantaneous;
-    case PredictionMethod::model:
-      return cell.model ? &*cell.model : nullptr;
-  }
-  return nullptr;
+  if (drop_outliers && cell.without_outliers) return method_entry(*cell.without_outliers, method);
+  return method_entry(cell, method);
 }
 
 std::optional<double> median_mse_m2(const std::vector<CellComparison>& cells,
                                     PredictionMethod method, bool drop_outliers) {
-  std::vector<double> v;
-  for (const auto& c : cells) {
-    if (const MethodError* e = method_error(c, method, drop_outliers)) v.push_back(e->mse_m2);
-  }
-  return median_of(std::move(v));
+  return median_over(cells, [&](const CellComparison& c) -> std::optional<double> {
+    const MethodError* e = method_error(c, method, drop_outliers);
+    return e ? std::optional(e->mse_m2) : std::nullopt;
+  });
 }
 
 std::optional<double> median_improvement_pct(const std::vector<CellComparison>& cells,
                                              PredictionMethod method, bool drop_outliers) {
-  std::vector<double> v;
-  for (const auto& c : cells) {
+  return median_over(cells, [&](const CellComparison& c) -> std::optional<double> {
     const MethodError* e = method_error(c, method, drop_outliers);
-    if (e && e->improvement_pct) v.push_back(*e->improvement_pct);
-  }
-  return median_of(std::move(v));
+    return e ? e->improvement_pct : std::nullopt;
+  });
 }
 
 }  // namespace avk::kinematics

@@ -10,11 +10,13 @@
 #include <cstddef>
 #include <functional>
 #include <optional>
+#include <type_traits>
 #include <vector>
 
 #include "kinematics/ckt.hpp"
 #include "kinematics/geometry.hpp"
 #include "kinematics/mean_turn.hpp"
+#include "kinematics/median.hpp"
 
 namespace avk::kinematics {
 
@@ -76,10 +78,23 @@ std::vector<bool> robust_outliers(const std::vector<double>& values, double z_th
 // micrometre RMS) differ by rounding, not by how the vehicle turned.
 inline constexpr double kOutlierMadFloor_m2 = 1e-12;
 
-// Median of the finite values; empty when there are none.
-std::optional<double> median_of(std::vector<double> values);
-
 enum class PredictionMethod { avk, model, instantaneous };
+
+// The entry of `method` in a per-method record (avk and instantaneous always there, the model
+// optional): null for the model when none was compared.
+template <class Record>
+const auto* method_entry(const Record& record, PredictionMethod method) {
+  using Entry = std::remove_cvref_t<decltype(record.avk)>;
+  switch (method) {
+    case PredictionMethod::avk:
+      return static_cast<const Entry*>(&record.avk);
+    case PredictionMethod::instantaneous:
+      return static_cast<const Entry*>(&record.instantaneous);
+    case PredictionMethod::model:
+      return record.model ? static_cast<const Entry*>(&*record.model) : nullptr;
+  }
+  return static_cast<const Entry*>(nullptr);
+}
 
 // A method's error in one cell: with drop_outliers the without-outliers result when the cell has
 // one (otherwise the full result, which then has no outliers to drop). Null for the model when

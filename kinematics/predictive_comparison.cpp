@@ -112,25 +112,16 @@ double yx_mse_or_nan(const Polyline& a, const Polyline& b, double goal_dheading_
 }
 
 const HeldOutScores* held_out_scores(const PredictiveCell& cell, PredictionMethod method) {
-  switch (method) {
-    case PredictionMethod::avk:
-      return &cell.avk;
-    case PredictionMethod::instantaneous:
-      return &cell.instantaneous;
-    case PredictionMethod::model:
-      return cell.model ? &*cell.model : nullptr;
-  }
-  return nullptr;
+  return method_entry(cell, method);
 }
 
 std::optional<double> median_held_out(const std::vector<PredictiveCell>& cells,
                                       PredictionMethod method, PathMetric metric) {
-  std::vector<double> v;
-  for (const auto& c : cells) {
-    if (const HeldOutScores* s = held_out_scores(c, method))
-      v.push_back(metric == PathMetric::path_distance ? s->path().mean : s->yx_mse().mean);
-  }
-  return median_of(std::move(v));
+  return median_over(cells, [&](const PredictiveCell& c) -> std::optional<double> {
+    const HeldOutScores* s = method_entry(c, method);
+    if (!s) return std::nullopt;
+    return metric == PathMetric::path_distance ? s->path().mean : s->yx_mse().mean;
+  });
 }
 
 Coverage total_coverage(const std::vector<PredictiveCell>& cells, std::size_t min_turns) {

@@ -66,12 +66,11 @@ const HeldOutScores* scores_of(const SpeedChangeCellScores& c, SpeedChangeMethod
 
 std::optional<double> median_speed_change_path_m(const std::vector<SpeedChangeCellScores>& cells,
                                                  SpeedChangeMethod method) {
-  std::vector<double> v;
-  for (const auto& c : cells) {
+  return median_over(cells, [&](const SpeedChangeCellScores& c) -> std::optional<double> {
     const HeldOutScores* s = scores_of(c, method);
-    if (s && !s->path_m.empty()) v.push_back(s->path().mean);
-  }
-  return median_of(std::move(v));
+    if (!s || s->path_m.empty()) return std::nullopt;
+    return s->path().mean;
+  });
 }
 
 std::vector<SpeedChangeCellScores> compare_speed_changes(

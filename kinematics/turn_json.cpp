@@ -2,12 +2,14 @@
 
 #include <array>
 #include <cmath>
+#include <initializer_list>
 #include <optional>
 #include <stdexcept>
 #include <utility>
 #include <vector>
 
 #include "kinematics/json_parse.hpp"
+#include "kinematics/turn_keys.hpp"
 #include "kinematics/turn_text.hpp"
 
 namespace avk::kinematics {
@@ -18,42 +20,22 @@ using nlohmann::json;
 
 constexpr const char* kFormat = "avk-turn";
 constexpr int kVersion = 1;
-constexpr std::size_t kSampleArity = 5;
-constexpr std::array<const char*, kSampleArity> kSampleFields = {"t_s", "x_m", "y_m", "heading_deg",
-                                                                 "speed_mps"};
+constexpr std::size_t kSampleArity = kTurnSampleArity;
 
-// Meta doubles in a fixed order, shared by writer and reader so neither can miss one.
-constexpr std::array<std::pair<const char*, double TurnMeta::*>, 7> kMetaDoubles = {{
-    {"commanded_speed_mps", &TurnMeta::commanded_speed_mps},
-    {"goal_dheading_deg", &TurnMeta::goal_dheading_deg},
-    {"observed_dheading_deg", &TurnMeta::observed_dheading_deg},
-    {"initial_heading_deg", &TurnMeta::initial_heading_deg},
-    {"initial_speed_mps", &TurnMeta::initial_speed_mps},
-    {"start_time_s", &TurnMeta::start_time_s},
-    {"end_time_s", &TurnMeta::end_time_s},
-}};
-
-constexpr std::array<const char*, 17> kKeys = {
-    "format",
-    "version",
-    "vehicle_id",
-    "mission_id",
-    "status",
-    "status_reason",
-    "normalized",
-    "commanded_speed_mps",
-    "goal_dheading_deg",
-    "observed_dheading_deg",
-    "initial_heading_deg",
-    "initial_speed_mps",
-    "start_time_s",
-    "end_time_s",
-    "warnings",
-    "sample_fields",
-    "samples",
-};
-// Keys a document may leave out (absent when empty), so documents written before them load.
-constexpr const char* kSpeedAfterKey = "speed_after_mps";
+// Every key a document must have: what it is, the turn's own (kinematics/turn_keys.hpp) in their
+// order, and how its samples are laid out.
+constexpr auto kKeys = [] {
+  std::array<const char*, 10 + kTurnMetaDoubles.size()> keys{};
+  std::size_t n = 0;
+  for (const char* k : {"format", "version", kTurnVehicleIdKey, kTurnMissionIdKey, kTurnStatusKey,
+                        kTurnStatusReasonKey, kTurnNormalizedKey})
+    keys[n++] = k;
+  for (const auto& d : kTurnMetaDoubles)
+    keys[n++] = d.name;
+  for (const char* k : {kTurnWarningsKey, "sample_fields", kTurnSamplesKey})
+    keys[n++] = k;
+  return keys;
+}();
 
 // Keys a document may leave out: an absent key is the field's default (no removed current: over
 // ground; source collection; no quality), so documents written before the field existed load.
@@ -63,11 +45,7 @@ constexpr std::array<const char*, 4> kOptionalKeys = {
     "source",
     "quality",
 };
-// Optional meta doubles: absent when the turn has none, so older documents load unchanged.
-constexpr std::array<std::pair<const char*, std::optional<double> TurnMeta::*>, 1>
-    kOptionalMetaDoubles = {{
-        {"initial_yaw_rate_dps", &TurnMeta::initial_yaw_rate_dps},
-    }};
+constexpr const char* kSpeedAfterKey = kTurnOptionalMetaDoubles[1].name;
 
 // A turn document is an object of arrays of arrays; anything deeper is not a turn, and refusing
 // it while parsing keeps a hostile "[[[[..." from building a huge tree first.
@@ -129,7 +107,7 @@ json to_json(const TurnSequence& turn) {
   j["status"] = to_string(m.status);
   j["status_reason"] = m.status_reason;
   j["normalized"] = m.normalized;
-  for (const auto& [name, ptr] : kMetaDoubles)
+  for (const auto& [name, ptr] : kTurnMetaDoubles)
     j[name] = m.*ptr;
   if (m.removed_current) {
     j["removed_current_east_mps"] = m.removed_current->east_mps;
@@ -137,12 +115,11 @@ json to_json(const TurnSequence& turn) {
   }
   if (m.source != TurnSource::collection) j["source"] = to_string(m.source);
   if (m.quality) j["quality"] = *m.quality;
-  for (const auto& [name, ptr] : kOptionalMetaDoubles)
+  for (const auto& [name, ptr] : kTurnOptionalMetaDoubles)
     if (m.*ptr) j[name] = *(m.*ptr);
-  if (m.speed_after_mps) j[kSpeedAfterKey] = *m.speed_after_mps;
   j["warnings"] = turn.warnings();
   json fields = json::array();
-  for (const char* f : kSampleFields)
+  for (const char* f : kTurnSampleFields)
     fields.push_back(f);
   j["sample_fields"] = std::move(fields);
   json samples = json::array();
@@ -173,9 +150,8 @@ TurnSequence turn_from_json(const json& j) {
       known = known || item.key() == k;
     for (const char* k : kOptionalKeys)
       known = known || item.key() == k;
-    for (const auto& [k, ptr] : kOptionalMetaDoubles)
+    for (const auto& [k, ptr] : kTurnOptionalMetaDoubles)
       known = known || item.key() == k;
-    known = known || item.key() == kSpeedAfterKey;
     if (!known) throw ParseError(json_member_pointer(item.key()), 0, "unknown key");
   }
   for (const char* k : kKeys)
@@ -191,7 +167,7 @@ TurnSequence turn_from_json(const json& j) {
   const json& normalized = member(j, "normalized");
   if (!normalized.is_boolean()) throw ParseError("/normalized", 0, "expected true or false");
   m.normalized = normalized.get<bool>();
-  for (const auto& [name, ptr] : kMetaDoubles)
+  for (const auto& [name, ptr] : kTurnMetaDoubles)
     m.*ptr = read_double(member(j, name), json_member_pointer(name), 0);
   const bool has_east = j.contains("removed_current_east_mps");
   if (has_east != j.contains("removed_current_north_mps")) {
@@ -214,15 +190,12 @@ TurnSequence turn_from_json(const json& j) {
     if (*m.quality < 0.0 || *m.quality > 1.0)
       throw ParseError("/quality", 0, "quality must be within 0..1");
   }
-  for (const auto& [name, ptr] : kOptionalMetaDoubles) {
+  for (const auto& [name, ptr] : kTurnOptionalMetaDoubles) {
     if (const auto it = j.find(name); it != j.end())
       m.*ptr = read_double(*it, json_member_pointer(name), 0);
   }
-  if (const auto it = j.find(kSpeedAfterKey); it != j.end()) {
-    m.speed_after_mps = read_double(*it, json_member_pointer(kSpeedAfterKey), 0);
-    if (!(*m.speed_after_mps > 0.0))
-      throw ParseError(json_member_pointer(kSpeedAfterKey), 0, "must be > 0");
-  }
+  if (m.speed_after_mps && !(*m.speed_after_mps > 0.0))
+    throw ParseError(json_member_pointer(kSpeedAfterKey), 0, "must be > 0");
 
   const json& warnings = member(j, "warnings");
   if (!warnings.is_array()) throw ParseError("/warnings", 0, "expected an array of strings");
@@ -239,7 +212,7 @@ TurnSequence turn_from_json(const json& j) {
 
   // The fields are fixed; the array is there so a reader of the file need not guess the order.
   json expected_fields = json::array();
-  for (const char* f : kSampleFields)
+  for (const char* f : kTurnSampleFields)
     expected_fields.push_back(f);
   if (member(j, "sample_fields") != expected_fields) {
     throw ParseError("/sample_fields", 0, "sample_fields must be " + expected_fields.dump());

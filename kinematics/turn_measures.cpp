@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "kinematics/angles.hpp"
+#include "kinematics/median.hpp"
 
 namespace avk::kinematics {
 
@@ -41,10 +42,6 @@ std::optional<Crossing> first_crossing(const std::vector<TurnSample>& s, double 
     return Crossing{i - 1, i, f};
   }
   return std::nullopt;
-}
-
-double median3(double a, double b, double c) {
-  return std::max(std::min(a, b), std::min(std::max(a, b), c));
 }
 
 struct SteadyTurn {

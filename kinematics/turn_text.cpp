@@ -8,15 +8,17 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "kinematics/turn_keys.hpp"
+
 namespace avk::kinematics {
 
 namespace {
 
 constexpr std::string_view kMagic = "AVKTURN/";
 constexpr unsigned kVersion = 1;
-constexpr std::size_t kSampleArity = 5;
-constexpr std::array<const char*, kSampleArity> kSampleFieldNames = {"t_s", "x_m", "y_m",
-                                                                     "heading_deg", "speed_mps"};
+constexpr std::size_t kSampleArity = kTurnSampleArity;
+constexpr const auto& kSampleFieldNames = kTurnSampleFields;
+constexpr const auto& kSampleMembers = kTurnSampleMembers;
 
 // The canonical key order; the parser accepts any order but the writer always uses this one so
 // equal turns give byte-identical records.
@@ -44,45 +46,28 @@ enum Key : std::size_t {
   k_key_count,
 };
 constexpr std::size_t kFirstOptionalKey = k_initial_yaw_rate_dps;
-constexpr std::array<std::pair<Key, std::optional<double> TurnMeta::*>, 2> kOptionalDoubles = {{
-    {k_initial_yaw_rate_dps, &TurnMeta::initial_yaw_rate_dps},
-    {k_speed_after_mps, &TurnMeta::speed_after_mps},
-}};
+static_assert(k_key_count - kFirstOptionalKey == kTurnOptionalMetaDoubles.size());
+static_assert(k_end_time_s - k_commanded_speed_mps + 1 == kTurnMetaDoubles.size());
 
-constexpr std::array<std::string_view, k_key_count> kKeyNames = {
-    "vehicle_id",
-    "mission_id",
-    "status",
-    "status_reason",
-    "normalized",
-    "commanded_speed_mps",
-    "goal_dheading_deg",
-    "observed_dheading_deg",
-    "initial_heading_deg",
-    "initial_speed_mps",
-    "start_time_s",
-    "end_time_s",
-    "n_warnings",
-    "warnings",
-    "n_samples",
-    "samples",
-    "initial_yaw_rate_dps",
-    "speed_after_mps",
-};
-
-std::array<double TurnMeta::*, k_end_time_s - k_commanded_speed_mps + 1> meta_doubles() {
-  return {&TurnMeta::commanded_speed_mps,
-          &TurnMeta::goal_dheading_deg,
-          &TurnMeta::observed_dheading_deg,
-          &TurnMeta::initial_heading_deg,
-          &TurnMeta::initial_speed_mps,
-          &TurnMeta::start_time_s,
-          &TurnMeta::end_time_s};
-}
-
-constexpr std::array<double TurnSample::*, kSampleArity> kSampleMembers = {
-    &TurnSample::t_s, &TurnSample::x_m, &TurnSample::y_m, &TurnSample::heading_deg,
-    &TurnSample::speed_mps};
+// The names in Key's order: the turn's own keys (kinematics/turn_keys.hpp) and the record's
+// counts of warnings and samples.
+constexpr auto kKeyNames = [] {
+  std::array<std::string_view, k_key_count> names{};
+  names[k_vehicle_id] = kTurnVehicleIdKey;
+  names[k_mission_id] = kTurnMissionIdKey;
+  names[k_status] = kTurnStatusKey;
+  names[k_status_reason] = kTurnStatusReasonKey;
+  names[k_normalized] = kTurnNormalizedKey;
+  for (std::size_t k = 0; k < kTurnMetaDoubles.size(); ++k)
+    names[k_commanded_speed_mps + k] = kTurnMetaDoubles[k].name;
+  names[k_n_warnings] = "n_warnings";
+  names[k_warnings] = kTurnWarningsKey;
+  names[k_n_samples] = "n_samples";
+  names[k_samples] = kTurnSamplesKey;
+  for (std::size_t k = 0; k < kTurnOptionalMetaDoubles.size(); ++k)
+    names[kFirstOptionalKey + k] = kTurnOptionalMetaDoubles[k].name;
+  return names;
+}();
 
 // ---- writing ----
 
@@ -350,15 +335,13 @@ void check_turn_serialisable(const TurnSequence& turn) {
     fail(std::to_string(turn.warnings().size()) + " warnings exceed the limit of " +
          std::to_string(kMaxTurnRecordWarnings));
   }
-  const auto doubles = meta_doubles();
-  for (std::size_t k = 0; k < doubles.size(); ++k) {
-    if (!std::isfinite(m.*doubles[k])) {
+  for (std::size_t k = 0; k < kTurnMetaDoubles.size(); ++k) {
+    if (!std::isfinite(m.*kTurnMetaDoubles[k].member)) {
       fail(std::string(kKeyNames[k_commanded_speed_mps + k]) + " is NaN or infinite");
     }
   }
-  for (const auto& [key, ptr] : kOptionalDoubles)
-    if (m.*ptr && !std::isfinite(*(m.*ptr)))
-      fail(std::string(kKeyNames[key]) + " is NaN or infinite");
+  for (const auto& [name, ptr] : kTurnOptionalMetaDoubles)
+    if (m.*ptr && !std::isfinite(*(m.*ptr))) fail(std::string(name) + " is NaN or infinite");
   if (m.removed_current &&
       !(std::isfinite(m.removed_current->east_mps) && std::isfinite(m.removed_current->north_mps)))
     fail("the removed current is NaN or infinite");
@@ -399,15 +382,15 @@ std::string to_text_record(const TurnSequence& turn) {
   string_pair(k_status_reason, m.status_reason);
   append_key(out, k_normalized);
   out += m.normalized ? "1;" : "0;";
-  const auto doubles = meta_doubles();
-  for (std::size_t k = 0; k < doubles.size(); ++k) {
+  for (std::size_t k = 0; k < kTurnMetaDoubles.size(); ++k) {
     append_key(out, static_cast<Key>(k_commanded_speed_mps + k));
-    append_double(out, m.*doubles[k]);
+    append_double(out, m.*kTurnMetaDoubles[k].member);
     out += ';';
   }
-  for (const auto& [key, ptr] : kOptionalDoubles) {
+  for (std::size_t k = 0; k < kTurnOptionalMetaDoubles.size(); ++k) {
+    const auto ptr = kTurnOptionalMetaDoubles[k].member;
     if (!(m.*ptr)) continue;
-    append_key(out, key);
+    append_key(out, static_cast<Key>(kFirstOptionalKey + k));
     append_double(out, *(m.*ptr));
     out += ';';
   }
@@ -521,13 +504,14 @@ TurnSequence parse_text_record(std::string_view line) {
     throw ParseError(name(k_normalized), field(k_normalized).offset, "normalized must be 0 or 1");
   }
   m.normalized = normalized == "1";
-  const auto doubles = meta_doubles();
-  for (std::size_t k = 0; k < doubles.size(); ++k) {
+  for (std::size_t k = 0; k < kTurnMetaDoubles.size(); ++k) {
     const auto key = static_cast<Key>(k_commanded_speed_mps + k);
-    m.*doubles[k] = parse_double(field(key), name(key));
+    m.*kTurnMetaDoubles[k].member = parse_double(field(key), name(key));
   }
-  for (const auto& [key, ptr] : kOptionalDoubles)
-    if (found[key]) m.*ptr = parse_double(field(key), name(key));
+  for (std::size_t k = 0; k < kTurnOptionalMetaDoubles.size(); ++k) {
+    const auto key = static_cast<Key>(kFirstOptionalKey + k);
+    if (found[key]) m.*kTurnOptionalMetaDoubles[k].member = parse_double(field(key), name(key));
+  }
   const std::size_t n_warnings =
       parse_count(field(k_n_warnings), name(k_n_warnings), kMaxTurnRecordWarnings);
   std::vector<std::string> warnings = parse_warnings(field(k_warnings), n_warnings);

@@ -30,7 +30,7 @@ std::int64_t tile_coordinate(const PathParams& p, const std::string& name) {
 
 }  // namespace
 
-void add_map_tile_routes(Router& router, std::shared_ptr<const app::MapTiles> tiles,
+void add_map_tile_routes(Router& router, std::shared_ptr<const app::tiles::MapTiles> tiles,
                          std::optional<vehicle::LatLon> datum) {
   router.add({"GET", "/api/v1/tiles", Access::read, std::nullopt,
               [tiles, datum](const ApiRequest&, const PathParams&) {

@@ -6,7 +6,7 @@
 #include <memory>
 #include <optional>
 
-#include "app/map_tiles.hpp"
+#include "app/tiles/map_tiles.hpp"
 #include "server/http/router.hpp"
 #include "vehicle/local_grid.hpp"
 
@@ -16,7 +16,7 @@ namespace avk::server {
 // station with another one. private: the URL may carry the token.
 inline constexpr const char* kTileCacheControl = "private, max-age=3600";
 
-void add_map_tile_routes(Router& router, std::shared_ptr<const app::MapTiles> tiles,
+void add_map_tile_routes(Router& router, std::shared_ptr<const app::tiles::MapTiles> tiles,
                          std::optional<vehicle::LatLon> datum);
 
 }  // namespace avk::server

@@ -11,7 +11,7 @@
 #include "app/context.hpp"
 #include "app/foxglove_live.hpp"
 #include "app/live_feeds.hpp"
-#include "app/map_tiles.hpp"
+#include "app/tiles/map_tiles.hpp"
 #include "app/vehicle_loop.hpp"
 #include "server/http/router.hpp"
 #include "server/stream_feed.hpp"
@@ -29,7 +29,7 @@ struct StationOptions {
   // a simulated vehicle, whose navigation has no latitude/longitude of its own.
   std::optional<vehicle::LatLon> datum;
   // The dashboard's offline map background (`--tiles`); none: GET /tiles says it is unavailable.
-  std::shared_ptr<const app::MapTiles> tiles;
+  std::shared_ptr<const app::tiles::MapTiles> tiles;
 };
 
 // A CKT file of a long campaign is larger than any other request body.

@@ -18,8 +18,8 @@
 #include <string_view>
 
 #include "app/context.hpp"
-#include "app/map_tiles.hpp"
 #include "app/missions.hpp"
+#include "app/tiles/map_tiles.hpp"
 #include "server/cli/args.hpp"
 #include "server/cli/commands.hpp"
 #include "server/cli/database_location.hpp"
@@ -211,9 +211,9 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
   std::string user_token = a.get("token").value_or("");
   if (a.get("token")) check_user_token(user_token);
   // The map background is opened (and checked) before anything is written.
-  std::shared_ptr<const app::MapTiles> tiles;
+  std::shared_ptr<const app::tiles::MapTiles> tiles;
   if (const auto path = a.get("tiles")) {
-    auto opened = app::open_map_tiles(*path);
+    auto opened = app::tiles::open_map_tiles(*path);
     if (!opened) {
       std::string why = "--tiles: ";
       why += opened.error().message;

@@ -9,11 +9,11 @@
 #include <numbers>
 #include <set>
 
-#include "app/foxglove_channels.hpp"
+#include "app/foxglove/channels.hpp"
+#include "app/foxglove/messages.hpp"
+#include "app/foxglove/schemas.hpp"
 #include "app/foxglove_live.hpp"
-#include "app/foxglove_messages.hpp"
 #include "app/foxglove_scene.hpp"
-#include "app/foxglove_schemas.hpp"
 #include "app/mission_plans.hpp"
 #include "mission/mission_config.hpp"
 #include "mission/mission_runner.hpp"

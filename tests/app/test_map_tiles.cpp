@@ -12,7 +12,7 @@
 #include <tuple>
 #include <utility>
 
-#include "app/map_tiles.hpp"
+#include "app/tiles/map_tiles.hpp"
 #include "store/sqlite.hpp"
 #include "support/temp_db.hpp"
 #include "support/temp_dir.hpp"
@@ -21,7 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using avk::app::ErrorCode;
-using avk::app::open_map_tiles;
+using avk::app::tiles::open_map_tiles;
 
 const std::string kPng = std::string("\x89PNG\r\n\x1a\n", 8) + "png-body";
 const std::string kJpeg = std::string("\xff\xd8\xff\xe0", 4) + "jpeg-body";
@@ -279,10 +279,11 @@ TEST(MapTiles, AnMbtilesTileThatIsNoImageIsNotServed) {
 }
 
 TEST(MapTiles, ImagesAreToldByTheirSignature) {
-  EXPECT_EQ(avk::app::sniff_image_type(kPng), "image/png");
-  EXPECT_EQ(avk::app::sniff_image_type(kJpeg), "image/jpeg");
-  EXPECT_EQ(avk::app::sniff_image_type(std::string("RIFF\x10\0\0\0WEBPVP8 ", 16)), "image/webp");
-  EXPECT_EQ(avk::app::sniff_image_type("GIF89a"), "");
+  EXPECT_EQ(avk::app::tiles::sniff_image_type(kPng), "image/png");
+  EXPECT_EQ(avk::app::tiles::sniff_image_type(kJpeg), "image/jpeg");
+  EXPECT_EQ(avk::app::tiles::sniff_image_type(std::string("RIFF\x10\0\0\0WEBPVP8 ", 16)),
+            "image/webp");
+  EXPECT_EQ(avk::app::tiles::sniff_image_type("GIF89a"), "");
 }
 
 }  // namespace

@@ -10,8 +10,8 @@
 #include <utility>
 #include <vector>
 
-#include "app/mcap_reader.hpp"
-#include "app/mcap_writer.hpp"
+#include "app/mcap/reader.hpp"
+#include "app/mcap/writer.hpp"
 #include "support/mcap_bytes.hpp"
 
 namespace {

@@ -11,9 +11,9 @@
 
 #include "app/context.hpp"
 #include "app/current.hpp"
-#include "app/foxglove_channels.hpp"
-#include "app/mcap_reader.hpp"
-#include "app/mcap_writer.hpp"
+#include "app/foxglove/channels.hpp"
+#include "app/mcap/reader.hpp"
+#include "app/mcap/writer.hpp"
 #include "app/mission_mcap.hpp"
 #include "store/sqlite.hpp"
 #include "support/mcap_bytes.hpp"

@@ -1,4 +1,4 @@
-// libFuzzer target for the MCAP reader (app/mcap_reader.cpp), built by tests/CMakeLists.txt.
+// libFuzzer target for the MCAP reader (app/mcap/reader.cpp), built by tests/CMakeLists.txt.
 // Only McapError may be thrown. What reads never holds more than the caps let it inflate, and the
 // station's writer writes it back to a file that reads to the same schemas, channels, messages
 // (in log-time order) and metadata. read_summary, the indexed reader's entry, only throws
@@ -13,8 +13,8 @@
 #include <string_view>
 #include <vector>
 
-#include "app/mcap_reader.hpp"
-#include "app/mcap_writer.hpp"
+#include "app/mcap/reader.hpp"
+#include "app/mcap/writer.hpp"
 
 namespace {
 

@@ -31,7 +31,7 @@
 #include <thread>
 #include <vector>
 
-#include "app/foxglove_channels.hpp"
+#include "app/foxglove/channels.hpp"
 #include "server/api_types.hpp"
 #include "server/http/http_server.hpp"
 #include "server/http/static_files.hpp"

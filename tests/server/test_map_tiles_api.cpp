@@ -41,7 +41,7 @@ class MapTilesApi : public ::testing::Test {
     write(base_ / "tiles/1/1/1.png", kPng);
     write(base_ / "secret.png", kSecret);
     write(base_ / "1/0/0.png", kSecret);
-    auto opened = avk::app::open_map_tiles((base_ / "tiles").string());
+    auto opened = avk::app::tiles::open_map_tiles((base_ / "tiles").string());
     ASSERT_TRUE(opened) << opened.error().message;
     tiles_ = *opened;
     avk::server::add_map_tile_routes(router_, tiles_, avk::vehicle::LatLon{42.358456, -71.087589});
@@ -65,7 +65,7 @@ class MapTilesApi : public ::testing::Test {
   }
 
   fs::path base_;
-  std::shared_ptr<const avk::app::MapTiles> tiles_;
+  std::shared_ptr<const avk::app::tiles::MapTiles> tiles_;
   Router router_{kToken};
 };
 

@@ -11,8 +11,8 @@
 #include <string>
 
 #include "app/context.hpp"
-#include "app/mcap_reader.hpp"
-#include "app/mcap_writer.hpp"
+#include "app/mcap/reader.hpp"
+#include "app/mcap/writer.hpp"
 #include "app/mission_mcap.hpp"
 #include "support/temp_db.hpp"
 

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <string>
 
-#include "app/mcap_records.hpp"
+#include "app/mcap/records.hpp"
 
 namespace avk::testing::mcap_bytes {
 

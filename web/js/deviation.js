@@ -6,7 +6,7 @@
 
 import { state, on, emit } from './state.js';
 import { getJson } from './api.js';
-import { cktCovers, predictionParams } from './sync.js';
+import { cktCovers, predictionParams } from './predictions.js';
 import { num } from './format.js';
 
 const POLL_MS = 1000;

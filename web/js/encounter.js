@@ -13,7 +13,7 @@ import { postJson } from './api.js';
 import { C, METHOD_STYLE, baseLayout, equalAxes, draw, corridorTrace } from './plots.js';
 import { along } from './geometry.js';
 import { el, num, setStatus } from './format.js';
-import { cktCovers } from './sync.js';
+import { cktCovers } from './predictions.js';
 import { frameFields, answerFrameText, riskText, marginText, explanationText, colregsText, candidateText } from './frame.js';
 
 const $ = (id) => document.getElementById(id);

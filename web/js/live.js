@@ -8,19 +8,18 @@
 // 72,000-point track at 10 Hz costs one plot update per nav message at most.
 
 import { state, on } from './state.js';
-import { C, METHOD_STYLE, baseLayout, equalAxes, draw, showEmpty, corridorTrace, vehicleMarker, updateScaleBar } from './plots.js';
+import { C, METHOD_STYLE, baseLayout, draw, showEmpty, corridorTrace, vehicleMarker, updateScaleBar } from './plots.js';
 import { regionRings, along } from './geometry.js';
 import { TrackDecimator } from './decimate.js';
-import { num, meanSd, headingDiff, el } from './format.js';
-import { deviationText, deviationTitle } from './deviation.js';
+import { el } from './format.js';
 import { drawSeries } from './timeseries.js';
-import { localGrid, formatLatLon, scaleBarLength, graticule } from './geo.js';
+import { scaleBarLength } from './geo.js';
 import { attachMap, mapImages } from './maptiles.js';
 import { renderEventLog } from './eventlog.js';
-import { answersFrameText } from './frame.js';
-import { setPredictionFrame } from './sync.js';
-import { turnsDone } from './banner.js';
-import { turnLabel } from './turnlabel.js';
+import { setPredictionFrame } from './predictions.js';
+import { axesToDraw, resetAxes } from './liveaxes.js';
+import { graticuleTrace, currentTrace, expectedTrace, renderTurnPlot } from './livetraces.js';
+import { renderReadout, renderTurnPanel, renderProgress } from './livepanels.js';
 
 const RAY_M = 20; // length of the goal-heading and heading rays
 
@@ -51,9 +50,6 @@ let regionCache = { key: undefined, region: null, buffer: null, ret: null };
 let recordedCache = { n: -1, x: [], y: [] };
 let trackCache = { version: -1, older: null, tail: null };
 let decimator = null;
-let turnPlotKey = null;
-let turnPlotStart = null; // the start time of the turn the close-up shows
-
 export function initLive() {
   plotEl = document.getElementById('live-plot');
   const markPlot = () => request(true);
@@ -83,8 +79,7 @@ export function initLive() {
   const fit = el('button', { type: 'button', id: 'live-fit', class: 'png', text: 'Fit view', 'aria-label': 'Fit the live plot to the track' });
   fit.addEventListener('click', () => {
     uirevision++;
-    operatorAxes = null;
-    lastFit = null;
+    resetAxes();
     request(true);
   });
 
@@ -184,9 +179,6 @@ function frame() {
 export const renderTimes = [];
 // How long the time series' redraws took (ms), newest last (web/bench/frame_time.mjs).
 export const seriesTimes = [];
-// The deviations shown while a turn ran ({text, expected: [x, y]}), newest last, bounded: the test
-// hook reports them (at a high real-time factor a turn is on screen for a moment only).
-export const deviationLog = [];
 
 /** Forces a synchronous redraw (the test hook measures what a real update costs). */
 export function renderNow() {
@@ -328,7 +320,7 @@ function renderPlot() {
   ];
   const layout = {
     ...baseLayout({ margin: { l: 56, r: 10, t: 40, b: 40 } }),
-    ...axesToDraw(traces.filter((t) => t !== previous && t !== grid)),
+    ...axesToDraw(plotEl, traces.filter((t) => t !== previous && t !== grid)),
     uirevision,
     showlegend: true,
     images: mapImages(plotEl),
@@ -336,80 +328,6 @@ function renderPlot() {
   draw(plotEl, traces, layout, { scrollZoom: true }, { tracesOnly: true });
   updateScaleBar(plotEl, scaleBarLength);
   renderTurnPlot(turn, { turnX, turnY, goalRay, band, preds: [pred('avk'), pred('model'), pred('instantaneous')], nav, faded });
-}
-
-let lastAxes = null; // the axes last given to Plotly
-let operatorAxes = null; // the fit held while the operator's zoom or pan stands
-
-let zoomBound = false;
-
-/** Plotly keeps a zoom across redraws only while the figure's own range stays the same, and the
- *  fit moves with every sample: once the operator zooms or pans, the fit is held where it was (the
- *  operator's view wins) until Fit view. Redraws by react() fire no relayout event. */
-function axesToDraw(traces) {
-  if (!zoomBound && plotEl.on) {
-    zoomBound = true;
-    plotEl.on('plotly_relayout', (e) => {
-      if (e && Object.keys(e).some((k) => k.startsWith('xaxis.') || k.startsWith('yaxis.'))) operatorAxes = lastAxes;
-    });
-  }
-  lastAxes = operatorAxes || fittedAxes(traces);
-  return lastAxes;
-}
-
-const FIT_MARGIN = 0.06; // of the larger span, each side
-const FIT_MIN_SPAN_M = 20;
-
-/** The equal axes of the track plot, fitted to `traces`: the current mission (its region, track,
- *  stored turns, the turn drawn with its predictions) and the vehicle. Plotly's own autorange took
- *  in every trace, the previous mission's track too, which shrank the current turn into a corner;
- *  that track is still drawn, faded, wherever it lies. The operator's zoom is kept (uirevision)
- *  until Fit view. */
-function fittedAxes(traces) {
-  let x0 = Infinity;
-  let x1 = -Infinity;
-  let y0 = Infinity;
-  let y1 = -Infinity;
-  for (const t of traces) {
-    if (t.visible === false || t.visible === 'legendonly' || !t.x) continue;
-    for (let i = 0; i < t.x.length; i++) {
-      const x = t.x[i];
-      const y = t.y[i];
-      if (!Number.isFinite(x) || !Number.isFinite(y)) continue;
-      if (x < x0) x0 = x;
-      if (x > x1) x1 = x;
-      if (y < y0) y0 = y;
-      if (y > y1) y1 = y;
-    }
-  }
-  const axes = equalAxes();
-  if (!Number.isFinite(x0)) {
-    lastFit = null;
-    return axes;
-  }
-  const span = Math.max(x1 - x0, y1 - y0, FIT_MIN_SPAN_M);
-  const pad = FIT_MARGIN * span;
-  const cx = (x0 + x1) / 2;
-  const cy = (y0 + y1) / 2;
-  const half = (v0, v1) => Math.max((v1 - v0) / 2, FIT_MIN_SPAN_M / 2) + pad;
-  let fit = { x: [cx - half(x0, x1), cx + half(x0, x1)], y: [cy - half(y0, y1), cy + half(y0, y1)] };
-  const edge = pad / 3; // what is fitted stays this far inside a kept fit
-  if (lastFit && holds(lastFit.x, x0 - edge, x1 + edge, fit.x) && holds(lastFit.y, y0 - edge, y1 + edge, fit.y)) fit = lastFit;
-  lastFit = fit;
-  axes.xaxis = { ...axes.xaxis, range: fit.x.slice(), autorange: false };
-  axes.yaxis = { ...axes.yaxis, range: fit.y.slice(), autorange: false };
-  return axes;
-}
-
-// The last fit is kept while what is fitted stays inside it and it is not much larger than a
-// fresh fit: the heading ray swinging at the edge of the track moved the fit by a metre at every
-// sample, and each move costs a full redraw of the plot (axes, labels, legend) instead of the
-// traces alone.
-const FIT_SLACK = 1.25;
-let lastFit = null;
-
-function holds(range, v0, v1, fresh) {
-  return range[0] <= v0 && v1 <= range[1] && range[1] - range[0] <= FIT_SLACK * (fresh[1] - fresh[0]);
 }
 
 function seriesSpanS() {
@@ -448,306 +366,6 @@ function renderSeries() {
   seriesShown = { key: `${buf.version}|${frame}`, frame, to, pixelS: widthPx > 0 ? span / widthPx : 0 };
 }
 
-let gratCache = { key: undefined, trace: null };
-/** With a datum, a latitude/longitude grid over the operating region (one trace, lines broken by
- *  NaN): where the grid lies on a chart. Without a datum or a region: nothing. */
-function graticuleTrace() {
-  const region = state.mission?.config?.operating_region?.polygon_m;
-  const key = state.datum && region?.length >= 3 ? JSON.stringify([state.datum, region]) : null;
-  if (key !== gratCache.key) {
-    let x = [];
-    let y = [];
-    let step = null;
-    if (key) {
-      const xs = region.map((p) => p[0]);
-      const ys = region.map((p) => p[1]);
-      const pad = 0.1 * Math.max(Math.max(...xs) - Math.min(...xs), Math.max(...ys) - Math.min(...ys));
-      const g = graticule(state.datum, { xMin: Math.min(...xs) - pad, xMax: Math.max(...xs) + pad, yMin: Math.min(...ys) - pad, yMax: Math.max(...ys) + pad });
-      step = g.step;
-      for (const l of g.lines) {
-        x.push(...l.x, NaN);
-        y.push(...l.y, NaN);
-      }
-    }
-    gratCache = {
-      key,
-      trace: {
-        type: 'scatter',
-        mode: 'lines',
-        name: step ? `lat/lon grid (${step}°)` : 'lat/lon grid',
-        x,
-        y,
-        line: { color: '#9aa3ad', width: 0.8, dash: 'dot' },
-        hoverinfo: 'skip',
-        visible: x.length ? true : 'legendonly',
-        showlegend: x.length > 0,
-      },
-    };
-  }
-  return gratCache.trace;
-}
-
-/** "0.20 ± 0.01 m/s toward 182 ± 3°": the station's estimate of the current. */
-export function currentText(c) {
-  if (!c) return 'not estimated yet';
-  const still = c.significant ? '' : ' (not told apart from still water)';
-  return `${num(c.speed_mps, 2)} ± ${num(c.speed_sd_mps, 2)} m/s toward ${num(c.toward_deg, 0)} ± ${num(c.toward_sd_deg, 0)}°${still}`;
-}
-
-/** What the shown turn's predictions (and the running turn's deviation) move against, as each
- *  answer says it: one line when they agree. */
-export function predictionFrameText() {
-  const turn = state.shownTurn;
-  const answers = {};
-  for (const [method, p] of Object.entries(turn?.predictions ?? {})) answers[METHOD_STYLE[method]?.name ?? method] = p;
-  if (state.turn && state.ongoing) answers.deviation = state.ongoing;
-  return answersFrameText(answers);
-}
-
-/** The current as an arrow from the vehicle: where the water carries it in CURRENT_ARROW_S. */
-const CURRENT_ARROW_S = 60;
-// One object for every draw: Plotly takes a new array (the symbols, the sizes) as a change.
-const CURRENT_MARKER = { symbol: ['circle', 'arrow'], size: [4, 14], angleref: 'previous', color: C.purple };
-function currentTrace(nav) {
-  const c = state.current;
-  const show = Boolean(c && nav);
-  let x = [];
-  let y = [];
-  if (show) {
-    const [ex, ey] = along(nav.x_m, nav.y_m, c.toward_deg, c.speed_mps * CURRENT_ARROW_S);
-    x = [nav.x_m, ex];
-    y = [nav.y_m, ey];
-  }
-  return {
-    type: 'scatter',
-    mode: 'lines+markers',
-    name: `current (drift in ${CURRENT_ARROW_S} s)`,
-    x,
-    y,
-    line: { color: C.purple, width: 2.5, dash: 'dot' },
-    marker: CURRENT_MARKER,
-    visible: show ? true : 'legendonly',
-    hovertemplate: `${show ? currentText(c) : ''}<extra>current</extra>`,
-  };
-}
-
-/** Where the prediction of the running turn puts the vehicle now (GET /maneuvers/ongoing). */
-function expectedTrace(extra = {}) {
-  const e = state.turn ? state.ongoing?.expected : null;
-  return {
-    type: 'scatter',
-    mode: 'markers',
-    name: `expected now (${state.ongoing?.method === 'avk' ? 'AVK' : 'instantaneous'})`,
-    x: e ? [e.x_m] : [],
-    y: e ? [e.y_m] : [],
-    marker: { symbol: 'circle-open', size: 14, color: C.black, line: { width: 2.5 } },
-    visible: e ? true : 'legendonly',
-    hovertemplate: 'expected x %{x:.1f} m, y %{y:.1f} m<extra></extra>',
-    ...extra,
-  };
-}
-
-/** The turn close-up: the turn and its predictions at a scale where they can be told apart (the
- *  track plot shows the whole region). Redrawn only when something in it changed. */
-function renderTurnPlot(turn, { turnX, turnY, goalRay, band, preds, nav, faded }) {
-  const el = document.getElementById('turn-plot');
-  if (!turn?.start) {
-    if (turnPlotKey !== 'empty') {
-      turnPlotKey = 'empty';
-      showEmpty(el, 'No turn yet.');
-    }
-    return;
-  }
-  const running = !turn.ended;
-  const key = running
-    ? `${turn.start.t}|${turnX.length}|${Object.keys(turn.predictions).length}|${nav?.t_s}`
-    : `${turn.start.t}|ended|${turnX.length}|${Object.keys(turn.predictions).length}`;
-  if (key === turnPlotKey) return;
-  turnPlotKey = key;
-  // Its own legend: the close-up is read on its own, often without the track plot.
-  // Only what is drawn is listed; names without the track plot's "(last turn)" suffix.
-  const plain = (name) => name.replace(/ \(last turn\)$/, '');
-  const traces = [
-    { ...band, name: plain(band.name), showlegend: Boolean(band.x?.length) },
-    { type: 'scatter', mode: 'lines+markers', name: running ? 'turn so far' : `turn (${turn.outcome})`, x: turnX, y: turnY, line: { color: C.orange, width: 4 }, marker: { size: 4 }, opacity: faded },
-    ...preds.filter((t) => t.visible === true).map((t) => ({ ...t, name: plain(t.name) })),
-    { type: 'scatter', mode: 'lines', name: 'goal heading', x: goalRay.x, y: goalRay.y, line: { color: C.vermillion, width: 2, dash: 'longdash' }, opacity: faded },
-    expectedTrace({ showlegend: Boolean(state.turn && state.ongoing?.expected) }),
-    {
-      type: 'scatter',
-      mode: 'markers',
-      name: 'vehicle',
-      showlegend: false,
-      x: running && nav ? [nav.x_m] : [],
-      y: running && nav ? [nav.y_m] : [],
-      marker: vehicleMarker(nav, 20),
-    },
-  ];
-  // A new turn is a new figure: Plotly.react from the last turn's equal axes, somewhere else on
-  // the grid, could collapse the y axis to a line and keep it so for the whole turn.
-  if (turn.start.t !== turnPlotStart && el._fullLayout) window.Plotly?.purge(el);
-  turnPlotStart = turn.start.t;
-  draw(el, traces, {
-    ...baseLayout({ margin: { l: 44, r: 8, t: 8, b: 36 } }),
-    ...equalAxes('x (m)', 'y (m)'),
-    showlegend: true,
-    legend: { orientation: 'h', x: 0, y: 1.01, yanchor: 'bottom', font: { size: 10 } },
-  });
-}
-
-// ---------------------------------------------------------------- text panels
-
-function text(id, v) {
-  const e = document.getElementById(id);
-  if (e && e.textContent !== v) e.textContent = v;
-}
-
-let gridOf = { datum: null, grid: null };
-/** The vehicle's latitude and longitude: the grid point through the station's datum
- *  (`avk serve --datum`); without a datum the grid is all there is. */
-export function latLonText(nav) {
-  if (!state.datum) return 'no datum (avk serve --datum LAT,LON)';
-  if (!nav || !Number.isFinite(nav.x_m)) return '–';
-  if (gridOf.datum !== state.datum) gridOf = { datum: state.datum, grid: localGrid(state.datum) };
-  return formatLatLon(gridOf.grid.toLatLon(nav.x_m, nav.y_m));
-}
-
-function renderReadout() {
-  const nav = state.nav;
-  const helm = state.helm;
-  text('live-mode', helm?.mode ?? '–');
-  text('live-x', num(nav?.x_m, 1));
-  text('live-y', num(nav?.y_m, 1));
-  text('live-speed', num(nav?.speed_mps, 2));
-  text('live-heading', num(nav?.heading_deg, 1));
-  text('live-dspeed', num(helm?.desired_speed_mps, 2));
-  text('live-dheading', num(helm?.desired_heading_deg, 1));
-  text('live-t', num(nav?.t_s, 1));
-  text('live-latlon', latLonText(nav));
-  text('live-current', currentText(state.current));
-  text('live-pred-frame', predictionFrameText());
-  // Only a real vehicle (the M200 driver) reports a battery and a frontseat link.
-  const fs = nav?.frontseat;
-  for (const e of document.querySelectorAll('.frontseat')) e.hidden = !fs;
-  if (fs) {
-    text('live-battery', num(fs.battery_v, 2));
-    text('live-frontseat', `${fs.failsafe === 'none' ? 'ok' : `all stop (${fs.failsafe})`}, ${fs.bad_lines} bad lines, ${fs.disconnects} disconnects`);
-  }
-}
-
-function renderTurnPanel() {
-  const turn = state.turn;
-  const nav = state.nav;
-  const last = state.lastTurn;
-  const shown = state.shownTurn;
-  const preds = shown ? Object.keys(shown.predictions) : [];
-  if (turn) {
-    text('turn-cmd-speed', num(turn.speed, 2));
-    text('turn-cmd-dpsi', num(turn.dheading, 0));
-    text('turn-cmd-goal', num(turn.goalHeading, 1));
-    text('turn-meas-speed', num(nav?.speed_mps, 2));
-    text('turn-meas-dpsi', turn.start && nav ? num(headingDiff(nav.heading_deg, turn.start.heading), 1) : '–');
-    text('turn-meas-heading', num(nav?.heading_deg, 1));
-    // Numbered as the event log and Replay number it: the next of the plan's turns to be done.
-    const done = turn.missionId === state.mission?.id ? turnsDone(state.mission) : null;
-    const which = done && done.done < done.planned ? ` · ${turnLabel(done.done + 1, done.planned)}` : '';
-    text('turn-status', `Turn running (attempt ${turn.attempt ?? 1})${which} · predictions: ${preds.length ? preds.join(', ') : 'none yet'}`);
-    const deviation = deviationText(state.ongoing);
-    text('turn-deviation', deviation);
-    const devEl = document.getElementById('turn-deviation');
-    const devTitle = deviationTitle(state.ongoing);
-    if (devEl.title !== devTitle) devEl.title = devTitle;
-    const e = state.ongoing?.expected;
-    if (e && deviation !== deviationLog.at(-1)?.text) {
-      deviationLog.push({ text: deviation, expected: [e.x_m, e.y_m] });
-      if (deviationLog.length > 200) deviationLog.shift();
-    }
-  } else {
-    // Between turns (conditioning, containment, the return leg) nothing is a turn: the helm's
-    // desired values are in the Vehicle readout, not presented here as one.
-    for (const id of ['turn-cmd-speed', 'turn-cmd-dpsi', 'turn-cmd-goal', 'turn-meas-speed', 'turn-meas-dpsi', 'turn-meas-heading']) text(id, '–');
-    text('turn-deviation', '–');
-    text(
-      'turn-status',
-      last
-        ? `No turn running. Last turn: ${last.event}${last.reason ? ` (${last.reason})` : ''}, ${num(last.speed_mps, 2)} m/s, Δψ ${num(last.goal_dheading_deg, 0)}°, advance ${num(last.advance_m, 1)} m, transfer ${num(last.transfer_m, 1)} m${preds.length ? `; drawn with its predictions: ${preds.join(', ')}` : ''}.`
-        : 'No turn running.',
-    );
-  }
-  const parts = [];
-  if (state.conditioningSinceT !== null && nav) parts.push(`conditioning for ${num(nav.t_s - state.conditioningSinceT, 1)} s`);
-  if (typeof last?.condition_set_time_s === 'number') parts.push(`last ${num(last.condition_set_time_s, 1)} s`);
-  if (state.mission?.condition_set_time_s) parts.push(`mission mean ${meanSd(state.mission.condition_set_time_s, 1, ' s', state.mission.condition_set?.episodes?.set)}`);
-  // Attempts the mission wasted: conditioning cut short by containment (or a pause, a link loss)
-  // and conditions not set in time. A healthy mission shows few of either.
-  const episodes = state.mission?.condition_set?.episodes;
-  if (episodes) parts.push(`${episodes.interrupted ?? 0} interrupted, ${episodes.timeout ?? 0} timed out`);
-  text('live-cst', parts.length ? parts.join(' · ') : '–');
-}
-
-/** A cell's state for the grid: running, done, aborted (given up, or tried and then the mission
- *  ended), not run (the mission ended before it was ever tried), pending. Each has a mark as well
- *  as a colour. */
-export function cellState(c, missionStatus) {
-  if (c.running) return 'running';
-  const planned = c.planned ?? 1;
-  if ((c.ok ?? 0) >= planned) return 'done';
-  if ((c.given_up ?? 0) > 0) return 'aborted';
-  const ended = ['done', 'aborted', 'halted'].includes(missionStatus);
-  const tried = (c.ok ?? 0) + (c.aborted ?? 0) + (c.rejected ?? 0) > 0;
-  if (ended) return tried ? 'aborted' : 'notrun';
-  // Aborted attempts that will be re-queued stay pending (the label counts them with ✗n).
-  return 'pending';
-}
-
-const MARK = { pending: '·', running: '▶', done: '✓', aborted: '✗', notrun: '–' };
-const STATE_NAME = { pending: 'pending', running: 'running', done: 'done', aborted: 'aborted', notrun: 'not run' };
-
-function renderProgress() {
-  const grid = document.getElementById('progress-grid');
-  const m = state.mission;
-  text('progress-title', m ? `· mission ${m.id} “${m.name}” · ${m.status}${m.helm_mode ? ` · ${m.helm_mode}` : ''}` : '');
-  if (!m) {
-    grid.replaceChildren(el('p', { class: 'small muted', text: 'No mission yet. Start one in the Mission view.' }));
-    text('progress-counts', '');
-    return;
-  }
-  const cells = m.cells ?? [];
-  if (cells.length === 0) {
-    grid.replaceChildren(el('p', { class: 'small muted', text: m.config?.kind === 'persistent_excitation' ? 'Persistent excitation: no turn array.' : 'No cells.' }));
-    text('progress-counts', '');
-    return;
-  }
-  const speeds = [...new Set(cells.map((c) => c.speed_mps))].sort((a, b) => a - b);
-  const dpsis = [...new Set(cells.map((c) => c.dheading_deg))].sort((a, b) => a - b);
-  const counts = { pending: 0, running: 0, done: 0, aborted: 0, notrun: 0 };
-  const table = el('table', { 'aria-label': 'Turn array: rows are speeds, columns heading changes' });
-  table.append(el('tr', {}, el('th', { scope: 'col', text: 'm/s \\ Δψ' }), ...dpsis.map((d) => el('th', { scope: 'col', text: `${d}°` }))));
-  for (const s of speeds) {
-    const tr = el('tr', {}, el('th', { scope: 'row', text: s.toFixed(2) }));
-    for (const d of dpsis) {
-      const c = cells.find((q) => q.speed_mps === s && q.dheading_deg === d);
-      if (!c) {
-        tr.append(el('td'));
-        continue;
-      }
-      const st = cellState(c, m.status);
-      counts[st]++;
-      const extra = (c.aborted ?? 0) + (c.rejected ?? 0);
-      const label = `${MARK[st]} ${c.ok ?? 0}/${c.planned ?? 1}${extra ? ` ✗${extra}` : ''}`;
-      tr.append(
-        el('td', {
-          class: `st-${st}`,
-          text: label,
-          title: `${s} m/s, ${d}°: ${STATE_NAME[st]}; ok ${c.ok ?? 0} of ${c.planned ?? 1}, aborted ${c.aborted ?? 0}, rejected ${c.rejected ?? 0}${c.given_up ? `, given up ${c.given_up}` : ''}`,
-        }),
-      );
-    }
-    table.append(tr);
-  }
-  grid.replaceChildren(table);
-  text('progress-counts', `pending ${counts.pending} · running ${counts.running} · done ${counts.done} · aborted ${counts.aborted}${counts.notrun ? ` · not run ${counts.notrun}` : ''}`);
-}
 
 function renderEvents() {
   if (!visible) return;

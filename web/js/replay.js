@@ -16,7 +16,8 @@ import { firstAtOrAfter, lastAtOrBefore } from './bisect.js';
 import { phrase } from './eventlog.js';
 import { timeLabel } from './clock.js';
 import { plannedTurns, storedTurnLabel } from './turnlabel.js';
-import { answerableMethods, sameCell, refreshMissions } from './sync.js';
+import { refreshMissions } from './sync.js';
+import { answerableMethods, sameCell } from './predictions.js';
 import { attachMap, mapImages } from './maptiles.js';
 
 const $ = (id) => document.getElementById(id);

@@ -1,15 +1,14 @@
 // Keeps `state` in step with the station: reads everything over REST at start and after every
 // reconnection (catch-up), then applies the stream's messages. A new session_id in the hello means
 // the server restarted: the live track is cleared because the vehicle's history no longer joins.
-
 import { state, emit, addEvent } from './state.js';
 import { getJson, getAllItems } from './api.js';
-import { wrap360 } from './format.js';
 import { simplify } from './decimate.js';
-import { mergeStoredRows } from './timeseries.js';
 import { setClockMapping } from './clock.js';
 import { retireTrack } from './tracks.js';
-import { frameParams } from './frame.js';
+import { refreshCktSummary, fetchPredictions } from './predictions.js';
+import { loadTrackHistory } from './trackhistory.js';
+import { markLabel, setTurnMarks, turnFromServer, adoptRunningTurn, endTurn, adoptLastTurn } from './turnstate.js';
 
 const STALE_AFTER_MS = 2000;
 const MAX_RECORDED_TURNS = 60; // drawn as history in Live; older ones are in the CKT view
@@ -97,19 +96,6 @@ export async function refreshTurnCount() {
   state.okTurns = page.items.length;
 }
 
-/** The CKT's grid (speed range, heading changes): predictions are only asked inside it. */
-export async function refreshCktSummary() {
-  if (!state.vehicleId || state.okTurns === 0) {
-    state.ckt = null;
-    return;
-  }
-  try {
-    state.ckt = await getJson(`/vehicles/${encodeURIComponent(state.vehicleId)}/ckt`);
-  } catch {
-    state.ckt = null;
-  }
-  emit('ckt', state.ckt);
-}
 
 /** Loads a mission's detail; a mission not seen before also brings its event log and the raw
  *  paths of its recorded turns (the history drawn under the live track). */
@@ -135,229 +121,6 @@ export async function loadMission(id, { force = false } = {}) {
     await Promise.all([loadEvents(id), loadRecordedTurns(id), loadTrackHistory(id)]);
     if (!state.shownTurn) await adoptLastTurn(m);
   }
-}
-
-const markLabel = (speed, dheading) => `${dheading > 0 ? '+' : ''}${Math.round(dheading)}° @ ${speed} m/s`;
-
-/** The turn starts the time series marks: the mission's stored turns, the one under way, and any
- *  the stream started since (kept when the report does not list them yet). */
-function setTurnMarks(m) {
-  const marks = (m.turn_list ?? []).map((r) => ({ t: r.start_time_s, label: markLabel(r.speed_mps, r.goal_dheading_deg) }));
-  if (m.running_turn) marks.push({ t: m.running_turn.t_s, label: markLabel(m.running_turn.speed_mps, m.running_turn.dheading_deg) });
-  const newest = marks.length ? Math.max(...marks.map((k) => k.t)) : -Infinity;
-  const sameMission = state.turnMarksMission === m.id;
-  if (sameMission) for (const k of state.turnMarks) if (k.t > newest + 1e-6) marks.push(k);
-  state.turnMarks = marks.sort((a, b) => a.t - b.t);
-  state.turnMarksMission = m.id;
-  emit('series');
-}
-
-function turnFromServer(missionId, rt) {
-  return {
-    missionId,
-    speed: rt.speed_mps,
-    dheading: rt.dheading_deg,
-    goalHeading: rt.goal_heading_deg,
-    attempt: rt.attempt,
-    start: { t: rt.t_s, x: rt.x_m, y: rt.y_m, heading: rt.heading_deg },
-    predictions: {},
-  };
-}
-
-/** The turn under way as the server has it: a page opened or reloaded mid-turn, or one
- *  that missed the stream's `started`, draws it from the report. `current`: no turn message came
- *  on the stream while the report was asked for, so the report is the newer word; then a report
- *  without a running turn ends the one the page still shows as running (its `finished` was lost:
- *  a stream closed under load, a gap), instead of leaving the panel on "Turn running" with a
- *  deviation that grows past the prediction's end. A report that a stream message overtook never
- *  clears a turn the stream started: it may predate it. */
-function adoptRunningTurn(m, current = false) {
-  const rt = m.running_turn;
-  if (!rt) {
-    if (current && state.turn && state.turn.missionId === m.id) endTurnByReport(m, endedRow(m, state.turn));
-    // A turn a mission message ended without saying how: the report tells it now.
-    else if (state.shownTurn?.outcome === 'ended' && state.shownTurn.missionId === m.id) settleEnded(m, state.shownTurn);
-    return;
-  }
-  if (state.turn && state.turn.missionId === m.id && Math.abs((state.turn.start?.t ?? NaN) - rt.t_s) < 1e-6) return;
-  state.turn = turnFromServer(m.id, rt);
-  state.shownTurn = state.turn;
-  emit('turn', state.turn);
-  fetchPredictions(state.turn);
-}
-
-/** The stored row of a turn that started at turn.start.t (the report's turn_list), or null. */
-function endedRow(m, turn) {
-  return (m.turn_list ?? []).find((r) => Math.abs(r.start_time_s - (turn.start?.t ?? NaN)) < 0.5) ?? null;
-}
-
-/** The turn under way has ended: it stays drawn (faded) with its predictions until the next one
- *  starts, so the operator can see how they compared with what the vehicle did, and the panel
- *  leaves "Turn running". */
-function endTurn({ event, endT, storedId }) {
-  const turn = state.turn;
-  if (turn) {
-    turn.ended = true;
-    turn.endT = endT;
-    turn.outcome = event;
-    turn.storedId = storedId;
-  }
-  state.turn = null;
-  emit('turn', null);
-}
-
-/** The turn under way ended as a report says (its stored row, when the report has it yet). */
-function endTurnByReport(m, row) {
-  if (row) state.lastTurn = lastTurnOf(row, m.id);
-  endTurn({ event: row ? state.lastTurn.event : 'ended', endT: row?.end_time_s ?? state.nav?.t_s ?? null, storedId: row?.id ?? null });
-}
-
-/** An ended turn whose outcome the page did not hear: how it ended, from the report's row. */
-function settleEnded(m, turn) {
-  const row = endedRow(m, turn);
-  if (!row) return;
-  state.lastTurn = lastTurnOf(row, m.id);
-  turn.outcome = state.lastTurn.event;
-  turn.endT = row.end_time_s;
-  turn.storedId = row.id;
-  emit('turn', state.turn);
-}
-
-/** A stored turn (a report's turn_list row) as the stream's event of its end. */
-function lastTurnOf(row, missionId) {
-  return {
-    event: row.status === 'ok' ? 'finished' : row.status,
-    status: row.status,
-    reason: row.reason,
-    id: row.id,
-    mission_id: missionId,
-    speed_mps: row.speed_mps,
-    goal_dheading_deg: row.goal_dheading_deg,
-    advance_m: row.advance_m,
-    transfer_m: row.transfer_m,
-    condition_set_time_s: row.condition_set_time_s,
-    t: row.end_time_s,
-  };
-}
-
-/** The mission's last stored turn, drawn (faded, with its predictions) as the last turn when the
- *  page did not see it happen: its start pose is the first sample of its record. */
-async function adoptLastTurn(m) {
-  const row = m.turn_list?.at(-1);
-  if (!row) return;
-  state.lastTurn = lastTurnOf(row, m.id);
-  let first;
-  try {
-    first = (await getJson(`/turns/${row.id}`)).raw?.samples?.[0];
-  } catch (e) {
-    console.warn('the last turn could not be read', e.message);
-  }
-  if (state.shownTurn || !first) {
-    emit('turn', state.turn);
-    return;
-  }
-  const [t, x, y, heading] = first;
-  state.shownTurn = {
-    ...turnFromServer(m.id, {
-      t_s: t,
-      x_m: x,
-      y_m: y,
-      heading_deg: heading,
-      speed_mps: row.speed_mps,
-      dheading_deg: row.goal_dheading_deg,
-      goal_heading_deg: wrap360(heading + row.goal_dheading_deg),
-      attempt: null,
-    }),
-    ended: true,
-    endT: row.end_time_s,
-    outcome: state.lastTurn.event,
-    storedId: row.id,
-  };
-  emit('turn', state.turn);
-  fetchPredictions(state.shownTurn);
-}
-
-const NAV_PAGE = 5000;
-// How far the stored track of a mission has been read into the live track: the next catch-up
-// reads only what was recorded since. Tied to the track's epoch: a cleared track (server restart)
-// is read again from the start.
-let navCursor = { missionId: null, after: 0, epoch: -1, rows: 0 };
-
-/** The mission's stored track (GET /missions/{id}/nav, page by page) merged into the bounded live
- *  track, so a page opened mid-mission shows the track so far. Samples are merged by time with
- *  what the stream has already delivered; the track is rebuilt once, which restarts its
- *  decimation (TrackDecimator sees the new epoch) like any other clear. */
-async function loadTrackHistory(id) {
-  const tr = state.track;
-  const resume = navCursor.missionId === id && navCursor.epoch === tr.epoch;
-  let after = resume ? navCursor.after : 0;
-  const t = [];
-  const x = [];
-  const y = [];
-  const stored = [];
-  let lastCount = 0;
-  let lastAfter = after;
-  for (;;) {
-    const page = await getJson(`/missions/${id}/nav`, { limit: NAV_PAGE, after: after || undefined });
-    for (const r of page.items) {
-      t.push(r.t_s);
-      x.push(r.x_m);
-      y.push(r.y_m);
-      stored.push(r);
-    }
-    lastCount = page.items.length;
-    lastAfter = after;
-    if (page.next === null || page.next === undefined) break;
-    after = page.next;
-  }
-  // The last page is not full, so it has no cursor: the same page asked with a limit of exactly
-  // its row count is full, and its `next` is the rowid to continue after at the next catch-up.
-  if (lastCount > 0) {
-    const again = await getJson(`/missions/${id}/nav`, { limit: lastCount, after: lastAfter || undefined });
-    after = again.next ?? lastAfter;
-  }
-  const rows = (resume ? navCursor.rows : 0) + t.length;
-  if (t.length && !state.testFeed) {
-    mergeIntoTrack(t, x, y); // a test hook owns the track then
-    mergeStoredRows(state.series, stored);
-    emit('series');
-  }
-  navCursor = { missionId: id, after, epoch: tr.epoch, rows };
-  emit('nav-history', { missionId: id, rows });
-}
-
-function mergeIntoTrack(ht, hx, hy) {
-  const tr = state.track;
-  const order = ht.map((_, i) => i).sort((a, b) => ht[a] - ht[b] || a - b);
-  const live = { t: [], x: [], y: [] };
-  for (let k = 0; k < tr.length; k++) {
-    const j = (tr.start + k) % tr.capacity;
-    live.t.push(tr.t[j]);
-    live.x.push(tr.x[j]);
-    live.y.push(tr.y[j]);
-  }
-  tr.clear();
-  let a = 0;
-  let lastT = -Infinity;
-  let lastX = NaN;
-  let lastY = NaN;
-  const push = (t, x, y) => {
-    if (Math.abs(t - lastT) < 1e-9) return; // the same sample from the stream and from the store
-    // As applyNav: a sample that repeats the last position does not take a slot.
-    if (Math.abs(lastX - x) < 0.01 && Math.abs(lastY - y) < 0.01 && t - lastT < 5) return;
-    tr.push(t, x, y);
-    lastT = t;
-    lastX = x;
-    lastY = y;
-  };
-  for (const i of order) {
-    while (a < live.t.length && live.t[a] <= ht[i]) {
-      push(live.t[a], live.x[a], live.y[a]);
-      a++;
-    }
-    push(ht[i], hx[i], hy[i]);
-  }
-  for (; a < live.t.length; a++) push(live.t[a], live.x[a], live.y[a]);
 }
 
 /** The level the station gives an event kind (its vocabulary, from the hello); info for a kind
@@ -511,25 +274,6 @@ function applyCurrent(d) {
   emit('current', d);
 }
 
-/** The query parameters of Live's predictions: the operator's choice of current and speed
- *  reference (frame.js); none by default, so the station answers over ground wherever it knows
- *  the current. */
-export function predictionParams() {
-  return frameParams(state.predictionFrame);
-}
-
-/** The operator changed the frame: the shown turn's predictions are asked again with it (the
- *  running turn's deviation follows at its next poll). */
-export function setPredictionFrame(choice) {
-  state.predictionFrame = { ...state.predictionFrame, ...choice };
-  const turn = state.shownTurn;
-  if (turn) {
-    turn.predictions = {};
-    emit('predictions', turn);
-    fetchPredictions(turn);
-  }
-}
-
 async function refreshCurrent(vid) {
   try {
     applyCurrent(await getJson(`/vehicles/${encodeURIComponent(vid)}/current`));
@@ -617,74 +361,6 @@ function applyTurn(d, t) {
       if (state.shownTurn?.ended) fetchPredictions(state.shownTurn);
     }, 1500);
   }
-}
-
-/** Whether the vehicle's CKT (as last read) answers at this speed: AVK is asked only then, so
- *  nothing answers 4xx routinely. */
-export function cktCovers(speed) {
-  const r = state.ckt?.speed_range_mps;
-  return Boolean(r) && speed >= r[0] - 1e-9 && speed <= r[1] + 1e-9;
-}
-
-/** Whether two turns (or a turn and a table cell) are of one cell: the same commanded speed and
- *  heading change on either side, within the station's own tolerances (GET /turns). */
-export function sameCell(speedA, dheadingA, speedB, dheadingB) {
-  return Math.abs(speedA - speedB) < 0.05 && Math.abs(Math.abs(dheadingA) - Math.abs(dheadingB)) < 0.5;
-}
-
-/** The turns the vehicle's table (as last read) holds in the cell of a turn of this speed and
- *  heading change (either side); 0 when it has no such cell. */
-function cellTurns(speed, dheading) {
-  return state.ckt?.cells?.find((c) => sameCell(c.speed_mps, c.dheading_deg, speed, dheading))?.n_turns ?? 0;
-}
-
-/** The predictions a turn can be drawn against, asked only where one answers (a CKT covering the
- *  speed, a stored model), so nothing answers 4xx routinely. A stored turn is drawn only against
- *  what never saw it (`heldOut`, asked with without_turn or without_mission): a table that keeps
- *  a turn in its cell once `heldOut.cellTurns` of them are left out (the turn itself; Replay: its
- *  mission's), a model not trained on `heldOut.missionId`. */
-export function answerableMethods(speed, dheading, heldOut = null) {
-  const methods = ['instantaneous'];
-  if (cktCovers(speed) && (!heldOut || cellTurns(speed, dheading) > heldOut.cellTurns)) methods.push('avk');
-  if (heldOut ? state.models.some((m) => !(m.training_missions ?? []).includes(heldOut.missionId)) : state.models.length > 0) methods.push('model');
-  return methods;
-}
-
-/** AVK, model and instantaneous predictions placed at the turn's start pose, where they answer
- *  (answerableMethods); a stored turn (ended) only against a table and model that never saw it. */
-async function fetchPredictions(turn) {
-  if (!turn.start || !state.vehicleId) return;
-  // Turns finished since the table was last read may cover this speed now: read it again first.
-  if (!cktCovers(turn.speed) && state.okTurns > 0) await refreshCktSummary();
-  const heldOut = turn.storedId ? { cellTurns: 1, missionId: turn.missionId } : null;
-  const methods = answerableMethods(turn.speed, turn.dheading, heldOut).filter((m) => !turn.predictions[m]);
-  const params = predictionParams();
-  const asked = state.predictionFrame;
-  await Promise.all(
-    methods.map(async (method) => {
-      try {
-        const p = await getJson(`/vehicles/${encodeURIComponent(state.vehicleId)}/predict`, {
-          speed: turn.speed,
-          dheading: turn.dheading,
-          method,
-          x: turn.start.x,
-          y: turn.start.y,
-          heading: turn.start.heading,
-          ...params,
-          // A stored turn is drawn against predictions that never saw it: asked for after it
-          // ended (a table that had not covered its speed, a page opened later), the table and
-          // model must leave it out.
-          ...(turn.storedId && method !== 'instantaneous' ? { without_turn: turn.storedId } : {}),
-        });
-        if (state.shownTurn !== turn) return; // a newer turn is drawn now
-        if (state.predictionFrame !== asked) return; // asked again in another frame meanwhile
-        turn.predictions[method] = p;
-        emit('predictions', turn);
-      } catch (e) {
-        console.warn(`no ${method} prediction`, e.message);
-      }
-    }),
-  );
 }
 
 // ---------------------------------------------------------------- link state

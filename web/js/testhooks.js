@@ -5,7 +5,8 @@
 import { state, on } from './state.js';
 import { applyNav, onMessage, catchUp } from './sync.js';
 import { retireTrack } from './tracks.js';
-import { renderNow, renderTimes, seriesTimes, deviationLog, latLonText } from './live.js';
+import { renderNow, renderTimes, seriesTimes } from './live.js';
+import { deviationLog, latLonText } from './livepanels.js';
 import { replayState, seek as replaySeek, poseAt as replayPoseAt } from './replay.js';
 import { logEntries } from './eventlog.js';
 import { alarmsState } from './alarms.js';

@@ -1,4 +1,4 @@
-#include "app/map_tiles.hpp"
+#include "app/tiles/map_tiles.hpp"
 
 #include <algorithm>
 #include <cctype>
@@ -14,7 +14,7 @@
 
 #include "store/mbtiles.hpp"
 
-namespace avk::app {
+namespace avk::app::tiles {
 
 namespace {
 
@@ -384,4 +384,4 @@ Result<std::shared_ptr<const MapTiles>> open_map_tiles(const std::string& path) 
   return open_mbtiles(path);
 }
 
-}  // namespace avk::app
+}  // namespace avk::app::tiles

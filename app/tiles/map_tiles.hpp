@@ -19,7 +19,7 @@
 
 #include "app/result.hpp"
 
-namespace avk::app {
+namespace avk::app::tiles {
 
 // The zoom levels a tile address may name (z 0..24, x and y below 2^z).
 inline constexpr int kMaxTileZoom = 24;
@@ -63,4 +63,4 @@ Result<std::shared_ptr<const MapTiles>> open_map_tiles(const std::string& path);
 // The media type of an image from its first bytes (PNG, JPEG, WebP signatures); empty if none.
 std::string sniff_image_type(const std::string& bytes);
 
-}  // namespace avk::app
+}  // namespace avk::app::tiles

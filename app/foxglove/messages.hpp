@@ -1,5 +1,5 @@
 #pragma once
-// The messages of the station's Foxglove channels (app/foxglove_channels.hpp), built from domain
+// The messages of the station's Foxglove channels (app/foxglove/channels.hpp), built from domain
 // values as JSON text: the same builders serve the live connection and a mission's MCAP file, so
 // what a viewer shows live and on replay is the same data.
 

@@ -15,7 +15,7 @@
 #include <string_view>
 #include <vector>
 
-#include "app/mcap_records.hpp"
+#include "app/mcap/records.hpp"
 
 namespace avk::app::mcap {
 

@@ -1,9 +1,9 @@
-#include "app/foxglove_messages.hpp"
+#include "app/foxglove/messages.hpp"
 
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "app/foxglove_channels.hpp"
+#include "app/foxglove/channels.hpp"
 #include "kinematics/angles.hpp"
 #include "kinematics/polygon_inset.hpp"
 

@@ -1,4 +1,4 @@
-#include "app/mcap_writer.hpp"
+#include "app/mcap/writer.hpp"
 
 #include <zstd.h>
 
@@ -59,7 +59,7 @@ void put_u32_prefixed(std::string& out, Fill fill) {
     out[at + i] = static_cast<char>(n >> (8 * i));
 }
 
-// Writes the fields that mcap_records.hpp lists for each record.
+// Writes the fields that app/mcap/records.hpp lists for each record.
 struct Encoder {
   std::string& out;
 

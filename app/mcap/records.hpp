@@ -257,7 +257,7 @@ void fields(V& v, R& r) {
   v.u32(r.data_section_crc, "data_section_crc");
 }
 
-// zlib's CRC-32, as the Chunk, Data End and Footer CRCs use it (defined in mcap_writer.cpp).
+// zlib's CRC-32, as the Chunk, Data End and Footer CRCs use it (defined in app/mcap/writer.cpp).
 std::uint32_t crc32(std::string_view bytes);
 
 }  // namespace avk::app::mcap

@@ -1,8 +1,8 @@
-#include "app/foxglove_channels.hpp"
+#include "app/foxglove/channels.hpp"
 
 #include <stdexcept>
 
-#include "app/foxglove_schemas.hpp"
+#include "app/foxglove/schemas.hpp"
 
 namespace avk::app::foxglove {
 
