@@ -151,7 +151,8 @@ Result<MissionRunOutcome> resume_mission_run(Context& ctx, std::int64_t mission_
   const vehicle::VehicleKind kind = kind_of(vehicle);
   if (stored_kind != kind) {
     return invalid_argument("vehicle", "mission " + std::to_string(mission_id) + " ran on " +
-                                           stored->kind + ", not on a " + vehicle::to_string(kind));
+                                           stored->kind + ", not on a " + vehicle::to_string(kind) +
+                                           ": resume it on a vehicle of its kind");
   }
   // The mission continues on its own vehicle, under its stored id.
   if (vehicle.m200) vehicle.m200->config.id = m->vehicle_id;

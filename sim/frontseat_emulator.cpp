@@ -79,16 +79,12 @@ void check_faults(const FrontseatFaults& f) {
           "burst_max_lines must be in [0, " + std::to_string(kMaxBurstLines) + "]");
 }
 
-bool simulated_differential_drive(vehicle::VehicleKind k) {
-  return vehicle::is_simulated(k) && vehicle::has_differential_drive(k);
-}
-
 FrontseatEmulatorOptions checked(FrontseatEmulatorOptions o) {
-  if (!simulated_differential_drive(o.vehicle.kind)) {
+  if (!vehicle::can_emulate_frontseat(o.vehicle.kind)) {
     throw std::invalid_argument(std::string("frontseat emulator: vehicle kind ") +
                                 vehicle::to_string(o.vehicle.kind) +
                                 " has no simulated left and right thrusters for $PYDIR; use " +
-                                vehicle::vehicle_kind_names(simulated_differential_drive));
+                                vehicle::vehicle_kind_names(vehicle::can_emulate_frontseat));
   }
   o.vehicle = with_kind_defaults(std::move(o.vehicle));
   require(o.plant_hz > 0.0 && o.plant_hz <= 1000.0, "plant_hz must be in (0, 1000]");

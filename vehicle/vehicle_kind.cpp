@@ -46,6 +46,10 @@ bool has_differential_drive(VehicleKind k) {
   return k != VehicleKind::usim;
 }
 
+bool can_emulate_frontseat(VehicleKind k) {
+  return is_simulated(k) && has_differential_drive(k);
+}
+
 std::string vehicle_kind_names(bool (*keep)(VehicleKind)) {
   std::string out;
   const auto add = [&out](std::string_view name) {

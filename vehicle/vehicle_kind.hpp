@@ -31,6 +31,8 @@ bool is_simulated(VehicleKind k);
 // Differential-drive kinds: left and right thrusters, so they can stand behind a frontseat
 // emulator that speaks $PYDIR.
 bool has_differential_drive(VehicleKind k);
+// A simulated differential-drive kind: what the frontseat emulator can stand for.
+bool can_emulate_frontseat(VehicleKind k);
 // "usim, catamaran, catamaran:m200, ..." of the kinds that pass `keep`: for messages that name
 // what is accepted.
 std::string vehicle_kind_names(bool (*keep)(VehicleKind) = nullptr);

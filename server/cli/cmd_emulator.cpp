@@ -32,10 +32,7 @@ int cmd_frontseat_emulator(const std::vector<std::string>& args, Io& io) {
     throw UsageError(std::string("vehicle ") + vehicle::to_string(setup.vehicle.kind) +
                      " cannot be a frontseat: $PYDIR drives left and right thrusters, which only "
                      "the differential-drive kinds have (" +
-                     vehicle::vehicle_kind_names([](vehicle::VehicleKind k) {
-                       return vehicle::is_simulated(k) && vehicle::has_differential_drive(k);
-                     }) +
-                     ")");
+                     vehicle::vehicle_kind_names(vehicle::can_emulate_frontseat) + ")");
   }
 
   sim::FrontseatEmulatorOptions o;

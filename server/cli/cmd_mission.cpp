@@ -185,6 +185,10 @@ int execute(const std::function<app::Result<app::MissionRunOutcome>()>& run,
     result = run();
   }
   if (!result) {
+    // A vehicle the options cannot give (a mission of another kind) is a mistake of the options.
+    if (result.error().code == app::ErrorCode::invalid_argument &&
+        result.error().field == "vehicle")
+      throw UsageError(result.error().message);
     if (!result.error().fields.empty()) {
       print_config_errors(result.error(), what, io);
       return 1;
