@@ -1,0 +1,19 @@
+#pragma once
+// Recorded turns as documents: a row of the listing, a turn with its trajectories, a harvest's
+// report.
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "app/harvest.hpp"
+#include "store/store.hpp"
+
+namespace avk::server {
+
+nlohmann::json turn_row_json(const store::TurnRow& t);
+nlohmann::json harvest_report_json(const app::HarvestReport& r);
+nlohmann::json turn_json(const store::StoredTurn& t);  // with raw and normalised trajectories
+std::string turns_csv(const std::vector<store::TurnRow>& rows);
+
+}  // namespace avk::server
