@@ -9,18 +9,11 @@
 #include "mission/helm_loop.hpp"
 #include "mission/mission_runner.hpp"
 #include "mission/turn_plan.hpp"
-#include "sim/scheduler.hpp"
+#include "sim/sim_mission.hpp"
 
 namespace avk::app {
 
 namespace {
-
-// The source's scheduler starts its clock at start_clock_s.
-sim::SchedulerOptions scheduler_options(const VehicleSourceOptions& o) {
-  sim::SchedulerOptions s = o.setup.scheduler;
-  s.start_time_s = o.start_clock_s;
-  return s;
-}
 
 // A vehicle a mission runs on here: its scheduler (a simulated vehicle's time, a real vehicle's
 // pace) and its source.
@@ -74,15 +67,9 @@ Result<MissionRunOutcome> run_on(Context& ctx, const MissionPlan& plan, LocalVeh
     r = mission::run_helm_loop(runner, *clock, vo.setup.helm_hz, options.max_duration_s,
                                options.stop);
   } else {
-    r.start_time_s = local.scheduler.now_s();
-    const double end = r.start_time_s + options.max_duration_s;
-    local.scheduler.add("helm", vo.setup.helm_hz, [&](double now) {
-      mission::helm_tick(runner, now, end, options.stop, {}, r);
-      if (runner.finished()) local.scheduler.request_stop();
-    });
     const std::unique_ptr<sim::Pacer> pacer = source.pacer();
-    local.scheduler.run_until(end + 1.0, *pacer);
-    r.end_time_s = local.scheduler.now_s();
+    r = sim::run_helm_on(local.scheduler, runner, vo.setup.helm_hz, options.max_duration_s, *pacer,
+                         options.stop);
   }
   source.park();
   out.start_time_s = r.start_time_s;

@@ -11,16 +11,6 @@
 
 namespace avk::app {
 
-namespace {
-
-sim::SchedulerOptions scheduler_options(const VehicleLoopOptions& o) {
-  sim::SchedulerOptions s = o.setup.scheduler;
-  s.start_time_s = o.start_clock_s;
-  return s;
-}
-
-}  // namespace
-
 struct VehicleLoop::Impl {
   VehicleLoopOptions options;
   std::string db_path;

@@ -65,6 +65,10 @@ class VehicleSource {
   virtual std::string link_report() const { return {}; }
 };
 
+// The scheduler a source is made with: the setup's (seed, jitter) with its clock at
+// start_clock_s.
+sim::SchedulerOptions scheduler_options(const VehicleSourceOptions& options);
+
 // What the vehicle will report as itself, known before it is made or connected (so a mission
 // file can be checked against its top speed without a vehicle).
 vehicle::VehicleInfo planned_vehicle_info(const VehicleSourceOptions& options);

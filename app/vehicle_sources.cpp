@@ -33,6 +33,12 @@ vehicle::VehicleKind kind_of(const VehicleSourceOptions& options) {
   return options.kind.value_or(options.setup.vehicle.kind);
 }
 
+sim::SchedulerOptions scheduler_options(const VehicleSourceOptions& options) {
+  sim::SchedulerOptions s = options.setup.scheduler;
+  s.start_time_s = options.start_clock_s;
+  return s;
+}
+
 vehicle::VehicleInfo planned_vehicle_info(const VehicleSourceOptions& options) {
   return maker_for(kind_of(options)).planned_info(options);
 }

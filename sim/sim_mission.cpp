@@ -27,19 +27,26 @@ SimMission::SimMission(SimMissionOptions options)
       scheduler_(scheduler_options(options_)),
       vehicle_(vehicle_at_rest(options_.setup, options_.start), scheduler_) {}
 
+SimMissionResult run_helm_on(Scheduler& scheduler, mission::MissionRunner& runner, double helm_hz,
+                             double max_duration_s, Pacer& pacer, const std::atomic<bool>* stop,
+                             std::function<void(double)> before_tick) {
+  SimMissionResult result;
+  result.start_time_s = scheduler.now_s();
+  const double end = result.start_time_s + max_duration_s;
+  scheduler.add("helm", helm_hz, [&](double now) {
+    mission::helm_tick(runner, now, end, stop, before_tick, result);
+    if (runner.finished()) scheduler.request_stop();
+  });
+  scheduler.run_until(end + 1.0, pacer);
+  result.end_time_s = scheduler.now_s();
+  return result;
+}
+
 SimMissionResult SimMission::run(mission::MissionRunner& runner, Pacer& pacer,
                                  const std::atomic<bool>* stop,
                                  std::function<void(double)> before_tick) {
-  SimMissionResult result;
-  result.start_time_s = scheduler_.now_s();
-  const double end = result.start_time_s + options_.max_duration_s;
-  scheduler_.add("helm", options_.setup.helm_hz, [&](double now) {
-    mission::helm_tick(runner, now, end, stop, before_tick, result);
-    if (runner.finished()) scheduler_.request_stop();
-  });
-  scheduler_.run_until(end + 1.0, pacer);
-  result.end_time_s = scheduler_.now_s();
-  return result;
+  return run_helm_on(scheduler_, runner, options_.setup.helm_hz, options_.max_duration_s, pacer,
+                     stop, std::move(before_tick));
 }
 
 }  // namespace avk::sim

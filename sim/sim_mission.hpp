@@ -28,6 +28,14 @@ struct SimMissionOptions {
 
 using SimMissionResult = mission::HelmLoopResult;
 
+// The runner's helm as one more AppTick component of the scheduler, run until the runner finishes.
+// A raised stop flag or the end of max_duration_s (from the scheduler's now) interrupts the
+// mission at the next helm tick; before_tick runs at every helm tick before the runner's.
+SimMissionResult run_helm_on(Scheduler& scheduler, mission::MissionRunner& runner, double helm_hz,
+                             double max_duration_s, Pacer& pacer,
+                             const std::atomic<bool>* stop = nullptr,
+                             std::function<void(double now_s)> before_tick = {});
+
 class SimMission {
  public:
   explicit SimMission(SimMissionOptions options);
