@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "app/context.hpp"
+#include "app/store_access.hpp"
 #include "kinematics/parse_error.hpp"
 #include "kinematics/text_limit.hpp"
 #include "kinematics/turn_text.hpp"
@@ -173,7 +174,7 @@ Result<AlogImportReport> import_alog(Context& ctx, std::istream& log,
   if (const auto why =
           kinematics::text_too_long(request.mission_name, mission::kMaxMissionNameBytes))
     return invalid_argument("name", "the mission's name " + *why);
-  store::Store& db = ctx.db();
+  store::Store& db = store_of(ctx);
   // The speed limit is not known until the log has been read; 0 says so meanwhile.
   const auto existing = db.vehicles().get(request.vehicle_id);
   vehicle::VehicleInfo info{request.vehicle_id, "alog", existing ? existing->max_speed_mps : 0.0,
@@ -200,8 +201,8 @@ Result<AlogImportReport> import_alog(Context& ctx, std::istream& log,
   r.nav = import.nav_stats();
   r.malformed = import.malformed();
   r.nav_stored = import.nav_stored();
-  r.from_records = import.from_records();
-  r.from_extraction = import.from_extraction();
+  r.from_records = view_of(import.from_records());
+  r.from_extraction = view_of(import.from_extraction());
   if (request.harvest) {
     auto h = harvest_mission(ctx, mission_id);
     if (!h) return h.error();

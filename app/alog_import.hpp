@@ -9,10 +9,10 @@
 #include <string>
 
 #include "app/harvest.hpp"
+#include "app/mission_views.hpp"
 #include "app/result.hpp"
 #include "kinematics/turn_sequence.hpp"
 #include "mission/turn_extractor.hpp"
-#include "store/store.hpp"
 #include "vehicle/alog.hpp"
 
 namespace avk::app {
@@ -36,7 +36,7 @@ struct AlogImportReport {
   vehicle::AlogNavStats nav;
   vehicle::AlogProblems malformed;
   std::size_t nav_stored = 0;
-  store::TurnCounts from_records, from_extraction;
+  TurnCounts from_records, from_extraction;
   std::optional<HarvestReport> harvest;  // with request.harvest
 };
 

@@ -7,6 +7,8 @@
 #include "app/context.hpp"
 #include "app/current.hpp"
 #include "app/maneuvers.hpp"
+#include "app/mission_legs.hpp"
+#include "app/store_access.hpp"
 #include "kinematics/ckt.hpp"
 #include "kinematics/position_band.hpp"
 
@@ -79,7 +81,7 @@ Result<BandCoverage> band_coverage(Context& ctx, const BandCoverageQuery& q) {
     return invalid_argument("share", "must be a share within (0, 1)");
   if (!(q.after_turn_s >= 0.0 && q.after_turn_s <= 600.0))
     return invalid_argument("after_turn_s", "must be within [0, 600] s");
-  store::Store& db = ctx.db();
+  store::Store& db = store_of(ctx);
   for (const auto id : q.test_missions)
     if (!db.missions().get(id)) return not_found("no mission " + std::to_string(id));
   std::vector<std::int64_t> table_missions = q.table_missions;

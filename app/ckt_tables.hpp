@@ -3,11 +3,8 @@
 // own ok turns (in the water frame where their mission's current is known, app/current.hpp), or,
 // when it has none, its latest imported table. One rule for every front end.
 
-#include <chrono>
 #include <cstdint>
-#include <map>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -16,7 +13,6 @@
 #include "kinematics/ckt.hpp"
 #include "kinematics/speed_change_table.hpp"
 #include "kinematics/speed_response.hpp"
-#include "store/store.hpp"
 
 namespace avk::app {
 
@@ -37,72 +33,6 @@ struct VehicleTable {
   // from them; empty for an imported table.
   std::shared_ptr<const kinematics::SpeedChangeTable> speed_changes;
   std::optional<kinematics::SpeedResponse> measured_speed_response;
-};
-
-// The tables predictions use, rebuilt when a vehicle's turns or imported table change (checked
-// at most every `recheck`, so a prediction is a lookup).
-class TableCache {
- public:
-  explicit TableCache(std::chrono::milliseconds recheck = std::chrono::seconds(1))
-      : recheck_(recheck) {}
-  // include_harvested: the table of collection and harvested turns, cached apart from the
-  // table of collection turns alone (the default), so the two never mix.
-  Result<VehicleTable> get(Context& ctx, const std::string& vehicle_id,
-                           bool include_harvested = false);
-  // The table of the vehicle's ok turns without a mission or one turn (what a held-out
-  // prediction answers from), built once per left-out set and dropped when the vehicle's turns
-  // change, by the same check as get()'s. Null when no turn is left to build from. The table
-  // keeps what a query reads, not the observed turns (Ckt::drop_observed_turns). At most
-  // kHeldOutTables are kept (the least recently used goes first): a page asks for one left-out
-  // set at a time.
-  std::shared_ptr<const kinematics::Ckt> held_out(Context& ctx, const std::string& vehicle_id,
-                                                  bool include_harvested,
-                                                  const store::TurnsLeftOut& left_out);
-  void forget(const std::string& vehicle_id);
-
-  static constexpr std::size_t kHeldOutTables = 8;
-
- private:
-  // What a vehicle's tables were built from: its newest ok turn, its latest imported table (read
-  // only when it has no turns) and the revision of its missions' currents.
-  struct Revision {
-    std::int64_t turns = -1;
-    std::int64_t snapshot = -1;
-    std::int64_t current = -1;
-    bool operator==(const Revision&) const = default;
-  };
-  struct Entry {
-    std::mutex mutex;
-    std::chrono::steady_clock::time_point checked{};
-    Revision seen;        // as last read from the store
-    Revision value_from;  // what `value` was built from
-    std::optional<VehicleTable> value;
-  };
-  struct HeldOutKey {
-    std::string vehicle_id;
-    bool include_harvested = false;
-    std::optional<std::int64_t> mission_id;
-    std::optional<std::int64_t> turn_id;
-    auto operator<=>(const HeldOutKey&) const = default;
-  };
-  struct HeldOutTable {
-    Revision built_from;
-    std::shared_ptr<const kinematics::Ckt> table;
-    std::uint64_t used = 0;  // a counter's value at the last use: the lowest goes first
-  };
-  Entry& entry(const std::string& vehicle_id, bool include_harvested);
-  // Under e.mutex: the vehicle's revision, read from the store when `stale` or at most every
-  // recheck_.
-  const Revision& revision(Context& ctx, Entry& e, const std::string& vehicle_id,
-                           bool include_harvested, bool stale);
-  std::chrono::milliseconds recheck_;
-  std::mutex mutex_;
-  std::map<std::pair<std::string, bool>, std::unique_ptr<Entry>> entries_;
-  // Apart from the entries: a held-out table takes a while to build, and predictions from the
-  // full table must not wait for it.
-  std::mutex held_out_mutex_;
-  std::map<HeldOutKey, HeldOutTable> held_out_;
-  std::uint64_t held_out_uses_ = 0;
 };
 
 // The vehicle's table (not_found when it has no turns and no imported table). Built from its

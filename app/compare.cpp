@@ -5,6 +5,7 @@
 
 #include "app/context.hpp"
 #include "app/models.hpp"
+#include "app/store_access.hpp"
 #include "kinematics/angles.hpp"
 #include "kinematics/yaw_model.hpp"
 
@@ -41,18 +42,19 @@ Result<Comparison> compare(Context& ctx, const CompareQuery& q) {
       if (!m) return m.error();
       c.model = std::move(*m);
     } else {
-      c.model = ctx.db().models().latest(q.vehicle_id);  // none stored: compared without
+      // None stored: compared without.
+      if (auto m = store_of(ctx).models().latest(q.vehicle_id)) c.model = view_of(*m);
     }
   }
   for (const auto id : q.missions)
-    if (!ctx.db().missions().get(id)) return not_found("no mission " + std::to_string(id));
+    if (!store_of(ctx).missions().get(id)) return not_found("no mission " + std::to_string(id));
   for (const auto id : q.test_missions)
-    if (!ctx.db().missions().get(id)) return not_found("no mission " + std::to_string(id));
+    if (!store_of(ctx).missions().get(id)) return not_found("no mission " + std::to_string(id));
   std::vector<std::int64_t> table_missions = q.missions;
   if (!q.test_missions.empty()) {
     // The table never holds a turn it is judged on.
     if (table_missions.empty()) {
-      for (const auto& m : ctx.db().missions().list())
+      for (const auto& m : store_of(ctx).missions().list())
         if (m.vehicle_id == q.vehicle_id) table_missions.push_back(m.id);
     }
     std::erase_if(table_missions, [&](std::int64_t id) {
@@ -61,7 +63,7 @@ Result<Comparison> compare(Context& ctx, const CompareQuery& q) {
     if (table_missions.empty())
       return invalid_argument("mission", "no mission is left to build the table from");
   }
-  const auto turns = ctx.db().turns().load_normalized(table_missions, q.vehicle_id);
+  const auto turns = store_of(ctx).turns().load_normalized(table_missions, q.vehicle_id);
   if (turns.empty()) return not_found("no ok turns of '" + q.vehicle_id + "' to compare");
   c.table = kin::Ckt::build(turns);
   kin::TurnPredictor predictor;
@@ -92,7 +94,7 @@ Result<Comparison> compare(Context& ctx, const CompareQuery& q) {
         kin::compare_speed_changes(turns, c.table, model_response, model_sc ? &model_sc : nullptr);
   }
   if (!q.test_missions.empty()) {
-    const auto test = ctx.db().turns().load_normalized(q.test_missions, q.vehicle_id);
+    const auto test = store_of(ctx).turns().load_normalized(q.test_missions, q.vehicle_id);
     if (test.empty())
       return not_found("no ok turns of '" + q.vehicle_id + "' in the test missions");
     kin::TurnPredictor test_predictor;

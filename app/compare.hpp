@@ -7,13 +7,13 @@
 #include <string>
 #include <vector>
 
+#include "app/model_view.hpp"
 #include "app/result.hpp"
 #include "kinematics/ckt.hpp"
 #include "kinematics/prediction_comparison.hpp"
 #include "kinematics/predictive_comparison.hpp"
 #include "kinematics/speed_change_comparison.hpp"
 #include "kinematics/table_evaluation.hpp"
-#include "store/store.hpp"
 
 namespace avk::app {
 
@@ -34,7 +34,7 @@ struct CompareQuery {
 
 struct Comparison {
   std::string vehicle_id;
-  std::optional<store::StoredModel> model;
+  std::optional<ModelView> model;
   kinematics::Ckt table;
   // The thesis' in-sample scoring (Figures 5-7, 5-8): AVK as its turns' spread about their mean.
   std::vector<kinematics::CellComparison> cells;

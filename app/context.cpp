@@ -1,9 +1,11 @@
 #include "app/context.hpp"
+#include "app/table_cache.hpp"
 
 #include <map>
 
 #include "app/ckt_tables.hpp"
 #include "app/mission_liveness.hpp"
+#include "app/store_access.hpp"
 
 namespace avk::app {
 
@@ -17,7 +19,7 @@ Context::~Context() {
 }
 
 void Context::start() {
-  mark_orphaned_missions_interrupted(db());
+  mark_orphaned_missions_interrupted(store_of(*this));
   if (loop_) loop_->start();
 }
 
@@ -25,11 +27,11 @@ void Context::shutdown(const std::string& reason) {
   if (loop_) loop_->stop(reason);
 }
 
-store::Store& Context::db() {
+store::Store& store_of(Context& ctx) {
   // Keyed by path: tests run several stations, each on its own database, on one thread.
   thread_local std::map<std::string, std::unique_ptr<store::Store>> connections;
-  auto& c = connections[db_path_];
-  if (!c) c = std::make_unique<store::Store>(db_path_);
+  auto& c = connections[ctx.db_path()];
+  if (!c) c = std::make_unique<store::Store>(ctx.db_path());
   return *c;
 }
 

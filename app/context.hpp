@@ -9,7 +9,6 @@
 
 #include "app/live_feed.hpp"
 #include "app/vehicle_loop.hpp"
-#include "store/store.hpp"
 
 namespace avk::app {
 
@@ -30,9 +29,8 @@ class Context {
   // Interrupts a running mission (stored, resumable), flushes and stops the vehicle.
   void shutdown(const std::string& reason = "the server stopped");
 
+  // The database the use cases read and write (app/store_access.hpp).
   const std::string& db_path() const { return db_path_; }
-  // This thread's connection: SQLite connections are not shared between threads.
-  store::Store& db();
   VehicleLoop* vehicle_loop() { return loop_.get(); }
   TableCache& tables() { return *tables_; }
 

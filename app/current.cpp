@@ -1,9 +1,11 @@
 #include "app/current.hpp"
+#include "app/mission_legs.hpp"
 
 #include <algorithm>
 #include <cmath>
 
 #include "app/context.hpp"
+#include "app/store_access.hpp"
 #include "app/vehicle_motion.hpp"
 #include "kinematics/angles.hpp"
 #include "kinematics/ckt.hpp"
@@ -159,7 +161,7 @@ std::vector<kin::SteadyLeg> steady_stretches_before(const std::vector<double>& t
 
 Result<MissionCurrent> estimate_mission_current(Context& ctx, std::int64_t mission_id,
                                                 double leg_s) {
-  store::Store& db = ctx.db();
+  store::Store& db = store_of(ctx);
   if (!db.missions().get(mission_id)) return not_found("no mission " + std::to_string(mission_id));
   MissionCurrent out;
   out.mission_id = mission_id;
@@ -181,7 +183,7 @@ Result<MissionCurrent> estimate_mission_current(Context& ctx, std::int64_t missi
 }
 
 Result<MissionCurrent> estimate_mission_current_from_turns(Context& ctx, std::int64_t mission_id) {
-  store::Store& db = ctx.db();
+  store::Store& db = store_of(ctx);
   const auto mission = db.missions().get(mission_id);
   if (!mission) return not_found("no mission " + std::to_string(mission_id));
   store::TurnsLeftOut others;
@@ -256,7 +258,7 @@ Result<AppliedCurrent> apply_mission_current(Context& ctx, std::int64_t mission_
   AppliedCurrent out;
   out.current = *est;
   if (!est->result.estimate) return out;
-  store::Store& db = ctx.db();
+  store::Store& db = store_of(ctx);
   std::vector<std::pair<std::int64_t, kin::TurnSequence>> raw;
   if (current_is_significant(*est->result.estimate)) {
     for_each_mission_turn(db, mission_id, kin::TurnStatus::ok, [&](const store::TurnRow& t) {
@@ -272,7 +274,7 @@ Result<AppliedCurrent> apply_mission_current(Context& ctx, std::int64_t mission_
   sc.speed_reference = est->speed_reference;
   sc.drift_scatter = est->drift_scatter;
   sc.revision = db.currents().save(sc, water);
-  out.stored = sc;
+  out.stored = view_of(sc);
   out.water_turns = water.size();
   return out;
 }
@@ -306,7 +308,7 @@ Result<QueryCurrent> query_current(Context& ctx, const std::string& vehicle_id,
   } else if (none) {
     out.source = "none";
     out.frame = "water";
-  } else if (const auto c = ctx.db().currents().latest_for_vehicle(vehicle_id)) {
+  } else if (const auto c = store_of(ctx).currents().latest_for_vehicle(vehicle_id)) {
     out.frame = "ground";
     out.covariance = c->estimate.covariance;
     if (current_is_significant(c->estimate)) {
@@ -322,15 +324,16 @@ Result<QueryCurrent> query_current(Context& ctx, const std::string& vehicle_id,
   return out;
 }
 
-Result<std::optional<store::StoredCurrent>> stored_mission_current(Context& ctx,
-                                                                   std::int64_t mission_id) {
-  store::Store& db = ctx.db();
+Result<std::optional<CurrentView>> stored_mission_current(Context& ctx, std::int64_t mission_id) {
+  store::Store& db = store_of(ctx);
   if (!db.missions().get(mission_id)) return not_found("no mission " + std::to_string(mission_id));
-  return db.currents().for_mission(mission_id);
+  std::optional<CurrentView> out;
+  if (const auto c = db.currents().for_mission(mission_id)) out = view_of(*c);
+  return out;
 }
 
-Result<store::StoredCurrent> vehicle_current(Context& ctx, const std::string& vehicle_id) {
-  if (auto c = ctx.db().currents().latest_for_vehicle(vehicle_id)) return *c;
+Result<CurrentView> vehicle_current(Context& ctx, const std::string& vehicle_id) {
+  if (auto c = store_of(ctx).currents().latest_for_vehicle(vehicle_id)) return view_of(*c);
   return not_found("no current has been estimated for vehicle '" + vehicle_id + "'");
 }
 

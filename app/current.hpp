@@ -11,23 +11,17 @@
 #include <utility>
 #include <vector>
 
+#include "app/current_view.hpp"
 #include "app/result.hpp"
 #include "kinematics/current_estimate.hpp"
 #include "kinematics/drift_scatter.hpp"
 #include "kinematics/speed_reference.hpp"
 #include "kinematics/turn_sequence.hpp"
 #include "kinematics/water_current.hpp"
-#include "store/store.hpp"
 
 namespace avk::app {
 
 class Context;
-
-// Calls fn for every stored turn row of a mission (of one status when given), oldest first, a
-// page at a time.
-void for_each_mission_turn(store::Store& db, std::int64_t mission_id,
-                           std::optional<kinematics::TurnStatus> status,
-                           const std::function<void(const store::TurnRow&)>& fn);
 
 // How much of the steady stretch before each turn is used: the last leg_s seconds before the
 // command during which the desired heading and speed stayed as they were at the command.
@@ -50,32 +44,6 @@ struct MissionCurrent {
 // not_found for an unknown mission.
 Result<MissionCurrent> estimate_mission_current(Context& ctx, std::int64_t mission_id,
                                                 double leg_s = kSteadyLegS);
-
-// The steady legs of a mission's navigation: for each turn start time, the rows before it whose
-// desired heading and speed equal those in force at the command, at most leg_s long and at least
-// kMinSteadyLegS. The held heading is the legs' circular mean compass heading; the speed through
-// the water is the desired speed.
-std::vector<kinematics::SteadyLeg> steady_legs_before(const std::vector<double>& turn_starts_s,
-                                                      const std::vector<store::NavRow>& nav,
-                                                      double leg_s = kSteadyLegS);
-
-// The legs that measure the vehicle's motion (which speed its loop holds and how its straight-line
-// predictions scatter, app/vehicle_motion.hpp) are longer than the current's: the whole stretch
-// before each command during which the guidance held (as for steady_legs_before) and the vehicle
-// was steady, at most kMotionLegMaxS and at least kMotionLegMinS. Steady: its heading and its
-// speed over ground, each averaged over kSteadySmoothingS, within kSteadyHeadingTolDeg and
-// kSteadySpeedTolMps of their means over the last kSteadyReferenceS before the command. The first
-// seconds after a heading change are the last turn's tail and the speed loop's recovery, and are
-// left out so. On a steady leg the speed over ground is constant whichever speed the loop holds,
-// so the test favours neither.
-inline constexpr double kMotionLegMaxS = 60.0;
-inline constexpr double kMotionLegMinS = 5.0;
-inline constexpr double kSteadyReferenceS = 3.0;
-inline constexpr double kSteadySmoothingS = 1.0;
-inline constexpr double kSteadyHeadingTolDeg = 8.0;
-inline constexpr double kSteadySpeedTolMps = 0.05;
-std::vector<kinematics::SteadyLeg> steady_stretches_before(const std::vector<double>& turn_starts_s,
-                                                           const std::vector<store::NavRow>& nav);
 
 // The current from the mission's turns (thesis §6.3): each ok turn over ground against the
 // prediction through the water of a table built from the vehicle's OTHER missions (their turns in
@@ -104,8 +72,8 @@ std::vector<std::pair<std::int64_t, kinematics::TurnSequence>> water_frame_turns
 
 struct AppliedCurrent {
   MissionCurrent current;
-  std::optional<store::StoredCurrent> stored;  // none when there is no estimate
-  std::size_t water_turns = 0;  // ok turns given a water-frame form (0: not significant)
+  std::optional<CurrentView> stored;  // none when there is no estimate
+  std::size_t water_turns = 0;        // ok turns given a water-frame form (0: not significant)
 };
 
 // Estimates the mission's current from its steady legs and stores it; when it is significant its
@@ -143,11 +111,10 @@ Result<QueryCurrent> query_current(Context& ctx, const std::string& vehicle_id,
                                    const std::string& field, bool none = false);
 
 // The mission's stored estimate (none without one); not_found for an unknown mission.
-Result<std::optional<store::StoredCurrent>> stored_mission_current(Context& ctx,
-                                                                   std::int64_t mission_id);
+Result<std::optional<CurrentView>> stored_mission_current(Context& ctx, std::int64_t mission_id);
 
 // The station's estimate for a vehicle: the newest stored estimate of any of its missions (the
 // running one's is updated at every turn). not_found when it has none.
-Result<store::StoredCurrent> vehicle_current(Context& ctx, const std::string& vehicle_id);
+Result<CurrentView> vehicle_current(Context& ctx, const std::string& vehicle_id);
 
 }  // namespace avk::app

@@ -5,6 +5,8 @@
 
 #include "app/context.hpp"
 #include "app/current.hpp"
+#include "app/mission_legs.hpp"
+#include "app/store_access.hpp"
 #include "kinematics/ckt.hpp"
 #include "kinematics/maneuver.hpp"
 #include "kinematics/path_metric.hpp"
@@ -41,7 +43,7 @@ Result<CompensationComparison> compare_current_compensation(
     if (std::find(table_missions.begin(), table_missions.end(), id) != table_missions.end())
       return invalid_argument("test_missions", "mission " + std::to_string(id) +
                                                    " is in the table; a test needs other turns");
-  store::Store& db = ctx.db();
+  store::Store& db = store_of(ctx);
   for (const auto& list : {table_missions, test_missions})
     for (const auto id : list)
       if (!db.missions().get(id)) return not_found("no mission " + std::to_string(id));

@@ -1,8 +1,10 @@
 #include "app/current_tracker.hpp"
+#include "app/store_access.hpp"
 
 #include <algorithm>
 
 #include "app/current.hpp"
+#include "app/mission_legs.hpp"
 #include "app/vehicle_motion.hpp"
 
 namespace avk::app {
@@ -60,7 +62,7 @@ void CurrentTracker::save(double t_s) {
                          ? water_frame_turns(ok_turns_, water_current(*estimate_))
                          : std::vector<std::pair<std::int64_t, kin::TurnSequence>>{};
   sc.revision = store_.currents().save(sc, water);
-  if (publish_) publish_(sc);
+  if (publish_) publish_(view_of(sc));
 }
 
 }  // namespace avk::app

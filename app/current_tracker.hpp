@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "app/current_view.hpp"
 #include "kinematics/current_estimate.hpp"
 #include "kinematics/drift_scatter.hpp"
 #include "kinematics/speed_reference.hpp"
@@ -25,7 +26,7 @@ namespace avk::app {
 
 class CurrentTracker {
  public:
-  using Publish = std::function<void(const store::StoredCurrent&)>;
+  using Publish = std::function<void(const CurrentView&)>;
   CurrentTracker(store::Store& store, std::int64_t mission_id, Publish publish = {});
 
   void nav(const store::NavRow& row);

@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include "app/context.hpp"
+#include "app/store_access.hpp"
 #include "mission/mission_config.hpp"
 #include "mission/turn_harvester.hpp"
 #include "store/store.hpp"
@@ -82,32 +83,15 @@ HarvestReport harvest(store::Store& db, const store::Mission& m) {
 
 }  // namespace
 
-std::vector<vehicle::GuidedNav> guided_log(const std::vector<store::NavRow>& rows) {
-  std::vector<vehicle::GuidedNav> out;
-  out.reserve(rows.size());
-  for (const auto& r : rows) {
-    vehicle::GuidedNav g;
-    g.nav.t_s = r.t_s;
-    g.nav.x_m = r.x_m;
-    g.nav.y_m = r.y_m;
-    g.nav.heading_deg = r.heading_deg;
-    g.nav.speed_mps = r.speed_mps;
-    g.desired_heading_deg = r.desired_heading_deg;
-    g.desired_speed_mps = r.desired_speed_mps;
-    out.push_back(std::move(g));
-  }
-  return out;
-}
-
 Result<HarvestReport> harvest_mission(Context& ctx, std::int64_t mission_id) {
-  store::Store& db = ctx.db();
+  store::Store& db = store_of(ctx);
   const auto m = db.missions().get(mission_id);
   if (!m) return not_found("no mission " + std::to_string(mission_id));
   return harvest(db, *m);
 }
 
 Result<std::vector<HarvestReport>> harvest_vehicle(Context& ctx, const std::string& vehicle_id) {
-  store::Store& db = ctx.db();
+  store::Store& db = store_of(ctx);
   std::vector<HarvestReport> out;
   for (const auto& m : db.missions().list())
     if (m.vehicle_id == vehicle_id) out.push_back(harvest(db, m));

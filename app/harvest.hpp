@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "app/result.hpp"
-#include "store/store.hpp"
 #include "vehicle/alog.hpp"
 
 namespace avk::app {
@@ -32,10 +31,6 @@ struct HarvestReport {
 };
 
 // not_found for an unknown mission.
-// Stored navigation rows as the guided log the harvester reads (navigation with the desired
-// heading and speed in force).
-std::vector<vehicle::GuidedNav> guided_log(const std::vector<store::NavRow>& rows);
-
 Result<HarvestReport> harvest_mission(Context& ctx, std::int64_t mission_id);
 // Every mission of the vehicle, oldest first (not_found when it has none).
 Result<std::vector<HarvestReport>> harvest_vehicle(Context& ctx, const std::string& vehicle_id);

@@ -7,11 +7,11 @@
 #include <memory>
 #include <string>
 
+#include "app/current_view.hpp"
 #include "app/vehicle_snapshot.hpp"
 #include "mission/event_kind.hpp"
 #include "mission/mission_observer.hpp"
 #include "mission/mission_runner.hpp"
-#include "store/store.hpp"
 
 namespace avk::app {
 
@@ -26,7 +26,7 @@ class LiveFeed {
   virtual std::unique_ptr<mission::MissionObserver> follow(
       std::int64_t mission_id, const mission::MissionRunner& runner) = 0;
   // A new estimate of the current the running mission is in (app/current_tracker.hpp).
-  virtual void current(const std::string& /*vehicle_id*/, const store::StoredCurrent& /*c*/) {}
+  virtual void current(const std::string& /*vehicle_id*/, const CurrentView& /*c*/) {}
 };
 
 // Tells nobody: for the command line and for tests that do not watch the stream.

@@ -29,7 +29,7 @@ class LiveFeeds final : public LiveFeed {
       all->list.push_back(f->follow(mission_id, runner));
     return all;
   }
-  void current(const std::string& vehicle_id, const store::StoredCurrent& c) override {
+  void current(const std::string& vehicle_id, const CurrentView& c) override {
     for (auto* f : feeds_)
       f->current(vehicle_id, c);
   }

@@ -6,6 +6,7 @@
 #include "app/ckt_tables.hpp"
 #include "app/context.hpp"
 #include "app/current.hpp"
+#include "app/store_access.hpp"
 #include "app/vehicle_motion.hpp"
 #include "app/yaw_rate_table.hpp"
 #include "kinematics/ckt.hpp"
@@ -68,7 +69,7 @@ Result<Predictor> predictor_for(Context& ctx, const std::string& vehicle_id,
     p.fine = t->fine;
     p.table_source = to_string(t->source);
   } else if (method == PredictionMethod::model) {
-    store::Store& db = ctx.db();
+    store::Store& db = store_of(ctx);
     p.model = model_id ? db.models().get(*model_id) : db.models().latest(vehicle_id);
     if (!p.model)
       return not_found(model_id ? "no model " + std::to_string(*model_id)

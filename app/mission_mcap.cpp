@@ -13,7 +13,9 @@
 #include "app/foxglove_scene.hpp"
 #include "app/imported_text.hpp"
 #include "app/mcap/reader.hpp"
+#include "app/mission_legs.hpp"
 #include "app/mission_mcap_format.hpp"
+#include "app/store_access.hpp"
 #include "kinematics/angles.hpp"
 #include "kinematics/turn_json.hpp"
 #include "mission/event_kind.hpp"
@@ -314,7 +316,7 @@ std::uint64_t McapChannelCounts::of(const std::string& topic) const {
 Result<McapExport> export_mission_mcap(Context& ctx, std::int64_t mission_id,
                                        const McapExportOptions& options,
                                        const mcap::Writer::Sink& sink) {
-  store::Store& db = ctx.db();
+  store::Store& db = store_of(ctx);
   const auto mission = db.missions().get(mission_id);
   if (!mission) return not_found("no mission " + std::to_string(mission_id));
   std::optional<vehicle::LocalGrid> grid;

@@ -14,6 +14,7 @@
 #include "app/imported_text.hpp"
 #include "app/mcap/reader.hpp"
 #include "app/mission_mcap_format.hpp"
+#include "app/store_access.hpp"
 #include "kinematics/angles.hpp"
 #include "kinematics/turn_json.hpp"
 #include "mission/event_kind.hpp"
@@ -434,7 +435,7 @@ Result<McapImport> import_mission_mcap(Context& ctx, std::string_view bytes) {
   out.condition_sets = d.condition_sets.size();
   out.current = d.current.has_value();
   out.messages = std::move(r.messages);
-  store::Store& db = ctx.db();
+  store::Store& db = store_of(ctx);
   // The turn documents keep the mission id text they were recorded under: where they came from.
   out.mission_id = db.import_mission(d);
   return out;

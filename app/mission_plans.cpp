@@ -4,6 +4,7 @@
 
 #include "app/context.hpp"
 #include "app/mission_liveness.hpp"
+#include "app/store_access.hpp"
 #include "kinematics/angles.hpp"
 #include "mission/container.hpp"
 #include "mission/event_kind.hpp"
@@ -29,7 +30,7 @@ Error mission_config_error(const mission::MissionConfigError& e) {
 
 Result<MissionPlan> create_mission_plan(Context& ctx, const std::string& config_text,
                                         const vehicle::VehicleInfo& vehicle) {
-  store::Store& db = ctx.db();
+  store::Store& db = store_of(ctx);
   MissionPlan p;
   try {
     p.config = mission::parse_mission_config(config_text, vehicle.max_speed_mps);
@@ -47,7 +48,7 @@ Result<MissionPlan> create_mission_plan(Context& ctx, const std::string& config_
 
 Result<MissionPlan> resume_mission_plan(Context& ctx, std::int64_t mission_id,
                                         double max_speed_mps) {
-  store::Store& db = ctx.db();
+  store::Store& db = store_of(ctx);
   const auto m = db.missions().get(mission_id);
   if (!m) return not_found("no mission " + std::to_string(mission_id) + " in the database");
   const store::MissionStatus status = effective_status(*m);

@@ -6,6 +6,7 @@
 
 #include "app/context.hpp"
 #include "app/mission_recorder.hpp"
+#include "app/store_access.hpp"
 #include "mission/helm_loop.hpp"
 #include "mission/mission_runner.hpp"
 #include "mission/turn_plan.hpp"
@@ -42,7 +43,7 @@ Result<std::unique_ptr<LocalVehicle>> open_vehicle(const VehicleSourceOptions& o
 // Runs the plan to its end on the vehicle, recording it as the station records missions.
 Result<MissionRunOutcome> run_on(Context& ctx, const MissionPlan& plan, LocalVehicle& local,
                                  const VehicleSourceOptions& vo, const MissionRunOptions& options) {
-  store::Store& db = ctx.db();
+  store::Store& db = store_of(ctx);
   VehicleSource& source = *local.source;
   vehicle::Vehicle& vehicle = source.vehicle();
   MissionRecorder recorder(db, plan.mission_id);
@@ -93,7 +94,7 @@ Result<MissionRunOutcome> plan_and_run(Context& ctx, VehicleSourceOptions vo,
                                        const std::function<Result<MissionPlan>()>& make_plan) {
   std::unique_ptr<LocalVehicle> real;
   if (!vehicle::is_simulated(kind_of(vo))) {
-    vo.start_clock_s = ctx.db().missions().station_clock_end_s() + 1.0;
+    vo.start_clock_s = store_of(ctx).missions().station_clock_end_s() + 1.0;
     auto opened = open_vehicle(vo, options);
     if (!opened) return opened.error();
     real = std::move(*opened);
@@ -129,7 +130,7 @@ Result<MissionRunOutcome> run_new_mission(Context& ctx, const std::string& confi
 Result<MissionRunOutcome> resume_mission_run(Context& ctx, std::int64_t mission_id,
                                              VehicleSourceOptions vehicle,
                                              const MissionRunOptions& options) {
-  store::Store& db = ctx.db();
+  store::Store& db = store_of(ctx);
   const auto m = db.missions().get(mission_id);
   if (!m) return not_found("no mission " + std::to_string(mission_id) + " in the database");
   const auto stored = db.vehicles().get(m->vehicle_id);

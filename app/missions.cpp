@@ -8,6 +8,7 @@
 #include "app/mission_liveness.hpp"
 #include "app/mission_plans.hpp"
 #include "app/mission_recorder.hpp"
+#include "app/store_access.hpp"
 #include "mission/turn_plan.hpp"
 
 namespace avk::app {
@@ -66,11 +67,11 @@ CellReport* find_cell(std::vector<CellReport>& cells, double speed_mps,
   return nullptr;
 }
 
-MissionSummary summary_of(store::Mission m, store::TurnCounts turns) {
+MissionSummary summary_of(const store::Mission& m, const store::TurnCounts& turns) {
   MissionSummary s;
-  s.status = effective_status(m);
-  s.turns = turns;
-  s.mission = std::move(m);
+  s.status = view_of(effective_status(m));
+  s.turns = view_of(turns);
+  s.mission = view_of(m);
   return s;
 }
 
@@ -106,30 +107,30 @@ std::vector<CellReport> cell_reports(const std::vector<mission::CellProgress>& c
 
 std::string status_text(const MissionReport& r) {
   if (r.live) return r.live_state ? mission::to_string(*r.live_state) : "created";
-  return store::to_string(r.summary.status);
+  return to_string(r.summary.status);
 }
 
 std::vector<MissionSummary> list_missions(Context& ctx,
                                           const std::optional<std::string>& vehicle_id) {
-  store::Store& db = ctx.db();
+  store::Store& db = store_of(ctx);
   const auto counts = db.missions().turn_counts();
   std::vector<MissionSummary> out;
   for (auto& m : db.missions().list()) {
     if (vehicle_id && m.vehicle_id != *vehicle_id) continue;
     const auto it = counts.find(m.id);
-    out.push_back(summary_of(std::move(m), it == counts.end() ? store::TurnCounts{} : it->second));
+    out.push_back(summary_of(m, it == counts.end() ? store::TurnCounts{} : it->second));
   }
   return out;
 }
 
 Result<MissionSummary> mission_summary(Context& ctx, std::int64_t mission_id) {
-  auto m = ctx.db().missions().get(mission_id);
+  auto m = store_of(ctx).missions().get(mission_id);
   if (!m) return not_found("no mission " + std::to_string(mission_id));
-  return summary_of(std::move(*m), totals_of(ctx.db().missions().cell_stats(mission_id)));
+  return summary_of(*m, totals_of(store_of(ctx).missions().cell_stats(mission_id)));
 }
 
 Result<MissionReport> mission_report(Context& ctx, std::int64_t mission_id) {
-  store::Store& db = ctx.db();
+  store::Store& db = store_of(ctx);
   auto m = db.missions().get(mission_id);
   if (!m) return not_found("no mission " + std::to_string(mission_id));
   MissionReport r;
@@ -180,10 +181,11 @@ Result<MissionReport> mission_report(Context& ctx, std::int64_t mission_id) {
     auto page = db.turns().list(filter);
     const bool last = static_cast<int>(page.size()) < filter.limit;
     if (!page.empty()) filter.after_id = page.back().id;
-    r.turns.insert(r.turns.end(), page.begin(), page.end());
+    for (const auto& t : page)
+      r.turns.push_back(view_of(t));
     if (last) break;
   }
-  r.summary = summary_of(std::move(*m), totals_of(stats));
+  r.summary = summary_of(*m, totals_of(stats));
   return r;
 }
 
@@ -198,8 +200,8 @@ Result<std::int64_t> start_mission(Context& ctx, const std::string& vehicle_id,
   if (!plan) return plan.error();
   const std::int64_t id = plan->mission_id;
   if (!loop->attach(std::move(*plan))) {
-    ctx.db().missions().set_status(id, store::MissionStatus::aborted,
-                                   "another mission started first", 0.0);
+    store_of(ctx).missions().set_status(id, store::MissionStatus::aborted,
+                                        "another mission started first", 0.0);
     return conflict("another mission is running");
   }
   return id;
@@ -219,7 +221,7 @@ const char* to_string(MissionCommand c) {
 
 Result<std::string> vehicle_of_missions(Context& ctx,
                                         const std::vector<std::int64_t>& mission_ids) {
-  store::Store& db = ctx.db();
+  store::Store& db = store_of(ctx);
   for (const auto id : mission_ids)
     if (!db.missions().get(id)) return not_found("no mission " + std::to_string(id));
   std::set<std::string> vehicles;
@@ -239,11 +241,11 @@ Result<std::string> vehicle_of_missions(Context& ctx,
 }
 
 double station_clock_start_s(Context& ctx) {
-  return ctx.db().missions().station_clock_end_s() + 1.0;
+  return store_of(ctx).missions().station_clock_end_s() + 1.0;
 }
 
 Result<MissionReport> command_mission(Context& ctx, std::int64_t mission_id, MissionCommand c) {
-  store::Store& db = ctx.db();
+  store::Store& db = store_of(ctx);
   const auto m = db.missions().get(mission_id);
   if (!m) return not_found("no mission " + std::to_string(mission_id));
   VehicleLoop* loop = ctx.vehicle_loop();
@@ -276,25 +278,27 @@ template <class T, class Read, class Cursor>
 Result<Page<T>> mission_page(Context& ctx, std::int64_t mission_id, int limit, Read read,
                              Cursor cursor) {
   if (limit < 1) return invalid_argument("limit", "must be at least 1");
-  if (!ctx.db().missions().get(mission_id))
+  if (!store_of(ctx).missions().get(mission_id))
     return not_found("no mission " + std::to_string(mission_id));
   return make_page<T>(read(), limit, cursor);
 }
 
 }  // namespace
 
-Result<Page<store::MissionEvent>> mission_events(Context& ctx, std::int64_t mission_id,
-                                                 std::int64_t after, int limit) {
-  return mission_page<store::MissionEvent>(
-      ctx, mission_id, limit, [&] { return ctx.db().missions().events(mission_id, after, limit); },
-      [](const store::MissionEvent& e) { return e.id; });
+Result<Page<MissionEventView>> mission_events(Context& ctx, std::int64_t mission_id,
+                                              std::int64_t after, int limit) {
+  return mission_page<MissionEventView>(
+      ctx, mission_id, limit,
+      [&] { return views_of(store_of(ctx).missions().events(mission_id, after, limit)); },
+      [](const MissionEventView& e) { return e.id; });
 }
 
-Result<Page<store::NavPageRow>> mission_track(Context& ctx, std::int64_t mission_id,
-                                              std::int64_t after, int limit) {
-  return mission_page<store::NavPageRow>(
-      ctx, mission_id, limit, [&] { return ctx.db().navigation().page(mission_id, after, limit); },
-      [](const store::NavPageRow& r) { return r.rowid; });
+Result<Page<TrackPoint>> mission_track(Context& ctx, std::int64_t mission_id, std::int64_t after,
+                                       int limit) {
+  return mission_page<TrackPoint>(
+      ctx, mission_id, limit,
+      [&] { return views_of(store_of(ctx).navigation().page(mission_id, after, limit)); },
+      [](const TrackPoint& r) { return r.rowid; });
 }
 
 }  // namespace avk::app

@@ -9,13 +9,14 @@
 #include <string>
 #include <vector>
 
+#include "app/mission_views.hpp"
 #include "app/result.hpp"
+#include "app/turn_views.hpp"
 #include "kinematics/ckt.hpp"
 #include "mission/helm_mode.hpp"
 #include "mission/mission_config.hpp"
 #include "mission/mission_observer.hpp"
 #include "mission/mission_runner.hpp"
-#include "store/store.hpp"
 
 namespace avk::app {
 
@@ -48,9 +49,9 @@ struct CellReport {
 std::vector<CellReport> cell_reports(const std::vector<mission::CellProgress>& cells);
 
 struct MissionSummary {
-  store::Mission mission;
-  store::MissionStatus status;  // a mission stored as running whose process died: interrupted
-  store::TurnCounts turns;
+  MissionView mission;
+  MissionStatus status;  // a mission stored as running whose process died: interrupted
+  TurnCounts turns;
 };
 
 struct MissionReport {
@@ -68,7 +69,7 @@ struct MissionReport {
   std::size_t condition_set_count = 0;
   // Every turn of the mission, oldest first: how steady each began (heading error and yaw rate
   // at its start) as well as how it ended.
-  std::vector<store::TurnRow> turns;
+  std::vector<TurnView> turns;
 };
 
 // The status a front end shows: the live state while the mission runs, else the stored one.
@@ -107,11 +108,11 @@ Page<T> make_page(std::vector<T> items, int limit, Cursor cursor) {
     page.next = cursor(page.items.back());
   return page;
 }
-Result<Page<store::MissionEvent>> mission_events(Context& ctx, std::int64_t mission_id,
-                                                 std::int64_t after, int limit);
+Result<Page<MissionEventView>> mission_events(Context& ctx, std::int64_t mission_id,
+                                              std::int64_t after, int limit);
 // The recorded navigation; the cursor is the row id, so rows recorded while a client pages are
 // appended after it and nothing is skipped or repeated.
-Result<Page<store::NavPageRow>> mission_track(Context& ctx, std::int64_t mission_id,
-                                              std::int64_t after, int limit);
+Result<Page<TrackPoint>> mission_track(Context& ctx, std::int64_t mission_id, std::int64_t after,
+                                       int limit);
 
 }  // namespace avk::app

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "app/context.hpp"
+#include "app/store_access.hpp"
 #include "kinematics/angles.hpp"
 #include "mission/helm_mode.hpp"
 
@@ -29,7 +30,7 @@ std::optional<Error> check_missions(Context& ctx, const std::string& vehicle_id,
   if (missions.empty()) return invalid_argument("missions", "give at least one mission id");
   for (const auto id : missions) {
     if (id <= 0) return invalid_argument("missions", "holds a bad id: " + std::to_string(id));
-    const auto m = ctx.db().missions().get(id);
+    const auto m = store_of(ctx).missions().get(id);
     if (!m) return invalid_argument("missions", "no mission " + std::to_string(id));
     if (m->vehicle_id != vehicle_id)
       return invalid_argument("missions", "mission " + std::to_string(id) + " is of vehicle '" +
@@ -42,7 +43,7 @@ std::optional<Error> check_missions(Context& ctx, const std::string& vehicle_id,
 
 Result<std::vector<kin::IdentSegment>> identification_data(
     Context& ctx, const std::vector<std::int64_t>& missions, const kin::ResampleOptions& options) {
-  store::Store& db = ctx.db();
+  store::Store& db = store_of(ctx);
   std::vector<kin::IdentSegment> out;
   for (const std::int64_t id : missions) {
     if (!db.missions().get(id)) return not_found("no mission " + std::to_string(id));
@@ -75,7 +76,8 @@ Result<ModelHeadings> model_headings(Context& ctx, std::int64_t model_id, std::i
   const auto stored = get_model(ctx, model_id);
   if (!stored) return stored.error();
   const kin::YawModel& model = stored->model;
-  if (!ctx.db().missions().get(mission)) return not_found("no mission " + std::to_string(mission));
+  if (!store_of(ctx).missions().get(mission))
+    return not_found("no mission " + std::to_string(mission));
   kin::ResampleOptions resample;
   resample.rate_hz = model.rate_hz;  // the model steps at its own rate only
   auto data = identification_data(ctx, {mission}, resample);
@@ -150,7 +152,7 @@ Result<FittedModel> fit_model(Context& ctx, const std::string& vehicle_id,
   } catch (const std::invalid_argument& e) {
     return unsupported(e.what());
   }
-  store::StoredModel& m = f.stored;
+  ModelView& m = f.stored;
   m.vehicle_id = vehicle_id;
   m.training_missions = missions;
   m.model = f.result.model;
@@ -159,7 +161,7 @@ Result<FittedModel> fit_model(Context& ctx, const std::string& vehicle_id,
     m.validation_mse_m2 = f.result.validation.position_mse_m2;
     m.validation_heading_rms_deg = f.result.validation.heading_rms_deg;
   }
-  m.id = ctx.db().models().save(m);
+  m.id = store_of(ctx).models().save(to_store(m));
   return f;
 }
 
@@ -176,23 +178,22 @@ Result<std::vector<kin::HistorySweepRow>> sweep_model_history(
   }
 }
 
-std::vector<store::StoredModel> list_models(Context& ctx,
-                                            const std::optional<std::string>& vehicle_id) {
-  return ctx.db().models().list(vehicle_id);
+std::vector<ModelView> list_models(Context& ctx, const std::optional<std::string>& vehicle_id) {
+  return views_of(store_of(ctx).models().list(vehicle_id));
 }
 
-Result<store::StoredModel> get_model(Context& ctx, std::int64_t model_id) {
-  auto m = ctx.db().models().get(model_id);
+Result<ModelView> get_model(Context& ctx, std::int64_t model_id) {
+  auto m = store_of(ctx).models().get(model_id);
   if (!m) return not_found("no model " + std::to_string(model_id));
-  return std::move(*m);
+  return view_of(*m);
 }
 
-Result<store::StoredModel> model_or_latest(Context& ctx, std::optional<std::int64_t> model_id,
-                                           const std::string& vehicle_id) {
+Result<ModelView> model_or_latest(Context& ctx, std::optional<std::int64_t> model_id,
+                                  const std::string& vehicle_id) {
   if (model_id) return get_model(ctx, *model_id);
-  auto m = ctx.db().models().latest(vehicle_id);
+  auto m = store_of(ctx).models().latest(vehicle_id);
   if (!m) return not_found("no model of '" + vehicle_id + "' is stored (fit one first)");
-  return std::move(*m);
+  return view_of(*m);
 }
 
 }  // namespace avk::app

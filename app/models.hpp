@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "app/model_view.hpp"
 #include "app/result.hpp"
 #include "kinematics/yaw_identification.hpp"
-#include "store/store.hpp"
 
 namespace avk::app {
 
@@ -52,7 +52,7 @@ Result<ModelHeadings> model_headings(Context& ctx, std::int64_t model_id, std::i
                                      std::size_t max_samples, double restart_step_deg = 5.0);
 
 struct FittedModel {
-  store::StoredModel stored;  // with its id
+  ModelView stored;  // with its id
   kinematics::IdentificationResult result;
 };
 // Fits on the missions (each of the vehicle; invalid_argument "missions" otherwise) and stores the
@@ -68,11 +68,10 @@ Result<std::vector<kinematics::HistorySweepRow>> sweep_model_history(
     const kinematics::IdentificationOptions& options,
     const kinematics::ResampleOptions& resample = {});
 
-std::vector<store::StoredModel> list_models(Context& ctx,
-                                            const std::optional<std::string>& vehicle_id);
-Result<store::StoredModel> get_model(Context& ctx, std::int64_t model_id);
+std::vector<ModelView> list_models(Context& ctx, const std::optional<std::string>& vehicle_id);
+Result<ModelView> get_model(Context& ctx, std::int64_t model_id);
 // The model given, or the vehicle's latest.
-Result<store::StoredModel> model_or_latest(Context& ctx, std::optional<std::int64_t> model_id,
-                                           const std::string& vehicle_id);
+Result<ModelView> model_or_latest(Context& ctx, std::optional<std::int64_t> model_id,
+                                  const std::string& vehicle_id);
 
 }  // namespace avk::app

@@ -1,4 +1,5 @@
 #include "app/predict.hpp"
+#include "app/table_cache.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -8,6 +9,7 @@
 #include "app/context.hpp"
 #include "app/current.hpp"
 #include "app/maneuvers.hpp"
+#include "app/store_access.hpp"
 #include "app/yaw_rate_table.hpp"
 #include "kinematics/ckt.hpp"
 #include "kinematics/number_text.hpp"
@@ -182,7 +184,7 @@ Result<HeldOut> held_out_of(Context& ctx, const PredictQuery& q) {
   HeldOut h;
   h.left_out.mission_id = q.without_mission_id;
   h.left_out.turn_id = q.without_turn_id;
-  store::Store& db = ctx.db();
+  store::Store& db = store_of(ctx);
   if (h.left_out.mission_id) {
     if (!db.missions().get(*h.left_out.mission_id))
       return not_found("no mission " + std::to_string(*h.left_out.mission_id));
@@ -230,7 +232,7 @@ Result<Prediction> from_held_out_table(Context& ctx, Prediction p, const HeldOut
 // held-out missions when there are any.
 Result<store::StoredModel> answering_model(Context& ctx, const PredictQuery& q,
                                            const std::vector<std::int64_t>& unseen) {
-  store::Store& db = ctx.db();
+  store::Store& db = store_of(ctx);
   const auto trained_on = [&](const store::StoredModel& m) -> std::optional<std::int64_t> {
     for (const auto id : unseen)
       if (std::ranges::find(m.training_missions, id) != m.training_missions.end()) return id;
@@ -319,7 +321,7 @@ struct ResponseChoice {
 std::optional<ResponseChoice> speed_response_for(Context& ctx, const VehicleTable& t,
                                                  const std::string& vehicle_id) {
   if (t.measured_speed_response) return ResponseChoice{*t.measured_speed_response, "measured"};
-  const auto m = ctx.db().models().latest(vehicle_id);
+  const auto m = store_of(ctx).models().latest(vehicle_id);
   if (!m) return std::nullopt;
   if (auto r = kin::speed_response_of_model(m->model)) return ResponseChoice{*r, "model"};
   return std::nullopt;

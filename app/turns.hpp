@@ -5,13 +5,13 @@
 
 #include "app/missions.hpp"
 #include "app/result.hpp"
-#include "store/store.hpp"
+#include "app/turn_views.hpp"
 
 namespace avk::app {
 
 class Context;
 
-Result<Page<store::TurnRow>> query_turns(Context& ctx, const store::TurnFilter& filter);
-Result<store::StoredTurn> get_turn(Context& ctx, std::int64_t turn_id);
+Result<Page<TurnView>> query_turns(Context& ctx, const TurnQuery& query);
+Result<TurnDetail> get_turn(Context& ctx, std::int64_t turn_id);
 
 }  // namespace avk::app

@@ -105,7 +105,7 @@ struct VehicleLoop::Impl {
     r.runner->add_observer(helm_sync);  // first: see HelmSync
     r.recorder = std::make_unique<MissionRecorder>(
         *store, plan.mission_id, 1.0,
-        [this, vid = vehicle().info().id](const store::StoredCurrent& c) { feed.current(vid, c); });
+        [this, vid = vehicle().info().id](const CurrentView& c) { feed.current(vid, c); });
     r.follower = feed.follow(plan.mission_id, *r.runner);
     r.runner->add_observer(*r.recorder);
     r.runner->add_observer(*r.follower);

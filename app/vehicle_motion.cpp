@@ -4,6 +4,7 @@
 
 #include "app/context.hpp"
 #include "app/current.hpp"
+#include "app/store_access.hpp"
 #include "app/vehicles.hpp"
 
 namespace avk::app {
@@ -25,7 +26,7 @@ LegMotion leg_motion(const std::vector<kin::SteadyLeg>& legs,
 
 Result<VehicleMotion> vehicle_motion(Context& ctx, const std::string& vehicle_id,
                                      std::span<const std::int64_t> missions) {
-  store::Store& db = ctx.db();
+  store::Store& db = store_of(ctx);
   // The station's own vehicle counts before it has stored anything.
   if (auto known = get_vehicle(ctx, vehicle_id); !known) return known.error();
   VehicleMotion out;
@@ -37,7 +38,7 @@ Result<VehicleMotion> vehicle_motion(Context& ctx, const std::string& vehicle_id
     if (!missions.empty() &&
         std::find(missions.begin(), missions.end(), c.mission_id) == missions.end())
       continue;
-    if (current_is_significant(c.estimate)) out.current = c;
+    if (current_is_significant(c.estimate)) out.current = view_of(c);
     if (c.drift_scatter && c.drift_scatter->legs > 0) scatters.push_back(*c.drift_scatter);
     if (!c.speed_reference) continue;
     MotionSpeedReference& r = out.speed_reference;

@@ -13,11 +13,11 @@
 #include <string>
 #include <vector>
 
+#include "app/current_view.hpp"
 #include "app/result.hpp"
 #include "kinematics/current_estimate.hpp"
 #include "kinematics/drift_scatter.hpp"
 #include "kinematics/speed_reference.hpp"
-#include "store/store.hpp"
 
 namespace avk::app {
 
@@ -72,7 +72,7 @@ struct VehicleMotion {
   MotionDriftScatter drift_scatter;
   // The newest estimate of the current that is told apart from still water; none when there is
   // none.
-  std::optional<store::StoredCurrent> current;
+  std::optional<CurrentView> current;
 };
 
 // The newest identification wins (conditions and the vehicle's setup change; the counts show

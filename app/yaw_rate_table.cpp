@@ -5,6 +5,7 @@
 
 #include "app/context.hpp"
 #include "app/models.hpp"
+#include "app/store_access.hpp"
 #include "kinematics/angles.hpp"
 #include "kinematics/geometry.hpp"
 #include "kinematics/path_metric.hpp"
@@ -68,7 +69,7 @@ double mean_error_m(const kin::StationedPath& path, const std::vector<kin::Stati
 Result<YawRateTable> vehicle_yaw_rate_table(Context& ctx, const std::string& vehicle_id,
                                             const YawRateTableOptions& options) {
   // In the water frame where the mission's current is known, as the 2-D table (ckt_tables.hpp).
-  std::vector<kin::TurnSequence> turns = ctx.db().turns().load_normalized(
+  std::vector<kin::TurnSequence> turns = store_of(ctx).turns().load_normalized(
       {}, vehicle_id, false, store::TurnFrameChoice::water_where_known);
   std::erase_if(turns,
                 [](const kin::TurnSequence& t) { return t.meta().status != kin::TurnStatus::ok; });

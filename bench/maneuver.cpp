@@ -8,6 +8,7 @@
 
 #include "app/context.hpp"
 #include "app/maneuvers.hpp"
+#include "app/store_access.hpp"
 #include "kinematics/ckt.hpp"
 #include "kinematics/corridor.hpp"
 #include "kinematics/maneuver.hpp"
@@ -59,7 +60,7 @@ BENCHMARK(BM_EvaluateManeuvers73x10)->Arg(0)->Arg(1)->Unit(benchmark::kMicroseco
 void BM_AppEvaluateManeuvers73x10(benchmark::State& state) {
   avk::testing::TempDb db("avk_bench_maneuver");
   app::Context ctx(db.path());
-  avk::testing::store_arc_turns(ctx.db(), "bench", 1.0, 3);
+  avk::testing::store_arc_turns(app::store_of(ctx), "bench", 1.0, 3);
   app::ManeuverQuery q;
   q.vehicle_id = "bench";
   q.own = {0.0, 0.0, 30.0};

@@ -9,6 +9,7 @@
 
 #include "app/context.hpp"
 #include "app/mission_mcap.hpp"
+#include "app/store_access.hpp"
 #include "support/example_file.hpp"
 #include "support/recorded_mission.hpp"
 #include "support/temp_db.hpp"
@@ -18,9 +19,9 @@ namespace {
 // Flown once for all the benchmarks: the mission is the input, not what is measured.
 struct Figure41 {
   Figure41() : ctx(db.path()) {
-    mission = avk::testing::run_recorded_mission(ctx.db(), "usim",
+    mission = avk::testing::run_recorded_mission(avk::app::store_of(ctx), "usim",
                                                  avk::testing::example_text("thesis-fig4-1.json"));
-    nav = ctx.db().navigation().for_mission(mission).size();
+    nav = avk::app::store_of(ctx).navigation().for_mission(mission).size();
     // The vehicle's table is built once, as a running station holds it in its cache.
     (void)avk::app::export_mission_mcap(ctx, mission);
   }

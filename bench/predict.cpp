@@ -14,6 +14,7 @@
 
 #include "app/context.hpp"
 #include "app/predict.hpp"
+#include "app/store_access.hpp"
 #include "store/store.hpp"
 #include "support/synthetic_turns.hpp"
 #include "support/temp_db.hpp"
@@ -39,7 +40,7 @@ class Vehicle {
  private:
   explicit Vehicle(int per_cell)
       : file_("avk_bench_predict_" + std::to_string(per_cell)), ctx_(file_.path()) {
-    store::Store& s = ctx_.db();
+    store::Store& s = app::store_of(ctx_);
     s.vehicles().upsert({"bench", "usim", 2.0, 1.0});
     constexpr double kSpeeds[] = {0.5, 1.0, 1.5};
     constexpr double kDheadings[] = {10.0, 40.0, 70.0, 100.0, 130.0, 160.0};

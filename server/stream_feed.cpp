@@ -14,7 +14,7 @@ void StreamFeed::station_event(double t_s, mission::EventKind kind, const std::s
   hub_.status(t_s, kind, message);
 }
 
-void StreamFeed::current(const std::string& vehicle_id, const store::StoredCurrent& c) {
+void StreamFeed::current(const std::string& vehicle_id, const app::CurrentView& c) {
   hub_.publish("current", c.t_s, current_json(vehicle_id, c).dump());
 }
 

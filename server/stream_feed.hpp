@@ -14,7 +14,7 @@ class StreamFeed final : public app::LiveFeed {
   void station_event(double t_s, mission::EventKind kind, const std::string& message) override;
   std::unique_ptr<mission::MissionObserver> follow(std::int64_t mission_id,
                                                    const mission::MissionRunner& runner) override;
-  void current(const std::string& vehicle_id, const store::StoredCurrent& c) override;
+  void current(const std::string& vehicle_id, const app::CurrentView& c) override;
 
  private:
   StreamHub& hub_;

@@ -35,7 +35,7 @@ int estimate(const std::vector<std::string>& rest, Io& io) {
     throw UsageError("--leg must be within 3..120 s");
   app::Context ctx(a.require("db"));
   app::MissionCurrent c;
-  std::optional<store::StoredCurrent> stored;
+  std::optional<app::CurrentView> stored;
   std::size_t water_turns = 0;
   if (a.flag("store")) {
     const app::AppliedCurrent applied = value_or_fail(app::apply_mission_current(ctx, id, leg_s));
@@ -152,7 +152,7 @@ int show(const std::vector<std::string>& rest, Io& io) {
   const std::string format = format_of(a);
   app::Context ctx(a.require("db"));
   const std::string vid = vehicle_of(a, ctx, {});
-  const store::StoredCurrent c = value_or_fail(app::vehicle_current(ctx, vid));
+  const app::CurrentView c = value_or_fail(app::vehicle_current(ctx, vid));
   if (format == "json") {
     io.out << current_json(vid, c).dump() << "\n";
     return 0;

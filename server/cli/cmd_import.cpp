@@ -19,7 +19,7 @@ namespace {
 
 constexpr std::size_t kProblemsShown = 5;
 
-std::string counts_text(const store::TurnCounts& c) {
+std::string counts_text(const app::TurnCounts& c) {
   return std::to_string(c.ok) + " ok, " + std::to_string(c.aborted) + " aborted, " +
          std::to_string(c.rejected) + " rejected";
 }
@@ -96,8 +96,8 @@ int import_alog(const std::vector<std::string>& rest, Io& io) {
     io.out << ", " << ns.incomplete_groups << " groups without x, y and heading skipped";
   if (ns.max_speed_mps) io.out << "; top speed " << fixed(*ns.max_speed_mps, 2) << " m/s";
   io.out << "\n";
-  const store::TurnCounts& rec = import.from_records;
-  const store::TurnCounts& ext = import.from_extraction;
+  const app::TurnCounts& rec = import.from_records;
+  const app::TurnCounts& ext = import.from_extraction;
   io.out << "turns: " << rec.total() + ext.total() << " stored\n";
   io.out << "  from turn records (" << names.turn_record << "): " << rec.total() << " ("
          << counts_text(rec) << ")\n";

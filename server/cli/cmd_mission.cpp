@@ -10,7 +10,6 @@
 #include <thread>
 
 #include "app/context.hpp"
-#include "app/mission_liveness.hpp"
 #include "app/mission_plans.hpp"
 #include "app/mission_run.hpp"
 #include "app/missions.hpp"
@@ -196,9 +195,9 @@ int execute(const std::function<app::Result<app::MissionRunOutcome>()>& run,
     value_or_fail(std::move(result));
   }
   const app::MissionRunOutcome& r = *result;
-  const store::Mission& m = r.summary.mission;
+  const app::MissionView& m = r.summary.mission;
   const double run_s = r.end_time_s - r.start_time_s;
-  io.out << "mission " << m.id << " " << store::to_string(m.status);
+  io.out << "mission " << m.id << " " << app::to_string(m.status);
   if (!m.status_reason.empty()) io.out << " (" << m.status_reason << ")";
   io.out << ": " << r.summary.turns.ok << "/" << r.planned << " turns ok, "
          << r.summary.turns.aborted << " aborted, " << r.summary.turns.rejected << " rejected";
@@ -208,7 +207,7 @@ int execute(const std::function<app::Result<app::MissionRunOutcome>()>& run,
          << "x)\n";
   if (!r.link_report.empty()) io.out << r.link_report << "\n";
   if (r.stopped) return 130;
-  return m.status == store::MissionStatus::done ? 0 : 1;
+  return m.status == app::MissionStatus::done ? 0 : 1;
 }
 
 void print_config_errors(const app::Error& e, const std::string& name, Io& io) {
@@ -293,7 +292,7 @@ int list(const std::vector<std::string>& rest, Io& io) {
          << "vehicle" << std::setw(12) << "turns ok" << std::setw(26) << "created (UTC)"
          << "name\n";
   for (const auto& s : missions)
-    io.out << std::setw(5) << s.mission.id << std::setw(13) << store::to_string(s.status)
+    io.out << std::setw(5) << s.mission.id << std::setw(13) << app::to_string(s.status)
            << std::setw(22) << s.mission.vehicle_id << std::setw(12) << s.turns.ok << std::setw(26)
            << s.mission.created_utc << s.mission.name << "\n";
   io.out << std::right;
@@ -308,7 +307,7 @@ std::string pm(const std::optional<kinematics::MeanSd>& v, int decimals, std::in
 }
 
 // A stored turn as `mission run` prints it live, for `mission wait`.
-void print_stored_turn(std::ostream& out, const store::TurnRow& t, int ok, int planned) {
+void print_stored_turn(std::ostream& out, const app::TurnView& t, int ok, int planned) {
   const bool done = t.status == kinematics::TurnStatus::ok;
   const std::string count = done ? std::to_string(ok) + "/" + std::to_string(planned) : "-";
   out << "turn " << std::setw(7) << count << "  " << fixed(t.commanded_speed_mps, 2) << " m/s "
@@ -337,7 +336,7 @@ int report(const std::vector<std::string>& rest, Io& io) {
     io.out << report_json(r, false).dump(2) << "\n";
     return 0;
   }
-  const store::Mission& m = r.summary.mission;
+  const app::MissionView& m = r.summary.mission;
   io.out << "mission " << m.id << " '" << m.name << "' on " << m.vehicle_id << ": "
          << app::status_text(r);
   if (!m.status_reason.empty()) io.out << " (" << m.status_reason << ")";
@@ -405,15 +404,15 @@ int wait(const std::vector<std::string>& rest, Io& io) {
       print_stored_turn(io.out, t, ok, planned);
     }
     const auto status = r.summary.status;
-    if (status != store::MissionStatus::running && status != store::MissionStatus::paused &&
-        status != store::MissionStatus::created) {
-      const store::Mission& m = r.summary.mission;
+    if (status != app::MissionStatus::running && status != app::MissionStatus::paused &&
+        status != app::MissionStatus::created) {
+      const app::MissionView& m = r.summary.mission;
       io.out << "mission " << m.id << " '" << m.name << "' finished: " << app::status_text(r);
       if (!m.status_reason.empty()) io.out << " (" << m.status_reason << ")";
       io.out << "; " << r.summary.turns.ok << "/" << planned << " turns ok, "
              << r.summary.turns.aborted << " aborted, " << r.summary.turns.rejected << " rejected"
              << std::endl;
-      return status == store::MissionStatus::done ? 0 : 1;
+      return status == app::MissionStatus::done ? 0 : 1;
     }
     std::this_thread::sleep_for(std::chrono::duration<double>(poll_s));
   }

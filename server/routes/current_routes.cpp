@@ -15,7 +15,7 @@ void add_current_routes(RouteTable& routes, app::Context& ctx) {
     // No estimate yet is an answer, not a missing resource: a page asks on every load.
     if (!c && c.error().code == app::ErrorCode::not_found)
       return json_response({{"vehicle_id", vid}, {"estimated", false}});
-    return answer(std::move(c), false, [&vid](const store::StoredCurrent& cur) {
+    return answer(std::move(c), false, [&vid](const app::CurrentView& cur) {
       return json_response(current_json(vid, cur));
     });
   });

@@ -66,7 +66,7 @@ void add_mission_routes(RouteTable& routes, app::Context& ctx,
                         : app::estimate_mission_current(ctx, id),
                   false, [&ctx, id](const app::MissionCurrent& c) {
                     return answer(app::stored_mission_current(ctx, id), false,
-                                  [&c](const std::optional<store::StoredCurrent>& stored) {
+                                  [&c](const std::optional<app::CurrentView>& stored) {
                                     return json_response(mission_current_json(c, stored));
                                   });
                   });
@@ -100,7 +100,7 @@ void add_mission_routes(RouteTable& routes, app::Context& ctx,
         const auto after = id_param(r, "after").value_or(0);
         const auto limit = whole_param(r, "limit", 1, 1000).value_or(100);
         return answer(app::mission_events(ctx, id, after, static_cast<int>(limit)), false,
-                      [f, page_response](const app::Page<store::MissionEvent>& page) {
+                      [f, page_response](const app::Page<app::MissionEventView>& page) {
                         return page_response(f, page, events_csv, event_json);
                       });
       },
@@ -113,9 +113,9 @@ void add_mission_routes(RouteTable& routes, app::Context& ctx,
         const auto after = id_param(r, "after").value_or(0);
         const auto limit = whole_param(r, "limit", 1, 10000).value_or(5000);
         return answer(app::mission_track(ctx, id, after, static_cast<int>(limit)), false,
-                      [f, page_response](const app::Page<store::NavPageRow>& page) {
-                        return page_response(f, page, nav_csv, [](const store::NavPageRow& row) {
-                          return nav_row_json(row.row);
+                      [f, page_response](const app::Page<app::TrackPoint>& page) {
+                        return page_response(f, page, nav_csv, [](const app::TrackPoint& row) {
+                          return track_point_json(row);
                         });
                       });
       },

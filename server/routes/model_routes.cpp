@@ -126,7 +126,7 @@ void add_model_routes(RouteTable& routes, app::Context& ctx) {
       kJsonOrCsv);
   routes.get("/api/v1/models/{id}", [&ctx](const ApiRequest&, const PathParams& p) {
     return answer(app::get_model(ctx, path_id(p, "id", "model")), false,
-                  [](const store::StoredModel& m) { return json_response(model_json(m)); });
+                  [](const app::ModelView& m) { return json_response(model_json(m)); });
   });
   routes.get("/api/v1/models/{id}/headings", [&ctx](const ApiRequest& r, const PathParams& p) {
     const auto model = path_id(p, "id", "model");

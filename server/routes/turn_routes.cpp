@@ -14,7 +14,7 @@ void add_turn_routes(RouteTable& routes, app::Context& ctx) {
       "/api/v1/turns",
       [&ctx](const ApiRequest& r, const PathParams&) {
         const Format f = negotiate(r, true);
-        store::TurnFilter filter;
+        app::TurnQuery filter;
         filter.mission_id = id_param(r, "mission");
         filter.speed_mps = number_param(r, "speed", 0.0, 100.0);
         filter.dheading_deg = number_param(r, "dheading", -180.0, 180.0);
@@ -26,7 +26,7 @@ void add_turn_routes(RouteTable& routes, app::Context& ctx) {
         filter.after_id = id_param(r, "after").value_or(0);
         filter.limit = static_cast<int>(whole_param(r, "limit", 1, 1000).value_or(100));
         return answer(
-            app::query_turns(ctx, filter), false, [f](const app::Page<store::TurnRow>& page) {
+            app::query_turns(ctx, filter), false, [f](const app::Page<app::TurnView>& page) {
               if (f == Format::csv) {
                 ApiResponse resp = csv_response(turns_csv(page.items));
                 if (page.next) resp.headers.push_back({"X-Next-After", std::to_string(*page.next)});
@@ -41,7 +41,7 @@ void add_turn_routes(RouteTable& routes, app::Context& ctx) {
       kJsonOrCsv);
   routes.get("/api/v1/turns/{id}", [&ctx](const ApiRequest&, const PathParams& p) {
     return answer(app::get_turn(ctx, path_id(p, "id", "turn")), false,
-                  [](const store::StoredTurn& t) { return json_response(turn_json(t)); });
+                  [](const app::TurnDetail& t) { return json_response(turn_json(t)); });
   });
 }
 

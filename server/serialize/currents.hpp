@@ -8,13 +8,13 @@
 #include <string>
 
 #include "app/current.hpp"
+#include "app/current_view.hpp"
 #include "app/predict.hpp"
 #include "app/vehicle_motion.hpp"
 #include "kinematics/current_estimate.hpp"
 #include "kinematics/drift_scatter.hpp"
 #include "kinematics/speed_reference.hpp"
 #include "kinematics/water_current.hpp"
-#include "store/store.hpp"
 
 namespace avk::server {
 
@@ -23,10 +23,10 @@ nlohmann::json water_current_json(const std::optional<kinematics::WaterCurrent>&
                                   const std::optional<std::string>& source);
 nlohmann::json current_estimate_json(const kinematics::CurrentEstimate& e);
 // The stream's `current` topic and GET .../current: an estimate with its mission and revision.
-nlohmann::json current_json(const std::string& vehicle_id, const store::StoredCurrent& c);
+nlohmann::json current_json(const std::string& vehicle_id, const app::CurrentView& c);
 // An estimate from a mission's navigation, with the stored one (null when none).
 nlohmann::json mission_current_json(const app::MissionCurrent& c,
-                                    const std::optional<store::StoredCurrent>& stored);
+                                    const std::optional<app::CurrentView>& stored);
 // {legs, rms_over_ground_mps, rms_through_water_mps, separation_mps, identified}; identified is
 // "over_ground", "through_water" or null (undetermined); null when not evaluated.
 nlohmann::json speed_reference_evidence_json(

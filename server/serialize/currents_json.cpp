@@ -62,7 +62,7 @@ json current_estimate_json(const kin::CurrentEstimate& e) {
 }
 
 json mission_current_json(const app::MissionCurrent& c,
-                          const std::optional<store::StoredCurrent>& stored) {
+                          const std::optional<app::CurrentView>& stored) {
   const auto& e = c.result.estimate;
   return {{"mission_id", c.mission_id},
           {"turns", c.turns},
@@ -77,7 +77,7 @@ json mission_current_json(const app::MissionCurrent& c,
           {"drift_scatter", drift_scatter_json(c.drift_scatter)}};
 }
 
-json current_json(const std::string& vehicle_id, const store::StoredCurrent& c) {
+json current_json(const std::string& vehicle_id, const app::CurrentView& c) {
   json j = current_estimate_json(c.estimate);
   j["vehicle_id"] = vehicle_id;
   j["estimated"] = true;

@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "app/missions.hpp"
-#include "store/store.hpp"
 
 namespace avk::server {
 
@@ -18,12 +17,12 @@ nlohmann::json cells_json(const std::vector<app::CellReport>& cells);
 nlohmann::json report_json(const app::MissionReport& r, bool with_config);
 // The turn under way: the report's running_turn and the stream's turn "started" are one shape.
 nlohmann::json running_turn_json(const mission::RunningTurn& t);
-nlohmann::json event_json(const store::MissionEvent& e);
-nlohmann::json nav_row_json(const store::NavRow& n);
+nlohmann::json event_json(const app::MissionEventView& e);
+nlohmann::json track_point_json(const app::TrackPoint& n);
 std::string missions_csv(const std::vector<app::MissionSummary>& missions);
 // The event log and the track as their JSON pages' items, one row each.
-std::string events_csv(const std::vector<store::MissionEvent>& events);
-std::string nav_csv(const std::vector<store::NavPageRow>& rows);
+std::string events_csv(const std::vector<app::MissionEventView>& events);
+std::string nav_csv(const std::vector<app::TrackPoint>& rows);
 std::string report_cells_csv(const app::MissionReport& r);
 
 }  // namespace avk::server

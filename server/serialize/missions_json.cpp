@@ -9,11 +9,11 @@ namespace avk::server {
 using nlohmann::json;
 
 json mission_json(const app::MissionSummary& s) {
-  const store::Mission& m = s.mission;
+  const app::MissionView& m = s.mission;
   return {{"id", m.id},
           {"vehicle_id", m.vehicle_id},
           {"name", m.name},
-          {"status", store::to_string(s.status)},
+          {"status", app::to_string(s.status)},
           {"status_reason", m.status_reason},
           {"created_utc", m.created_utc},
           {"started_s", optional_json(m.started_s)},
@@ -74,11 +74,11 @@ json report_json(const app::MissionReport& r, bool with_config) {
   return j;
 }
 
-json event_json(const store::MissionEvent& e) {
+json event_json(const app::MissionEventView& e) {
   return {{"id", e.id}, {"t_s", e.t_s}, {"kind", e.kind}, {"message", e.message}};
 }
 
-json nav_row_json(const store::NavRow& n) {
+json track_point_json(const app::TrackPoint& n) {
   return {{"t_s", n.t_s},
           {"x_m", n.x_m},
           {"y_m", n.y_m},

@@ -8,14 +8,13 @@
 
 #include "app/models.hpp"
 #include "kinematics/yaw_identification.hpp"
-#include "store/store.hpp"
 
 namespace avk::server {
 
 // with_coefficients: the full model document; without, the listing's summary.
-nlohmann::json model_json(const store::StoredModel& m, bool with_coefficients = true);
+nlohmann::json model_json(const app::ModelView& m, bool with_coefficients = true);
 // The listing's summary (no coefficients), the speed model as speed_gain, ...
-std::string models_csv(const std::vector<store::StoredModel>& models);
+std::string models_csv(const std::vector<app::ModelView>& models);
 nlohmann::json model_headings_json(const app::ModelHeadings& h);
 nlohmann::json sweep_json(const std::vector<kinematics::HistorySweepRow>& rows);
 std::string sweep_csv(const std::vector<kinematics::HistorySweepRow>& rows);

@@ -8,7 +8,7 @@ namespace avk::server {
 using nlohmann::json;
 namespace kin = avk::kinematics;
 
-json model_json(const store::StoredModel& m, bool with_coefficients) {
+json model_json(const app::ModelView& m, bool with_coefficients) {
   json j = json::parse(kin::yaw_model_to_json(m.model));
   j["id"] = m.id;
   j["created_utc"] = m.created_utc;

@@ -40,7 +40,7 @@ std::string missions_csv(const std::vector<app::MissionSummary>& missions) {
   for (const auto& s : missions) {
     const auto& m = s.mission;
     csv += std::to_string(m.id) + ',' + csv_cell(m.vehicle_id) + ',' + csv_cell(m.name) + ',' +
-           store::to_string(s.status) + ',' + csv_cell(m.created_utc) + ',' +
+           app::to_string(s.status) + ',' + csv_cell(m.created_utc) + ',' +
            optional_csv(m.started_s) + ',' + optional_csv(m.ended_s) + ',' +
            csv_cell(m.started_utc.value_or("")) + ',' + csv_cell(m.ended_utc.value_or("")) + ',' +
            std::to_string(s.turns.ok) + ',' + std::to_string(s.turns.aborted) + ',' +
@@ -75,7 +75,7 @@ std::string vehicles_csv(const std::vector<app::VehicleStatus>& vehicles) {
   return csv;
 }
 
-std::string events_csv(const std::vector<store::MissionEvent>& events) {
+std::string events_csv(const std::vector<app::MissionEventView>& events) {
   std::string csv = "id,t_s,kind,message\n";
   for (const auto& e : events)
     csv += std::to_string(e.id) + ',' + num(e.t_s) + ',' + csv_cell(e.kind) + ',' +
@@ -83,11 +83,11 @@ std::string events_csv(const std::vector<store::MissionEvent>& events) {
   return csv;
 }
 
-std::string nav_csv(const std::vector<store::NavPageRow>& rows) {
+std::string nav_csv(const std::vector<app::TrackPoint>& rows) {
   std::string csv =
       "t_s,x_m,y_m,heading_deg,speed_mps,desired_heading_deg,desired_speed_mps,helm_mode\n";
   for (const auto& r : rows) {
-    const store::NavRow& n = r.row;
+    const app::TrackPoint& n = r;
     csv += num(n.t_s) + ',' + num(n.x_m) + ',' + num(n.y_m) + ',' + num(n.heading_deg) + ',' +
            num(n.speed_mps) + ',' + optional_csv(n.desired_heading_deg) + ',' +
            optional_csv(n.desired_speed_mps) + ',' + csv_cell(n.helm_mode) + '\n';
@@ -95,7 +95,7 @@ std::string nav_csv(const std::vector<store::NavPageRow>& rows) {
   return csv;
 }
 
-std::string models_csv(const std::vector<store::StoredModel>& models) {
+std::string models_csv(const std::vector<app::ModelView>& models) {
   std::string csv =
       "id,created_utc,vehicle_id,form,history_samples,rate_hz,ridge_lambda,refined,"
       "training_missions,train_one_step_rms_deg,validation_mse_m2,validation_heading_rms_deg,"
@@ -134,7 +134,7 @@ std::string report_cells_csv(const app::MissionReport& r) {
   return csv;
 }
 
-std::string turns_csv(const std::vector<store::TurnRow>& rows) {
+std::string turns_csv(const std::vector<app::TurnView>& rows) {
   std::string csv =
       "id,mission_id,vehicle_id,status,reason,speed_mps,goal_dheading_deg,"
       "observed_dheading_deg,start_time_s,end_time_s,advance_m,transfer_m,"

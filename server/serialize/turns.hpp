@@ -7,13 +7,13 @@
 #include <vector>
 
 #include "app/harvest.hpp"
-#include "store/store.hpp"
+#include "app/turn_views.hpp"
 
 namespace avk::server {
 
-nlohmann::json turn_row_json(const store::TurnRow& t);
+nlohmann::json turn_row_json(const app::TurnView& t);
 nlohmann::json harvest_report_json(const app::HarvestReport& r);
-nlohmann::json turn_json(const store::StoredTurn& t);  // with raw and normalised trajectories
-std::string turns_csv(const std::vector<store::TurnRow>& rows);
+nlohmann::json turn_json(const app::TurnDetail& t);  // with raw and normalised trajectories
+std::string turns_csv(const std::vector<app::TurnView>& rows);
 
 }  // namespace avk::server

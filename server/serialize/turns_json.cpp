@@ -8,7 +8,7 @@ namespace avk::server {
 using nlohmann::json;
 namespace kin = avk::kinematics;
 
-json turn_row_json(const store::TurnRow& t) {
+json turn_row_json(const app::TurnView& t) {
   return {{"id", t.id},
           {"mission_id", t.mission_id},
           {"vehicle_id", t.vehicle_id},
@@ -43,7 +43,7 @@ json harvest_report_json(const app::HarvestReport& r) {
           {"mean_quality", r.harvested > 0 ? json(r.mean_quality) : json()}};
 }
 
-json turn_json(const store::StoredTurn& t) {
+json turn_json(const app::TurnDetail& t) {
   json j = turn_row_json(t.row);
   j["raw"] = json::parse(kin::to_json_string(t.raw));
   j["normalized"] = t.normalized ? json::parse(kin::to_json_string(*t.normalized)) : json();

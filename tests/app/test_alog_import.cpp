@@ -7,6 +7,7 @@
 #include "app/alog_import.hpp"
 #include "app/context.hpp"
 #include "app/missions.hpp"
+#include "app/store_access.hpp"
 #include "mission/helm_mode.hpp"
 #include "support/temp_db.hpp"
 
@@ -49,14 +50,14 @@ TEST(AlogImport, StoresTheNavigationAsAFinishedMissionAndNamesBadLines) {
   EXPECT_EQ(report->from_records.total() + report->from_extraction.total(), 0);
   const auto m = app::mission_report(ctx, report->mission_id);
   ASSERT_TRUE(m);
-  EXPECT_EQ(m->summary.status, store::MissionStatus::done);
+  EXPECT_EQ(m->summary.status, app::MissionStatus::done);
   EXPECT_TRUE(m->cells.empty());  // an imported log plans no turn array
-  const auto nav = ctx.db().navigation().for_mission(report->mission_id);
+  const auto nav = app::store_of(ctx).navigation().for_mission(report->mission_id);
   ASSERT_EQ(nav.size(), 40u);
   EXPECT_EQ(nav[0].helm_mode, mission::kImportedHelmMode);
   EXPECT_DOUBLE_EQ(nav.back().x_m, 19.5);
   // The top speed seen becomes the vehicle's.
-  EXPECT_DOUBLE_EQ(ctx.db().vehicles().get("kf")->max_speed_mps, 2.0);
+  EXPECT_DOUBLE_EQ(app::store_of(ctx).vehicles().get("kf")->max_speed_mps, 2.0);
 }
 
 TEST(AlogImport, WithoutAVehicleNothingIsStored) {
@@ -66,7 +67,7 @@ TEST(AlogImport, WithoutAVehicleNothingIsStored) {
   const auto report = app::import_alog(ctx, in, {});
   ASSERT_FALSE(report);
   EXPECT_EQ(report.error().field, "vehicle");
-  EXPECT_TRUE(ctx.db().missions().list().empty());
+  EXPECT_TRUE(app::store_of(ctx).missions().list().empty());
 }
 
 // The vehicle id (--vehicle, else the file's stem) is bounded like every vehicle id.
@@ -80,8 +81,8 @@ TEST(AlogImport, AVehicleIdTooLongIsRefusedNamingTheLimit) {
   EXPECT_EQ(report.error().field, "vehicle");
   EXPECT_NE(report.error().message.find("at most 64 bytes"), std::string::npos)
       << report.error().message;
-  EXPECT_TRUE(ctx.db().missions().list().empty());
-  EXPECT_FALSE(ctx.db().vehicles().get(r.vehicle_id));
+  EXPECT_TRUE(app::store_of(ctx).missions().list().empty());
+  EXPECT_FALSE(app::store_of(ctx).vehicles().get(r.vehicle_id));
 }
 
 }  // namespace

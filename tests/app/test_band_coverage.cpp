@@ -10,6 +10,8 @@
 #include "app/band_coverage.hpp"
 #include "app/context.hpp"
 #include "app/current.hpp"
+#include "app/mission_legs.hpp"
+#include "app/store_access.hpp"
 #include "support/recorded_mission.hpp"
 #include "support/temp_db.hpp"
 
@@ -55,7 +57,7 @@ TEST(BandCoverage, TheRunAfterATurnEndsWithItsCommand) {
                          "buffer_m": 10, "return_point_m": [0, -30]}})";
   std::vector<std::int64_t> missions;
   for (int k = 0; k < 3; ++k)
-    missions.push_back(avk::testing::run_recorded_mission(ctx.db(), "usim", kTight));
+    missions.push_back(avk::testing::run_recorded_mission(app::store_of(ctx), "usim", kTight));
 
   app::BandCoverageQuery q;
   q.vehicle_id = "usim";
@@ -66,7 +68,8 @@ TEST(BandCoverage, TheRunAfterATurnEndsWithItsCommand) {
   ASSERT_TRUE(r) << r.error().message;
   EXPECT_EQ(r->table_missions, (std::vector<std::int64_t>{missions[0], missions[1]}));
   EXPECT_GT(r->turns, 0u);
-  EXPECT_EQ(r->after_turn.total, after_turn_samples(ctx.db(), missions[2], q.after_turn_s));
+  EXPECT_EQ(r->after_turn.total,
+            after_turn_samples(app::store_of(ctx), missions[2], q.after_turn_s));
   EXPECT_EQ(r->all.total, r->during_turn.total + r->after_turn.total);
   // Calm water, one simulator: the band holds nearly every point, and the run after the turn
   // stays close to the prediction (the next command's turn would take it metres away).

@@ -6,6 +6,8 @@
 
 #include "app/ckt_tables.hpp"
 #include "app/context.hpp"
+#include "app/store_access.hpp"
+#include "app/table_cache.hpp"
 #include "kinematics/ckt_file.hpp"
 #include "support/stored_turns.hpp"
 #include "support/temp_db.hpp"
@@ -21,7 +23,7 @@ class CktTables : public ::testing::Test {
 };
 
 TEST_F(CktTables, TheTableHoldsTheVehiclesCellsAndIsRebuiltForNewTurns) {
-  const auto mission = avk::testing::store_arc_turns(ctx_.db(), "alpha", 1.0, 2);
+  const auto mission = avk::testing::store_arc_turns(app::store_of(ctx_), "alpha", 1.0, 2);
   app::TableCache cache(std::chrono::milliseconds(0));  // re-checks on every call
   const auto first = cache.get(ctx_, "alpha");
   ASSERT_TRUE(first) << first.error().message;
@@ -34,7 +36,7 @@ TEST_F(CktTables, TheTableHoldsTheVehiclesCellsAndIsRebuiltForNewTurns) {
   EXPECT_EQ(turns, 18u);  // 3 speeds x 3 heading changes x 2
   // Unchanged store: the same table object.
   EXPECT_EQ(cache.get(ctx_, "alpha")->table, first->table);
-  avk::testing::store_one_arc_turn(ctx_.db(), mission, "alpha", 1.0, 40.0);
+  avk::testing::store_one_arc_turn(app::store_of(ctx_), mission, "alpha", 1.0, 40.0);
   const auto second = cache.get(ctx_, "alpha");
   ASSERT_TRUE(second);
   EXPECT_NE(second->table, first->table);
@@ -54,8 +56,8 @@ std::size_t turns_in(const kinematics::Ckt& table) {
 // A held-out prediction's table was rebuilt for every request: it is kept per vehicle and
 // left-out set, and dropped when the vehicle's turns change, as the full table is.
 TEST_F(CktTables, AHeldOutTableIsKeptPerLeftOutSetUntilTheTurnsChange) {
-  const auto tight = avk::testing::store_arc_turns(ctx_.db(), "alpha", 1.0, 2);
-  const auto wide = avk::testing::store_arc_turns(ctx_.db(), "alpha", 2.0, 1);
+  const auto tight = avk::testing::store_arc_turns(app::store_of(ctx_), "alpha", 1.0, 2);
+  const auto wide = avk::testing::store_arc_turns(app::store_of(ctx_), "alpha", 2.0, 1);
   app::TableCache cache(std::chrono::milliseconds(0));  // re-checks the store on every call
   store::TurnsLeftOut without_tight;
   without_tight.mission_id = tight;
@@ -74,7 +76,7 @@ TEST_F(CktTables, AHeldOutTableIsKeptPerLeftOutSetUntilTheTurnsChange) {
   // The same set of another vehicle's turns is not this one's.
   EXPECT_FALSE(cache.held_out(ctx_, "bravo", false, without_tight));
 
-  avk::testing::store_one_arc_turn(ctx_.db(), wide, "alpha", 1.0, 40.0);
+  avk::testing::store_one_arc_turn(app::store_of(ctx_), wide, "alpha", 1.0, 40.0);
   const auto after = cache.held_out(ctx_, "alpha", false, without_tight);
   ASSERT_TRUE(after);
   EXPECT_NE(after, first);
@@ -83,9 +85,9 @@ TEST_F(CktTables, AHeldOutTableIsKeptPerLeftOutSetUntilTheTurnsChange) {
 }
 
 TEST_F(CktTables, HeldOutTablesAreBoundedAndTheLeastRecentlyUsedGoesFirst) {
-  avk::testing::store_arc_turns(ctx_.db(), "alpha", 1.0, 2);
+  avk::testing::store_arc_turns(app::store_of(ctx_), "alpha", 1.0, 2);
   app::TableCache cache(std::chrono::hours(1));
-  const auto turn_ids = ctx_.db().turns().list({});
+  const auto turn_ids = app::store_of(ctx_).turns().list({});
   ASSERT_GT(turn_ids.size(), app::TableCache::kHeldOutTables + 1);
   const auto without = [&](std::size_t i) {
     store::TurnsLeftOut l;
@@ -109,7 +111,7 @@ TEST_F(CktTables, HeldOutTablesAreBoundedAndTheLeastRecentlyUsedGoesFirst) {
 }
 
 TEST_F(CktTables, ACellIsFoundOnTheGridOnly) {
-  avk::testing::store_arc_turns(ctx_.db(), "alpha");
+  avk::testing::store_arc_turns(app::store_of(ctx_), "alpha");
   const auto cell = app::ckt_cell(ctx_, "alpha", 1.0, 100.0);
   ASSERT_TRUE(cell) << cell.error().message;
   EXPECT_EQ(cell->cell.n_turns, 2u);
@@ -140,7 +142,7 @@ TEST_F(CktTables, ACellIsFoundOnTheGridOnly) {
 }
 
 TEST_F(CktTables, ExportNamesTheVehicleAndReadsBack) {
-  avk::testing::store_arc_turns(ctx_.db(), "alpha");
+  avk::testing::store_arc_turns(app::store_of(ctx_), "alpha");
   const auto t = app::ckt_for_export(ctx_, "alpha");
   ASSERT_TRUE(t);
   EXPECT_EQ(t->vehicle_id, "alpha");
@@ -149,7 +151,7 @@ TEST_F(CktTables, ExportNamesTheVehicleAndReadsBack) {
 }
 
 TEST_F(CktTables, AWrongFileIsRefusedAndNothingIsStored) {
-  avk::testing::store_arc_turns(ctx_.db(), "alpha");
+  avk::testing::store_arc_turns(app::store_of(ctx_), "alpha");
   kinematics::Ckt table = *app::ckt_for_export(ctx_, "alpha");
   const std::string file = kinematics::ckt_to_json_string(table);
   const auto wrong_vehicle = app::import_ckt(ctx_, "bravo", file);
@@ -159,22 +161,23 @@ TEST_F(CktTables, AWrongFileIsRefusedAndNothingIsStored) {
   const auto truncated = app::import_ckt(ctx_, "alpha", file.substr(0, file.size() / 2));
   ASSERT_FALSE(truncated);
   EXPECT_NE(truncated.error().message.find("not a CKT file"), std::string::npos);
-  EXPECT_FALSE(ctx_.db().ckt_snapshots().latest("alpha"));
-  EXPECT_FALSE(ctx_.db().ckt_snapshots().latest("bravo"));
+  EXPECT_FALSE(app::store_of(ctx_).ckt_snapshots().latest("alpha"));
+  EXPECT_FALSE(app::store_of(ctx_).ckt_snapshots().latest("bravo"));
   const auto ok = app::import_ckt(ctx_, "alpha", file);
   ASSERT_TRUE(ok);
-  EXPECT_EQ(ctx_.db().ckt_snapshots().latest("alpha")->id, ok->snapshot_id);
+  EXPECT_EQ(app::store_of(ctx_).ckt_snapshots().latest("alpha")->id, ok->snapshot_id);
 }
 
 TEST_F(CktTables, BuildKeepsASnapshotOfTheMissionsItCameFrom) {
-  const auto m = avk::testing::store_arc_turns(ctx_.db(), "alpha");
-  avk::testing::store_arc_turns(ctx_.db(), "alpha", 3.0);  // a second mission, not asked for
+  const auto m = avk::testing::store_arc_turns(app::store_of(ctx_), "alpha");
+  avk::testing::store_arc_turns(app::store_of(ctx_), "alpha",
+                                3.0);  // a second mission, not asked for
   const auto built = app::build_ckt(ctx_, "alpha", {m}, {}, 0.9);
   ASSERT_TRUE(built) << built.error().message;
   EXPECT_EQ(built->report.turns_used, 18u);
   EXPECT_EQ(built->table.vehicle_length_m, 0.9);
   EXPECT_FALSE(built->table.created_utc.empty());
-  const auto snap = ctx_.db().ckt_snapshots().latest("alpha");
+  const auto snap = app::store_of(ctx_).ckt_snapshots().latest("alpha");
   ASSERT_TRUE(snap);
   EXPECT_EQ(snap->id, built->snapshot_id);
   EXPECT_EQ(snap->mission_ids, std::vector<std::int64_t>{m});

@@ -9,6 +9,7 @@
 #include "app/current.hpp"
 #include "app/current_compensation.hpp"
 #include "app/predict.hpp"
+#include "app/store_access.hpp"
 #include "kinematics/angles.hpp"
 #include "support/example_file.hpp"
 #include "support/recorded_mission.hpp"
@@ -32,7 +33,7 @@ TEST_P(MissionCurrentTest, OneFigure41MissionFindsTheCurrentWithinTheAcceptance)
   sim::SimSetup setup = sim::default_sim_setup("catamaran:m200");
   setup.vehicle.environment.current = {c.speed_mps, c.toward_deg};
   const std::int64_t mission = avk::testing::run_recorded_mission(
-      ctx.db(), "m200", avk::testing::example_text("thesis-fig4-1.json"), setup);
+      app::store_of(ctx), "m200", avk::testing::example_text("thesis-fig4-1.json"), setup);
   const auto r = app::estimate_mission_current(ctx, mission);
   ASSERT_TRUE(r) << r.error().message;
   EXPECT_GE(r->legs_used, 15u) << "of " << r->turns << " turns";
@@ -70,7 +71,7 @@ TEST(MissionCurrent, StillWaterIsNearlyNoCurrent) {
   avk::testing::TempDb db("avk_app_current_calm");
   app::Context ctx(db.path());
   const std::int64_t mission = avk::testing::run_recorded_mission(
-      ctx.db(), "m200", avk::testing::example_text("thesis-fig4-1.json"),
+      app::store_of(ctx), "m200", avk::testing::example_text("thesis-fig4-1.json"),
       sim::default_sim_setup("catamaran:m200"));
   const auto r = app::estimate_mission_current(ctx, mission);
   ASSERT_TRUE(r && r->result.estimate);
@@ -85,14 +86,14 @@ TEST(MissionCurrent, TheRecorderStoresTheEstimateAndTheWaterFrameAsTheMissionRun
   sim::SimSetup setup = sim::default_sim_setup("catamaran:m200");
   setup.vehicle.environment.current = {0.2, 180.0};
   const std::int64_t mission = avk::testing::run_recorded_mission(
-      ctx.db(), "m200", avk::testing::example_text("thesis-fig4-1.json"), setup);
-  const auto stored = ctx.db().currents().for_mission(mission);
+      app::store_of(ctx), "m200", avk::testing::example_text("thesis-fig4-1.json"), setup);
+  const auto stored = app::store_of(ctx).currents().for_mission(mission);
   ASSERT_TRUE(stored);
   EXPECT_NEAR(stored->estimate.speed_mps(), 0.2, 0.05);
   EXPECT_LT(std::abs(kinematics::angle180_deg(stored->estimate.toward_deg() - 180.0)), 15.0);
   // Every ok turn is read in the water frame, with the stored estimate removed.
-  const auto water = ctx.db().turns().load_normalized({mission}, "m200", false,
-                                                      store::TurnFrameChoice::water_where_known);
+  const auto water = app::store_of(ctx).turns().load_normalized(
+      {mission}, "m200", false, store::TurnFrameChoice::water_where_known);
   ASSERT_FALSE(water.empty());
   for (const auto& t : water) {
     ASSERT_TRUE(t.meta().removed_current);
@@ -100,7 +101,7 @@ TEST(MissionCurrent, TheRecorderStoresTheEstimateAndTheWaterFrameAsTheMissionRun
     EXPECT_NEAR(t.meta().removed_current->north_mps, stored->estimate.north_mps, 1e-12);
   }
   // The ground form is untouched.
-  for (const auto& t : ctx.db().turns().load_normalized({mission}, "m200"))
+  for (const auto& t : app::store_of(ctx).turns().load_normalized({mission}, "m200"))
     EXPECT_FALSE(t.meta().removed_current);
   // The station's table is built from them and predicts through the water (current=none); the
   // live estimate is what `current=live` adds, and what an answer not asked for a current gets.
@@ -132,10 +133,11 @@ TEST(MissionCurrent, TheRecorderStoresTheEstimateAndTheWaterFrameAsTheMissionRun
   // A still-water mission keeps its turns over ground.
   avk::testing::TempDb calm_db("avk_app_current_live_calm");
   app::Context calm(calm_db.path());
-  const std::int64_t still = avk::testing::run_recorded_mission(
-      calm.db(), "m200", avk::testing::kSmallMission, sim::default_sim_setup("catamaran:m200"));
-  for (const auto& t : calm.db().turns().load_normalized({still}, "m200", false,
-                                                         store::TurnFrameChoice::water_where_known))
+  const std::int64_t still =
+      avk::testing::run_recorded_mission(app::store_of(calm), "m200", avk::testing::kSmallMission,
+                                         sim::default_sim_setup("catamaran:m200"));
+  for (const auto& t : app::store_of(calm).turns().load_normalized(
+           {still}, "m200", false, store::TurnFrameChoice::water_where_known))
     EXPECT_FALSE(t.meta().removed_current);
 }
 
@@ -157,13 +159,13 @@ TEST(MissionCurrent, CompensatingTheCurrentRemovesWhatTheCurrentAddsToThePathErr
   from_east.scheduler.seed = from_north.scheduler.seed + 1;
   const std::string text = avk::testing::example_text("thesis-fig4-1.json");
   const std::int64_t table_mission =
-      avk::testing::run_recorded_mission(ctx.db(), "m200", text, from_north);
+      avk::testing::run_recorded_mission(app::store_of(ctx), "m200", text, from_north);
   const std::int64_t test_mission =
-      avk::testing::run_recorded_mission(ctx.db(), "m200", text, from_east);
+      avk::testing::run_recorded_mission(app::store_of(ctx), "m200", text, from_east);
   sim::SimSetup also_from_east = from_east;
   also_from_east.scheduler.seed = from_east.scheduler.seed + 1;
   const std::int64_t same_current =
-      avk::testing::run_recorded_mission(ctx.db(), "m200", text, also_from_east);
+      avk::testing::run_recorded_mission(app::store_of(ctx), "m200", text, also_from_east);
   const auto r = app::compare_current_compensation(ctx, "m200", {table_mission}, {test_mission});
   ASSERT_TRUE(r) << r.error().message;
   ASSERT_GE(r->turns.size(), 15u);

@@ -10,6 +10,7 @@
 
 #include "app/context.hpp"
 #include "app/encounters.hpp"
+#include "app/store_access.hpp"
 #include "kinematics/angles.hpp"
 #include "sim/sim_config.hpp"
 #include "support/stored_turns.hpp"
@@ -267,7 +268,7 @@ TEST(GenerateEncounters, EveryScenarioViolatesTheStandoffWhenKeepingCourse) {
 
 class EncounterBench : public ::testing::Test {
  protected:
-  void SetUp() override { avk::testing::store_arc_turns(ctx_.db(), "alpha"); }
+  void SetUp() override { avk::testing::store_arc_turns(app::store_of(ctx_), "alpha"); }
 
   app::EncounterFile two_scenarios() {
     auto f = app::generate_encounters(5, 2);  // head-on, crossing from starboard

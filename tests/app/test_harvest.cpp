@@ -10,6 +10,8 @@
 #include "app/ckt_tables.hpp"
 #include "app/context.hpp"
 #include "app/harvest.hpp"
+#include "app/store_access.hpp"
+#include "app/store_views.hpp"
 #include "kinematics/angles.hpp"
 #include "mission/turn_harvester.hpp"
 #include "support/example_file.hpp"
@@ -35,9 +37,9 @@ TEST(Harvest, TheFigure41MissionsHarvestedTurnsAreItsCollectedTurns) {
   avk::testing::TempDb db("avk_app_harvest_fig41");
   app::Context ctx(db.path());
   const std::int64_t mission = avk::testing::run_recorded_mission(
-      ctx.db(), "m200", avk::testing::example_text("thesis-fig4-1.json"),
+      app::store_of(ctx), "m200", avk::testing::example_text("thesis-fig4-1.json"),
       sim::default_sim_setup("catamaran:m200"));
-  store::Store& s = ctx.db();
+  store::Store& s = app::store_of(ctx);
   store::TurnFilter f;
   f.mission_id = mission;
   f.status = kinematics::TurnStatus::ok;
@@ -81,7 +83,7 @@ TEST(Harvest, TheFigure41MissionsHarvestedTurnsAreItsCollectedTurns) {
   print("Figure 4-1 on the M200", *r);
   EXPECT_GE(r->already_recorded, collected.size());
   EXPECT_EQ(r->steps, r->harvested + r->already_recorded + r->rejected);
-  EXPECT_EQ(ctx.db().harvests().list(mission).size(), 1u);
+  EXPECT_EQ(app::store_of(ctx).harvests().list(mission).size(), 1u);
   // A second harvest finds its own turns recorded.
   const auto again = app::harvest_mission(ctx, mission);
   ASSERT_TRUE(again);
@@ -97,7 +99,7 @@ TEST(Harvest, ExcitationStepsMidSwingAreRejectedAndTheSteadyOnesHarvested) {
   ASSERT_NE(at, std::string::npos);
   text.replace(at, 17, "\"duration_s\": 300");  // a third of it: the test stays short
   const std::int64_t mission = avk::testing::run_recorded_mission(
-      ctx.db(), "m200", text, sim::default_sim_setup("catamaran:m200"));
+      app::store_of(ctx), "m200", text, sim::default_sim_setup("catamaran:m200"));
   const auto r = app::harvest_mission(ctx, mission);
   ASSERT_TRUE(r) << r.error().message;
   print("persistent excitation (300 s) on the M200", *r);
@@ -111,9 +113,9 @@ TEST(Harvest, ExcitationStepsMidSwingAreRejectedAndTheSteadyOnesHarvested) {
 
   // Ground truth for the accepted ones: the recorded heading was steady over the 2 s before
   // each harvested turn (not mid-swing), and the turn reached its goal.
-  const auto nav = ctx.db().navigation().for_mission(mission);
+  const auto nav = app::store_of(ctx).navigation().for_mission(mission);
   for (const auto id : r->turn_ids) {
-    const auto t = ctx.db().turns().get(id);
+    const auto t = app::store_of(ctx).turns().get(id);
     ASSERT_TRUE(t);
     const double t0 = t->raw.meta().start_time_s;
     for (const auto& n : nav) {
@@ -146,7 +148,7 @@ TEST(Harvest, ExcitationStepsMidSwingAreRejectedAndTheSteadyOnesHarvested) {
 TEST(Harvest, HarvestedTurnsEnterTheTableOnlyWhenAskedFor) {
   avk::testing::TempDb db("avk_app_harvest_table");
   app::Context ctx(db.path());
-  store::Store& s = ctx.db();
+  store::Store& s = app::store_of(ctx);
   s.vehicles().upsert({"boat", "usim", 2.0, 1.0});
   const auto mission = s.missions().create("boat", "log", "{}");
   avk::testing::Boat boat(0.0, 1.0);

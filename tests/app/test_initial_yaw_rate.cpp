@@ -11,6 +11,7 @@
 #include "app/context.hpp"
 #include "app/models.hpp"
 #include "app/predict.hpp"
+#include "app/store_access.hpp"
 #include "app/yaw_rate_table.hpp"
 #include "kinematics/ckt3.hpp"
 #include "kinematics/turn_measures.hpp"
@@ -54,7 +55,7 @@ double nearest_target(double rate) {
 }
 
 TEST_F(InitialYawRate, StoredTurnsCarryAnInitialYawRateWithinTheBandOfTheirTarget) {
-  const auto turns = ctx_.db().turns().load_normalized({mission_}, "m200");
+  const auto turns = app::store_of(ctx_).turns().load_normalized({mission_}, "m200");
   std::map<double, int> per_target;
   int ok = 0;
   for (const auto& t : turns) {

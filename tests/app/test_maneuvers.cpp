@@ -7,6 +7,7 @@
 
 #include "app/context.hpp"
 #include "app/maneuvers.hpp"
+#include "app/store_access.hpp"
 #include "support/stored_turns.hpp"
 #include "support/synthetic_turns.hpp"
 #include "support/temp_db.hpp"
@@ -17,7 +18,7 @@ using namespace avk;
 
 class Maneuvers : public ::testing::Test {
  protected:
-  void SetUp() override { avk::testing::store_arc_turns(ctx_.db(), "alpha", 1.0, 3); }
+  void SetUp() override { avk::testing::store_arc_turns(app::store_of(ctx_), "alpha", 1.0, 3); }
 
   // Own north at 1 m/s; a contact from starboard on a collision course (both at (0, 30) at 30 s).
   app::ManeuverQuery crossing(app::PredictionMethod method) const {
@@ -40,7 +41,7 @@ class Maneuvers : public ::testing::Test {
     m.model.rate_hz = 4.0;
     m.model.error_coeffs = {0.1};  // a tenth of the heading error each quarter second
     m.model.heading_coeffs = {0.0};
-    return ctx_.db().models().save(m);
+    return app::store_of(ctx_).models().save(m);
   }
 
   avk::testing::TempDb db_{"avk_app_maneuvers"};

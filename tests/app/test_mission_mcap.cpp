@@ -14,7 +14,9 @@
 #include "app/foxglove/channels.hpp"
 #include "app/mcap/reader.hpp"
 #include "app/mcap/writer.hpp"
+#include "app/mission_legs.hpp"
 #include "app/mission_mcap.hpp"
+#include "app/store_access.hpp"
 #include "store/sqlite.hpp"
 #include "support/mcap_bytes.hpp"
 #include "support/recorded_mission.hpp"
@@ -34,7 +36,7 @@ class MissionMcapTest : public ::testing::Test {
   static void SetUpTestSuite() {
     source_ = new avk::testing::TempDb("avk_mcap_source");
     ctx_ = new app::Context(source_->path());
-    store::Store& db = ctx_->db();
+    store::Store& db = app::store_of(*ctx_);
     mission_ = avk::testing::run_recorded_mission(db, kVehicle);
     store::StoredCurrent c;
     c.mission_id = mission_;
@@ -166,8 +168,8 @@ TEST_F(MissionMcapTest, ExportThenImportGivesTheSameMissionFieldByField) {
   const std::int64_t id = imported->mission_id;
   EXPECT_EQ(imported->source_mission_id, mission_);
 
-  store::Store& a = ctx_->db();
-  store::Store& b = to.db();
+  store::Store& a = app::store_of(*ctx_);
+  store::Store& b = app::store_of(to);
   const auto ma = *a.missions().get(mission_);
   const auto mb = *b.missions().get(id);
   EXPECT_EQ(mb.vehicle_id, ma.vehicle_id);
@@ -254,7 +256,7 @@ TEST_F(MissionMcapTest, MessagesAreInLogTimeOrderWithOneChannelPerKind) {
   EXPECT_GE(c.chunk_count, 1u);
   EXPECT_EQ(c.library.rfind("avk-station", 0), 0u) << c.library;
 
-  store::Store& db = ctx_->db();
+  store::Store& db = app::store_of(*ctx_);
   using K = app::foxglove::ChannelKind;
   const auto nav = db.navigation().for_mission(mission_).size();
   const auto turns = turns_of(db, mission_).size();
@@ -311,7 +313,7 @@ TEST_F(MissionMcapTest, LocationIsWrittenOnlyWithADatum) {
   o.datum = vehicle::LatLon{47.6, -122.3};
   o.compression = app::mcap::Compression::none;
   const auto with = exported(o);
-  const auto nav = ctx_->db().navigation().for_mission(mission_);
+  const auto nav = app::store_of(*ctx_).navigation().for_mission(mission_);
   EXPECT_EQ(with.messages.of(topic(K::location)), nav.size());
   const auto c = app::mcap::read_mcap(with.bytes);
   const auto location = channel_id(c, K::location);
@@ -420,7 +422,7 @@ TEST_F(MissionMcapTest, OutOfRangeValuesAndTimeGoingBackAreRefusedNamingTheMessa
   const std::string good = exported().bytes;
   avk::testing::TempDb target("avk_mcap_ranges");
   app::Context to(target.path());
-  (void)to.db();  // the schema, for the counts
+  (void)app::store_of(to);  // the schema, for the counts
   const auto before = all_counts(target.path());
 
   using K = app::foxglove::ChannelKind;
@@ -510,7 +512,7 @@ TEST_F(MissionMcapTest, AFailureHalfwayThroughTheStoreRollsEverythingBack) {
 TEST_F(MissionMcapTest, FilesNotWrittenByTheStationAreRefusedWithTheReason) {
   avk::testing::TempDb target("avk_mcap_foreign");
   app::Context to(target.path());
-  (void)to.db();  // the schema, for the count at the end
+  (void)app::store_of(to);  // the schema, for the count at the end
   const auto refused = [&](const std::string& bytes, const std::string& expected) {
     const auto r = app::import_mission_mcap(to, bytes);
     ASSERT_FALSE(r);
@@ -552,7 +554,7 @@ TEST_F(MissionMcapTest, FilesNotWrittenByTheStationAreRefusedWithTheReason) {
 TEST_F(MissionMcapTest, FreeTextTooLongIsRefusedNamingTheRecordAndTheLimit) {
   avk::testing::TempDb target("avk_mcap_text");
   app::Context to(target.path());
-  (void)to.db();
+  (void)app::store_of(to);
   const std::string good = exported().bytes;
   const auto with_entry = [&](const char* record, const char* key, std::string value) {
     return rewritten(good, [&](app::mcap::McapContents& c) {

@@ -11,6 +11,7 @@
 #include "app/context.hpp"
 #include "app/mission_plans.hpp"
 #include "app/mission_recorder.hpp"
+#include "app/store_access.hpp"
 #include "mission/mission_config.hpp"
 #include "mission/mission_runner.hpp"
 #include "sim/scheduler.hpp"
@@ -44,7 +45,7 @@ constexpr const char* kMission = R"({
 TEST(MissionRecorder, EveryAbortedAndRejectedTurnIsStoredWithItsReason) {
   avk::testing::TempDb db_file("avk_recorder");
   app::Context ctx(db_file.path());
-  store::Store& db = ctx.db();
+  store::Store& db = app::store_of(ctx);
   sim::SimMissionOptions so;
   so.setup = sim::default_sim_setup("usim");
   const auto config = mission::parse_mission_config(kMission, 2.0);

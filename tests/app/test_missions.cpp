@@ -9,6 +9,7 @@
 #include "app/context.hpp"
 #include "app/mission_run.hpp"
 #include "app/missions.hpp"
+#include "app/store_access.hpp"
 #include "app/turns.hpp"
 #include "app/vehicles.hpp"
 #include "support/recorded_mission.hpp"
@@ -56,7 +57,7 @@ TEST_F(Missions, TheReportMergesThePlanWithWhatIsStored) {
   const auto r = app::mission_report(ctx_, mission_);
   ASSERT_TRUE(r) << r.error().message;
   EXPECT_FALSE(r->live);
-  EXPECT_EQ(r->summary.status, store::MissionStatus::done);
+  EXPECT_EQ(r->summary.status, app::MissionStatus::done);
   EXPECT_EQ(app::status_text(*r), "done");
   ASSERT_EQ(r->cells.size(), 4u);  // 2 speeds x 2 heading changes
   std::int64_t ok = 0, aborted = 0, rejected = 0;
@@ -106,7 +107,7 @@ TEST_F(Missions, ListingFiltersByVehicle) {
 }
 
 TEST_F(Missions, TrackAndEventPagesNeitherSkipNorRepeat) {
-  const auto all = ctx_.db().navigation().for_mission(mission_);
+  const auto all = app::store_of(ctx_).navigation().for_mission(mission_);
   ASSERT_GT(all.size(), 100u);
   std::size_t seen = 0;
   std::int64_t after = 0;
@@ -116,15 +117,15 @@ TEST_F(Missions, TrackAndEventPagesNeitherSkipNorRepeat) {
     const auto page = app::mission_track(ctx_, mission_, after, 97);
     ASSERT_TRUE(page);
     for (const auto& row : page->items) {
-      EXPECT_GE(row.row.t_s, last_t);
-      last_t = row.row.t_s;
+      EXPECT_GE(row.t_s, last_t);
+      last_t = row.t_s;
     }
     seen += page->items.size();
     if (!page->next) break;
     after = *page->next;
   }
   EXPECT_EQ(seen, all.size());
-  const auto events = ctx_.db().missions().events(mission_);
+  const auto events = app::store_of(ctx_).missions().events(mission_);
   const auto first = app::mission_events(ctx_, mission_, 0, 1);
   ASSERT_TRUE(first);
   ASSERT_EQ(first->items.size(), 1u);
@@ -136,7 +137,7 @@ TEST_F(Missions, TrackAndEventPagesNeitherSkipNorRepeat) {
 }
 
 TEST_F(Missions, TurnPagesCoverEveryStoredTurnOnce) {
-  store::TurnFilter f;
+  app::TurnQuery f;
   f.mission_id = mission_;
   f.limit = 3;
   std::set<std::int64_t> ids;
@@ -154,7 +155,7 @@ TEST_F(Missions, TurnPagesCoverEveryStoredTurnOnce) {
   store::TurnFilter all;
   all.mission_id = mission_;
   all.limit = 1000;
-  EXPECT_EQ(ids.size(), ctx_.db().turns().list(all).size());
+  EXPECT_EQ(ids.size(), app::store_of(ctx_).turns().list(all).size());
   const auto one = app::get_turn(ctx_, *ids.begin());
   ASSERT_TRUE(one);
   EXPECT_TRUE(one->normalized || one->row.status != kinematics::TurnStatus::ok);
@@ -219,11 +220,13 @@ TEST(MissionRunHere, RunsThePlanToItsEndAndRecordsIt) {
   EXPECT_TRUE(r->simulated);
   EXPECT_EQ(r->planned, 8);
   EXPECT_EQ(r->summary.mission.vehicle_id, "sim-here");
-  EXPECT_EQ(r->summary.status, store::MissionStatus::done);
+  EXPECT_EQ(r->summary.status, app::MissionStatus::done);
   EXPECT_EQ(r->summary.turns.ok, 8);
   EXPECT_GT(r->end_time_s, r->start_time_s);
-  EXPECT_FALSE(
-      ctx.db().missions().get(r->summary.mission.id)->runner_pid);  // no longer running here
+  EXPECT_FALSE(app::store_of(ctx)
+                   .missions()
+                   .get(r->summary.mission.id)
+                   ->runner_pid);  // no longer running here
 }
 
 TEST(MissionRunHere, ARaisedStopFlagInterruptsItResumably) {
@@ -236,7 +239,7 @@ TEST(MissionRunHere, ARaisedStopFlagInterruptsItResumably) {
       app::run_new_mission(ctx, avk::testing::kSmallMission, simulated_usim("sim-here"), o);
   ASSERT_TRUE(r) << r.error().message;
   EXPECT_TRUE(r->stopped);
-  EXPECT_EQ(r->summary.status, store::MissionStatus::interrupted);
+  EXPECT_EQ(r->summary.status, app::MissionStatus::interrupted);
   const auto resumed = app::resume_mission_plan(ctx, r->summary.mission.id, 2.0);
   ASSERT_TRUE(resumed) << resumed.error().message;
   EXPECT_EQ(resumed->tasks.size(), 8u);

@@ -13,6 +13,8 @@
 #include "app/ckt_tables.hpp"
 #include "app/context.hpp"
 #include "app/predict.hpp"
+#include "app/store_access.hpp"
+#include "app/table_cache.hpp"
 #include "kinematics/ckt.hpp"
 #include "kinematics/ckt_file.hpp"
 #include "kinematics/maneuver.hpp"
@@ -47,13 +49,14 @@ class Predict : public ::testing::Test {
 };
 
 TEST_F(Predict, AvkAnswersFromTheVehiclesOwnTurnsThroughTheFineTable) {
-  avk::testing::store_arc_turns(ctx_.db(), "alpha");
+  avk::testing::store_arc_turns(app::store_of(ctx_), "alpha");
   const auto p = app::predict(ctx_, query("alpha", 1.0, 100.0));
   ASSERT_TRUE(p) << p.error().message;
   EXPECT_EQ(p->table_source, "turns");
   EXPECT_FALSE(p->snapshot_id);
   // The same table built here, independently of the cache.
-  const auto table = kinematics::Ckt::build(ctx_.db().turns().load_normalized({}, "alpha"));
+  const auto table =
+      kinematics::Ckt::build(app::store_of(ctx_).turns().load_normalized({}, "alpha"));
   const kinematics::MaterializedCkt fine(table);
   const auto expected = fine.query(1.0, 100.0);
   expect_same_line(p->trajectory, expected.trajectory);
@@ -64,7 +67,7 @@ TEST_F(Predict, AvkAnswersFromTheVehiclesOwnTurnsThroughTheFineTable) {
 }
 
 TEST_F(Predict, SaysWhenOneCellAnswersAndWhenTheTableIsExtrapolated) {
-  avk::testing::store_arc_turns(ctx_.db(), "alpha");  // heading changes 40, 100, 160 deg
+  avk::testing::store_arc_turns(app::store_of(ctx_), "alpha");  // heading changes 40, 100, 160 deg
   const auto exact = app::predict(ctx_, query("alpha", 1.0, 100.0));
   const auto between = app::predict(ctx_, query("alpha", 1.0, 70.0));
   const auto beyond = app::predict(ctx_, query("alpha", 1.0, -175.0));
@@ -80,8 +83,9 @@ TEST_F(Predict, SaysWhenOneCellAnswersAndWhenTheTableIsExtrapolated) {
 // Between the fine table's rows (0.75 m/s) the answer is blended, not the 0.8 m/s row's, and its
 // flags say what the table's own query says.
 TEST_F(Predict, ASpeedBetweenFineRowsIsInterpolatedAndFlaggedAsTheTableWould) {
-  avk::testing::store_arc_turns(ctx_.db(), "alpha");  // heading changes 40, 100, 160 deg
-  const auto table = kinematics::Ckt::build(ctx_.db().turns().load_normalized({}, "alpha"));
+  avk::testing::store_arc_turns(app::store_of(ctx_), "alpha");  // heading changes 40, 100, 160 deg
+  const auto table =
+      kinematics::Ckt::build(app::store_of(ctx_).turns().load_normalized({}, "alpha"));
   for (const auto& [u, d] : {std::pair{0.75, 100.0}, std::pair{1.25, -55.5}, std::pair{0.83, 175.5},
                              std::pair{1.0, 100.0}}) {
     const auto p = app::predict(ctx_, query("alpha", u, d));
@@ -99,7 +103,7 @@ TEST_F(Predict, ASpeedBetweenFineRowsIsInterpolatedAndFlaggedAsTheTableWould) {
 }
 
 TEST_F(Predict, ALeftTurnIsTheMirrorImageOfTheRightOne) {
-  avk::testing::store_arc_turns(ctx_.db(), "alpha");
+  avk::testing::store_arc_turns(app::store_of(ctx_), "alpha");
   for (const auto method : {app::PredictionMethod::avk, app::PredictionMethod::instantaneous}) {
     auto right_q = query("alpha", 1.2, 70.0);
     auto left_q = query("alpha", 1.2, -70.0);
@@ -116,7 +120,7 @@ TEST_F(Predict, ALeftTurnIsTheMirrorImageOfTheRightOne) {
 }
 
 TEST_F(Predict, APoseRotatesAndTranslatesTheNormalisedTurn) {
-  avk::testing::store_arc_turns(ctx_.db(), "alpha");
+  avk::testing::store_arc_turns(app::store_of(ctx_), "alpha");
   auto q = query("alpha", 1.0, 40.0);
   const auto normal = app::predict(ctx_, q);
   q.pose = kinematics::Pose{100.0, -20.0, 90.0};  // heading east
@@ -141,8 +145,9 @@ TEST_F(Predict, InstantaneousIsARayOnTheNewHeading) {
 }
 
 TEST_F(Predict, AVehicleWithOnlyAnImportedTableIsAnsweredByIt) {
-  avk::testing::store_arc_turns(ctx_.db(), "donor", 1.5);
-  kinematics::Ckt table = kinematics::Ckt::build(ctx_.db().turns().load_normalized({}, "donor"));
+  avk::testing::store_arc_turns(app::store_of(ctx_), "donor", 1.5);
+  kinematics::Ckt table =
+      kinematics::Ckt::build(app::store_of(ctx_).turns().load_normalized({}, "donor"));
   table.vehicle_id = "bravo";
   const auto imported = app::import_ckt(ctx_, "bravo", kinematics::ckt_to_json_string(table));
   ASSERT_TRUE(imported) << imported.error().message;
@@ -156,10 +161,11 @@ TEST_F(Predict, AVehicleWithOnlyAnImportedTableIsAnsweredByIt) {
 }
 
 TEST_F(Predict, EachVehicleOfADatabaseIsAnsweredByItsOwnTable) {
-  avk::testing::store_arc_turns(ctx_.db(), "small", 1.0);
-  avk::testing::store_arc_turns(ctx_.db(), "large", 2.0);
+  avk::testing::store_arc_turns(app::store_of(ctx_), "small", 1.0);
+  avk::testing::store_arc_turns(app::store_of(ctx_), "large", 2.0);
   // A table imported last, for a third vehicle, must not answer for the others.
-  kinematics::Ckt other = kinematics::Ckt::build(ctx_.db().turns().load_normalized({}, "small"));
+  kinematics::Ckt other =
+      kinematics::Ckt::build(app::store_of(ctx_).turns().load_normalized({}, "small"));
   other.vehicle_id = "third";
   ASSERT_TRUE(app::import_ckt(ctx_, "third", kinematics::ckt_to_json_string(other)));
   const auto small = app::predict(ctx_, query("small", 1.0, 100.0));
@@ -174,7 +180,7 @@ TEST_F(Predict, EachVehicleOfADatabaseIsAnsweredByItsOwnTable) {
 }
 
 TEST_F(Predict, BadQuestionsNameTheirParameter) {
-  avk::testing::store_arc_turns(ctx_.db(), "alpha");
+  avk::testing::store_arc_turns(app::store_of(ctx_), "alpha");
   const auto field_of = [&](app::PredictQuery q) {
     const auto r = app::predict(ctx_, q);
     EXPECT_FALSE(r);
@@ -207,8 +213,8 @@ TEST_F(Predict, BadQuestionsNameTheirParameter) {
 
 // Replay's fair prediction: a past turn predicted by what never saw its mission.
 TEST_F(Predict, WithoutAMissionTheTableHoldsOnlyTheOtherMissionsTurns) {
-  const auto tight = avk::testing::store_arc_turns(ctx_.db(), "alpha", 1.0);
-  const auto wide = avk::testing::store_arc_turns(ctx_.db(), "alpha", 2.0);
+  const auto tight = avk::testing::store_arc_turns(app::store_of(ctx_), "alpha", 1.0);
+  const auto wide = avk::testing::store_arc_turns(app::store_of(ctx_), "alpha", 2.0);
   const auto held_out = [&](std::int64_t mission) {
     auto q = query("alpha", 1.0, -100.0);
     q.without_mission_id = mission;
@@ -219,7 +225,7 @@ TEST_F(Predict, WithoutAMissionTheTableHoldsOnlyTheOtherMissionsTurns) {
     auto q = query("alpha", 1.0, -100.0);
     q.pose = kinematics::Pose{5.0, -3.0, 30.0};
     return app::predict_with_table(
-        kinematics::Ckt::build(ctx_.db().turns().load_normalized({mission}, "alpha")), q);
+        kinematics::Ckt::build(app::store_of(ctx_).turns().load_normalized({mission}, "alpha")), q);
   };
   const auto without_tight = held_out(tight);
   const auto without_wide = held_out(wide);
@@ -236,7 +242,7 @@ TEST_F(Predict, WithoutAMissionTheTableHoldsOnlyTheOtherMissionsTurns) {
 }
 
 TEST_F(Predict, WithoutAMissionNamesWhatIsMissing) {
-  const auto only = avk::testing::store_arc_turns(ctx_.db(), "alpha");
+  const auto only = avk::testing::store_arc_turns(app::store_of(ctx_), "alpha");
   auto q = query("alpha", 1.0, 100.0);
   q.without_mission_id = only;
   const auto none_left = app::predict(ctx_, q);
@@ -255,8 +261,8 @@ TEST_F(Predict, WithoutAMissionNamesWhatIsMissing) {
 }
 
 TEST_F(Predict, WithoutAMissionTheModelIsOneNotTrainedOnIt) {
-  const auto a = avk::testing::store_arc_turns(ctx_.db(), "alpha");
-  const auto b = avk::testing::store_arc_turns(ctx_.db(), "alpha", 2.0);
+  const auto a = avk::testing::store_arc_turns(app::store_of(ctx_), "alpha");
+  const auto b = avk::testing::store_arc_turns(app::store_of(ctx_), "alpha", 2.0);
   const auto save = [&](std::vector<std::int64_t> missions) {
     store::StoredModel m;
     m.vehicle_id = "alpha";
@@ -266,7 +272,7 @@ TEST_F(Predict, WithoutAMissionTheModelIsOneNotTrainedOnIt) {
     m.model.rate_hz = 4.0;
     m.model.error_coeffs = {0.1};
     m.model.heading_coeffs = {0.0};
-    return ctx_.db().models().save(m);
+    return app::store_of(ctx_).models().save(m);
   };
   const auto on_b = save({b});
   const auto on_both = save({a, b});  // the latest
@@ -295,21 +301,21 @@ std::int64_t first_turn_in_cell(app::Context& ctx, std::int64_t mission, double 
   f.mission_id = mission;
   f.speed_mps = speed_mps;
   f.dheading_deg = dheading_deg;
-  const auto rows = ctx.db().turns().list(f);
+  const auto rows = app::store_of(ctx).turns().list(f);
   return rows.empty() ? 0 : rows.front().id;
 }
 
 // Live's fair prediction of the turn just finished: every other turn of the vehicle.
 TEST_F(Predict, WithoutATurnTheTableHoldsEveryOtherTurn) {
-  const auto mission = avk::testing::store_arc_turns(ctx_.db(), "alpha", 1.0, 3);
-  avk::testing::store_arc_turns(ctx_.db(), "beta");
+  const auto mission = avk::testing::store_arc_turns(app::store_of(ctx_), "alpha", 1.0, 3);
+  avk::testing::store_arc_turns(app::store_of(ctx_), "beta");
   const std::int64_t turn = first_turn_in_cell(ctx_, mission, 1.0, 100.0);
   ASSERT_GT(turn, 0);
-  const auto all = ctx_.db().turns().load_normalized({}, "alpha");
+  const auto all = app::store_of(ctx_).turns().load_normalized({}, "alpha");
   store::TurnsLeftOut left_out;
   left_out.turn_id = turn;
-  const auto others = ctx_.db().turns().load_normalized({}, "alpha", false,
-                                                        store::TurnFrameChoice::ground, left_out);
+  const auto others = app::store_of(ctx_).turns().load_normalized(
+      {}, "alpha", false, store::TurnFrameChoice::ground, left_out);
   ASSERT_EQ(others.size() + 1, all.size());
 
   auto q = query("alpha", 1.0, 100.0);
@@ -329,7 +335,7 @@ TEST_F(Predict, WithoutATurnTheTableHoldsEveryOtherTurn) {
 
   q.without_turn_id = 9999;
   EXPECT_NE(app::predict(ctx_, q).error().message.find("no turn 9999"), std::string::npos);
-  q.without_turn_id = ctx_.db().turns().list({}).back().id;  // beta's
+  q.without_turn_id = app::store_of(ctx_).turns().list({}).back().id;  // beta's
   const auto foreign = app::predict(ctx_, q);
   ASSERT_FALSE(foreign);
   EXPECT_EQ(foreign.error().field, "without_turn");
@@ -341,7 +347,7 @@ TEST_F(Predict, WithoutATurnTheTableHoldsEveryOtherTurn) {
 // The held-out table is kept between requests (app::TableCache::held_out): asked again, the same
 // answer; once the vehicle has a new turn in the cell, an answer that counts it.
 TEST_F(Predict, AHeldOutAnswerIsTheSameWhenAskedAgainAndFollowsANewTurn) {
-  const auto mission = avk::testing::store_arc_turns(ctx_.db(), "alpha", 1.0, 3);
+  const auto mission = avk::testing::store_arc_turns(app::store_of(ctx_), "alpha", 1.0, 3);
   auto q = query("alpha", 1.0, 100.0);
   q.without_turn_id = first_turn_in_cell(ctx_, mission, 1.0, 100.0);
   ASSERT_GT(*q.without_turn_id, 0);
@@ -353,7 +359,7 @@ TEST_F(Predict, AHeldOutAnswerIsTheSameWhenAskedAgainAndFollowsANewTurn) {
   expect_same_line(second->trajectory, first->trajectory);
   EXPECT_EQ(second->advance_m, first->advance_m);
 
-  avk::testing::store_one_arc_turn(ctx_.db(), mission, "alpha", 1.0, 100.0);
+  avk::testing::store_one_arc_turn(app::store_of(ctx_), mission, "alpha", 1.0, 100.0);
   // The station re-reads the store at most once a second: wait for the answer that counts it.
   std::size_t counted = 0;
   for (const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
@@ -433,7 +439,7 @@ TEST_F(Predict, AStraightLegInACurrentIsCarriedOrRetimedAsTheSpeedLoopHoldsIt) {
 // re-timed time. Held through the water: the path through the water plus c·t at the table's own
 // times. Either way the answer starts where the turn does and the vertices stay one for one.
 TEST_F(Predict, ATurnInACurrentKeepsItsStillWaterSpeedOverGroundWhenTheLoopHoldsIt) {
-  avk::testing::store_arc_turns(ctx_.db(), "alpha");
+  avk::testing::store_arc_turns(app::store_of(ctx_), "alpha");
   const kinematics::WaterCurrent c{0.15, -0.1};
   auto q = query("alpha", 1.0, 100.0);
   q.no_current = true;
@@ -449,7 +455,8 @@ TEST_F(Predict, ATurnInACurrentKeepsItsStillWaterSpeedOverGroundWhenTheLoopHolds
   EXPECT_EQ(through_water->current_source, "none");
   EXPECT_FALSE(through_water->current);
   // The water path's times, as the table recorded its turns.
-  const auto table = kinematics::Ckt::build(ctx_.db().turns().load_normalized({}, "alpha"));
+  const auto table =
+      kinematics::Ckt::build(app::store_of(ctx_).turns().load_normalized({}, "alpha"));
   const auto fine = kinematics::MaterializedCkt(table).query(1.0, 100.0);
   ASSERT_TRUE(fine.timing);
   const kinematics::TimedPath water =
@@ -494,7 +501,7 @@ TEST_F(Predict, ATurnInACurrentKeepsItsStillWaterSpeedOverGroundWhenTheLoopHolds
 // estimate when it is told apart from still water (with its uncertainty), still water when it is
 // not; through the water only without an estimate, or when asked with current=none.
 TEST_F(Predict, UnaskedTheAnswerIsOverGroundWithTheStoredEstimate) {
-  const std::int64_t mission = avk::testing::store_arc_turns(ctx_.db(), "alpha");
+  const std::int64_t mission = avk::testing::store_arc_turns(app::store_of(ctx_), "alpha");
   auto q = query("alpha", 1.0, 100.0);
   q.pose = kinematics::Pose{10.0, -5.0, 30.0};
   const auto before = app::predict(ctx_, q);  // no estimate yet
@@ -503,7 +510,7 @@ TEST_F(Predict, UnaskedTheAnswerIsOverGroundWithTheStoredEstimate) {
   EXPECT_EQ(before->current_source, "unknown");
   EXPECT_FALSE(before->current);
 
-  store_current(ctx_.db(), mission, 0.0, -0.2, 0.01);
+  store_current(app::store_of(ctx_), mission, 0.0, -0.2, 0.01);
   const auto by_default = app::predict(ctx_, q);
   auto given = q;
   given.current = kinematics::WaterCurrent{0.0, -0.2};
@@ -529,7 +536,7 @@ TEST_F(Predict, UnaskedTheAnswerIsOverGroundWithTheStoredEstimate) {
   EXPECT_LT(by_default->trajectory.back().y_m, through_water->trajectory.back().y_m - 1.0);
 
   // An estimate not told apart from still water: over ground, nothing added.
-  store_current(ctx_.db(), mission, 0.01, 0.0, 0.02);
+  store_current(app::store_of(ctx_), mission, 0.01, 0.0, 0.02);
   const auto still = app::predict(ctx_, q);
   ASSERT_TRUE(still);
   EXPECT_EQ(still->frame, "ground");
@@ -542,8 +549,9 @@ TEST_F(Predict, UnaskedTheAnswerIsOverGroundWithTheStoredEstimate) {
 // A CKT file has no station: a given current is applied over ground with the asked reference
 // (else the default), and without one the answer is through the water.
 TEST_F(Predict, ATableFileAppliesAGivenCurrentWithTheAskedSpeedReference) {
-  avk::testing::store_arc_turns(ctx_.db(), "alpha");
-  const auto table = kinematics::Ckt::build(ctx_.db().turns().load_normalized({}, "alpha"));
+  avk::testing::store_arc_turns(app::store_of(ctx_), "alpha");
+  const auto table =
+      kinematics::Ckt::build(app::store_of(ctx_).turns().load_normalized({}, "alpha"));
   app::PredictQuery q = query("alpha", 1.0, 100.0);
   const auto plain = app::predict_with_table(table, q);
   q.current = kinematics::WaterCurrent{0.2, 0.0};

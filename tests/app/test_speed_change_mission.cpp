@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "app/context.hpp"
+#include "app/store_access.hpp"
 #include "sim/scheduler.hpp"
 #include "sim/sim_vehicle.hpp"
 #include "support/recorded_mission.hpp"
@@ -57,8 +58,8 @@ TEST(SpeedChangeMission, TurnsSlowFromU0TowardsU1AsTheVehicleDoesOnAStraightCour
   avk::testing::TempDb db("avk_app_speed_change");
   app::Context ctx(db.path());
   const std::int64_t mission = avk::testing::run_recorded_mission(
-      ctx.db(), "m200", kSpeedChangeMission, sim::default_sim_setup("catamaran:m200"));
-  const auto turns = ctx.db().turns().load_normalized({mission}, std::string("m200"));
+      app::store_of(ctx), "m200", kSpeedChangeMission, sim::default_sim_setup("catamaran:m200"));
+  const auto turns = app::store_of(ctx).turns().load_normalized({mission}, std::string("m200"));
   ASSERT_EQ(turns.size(), 2u);
   const SpeedResponse straight = straight_speed_step(1.5, 0.75);
   for (const auto& t : turns) {
@@ -92,7 +93,7 @@ TEST(SpeedChangeMission, TurnsSlowFromU0TowardsU1AsTheVehicleDoesOnAStraightCour
     EXPECT_LT(std::abs(mean_diff), 0.15);
   }
   // The mission's cells keep the speed change apart from constant-speed cells.
-  const auto stats = ctx.db().missions().cell_stats(mission);
+  const auto stats = app::store_of(ctx).missions().cell_stats(mission);
   ASSERT_EQ(stats.size(), 1u);
   EXPECT_EQ(stats[0].speed_after_mps, 0.75);
   EXPECT_EQ(stats[0].n_ok, 2);

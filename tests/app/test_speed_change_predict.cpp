@@ -8,6 +8,7 @@
 #include "app/compare.hpp"
 #include "app/context.hpp"
 #include "app/predict.hpp"
+#include "app/store_access.hpp"
 #include "kinematics/angles.hpp"
 #include "kinematics/retimed_turn.hpp"
 #include "kinematics/speed_change_table.hpp"
@@ -74,8 +75,8 @@ app::PredictQuery query(double speed, double dheading, std::optional<double> aft
 class SpeedChangePredict : public ::testing::Test {
  protected:
   void SetUp() override {
-    avk::testing::store_arc_turns(ctx_.db(), "sc");
-    store_speed_change_turns(ctx_.db(), "sc");
+    avk::testing::store_arc_turns(app::store_of(ctx_), "sc");
+    store_speed_change_turns(app::store_of(ctx_), "sc");
   }
   avk::testing::TempDb db_{"avk_app_speed_change_predict"};
   app::Context ctx_{db_.path()};
@@ -87,7 +88,8 @@ TEST_F(SpeedChangePredict, ACollectedPairIsAnsweredByItsMeasuredCells) {
   const auto p = app::predict(ctx_, query(1.5, 100.0, 0.75));
   ASSERT_TRUE(p) << p.error().message;
   EXPECT_EQ(p->speed_change_source, app::SpeedChangeSource::measured);
-  const auto table = kin::SpeedChangeTable::build(ctx_.db().turns().load_normalized({}, "sc"));
+  const auto table =
+      kin::SpeedChangeTable::build(app::store_of(ctx_).turns().load_normalized({}, "sc"));
   const auto expected = table.query(1.5, 0.75, 100.0);
   ASSERT_TRUE(expected);
   ASSERT_EQ(p->trajectory.size(), expected->trajectory.size());
@@ -107,7 +109,7 @@ TEST_F(SpeedChangePredict, ElsewhereTheConstantSpeedTurnIsRetimedByTheMeasuredRe
   ASSERT_TRUE(p) << p.error().message;
   EXPECT_EQ(p->speed_change_source, app::SpeedChangeSource::retimed);
   EXPECT_EQ(p->speed_response, "measured");
-  const auto turns = ctx_.db().turns().load_normalized({}, "sc");
+  const auto turns = app::store_of(ctx_).turns().load_normalized({}, "sc");
   const auto response = kin::measured_speed_response(turns);
   ASSERT_TRUE(response);
   EXPECT_NEAR(response->fraction_at(3.0), 1.0 - std::exp(-3.0 / kTau), 0.02);
@@ -140,7 +142,7 @@ TEST_F(SpeedChangePredict, ErrorsNameSpeedAfter) {
     EXPECT_EQ(p.error().field, "speed_after");
   }
   // A vehicle without speed-change turns and without a model has no speed response.
-  avk::testing::store_arc_turns(ctx_.db(), "plain");
+  avk::testing::store_arc_turns(app::store_of(ctx_), "plain");
   auto q = query(1.0, 40.0, 0.5);
   q.vehicle_id = "plain";
   const auto p = app::predict(ctx_, q);
@@ -151,7 +153,8 @@ TEST_F(SpeedChangePredict, ErrorsNameSpeedAfter) {
   EXPECT_FALSE(app::predict(ctx_, q));
   // A CKT file holds constant-speed turns only.
   const auto file = app::predict_with_table(
-      kin::Ckt::build(ctx_.db().turns().load_normalized({}, "sc")), query(1.0, 40.0, 0.5));
+      kin::Ckt::build(app::store_of(ctx_).turns().load_normalized({}, "sc")),
+      query(1.0, 40.0, 0.5));
   ASSERT_FALSE(file);
   EXPECT_EQ(file.error().field, "speed_after");
 }

@@ -82,7 +82,7 @@ TEST_F(StationVehicle, AMissionStartsPausesResumesAndAborts) {
   while (ctx_.vehicle_loop()->attached_mission() && std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   ASSERT_FALSE(ctx_.vehicle_loop()->attached_mission());
-  EXPECT_EQ(app::mission_report(ctx_, *id)->summary.status, store::MissionStatus::aborted);
+  EXPECT_EQ(app::mission_report(ctx_, *id)->summary.status, app::MissionStatus::aborted);
   EXPECT_EQ(app::command_mission(ctx_, *id, app::MissionCommand::pause).error().code,
             app::ErrorCode::conflict);
 }

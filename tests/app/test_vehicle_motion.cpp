@@ -11,6 +11,8 @@
 
 #include "app/context.hpp"
 #include "app/current.hpp"
+#include "app/mission_legs.hpp"
+#include "app/store_access.hpp"
 #include "app/vehicle_motion.hpp"
 #include "kinematics/angles.hpp"
 #include "support/example_file.hpp"
@@ -106,8 +108,8 @@ TEST(VehicleMotion, TheSimulatedM200HoldsTheSpeedOverGround) {
   sim::SimSetup setup = sim::default_sim_setup("catamaran:m200");
   setup.vehicle.environment.current = {0.3, 315.0};
   const std::int64_t mission = avk::testing::run_recorded_mission(
-      ctx.db(), "m200", avk::testing::example_text("thesis-fig4-1.json"), setup);
-  const auto stored = ctx.db().currents().for_mission(mission);
+      app::store_of(ctx), "m200", avk::testing::example_text("thesis-fig4-1.json"), setup);
+  const auto stored = app::store_of(ctx).currents().for_mission(mission);
   ASSERT_TRUE(stored && stored->speed_reference);
   const auto r = app::estimate_mission_current(ctx, mission);
   ASSERT_TRUE(r && r->speed_reference && r->drift_scatter);
@@ -153,7 +155,7 @@ TEST(VehicleMotion, AnOpenLoopThrustMapHoldsTheSpeedThroughTheWater) {
     "operating_region": {"polygon_m": [[-100,-100],[100,-100],[100,100],[-100,100]],
                          "buffer_m": 25, "return_point_m": [0, -70]}})";
   const std::int64_t mission =
-      avk::testing::run_recorded_mission(ctx.db(), "jet", mission_text, setup);
+      avk::testing::run_recorded_mission(app::store_of(ctx), "jet", mission_text, setup);
   const auto r = app::estimate_mission_current(ctx, mission);
   ASSERT_TRUE(r && r->speed_reference) << (r ? r->result.why_not : r.error().message);
   const auto& e = *r->speed_reference;
@@ -184,7 +186,7 @@ store::StoredCurrent stored(std::int64_t mission, double east, double north,
 TEST(VehicleMotion, TheNewestIdentificationWinsAndTheScatterIsPooled) {
   avk::testing::TempDb db("avk_app_motion_pool");
   app::Context ctx(db.path());
-  store::Store& s = ctx.db();
+  store::Store& s = app::store_of(ctx);
   s.vehicles().upsert({"v", "usim", 2.0, 1.2});
   const auto a = s.missions().create("v", "a", "{}");
   const auto b = s.missions().create("v", "b", "{}");
@@ -235,7 +237,7 @@ TEST(VehicleMotion, TheNewestIdentificationWinsAndTheScatterIsPooled) {
 TEST(VehicleMotion, DefaultsUntilMeasuredAndUnknownVehiclesAreNotFound) {
   avk::testing::TempDb db("avk_app_motion_default");
   app::Context ctx(db.path());
-  store::Store& s = ctx.db();
+  store::Store& s = app::store_of(ctx);
   EXPECT_EQ(app::vehicle_motion(ctx, "nobody").error().code, app::ErrorCode::not_found);
   s.vehicles().upsert({"v", "usim", 2.0, 1.2});
   auto m = app::vehicle_motion(ctx, "v");

@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <fstream>
+#include <optional>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <stdexcept>
 
@@ -19,6 +21,12 @@ bool under(const std::string& path, const std::string& prefix) {
          path[prefix.size()] == '/';
 }
 
+// A quoted include: the project's own headers.
+const std::regex& include_pattern() {
+  static const std::regex pattern("^\\s*#\\s*include\\s*\"([^\"]+)\"");
+  return pattern;
+}
+
 const LayerRule* rule_of(const std::string& file, const std::vector<LayerRule>& rules) {
   const LayerRule* best = nullptr;
   for (const auto& r : rules)
@@ -26,11 +34,31 @@ const LayerRule* rule_of(const std::string& file, const std::vector<LayerRule>& 
   return best;
 }
 
+// The first include under `hidden` that `header` (relative to root) reaches, directly or through
+// the headers under `through` it includes; none when it reaches none. `seen` stops a cycle.
+std::optional<std::string> hidden_include(const fs::path& root, const std::string& header,
+                                          const std::string& through, const std::string& hidden,
+                                          std::set<std::string>& seen) {
+  if (!seen.insert(header).second) return std::nullopt;
+  std::ifstream in(root / header);
+  std::string line;
+  while (std::getline(in, line)) {
+    std::smatch m;
+    if (!std::regex_search(line, m, include_pattern())) continue;
+    const std::string included = m[1];
+    if (under(included, hidden)) return included;
+    if (under(included, through))
+      if (auto found = hidden_include(root, included, through, hidden, seen)) return found;
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::string LayerViolation::text() const {
-  return file + ":" + std::to_string(line) + ": includes \"" + included + "\", which " + folder +
-         "/ may not use (tests/architecture/layer_rules.txt)";
+  const std::string what = hidden.empty() ? "" : ", which includes \"" + hidden + "\"";
+  return file + ":" + std::to_string(line) + ": includes \"" + included + "\"" + what + ", which " +
+         folder + "/ may not use (tests/architecture/layer_rules.txt)";
 }
 
 std::vector<fs::path> source_files(const fs::path& root, const std::vector<std::string>& folders,
@@ -72,8 +100,6 @@ std::vector<LayerRule> parse_layer_rules(std::istream& in) {
 
 std::vector<LayerViolation> check_layers(const fs::path& root,
                                          const std::vector<LayerRule>& rules) {
-  // A quoted include: the project's own headers.
-  static const std::regex kInclude("^\\s*#\\s*include\\s*\"([^\"]+)\"");
   std::vector<LayerViolation> out;
   std::vector<std::string> folders;
   for (const auto& r : rules)
@@ -86,16 +112,25 @@ std::vector<LayerViolation> check_layers(const fs::path& root,
     std::string line;
     for (int n = 1; std::getline(in, line); ++n) {
       std::smatch m;
-      if (!std::regex_search(line, m, kInclude)) continue;
+      if (!std::regex_search(line, m, include_pattern())) continue;
       const std::string included = m[1];
       // Only the project's own folders are layers; other quoted includes are the file's siblings.
       if (!rule_of(included, rules) && included.find('/') == std::string::npos) continue;
       // A file's own folder is the one whose rule it falls under: a sub-folder with a rule of
       // its own (server/http under server) is another layer, reached only when listed.
       const bool own = rule_of(included, rules) == rule;
-      const bool allowed = own || std::any_of(rule->allowed.begin(), rule->allowed.end(),
-                                              [&](const auto& a) { return under(included, a); });
-      if (!allowed) out.push_back({file, n, included, rule->folder});
+      const std::string* entry = nullptr;
+      for (const auto& a : rule->allowed)
+        if (under(included, a.substr(0, a.find('!')))) entry = &a;
+      if (!own && !entry) {
+        out.push_back({file, n, included, rule->folder, {}});
+      } else if (!own && entry->find('!') != std::string::npos) {
+        const auto bang = entry->find('!');
+        std::set<std::string> seen;
+        if (auto inner = hidden_include(root, included, entry->substr(0, bang),
+                                        entry->substr(bang + 1), seen))
+          out.push_back({file, n, included, rule->folder, *inner});
+      }
     }
   }
   return out;

@@ -11,8 +11,11 @@
 namespace avk::testing {
 
 struct LayerRule {
-  std::string folder;                // e.g. "server/http"
-  std::vector<std::string> allowed;  // folders or files, e.g. "kinematics", "server/api_types.hpp"
+  std::string folder;  // e.g. "server/http"
+  // Folders or files, e.g. "kinematics", "server/api_types.hpp". "app!store": app, through its
+  // headers that reach nothing of store, directly or through other app headers (a layer kept
+  // from what is below the next).
+  std::vector<std::string> allowed;
 };
 
 struct LayerViolation {
@@ -20,6 +23,7 @@ struct LayerViolation {
   int line = 0;
   std::string included;
   std::string folder;  // the rule the file fell under
+  std::string hidden;  // what the included header reaches that the folder may not, if that
   std::string text() const;
 };
 

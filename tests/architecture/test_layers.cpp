@@ -54,6 +54,32 @@ TEST(Layers, ADeliberateViolationFailsNamingTheFileTheLineAndTheInclude) {
   EXPECT_NE(violations[1].text().find("server/http/router.cpp:4"), std::string::npos);
 }
 
+TEST(Layers, AFrontEndReachingTheStoreThroughAnAppHeaderFails) {
+  // A use case's header that keeps the store hidden is the front ends'; one that includes the
+  // store (app's own way in) is not, so neither a route nor the command line can name a store type.
+  avk::testing::TempDir dir("avk_layers_sealed");
+  dir.write("app/turns.hpp", "#pragma once\n#include \"app/turn_views.hpp\"\n");
+  dir.write("app/turn_views.hpp", "#pragma once\n#include \"kinematics/turn_sequence.hpp\"\n");
+  dir.write("app/store_access.hpp", "#pragma once\n// the door\n#include \"store/store.hpp\"\n");
+  dir.write("server/routes/turn_routes.cpp", "#include \"app/turns.hpp\"\n");
+  dir.write("server/cli/cmd_turns.cpp",
+            "#include \"app/turns.hpp\"\n#include \"app/store_access.hpp\"\n");
+  // Through another app header, too.
+  dir.write("app/models.hpp", "#pragma once\n#include \"app/store_access.hpp\"\n");
+  dir.write("server/routes/model_routes.cpp", "#include \"app/models.hpp\"\n");
+  const auto violations = check_layers(dir.path(), project_rules());
+  ASSERT_EQ(violations.size(), 2u);
+  EXPECT_EQ(violations[1].file, "server/routes/model_routes.cpp");
+  EXPECT_EQ(violations[1].included, "app/models.hpp");
+  EXPECT_EQ(violations[1].hidden, "store/store.hpp");
+  EXPECT_EQ(violations[0].file, "server/cli/cmd_turns.cpp");
+  EXPECT_EQ(violations[0].line, 2);
+  EXPECT_EQ(violations[0].included, "app/store_access.hpp");
+  EXPECT_EQ(violations[0].hidden, "store/store.hpp");
+  EXPECT_NE(violations[0].text().find("which includes \"store/store.hpp\""), std::string::npos)
+      << violations[0].text();
+}
+
 TEST(Layers, AMalformedRuleIsRefusedNamingItsLine) {
   std::istringstream in("kinematics:\nvehicle kinematics\n");
   try {

@@ -21,6 +21,7 @@
 #include "app/context.hpp"
 #include "app/mission_plans.hpp"
 #include "app/mission_recorder.hpp"
+#include "app/store_access.hpp"
 #include "mission/helm_loop.hpp"
 #include "mission/mission_config.hpp"
 #include "mission/mission_runner.hpp"
@@ -139,7 +140,7 @@ DriverRun run_through_emulator(
     const std::function<void(double, const mission::MissionRunner&)>& during = {}) {
   avk::testing::TempDb db_file("avk_m200");
   app::Context ctx(db_file.path());
-  store::Store& db = ctx.db();
+  store::Store& db = app::store_of(ctx);
   vehicle::ScaledClock clock(kFactor, 0.0);
   vehicle::M200 m200(driver_options(emulator), clock);
   EXPECT_TRUE(m200.wait_for_nav(std::chrono::seconds(5)));

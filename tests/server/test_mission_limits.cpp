@@ -8,6 +8,7 @@
 
 #include "app/context.hpp"
 #include "app/mission_plans.hpp"
+#include "app/store_access.hpp"
 #include "mission/mission_config.hpp"
 #include "server/station.hpp"
 #include "sim/sim_config.hpp"
@@ -49,7 +50,7 @@ std::string oversized_mission() {
 TEST(MissionLimitsStore, AMissionTooLargeToPlanLeavesNoRowBehind) {
   avk::testing::TempDb path{"avk_mission_limits"};
   avk::app::Context ctx(path.path());
-  avk::store::Store& db = ctx.db();
+  avk::store::Store& db = avk::app::store_of(ctx);
   const avk::vehicle::VehicleInfo info{"sim-usim", "usim", 2.0, std::nullopt};
   const auto refused = avk::app::create_mission_plan(ctx, oversized_mission(), info);
   ASSERT_FALSE(refused);

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "app/mission_mcap.hpp"
+#include "app/store_access.hpp"
 #include "server/http/http_server.hpp"
 #include "server/station.hpp"
 #include "support/stored_turns.hpp"
@@ -201,7 +202,8 @@ TEST_F(StationHttpTest, HeadGivesTheGetsHeadersAndNoBody) {
 // The MCAP export is written to a temporary file and sent from it: the same file as the one made
 // in memory, with its length announced (HEAD too) and nothing else in the body.
 TEST_F(StationHttpTest, TheMcapExportIsSentFromAFileWhole) {
-  const auto mission = avk::testing::store_arc_turns(station->context().db(), "alpha", 1.0, 3);
+  const auto mission =
+      avk::testing::store_arc_turns(avk::app::store_of(station->context()), "alpha", 1.0, 3);
   app::McapExportOptions o;
   o.compression = app::mcap::Compression::none;
   const auto expected = app::export_mission_mcap(station->context(), mission, o);

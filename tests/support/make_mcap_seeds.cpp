@@ -14,6 +14,7 @@
 #include "app/mcap/reader.hpp"
 #include "app/mcap/writer.hpp"
 #include "app/mission_mcap.hpp"
+#include "app/store_access.hpp"
 #include "support/temp_db.hpp"
 
 namespace {
@@ -45,7 +46,7 @@ int main(int argc, char** argv) {
   const std::filesystem::path dir = argv[1];
   testing::TempDb db("avk_mcap_seeds");
   app::Context ctx(db.path());
-  store::Store& st = ctx.db();
+  store::Store& st = app::store_of(ctx);
   st.vehicles().upsert({"seed", "usim", 2.0, 1.2});
   const std::int64_t mission = st.missions().create("seed", "seed", "{}");
   st.missions().set_status(mission, store::MissionStatus::running, "", 10.0);
