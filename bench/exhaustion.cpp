@@ -1,6 +1,6 @@
 // Resource exhaustion against a real `avk serve`: the hostile clients' attempts of
-// tests/server/test_http_server.cpp and test_station_http.cpp repeated while /health is probed
-// and the server's memory read.
+// tests/server/test_http_hostile_requests.cpp, test_http_connection_limits.cpp and
+// test_station_http.cpp repeated while /health is probed and the server's memory read.
 //
 //   1. slow bodies: 25 POSTs to the CKT import without a token and 25 with it, each body sent
 //      at one byte per 10 s (the 30 s whole-request deadline must cut the authorised ones; the
