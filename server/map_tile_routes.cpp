@@ -1,17 +1,15 @@
 #include "server/map_tile_routes.hpp"
 
-#include <nlohmann/json.hpp>
 #include <string>
 
 #include "server/api_errors.hpp"
 #include "server/api_params.hpp"
 #include "server/http/problem.hpp"
+#include "server/serialize/station.hpp"
 
 namespace avk::server {
 
 namespace {
-
-using nlohmann::json;
 
 // A tile coordinate of the path: digits only (no sign, no extension, no dots), so the number is
 // all that reaches the tile source.
@@ -34,26 +32,7 @@ void add_map_tile_routes(Router& router, std::shared_ptr<const app::tiles::MapTi
                          std::optional<vehicle::LatLon> datum) {
   router.add({"GET", "/api/v1/tiles", Access::read, std::nullopt,
               [tiles, datum](const ApiRequest&, const PathParams&) {
-                json j = {{"available", tiles != nullptr},
-                          {"source", nullptr},
-                          {"name", nullptr},
-                          {"format", nullptr},
-                          {"minzoom", nullptr},
-                          {"maxzoom", nullptr},
-                          {"bounds", nullptr},
-                          {"tile_url", nullptr}};
-                if (tiles) {
-                  const auto& i = tiles->info();
-                  j["source"] = i.source;
-                  j["name"] = i.name;
-                  j["format"] = i.format;
-                  j["minzoom"] = i.min_zoom;
-                  j["maxzoom"] = i.max_zoom;
-                  if (i.bounds_deg) j["bounds"] = *i.bounds_deg;
-                  j["tile_url"] = "/api/v1/tiles/{z}/{x}/{y}";
-                }
-                j["datum"] =
-                    datum ? json{{"lat_deg", datum->lat_deg}, {"lon_deg", datum->lon_deg}} : json();
+                const auto j = map_tiles_json(tiles ? &tiles->info() : nullptr, datum);
                 return ApiResponse{200, "application/json", j.dump(), {}};
               }});
   router.add({"GET", "/api/v1/tiles/{z}/{x}/{y}", Access::image, std::nullopt,

@@ -3,16 +3,13 @@
 #include <algorithm>
 #include <chrono>
 
-#include <nlohmann/json.hpp>
-
 #include "app/foxglove_scene.hpp"
 #include "server/map_tile_routes.hpp"
 #include "server/routes/routes.hpp"
-#include "server/vocabulary_json.hpp"
+#include "server/serialize/station.hpp"
+#include "server/serialize/vocabulary.hpp"
 
 namespace avk::server {
-
-using nlohmann::json;
 
 Station::Station(StationOptions options, StreamHub& hub)
     : Router(options.token),
@@ -74,29 +71,22 @@ void Station::add_routes() {
   // --- the station -------------------------------------------------------------------------
   routes.get("/api/v1/health", [this, &ctx](const ApiRequest&, const PathParams&) {
     app::VehicleLoop* loop = ctx.vehicle_loop();
-    json j = {{"status", "ok"},
-              {"server_version", options_.server_version},
-              {"session_id", hub_.session_id()},
-              {"vehicle_id", loop ? json(loop->info().id) : json()}};
-    // The station clock beside the wall clock at one moment: every time of this session (nav,
-    // events, turns) is in the station clock, which runs x realtime_factor on the simulator; a
-    // front end shows wall-clock time as utc_ms - (clock_s - t_s) / realtime_factor * 1000.
-    j["utc_ms"] = std::chrono::duration_cast<std::chrono::milliseconds>(
-                      std::chrono::system_clock::now().time_since_epoch())
-                      .count();
-    // Before the loop's first telemetry tick its snapshot has no time yet: the clock is at its
-    // start then.
-    j["clock_s"] = loop && options_.vehicle
-                       ? json(std::max(loop->snapshot().t_s, options_.vehicle->start_clock_s))
-                       : json();
-    j["realtime_factor"] = options_.vehicle ? json(options_.vehicle->realtime_factor) : json();
-    // Where this session's clock began: a mission started before it ran in an earlier session,
-    // whose times the mapping above does not fit.
-    j["session_start_clock_s"] = options_.vehicle ? json(options_.vehicle->start_clock_s) : json();
-    j["datum"] = options_.datum ? json{{"lat_deg", options_.datum->lat_deg},
-                                       {"lon_deg", options_.datum->lon_deg}}
-                                : json();
-    return json_response(j);
+    HealthStatus h;
+    h.server_version = options_.server_version;
+    h.session_id = hub_.session_id();
+    if (loop) h.vehicle_id = loop->info().id;
+    h.utc_ms = std::chrono::duration_cast<std::chrono::milliseconds>(
+                   std::chrono::system_clock::now().time_since_epoch())
+                   .count();
+    if (options_.vehicle) {
+      // Before the loop's first telemetry tick its snapshot has no time yet: the clock is at its
+      // start then.
+      if (loop) h.clock_s = std::max(loop->snapshot().t_s, options_.vehicle->start_clock_s);
+      h.realtime_factor = options_.vehicle->realtime_factor;
+      h.session_start_clock_s = options_.vehicle->start_clock_s;
+    }
+    h.datum = options_.datum;
+    return json_response(health_json(h));
   });
   // The names the station uses (event kinds with their severity, helm modes, link states, turn
   // statuses), so a client keeps no copy of its own.

@@ -4,7 +4,7 @@
 #include <nlohmann/json.hpp>
 #include <random>
 
-#include "server/vocabulary_json.hpp"
+#include "server/serialize/station.hpp"
 
 namespace avk::server {
 
@@ -35,12 +35,7 @@ bool StreamHub::is_topic(const std::string& topic) {
 }
 
 std::string StreamHub::hello(const std::string& server_version) const {
-  nlohmann::json j = vocabulary_json();
-  j["type"] = "hello";
-  j["server_version"] = server_version;
-  j["session_id"] = session_id_;
-  j["topics"] = kTopics;
-  return j.dump();
+  return stream_hello_json(server_version, session_id_, kTopics).dump();
 }
 
 void StreamHub::subscribe(const std::shared_ptr<StreamSink>& sink, const std::string& topic) {
@@ -102,11 +97,7 @@ void StreamHub::status(double t_s, const std::string& kind, const std::string& l
     suppressed = g.suppressed;
     g.suppressed = 0;
   }
-  publish(
-      "status", t_s,
-      nlohmann::json{
-          {"kind", kind}, {"level", level}, {"message", message}, {"suppressed_before", suppressed}}
-          .dump());
+  publish("status", t_s, stream_status_json(kind, level, message, suppressed).dump());
 }
 
 void StreamHub::status(double t_s, mission::EventKind kind, const std::string& message) {

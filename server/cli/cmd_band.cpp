@@ -1,7 +1,6 @@
 // avk band coverage: is the position band honest on whole missions the table never saw
 // (app/band_coverage.hpp)?
 #include <iomanip>
-#include <nlohmann/json.hpp>
 #include <ostream>
 
 #include "app/band_coverage.hpp"
@@ -15,22 +14,6 @@
 namespace avk::server {
 
 namespace {
-
-using nlohmann::json;
-
-json coverage_json(const kinematics::Coverage& c) {
-  return {{"inside", c.inside}, {"total", c.total}, {"share", c.share()}};
-}
-
-json errors_json(const app::ErrorStats& e) {
-  return {{"points", e.n},
-          {"along_mean_m", e.along_mean_m},
-          {"along_rms_m", e.along_rms_m},
-          {"along_band_sd_m", e.along_band_sd_m},
-          {"cross_mean_m", e.cross_mean_m},
-          {"cross_rms_m", e.cross_rms_m},
-          {"cross_band_sd_m", e.cross_band_sd_m}};
-}
 
 void print_errors(const char* what, const app::ErrorStats& e, std::ostream& out) {
   out << "  " << what << ": along mean " << fixed(e.along_mean_m, 2) << " m, rms "
@@ -64,28 +47,7 @@ int band_coverage(const std::vector<std::string>& rest, Io& io) {
   if (format != "text" && format != "json") throw UsageError("--format must be text or json");
   const app::BandCoverage c = value_or_fail(app::band_coverage(ctx, q));
   if (format == "json") {
-    json speeds = json::array();
-    for (const auto& s : c.by_speed)
-      speeds.push_back({{"speed_mps", s.speed_mps},
-                        {"turns", s.turns},
-                        {"during_turn", coverage_json(s.during_turn)},
-                        {"after_turn", coverage_json(s.after_turn)},
-                        {"all", coverage_json(s.all)}});
-    io.out << json{{"table_missions", c.table_missions},
-                   {"test_missions", c.test_missions},
-                   {"share", c.share},
-                   {"turns", c.turns},
-                   {"speed_reference", c.speed_over_ground ? "over_ground" : "through_water"},
-                   {"scatter",
-                    {{"along_mps", c.scatter_along_mps}, {"cross_mps", c.scatter_cross_mps}}},
-                   {"during_turn", coverage_json(c.during_turn)},
-                   {"after_turn", coverage_json(c.after_turn)},
-                   {"all", coverage_json(c.all)},
-                   {"errors_during_turn", errors_json(c.errors_during_turn)},
-                   {"errors_after_turn", errors_json(c.errors_after_turn)},
-                   {"by_speed", speeds}}
-                  .dump(2)
-           << "\n";
+    io.out << band_coverage_json(c).dump(2) << "\n";
     return 0;
   }
   io.out << "band coverage at " << fixed(100.0 * c.share, 0) << " %: " << c.turns

@@ -1,6 +1,5 @@
 // avk current estimate|show: the current a mission flew in, from its steady legs.
 #include <iomanip>
-#include <nlohmann/json.hpp>
 #include <ostream>
 
 #include "app/context.hpp"
@@ -36,12 +35,11 @@ int estimate(const std::vector<std::string>& rest, Io& io) {
   app::Context ctx(a.require("db"));
   app::MissionCurrent c;
   std::optional<app::CurrentView> stored;
-  std::size_t water_turns = 0;
+  std::optional<app::AppliedCurrent> applied;
   if (a.flag("store")) {
-    const app::AppliedCurrent applied = value_or_fail(app::apply_mission_current(ctx, id, leg_s));
-    c = applied.current;
-    stored = applied.stored;
-    water_turns = applied.water_turns;
+    applied = value_or_fail(app::apply_mission_current(ctx, id, leg_s));
+    c = applied->current;
+    stored = applied->stored;
   } else if (from == "turns") {
     c = value_or_fail(app::estimate_mission_current_from_turns(ctx, id));
   } else {
@@ -49,9 +47,8 @@ int estimate(const std::vector<std::string>& rest, Io& io) {
     stored = value_or_fail(app::stored_mission_current(ctx, id));
   }
   if (format == "json") {
-    nlohmann::json j = mission_current_json(c, stored);
-    if (a.flag("store")) j["water_frame_turns"] = water_turns;
-    io.out << j.dump() << "\n";
+    io.out << (applied ? applied_current_json(*applied) : mission_current_json(c, stored)).dump()
+           << "\n";
     return c.result.estimate ? 0 : 1;
   }
   if (from == "turns")
@@ -83,7 +80,7 @@ int estimate(const std::vector<std::string>& rest, Io& io) {
       io.out << "fewer than 3 steady stretches";
     io.out << "\n";
   }
-  if (a.flag("store")) io.out << "stored; " << water_turns << " turns in the water frame\n";
+  if (applied) io.out << "stored; " << applied->water_turns << " turns in the water frame\n";
   return 0;
 }
 
@@ -103,32 +100,7 @@ int compare(const std::vector<std::string>& rest, Io& io) {
   const app::CompensationComparison c =
       value_or_fail(app::compare_current_compensation(ctx, vid, table, test));
   if (format == "json") {
-    nlohmann::json turns = nlohmann::json::array();
-    for (const auto& t : c.turns)
-      turns.push_back({{"turn_id", t.turn_id},
-                       {"speed_mps", t.speed_mps},
-                       {"dheading_deg", t.dheading_deg},
-                       {"uncompensated_m", t.uncompensated_m},
-                       {"compensated_m", t.compensated_m}});
-    nlohmann::json currents = nlohmann::json::array();
-    for (const auto& [mission, e] : c.test_currents) {
-      nlohmann::json j = current_estimate_json(e);
-      j["mission_id"] = mission;
-      currents.push_back(std::move(j));
-    }
-    io.out << nlohmann::json{{"vehicle_id", vid},
-                             {"table_missions", c.table_missions},
-                             {"test_missions", c.test_missions},
-                             {"table_turns", c.table_turns},
-                             {"table_water_turns", c.table_water_turns},
-                             {"test_currents", currents},
-                             {"turns_outside_table", c.turns_outside_table},
-                             {"uncompensated_mean_m", c.uncompensated_mean_m},
-                             {"compensated_mean_m", c.compensated_mean_m},
-                             {"improvement", c.improvement()},
-                             {"turns", turns}}
-                  .dump()
-           << "\n";
+    io.out << compensation_comparison_json(vid, c).dump() << "\n";
     return 0;
   }
   io.out << "table: " << c.table_turns << " turns (" << c.table_water_turns

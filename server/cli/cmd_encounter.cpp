@@ -20,8 +20,6 @@ namespace avk::server {
 
 namespace {
 
-using nlohmann::json;
-
 std::string opt_text(const std::optional<double>& v, int decimals, bool sign = false) {
   if (!v) return "-";
   std::ostringstream s;
@@ -57,95 +55,6 @@ std::string flags_text(const app::EncounterMethodResult& r) {
   if (r.no_maneuver_while_one_existed) f += "none-while-safe-existed ";
   if (r.unsafe_while_safe_existed) f += "unsafe-while-safe-existed ";
   return f;
-}
-
-json calibration_json(const std::vector<app::RiskBin>& bins) {
-  json out = json::array();
-  for (const auto& b : bins)
-    out.push_back({{"lo", b.lo},
-                   {"hi", b.hi},
-                   {"candidates", b.candidates},
-                   {"mean_predicted", b.mean_predicted},
-                   {"observed_rate", b.observed_rate}});
-  return out;
-}
-
-json bench_json(const app::EncounterBench& b, const app::EncounterBenchQuery& q) {
-  json scenarios = json::array();
-  for (const auto& s : b.scenarios) {
-    json methods = json::array();
-    for (const auto& r : s.methods) {
-      methods.push_back({{"method", app::to_string(r.method)},
-                         {"chosen_dheading_deg", optional_json(r.chosen_dheading_deg)},
-                         {"predicted_cpa_m", optional_json(r.predicted_cpa_m)},
-                         {"predicted_edge_cpa_m", optional_json(r.predicted_edge_cpa_m)},
-                         {"actual_cpa_m", r.actual_cpa_m},
-                         {"violation", r.violation},
-                         {"no_maneuver_while_one_existed", r.no_maneuver_while_one_existed},
-                         {"unsafe_while_safe_existed", r.unsafe_while_safe_existed},
-                         {"chosen_risk", optional_json(r.chosen_risk)},
-                         {"colregs_rule", r.colregs_rule.empty() ? json() : json(r.colregs_rule)},
-                         {"along_error_m", optional_json(r.along_error_m)},
-                         {"cross_error_m", optional_json(r.cross_error_m)}});
-    }
-    scenarios.push_back({{"name", s.name},
-                         {"sea_seed", s.sea_seed},
-                         {"standoff_m", s.standoff_m},
-                         {"safe_existed", s.safe_existed},
-                         {"course_held_cpa_m", s.course_held_cpa_m},
-                         {"candidates_deg", s.candidates_deg},
-                         {"flown_cpa_m", s.flown_cpa_m},
-                         {"methods", methods}});
-  }
-  json summary = json::array();
-  for (const auto& m : b.summary) {
-    summary.push_back({{"method", app::to_string(m.method)},
-                       {"available", m.available},
-                       {"note", m.note},
-                       {"model_id", optional_json(m.model_id)},
-                       {"scenarios", m.scenarios},
-                       {"violations", m.violations},
-                       {"violation_rate", m.violation_rate},
-                       {"no_maneuver", m.no_maneuver},
-                       {"no_maneuver_while_one_existed", m.no_maneuver_while_one_existed},
-                       {"unsafe_while_safe_existed", m.unsafe_while_safe_existed},
-                       {"mean_abs_dheading_deg", optional_json(m.mean_abs_dheading_deg)},
-                       {"mean_cpa_error_m", optional_json(m.mean_cpa_error_m)},
-                       {"mean_abs_cpa_error_m", optional_json(m.mean_abs_cpa_error_m)},
-                       {"mean_abs_along_error_m", optional_json(m.mean_abs_along_error_m)},
-                       {"mean_abs_cross_error_m", optional_json(m.mean_abs_cross_error_m)},
-                       {"calibration", calibration_json(m.calibration)}});
-  }
-  return {{"vehicle_id", q.vehicle_id},
-          {"plant", vehicle::to_string(q.setup.vehicle.kind)},
-          {"seed", q.seed},
-          {"sea_seeds", q.sea_seeds},
-          {"max_risk", q.max_risk},
-          {"rule", q.corridor_rule ? "corridor" : "risk"},
-          {"colregs", q.prefer_starboard},
-          {"ray_band", q.ray_band},
-          {"candidate_step_deg", q.candidate_step_deg},
-          {"current", water_current_json(b.current, "estimated")},
-          {"flights", b.flights},
-          {"scenarios", scenarios},
-          {"summary", summary}};
-}
-
-void print_csv(const app::EncounterBench& b, Io& io) {
-  io.out << "scenario,standoff_m,safe_existed,course_held_cpa_m,method,chosen_dheading_deg,"
-            "predicted_cpa_m,predicted_edge_cpa_m,actual_cpa_m,violation,"
-            "no_maneuver_while_one_existed,unsafe_while_safe_existed\n";
-  const auto opt = [](const std::optional<double>& v) { return v ? num(*v) : std::string(); };
-  for (const auto& s : b.scenarios) {
-    for (const auto& r : s.methods) {
-      io.out << s.name << ',' << num(s.standoff_m) << ',' << (s.safe_existed ? 1 : 0) << ','
-             << num(s.course_held_cpa_m) << ',' << app::to_string(r.method) << ','
-             << opt(r.chosen_dheading_deg) << ',' << opt(r.predicted_cpa_m) << ','
-             << opt(r.predicted_edge_cpa_m) << ',' << num(r.actual_cpa_m) << ','
-             << (r.violation ? 1 : 0) << ',' << (r.no_maneuver_while_one_existed ? 1 : 0) << ','
-             << (r.unsafe_while_safe_existed ? 1 : 0) << '\n';
-    }
-  }
 }
 
 void print_summary(const app::EncounterBench& b, std::ostream& out) {
@@ -262,9 +171,9 @@ int encounter_run(const std::vector<std::string>& rest, Io& io) {
   const app::EncounterBench bench = value_or_fail(app::run_encounter_bench(ctx, file, q));
   const std::chrono::duration<double> took = std::chrono::steady_clock::now() - started;
   if (format == "json") {
-    io.out << bench_json(bench, q).dump(2) << "\n";
+    io.out << encounter_bench_json(bench, q).dump(2) << "\n";
   } else if (format == "csv") {
-    print_csv(bench, io);
+    io.out << encounter_bench_csv(bench);
   } else {
     print_table(bench, io);
   }

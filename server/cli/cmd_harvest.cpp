@@ -1,6 +1,5 @@
 // `avk turns harvest`: turns harvested from the navigation of stored missions (docs/harvest.md).
 #include <iomanip>
-#include <nlohmann/json.hpp>
 #include <ostream>
 
 #include "app/context.hpp"
@@ -41,10 +40,8 @@ int cmd_harvest(const std::vector<std::string>& args, Io& io) {
         value_or_fail(app::harvest_mission(ctx, parse_id(*a.get("mission"), "--mission"))));
   }
   if (format == "json") {
-    nlohmann::json j = nlohmann::json::array();
-    for (const auto& r : reports)
-      j.push_back(harvest_report_json(r));
-    io.out << (all ? nlohmann::json{{"missions", j}} : j[0]).dump(2) << "\n";
+    io.out << (all ? harvest_reports_json(reports) : harvest_report_json(reports[0])).dump(2)
+           << "\n";
     return 0;
   }
   std::size_t harvested = 0, steps = 0;

@@ -222,21 +222,8 @@ int fly(const std::vector<std::string>& rest, Io& io) {
   SimulateRequest request = value_or_fail(simulate_request(body));
   request.query.setup = setup;
   const app::SimulatedManeuver m = value_or_fail(app::simulate_maneuver(request.query));
-  if (format == "json") {
-    json j =
-        simulated_maneuver_json(m, request.own_position, request.standoff_m, request.path_step_s);
-    j["sim_vehicle"] = vehicle::to_string(setup.vehicle.kind);
-    j["seed"] = request.query.seed;
-    j["dheading_deg"] = request.query.dheading_deg;
-    j["horizon_s"] = request.query.horizon_s;
-    j["settle_s"] = m.settle_s;
-    io.out << j.dump() << "\n";
-  } else {
-    io.out << "t_s,x_m,y_m\n";
-    for (const std::size_t i : thinned_indices(m.track, request.path_step_s))
-      io.out << num(m.track[i].t_s) << ',' << num(m.track[i].x_m) << ',' << num(m.track[i].y_m)
-             << '\n';
-  }
+  io.out << (format == "json" ? maneuver_flight_json(m, request).dump() + "\n"
+                              : timed_path_csv(m.track, request.path_step_s));
   io.err << "maneuver fly: " << signed_deg(request.query.dheading_deg) << " deg on "
          << vehicle::to_string(setup.vehicle.kind) << " (seed " << request.query.seed << ")";
   for (std::size_t k = 0; k < m.cpa.size(); ++k)

@@ -4,7 +4,6 @@
 #include <fstream>
 #include <iomanip>
 #include <map>
-#include <nlohmann/json.hpp>
 #include <ostream>
 #include <sstream>
 #include <thread>
@@ -31,8 +30,6 @@
 namespace avk::server {
 
 namespace {
-
-using nlohmann::json;
 
 std::atomic<bool> g_stop{false};
 extern "C" void on_stop_signal(int) {
@@ -282,10 +279,7 @@ int list(const std::vector<std::string>& rest, Io& io) {
     return 0;
   }
   if (format == "json") {
-    nlohmann::json out = nlohmann::json::array();
-    for (const auto& m : missions)
-      out.push_back(mission_json(m));
-    io.out << out.dump() << "\n";
+    io.out << missions_json(missions).dump() << "\n";
     return 0;
   }
   io.out << std::left << std::setw(5) << "id" << std::setw(13) << "status" << std::setw(22)

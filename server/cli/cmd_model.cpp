@@ -2,7 +2,6 @@
 // of prediction methods (thesis §3.4, §5.2), over the navigation logs and turns in the store.
 #include <cmath>
 #include <iomanip>
-#include <nlohmann/json.hpp>
 #include <ostream>
 #include <set>
 #include <sstream>
@@ -24,7 +23,6 @@ namespace avk::server {
 namespace {
 
 namespace kin = avk::kinematics;
-using nlohmann::json;
 
 kin::IdentificationOptions identification_options(const Args& a) {
   kin::IdentificationOptions o;
@@ -125,10 +123,7 @@ int model_sweep(const std::vector<std::string>& rest, Io& io) {
 int model_list(const std::vector<std::string>& rest, Io& io) {
   const Args a(rest, {"db", "vehicle"});
   app::Context ctx(a.require("db"));
-  json out = json::array();
-  for (const auto& m : app::list_models(ctx, a.get("vehicle")))
-    out.push_back(model_json(m, false));
-  io.out << out.dump(2) << "\n";
+  io.out << models_json(app::list_models(ctx, a.get("vehicle"))).dump(2) << "\n";
   return 0;
 }
 

@@ -1,15 +1,14 @@
 #include <charconv>
 #include <cmath>
 #include <iomanip>
-#include <nlohmann/json.hpp>
 #include <ostream>
-#include <sstream>
 
 #include "kinematics/turn_measures.hpp"
 #include "server/cli/args.hpp"
 #include "server/cli/commands.hpp"
 #include "server/cli/files.hpp"
 #include "server/cli/sim_options.hpp"
+#include "server/serialize/sim.hpp"
 #include "sim/sim_config.hpp"
 #include "sim/turn_scenario.hpp"
 #include "sim/variability.hpp"
@@ -58,19 +57,11 @@ int sim_turn(const std::vector<std::string>& rest, Io& io) {
   } else {
     r = sim::run_turn_scenario(c);
   }
-  std::ostringstream csv;
-  csv << "t_s,x_m,y_m,heading_deg,speed_mps,desired_heading_deg,desired_speed_mps,rudder_pct,"
-         "thrust_pct\n";
-  for (const auto& row : r.rows) {
-    csv << num(row.t_s) << ',' << num(row.x_m) << ',' << num(row.y_m) << ',' << num(row.heading_deg)
-        << ',' << num(row.speed_mps) << ',' << num(row.desired_heading_deg) << ','
-        << num(row.desired_speed_mps) << ',' << num(row.rudder_pct) << ',' << num(row.thrust_pct)
-        << '\n';
-  }
+  const std::string csv = sim_turn_csv(r);
   if (const auto path = a.get("csv"); path && *path != "-") {
-    write_file_atomic(*path, csv.str());
+    write_file_atomic(*path, csv);
   } else {
-    io.out << csv.str();
+    io.out << csv;
   }
   io.err << "sim turn: " << vehicle::to_string(setup.vehicle.kind) << ", " << num(c.speed_mps)
          << " m/s, " << num(c.dheading_deg) << " deg, commanded at t=" << num(r.command_time_s)
@@ -82,16 +73,6 @@ int sim_turn(const std::vector<std::string>& rest, Io& io) {
   }
   io.err << "\n";
   return r.completed ? 0 : 1;
-}
-
-void print_variability(const sim::VariabilityResult& v, Io& io, bool per_repetition) {
-  if (per_repetition) {
-    io.out << "repetition,seed,completed,advance_m,transfer_m\n";
-    for (const auto& row : v.rows) {
-      io.out << row.repetition << ',' << row.seed << ',' << (row.completed ? 1 : 0) << ','
-             << num(row.advance_m) << ',' << num(row.transfer_m) << '\n';
-    }
-  }
 }
 
 int sim_variability(const std::vector<std::string>& rest, Io& io) {
@@ -110,27 +91,18 @@ int sim_variability(const std::vector<std::string>& rest, Io& io) {
   }
   vc.repeats = static_cast<int>(repeats);
   if (!a.flag("sweep-ticks")) {
-    const sim::VariabilityResult v = sim::run_variability(vc);
-    print_variability(v, io, true);
-    io.out << "# advance " << num(v.advance_m.mean) << " +- " << num(v.advance_m.sd) << " m (CV "
-           << num(v.advance_cv) << "), transfer " << num(v.transfer_m.mean) << " +- "
-           << num(v.transfer_m.sd) << " m (CV " << num(v.transfer_cv) << "), "
-           << v.distinct_outcomes << " distinct outcomes at 1 cm\n";
+    io.out << variability_csv(sim::run_variability(vc));
     return 0;
   }
   // Thesis Figure 5-1: vary the AppTick of the plant and the helm together, 1..10 Hz.
-  io.out << "tick_hz,repeats,advance_mean_m,advance_sd_m,advance_cv,transfer_mean_m,transfer_sd_m,"
-            "transfer_cv,distinct_outcomes\n";
+  std::vector<TickSweepRow> rows;
   for (int hz = 1; hz <= 10; ++hz) {
     sim::VariabilityConfig swept = vc;
     swept.base.vehicle.plant_hz = hz;
     swept.base.helm_hz = hz;
-    const sim::VariabilityResult v = sim::run_variability(swept);
-    io.out << hz << ',' << vc.repeats << ',' << num(v.advance_m.mean) << ',' << num(v.advance_m.sd)
-           << ',' << num(v.advance_cv) << ',' << num(v.transfer_m.mean) << ','
-           << num(v.transfer_m.sd) << ',' << num(v.transfer_cv) << ',' << v.distinct_outcomes
-           << '\n';
+    rows.push_back({hz, vc.repeats, sim::run_variability(swept)});
   }
+  io.out << tick_sweep_csv(rows);
   return 0;
 }
 

@@ -10,8 +10,6 @@
 
 namespace avk::server {
 
-using nlohmann::json;
-
 void add_maneuver_routes(RouteTable& routes, app::Context& ctx,
                          const std::optional<app::VehicleLoopOptions>& station_vehicle) {
   routes.post_question("/api/v1/vehicles/{vid}/maneuvers/evaluate", [&ctx](const ApiRequest& r,
@@ -30,37 +28,24 @@ void add_maneuver_routes(RouteTable& routes, app::Context& ctx,
             app::evaluate_ongoing(ctx, ongoing_query(r, p.at("vid"))), false,
             [](const app::OngoingManeuver& o) { return json_response(ongoing_maneuver_json(o)); });
       });
-  routes.post_question(
-      "/api/v1/vehicles/{vid}/maneuvers/simulate",
-      [&station_vehicle](const ApiRequest& r, const PathParams& p) {
-        auto request = simulate_request(body_object(r, "the maneuver"));
-        if (!request) return problem_of(request.error(), true);
-        const std::string vid = p.at("vid");
-        // The station's simulated vehicle flies its own setup; anything else (a real
-        // boat, another vehicle's id) the calibrated M200's defaults.
-        const auto& v = station_vehicle;
-        const bool own_setup =
-            v && vehicle::is_simulated(app::kind_of(*v)) && v->setup.vehicle.id == vid;
-        request->query.setup =
-            own_setup ? v->setup : sim::default_sim_setup(kDefaultManeuverSimKind);
-        return answer(
-            app::simulate_maneuver(request->query), true, [&](const app::SimulatedManeuver& m) {
-              json j = simulated_maneuver_json(m, request->own_position, request->standoff_m,
-                                               request->path_step_s);
-              j["vehicle_id"] = vid;
-              j["sim_vehicle"] = vehicle::to_string(request->query.setup.vehicle.kind);
-              j["station_setup"] = own_setup;
-              if (!own_setup)
-                j["note"] =
-                    "the vehicle is not the station's simulated one: "
-                    "flown with the default " +
-                    std::string(kDefaultManeuverSimKind) + " setup";
-              j["seed"] = request->query.seed;
-              j["dheading_deg"] = request->query.dheading_deg;
-              j["speed_mps"] = request->query.speed_mps.value_or(request->query.own_speed_mps);
-              return json_response(j);
-            });
-      });
+  routes.post_question("/api/v1/vehicles/{vid}/maneuvers/simulate",
+                       [&station_vehicle](const ApiRequest& r, const PathParams& p) {
+                         auto request = simulate_request(body_object(r, "the maneuver"));
+                         if (!request) return problem_of(request.error(), true);
+                         const std::string vid = p.at("vid");
+                         // The station's simulated vehicle flies its own setup; anything else (a
+                         // real boat, another vehicle's id) the calibrated M200's defaults.
+                         const auto& v = station_vehicle;
+                         const bool own_setup = v && vehicle::is_simulated(app::kind_of(*v)) &&
+                                                v->setup.vehicle.id == vid;
+                         request->query.setup =
+                             own_setup ? v->setup : sim::default_sim_setup(kDefaultManeuverSimKind);
+                         return answer(app::simulate_maneuver(request->query), true,
+                                       [&](const app::SimulatedManeuver& m) {
+                                         return json_response(maneuver_simulation_json(
+                                             m, *request, vid, own_setup, kDefaultManeuverSimKind));
+                                       });
+                       });
 }
 
 }  // namespace avk::server

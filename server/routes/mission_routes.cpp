@@ -16,18 +16,13 @@
 
 namespace avk::server {
 
-using nlohmann::json;
-
 void add_mission_routes(RouteTable& routes, app::Context& ctx,
                         std::optional<vehicle::LatLon> datum) {
   const auto list_missions = [&ctx](const ApiRequest& r, std::optional<std::string> vid) {
     const Format f = negotiate(r, true);
     const auto missions = app::list_missions(ctx, vid);
     if (f == Format::csv) return csv_response(missions_csv(missions));
-    json out = json::array();
-    for (const auto& m : missions)
-      out.push_back(mission_json(m));
-    return json_response(out);
+    return json_response(missions_json(missions));
   };
   routes.get(
       "/api/v1/missions",
@@ -72,25 +67,19 @@ void add_mission_routes(RouteTable& routes, app::Context& ctx,
                   });
   });
   routes.post("/api/v1/missions/{id}/current", [&ctx](const ApiRequest&, const PathParams& p) {
-    return answer(app::apply_mission_current(ctx, path_id(p, "id", "mission")), true,
-                  [](const app::AppliedCurrent& a) {
-                    json j = mission_current_json(a.current, a.stored);
-                    j["water_frame_turns"] = a.water_turns;
-                    return json_response(j);
-                  });
+    return answer(
+        app::apply_mission_current(ctx, path_id(p, "id", "mission")), true,
+        [](const app::AppliedCurrent& a) { return json_response(applied_current_json(a)); });
   });
   // A page of a mission's log or track; as CSV the cursor travels in X-Next-After, like /turns.
   const auto page_response = [](Format f, const auto& page, const auto& to_csv,
-                                const auto& item_json) {
+                                const auto& to_json) {
     if (f == Format::csv) {
       ApiResponse resp = csv_response(to_csv(page.items));
       if (page.next) resp.headers.push_back({"X-Next-After", std::to_string(*page.next)});
       return resp;
     }
-    json items = json::array();
-    for (const auto& item : page.items)
-      items.push_back(item_json(item));
-    return json_response({{"items", items}, {"next", optional_json(page.next)}});
+    return json_response(to_json(page));
   };
   routes.get(
       "/api/v1/missions/{id}/events",
@@ -101,7 +90,7 @@ void add_mission_routes(RouteTable& routes, app::Context& ctx,
         const auto limit = whole_param(r, "limit", 1, 1000).value_or(100);
         return answer(app::mission_events(ctx, id, after, static_cast<int>(limit)), false,
                       [f, page_response](const app::Page<app::MissionEventView>& page) {
-                        return page_response(f, page, events_csv, event_json);
+                        return page_response(f, page, events_csv, events_page_json);
                       });
       },
       kJsonOrCsv);
@@ -114,9 +103,7 @@ void add_mission_routes(RouteTable& routes, app::Context& ctx,
         const auto limit = whole_param(r, "limit", 1, 10000).value_or(5000);
         return answer(app::mission_track(ctx, id, after, static_cast<int>(limit)), false,
                       [f, page_response](const app::Page<app::TrackPoint>& page) {
-                        return page_response(f, page, nav_csv, [](const app::TrackPoint& row) {
-                          return track_point_json(row);
-                        });
+                        return page_response(f, page, nav_csv, nav_page_json);
                       });
       },
       kJsonOrCsv);

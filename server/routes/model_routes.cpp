@@ -96,10 +96,7 @@ void add_model_routes(RouteTable& routes, app::Context& ctx) {
         const Format f = negotiate(r, true);
         const auto models = app::list_models(ctx, p.at("vid"));
         if (f == Format::csv) return csv_response(models_csv(models));
-        json out = json::array();
-        for (const auto& m : models)
-          out.push_back(model_json(m, false));
-        return json_response(out);
+        return json_response(models_json(models));
       },
       kJsonOrCsv);
   routes.post("/api/v1/vehicles/{vid}/models", [&ctx](const ApiRequest& r, const PathParams& p) {

@@ -7,8 +7,6 @@
 
 namespace avk::server {
 
-using nlohmann::json;
-
 void add_turn_routes(RouteTable& routes, app::Context& ctx) {
   routes.get(
       "/api/v1/turns",
@@ -25,18 +23,16 @@ void add_turn_routes(RouteTable& routes, app::Context& ctx) {
         }
         filter.after_id = id_param(r, "after").value_or(0);
         filter.limit = static_cast<int>(whole_param(r, "limit", 1, 1000).value_or(100));
-        return answer(
-            app::query_turns(ctx, filter), false, [f](const app::Page<app::TurnView>& page) {
-              if (f == Format::csv) {
-                ApiResponse resp = csv_response(turns_csv(page.items));
-                if (page.next) resp.headers.push_back({"X-Next-After", std::to_string(*page.next)});
-                return resp;
-              }
-              json items = json::array();
-              for (const auto& t : page.items)
-                items.push_back(turn_row_json(t));
-              return json_response({{"items", items}, {"next", optional_json(page.next)}});
-            });
+        return answer(app::query_turns(ctx, filter), false,
+                      [f](const app::Page<app::TurnView>& page) {
+                        if (f == Format::csv) {
+                          ApiResponse resp = csv_response(turns_csv(page.items));
+                          if (page.next)
+                            resp.headers.push_back({"X-Next-After", std::to_string(*page.next)});
+                          return resp;
+                        }
+                        return json_response(turns_page_json(page));
+                      });
       },
       kJsonOrCsv);
   routes.get("/api/v1/turns/{id}", [&ctx](const ApiRequest&, const PathParams& p) {

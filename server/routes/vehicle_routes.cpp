@@ -6,8 +6,6 @@
 
 namespace avk::server {
 
-using nlohmann::json;
-
 void add_vehicle_routes(RouteTable& routes, app::Context& ctx) {
   routes.get(
       "/api/v1/vehicles",
@@ -15,10 +13,7 @@ void add_vehicle_routes(RouteTable& routes, app::Context& ctx) {
         const Format f = negotiate(r, true);
         const auto vehicles = app::list_vehicles(ctx);
         if (f == Format::csv) return csv_response(vehicles_csv(vehicles));
-        json out = json::array();
-        for (const auto& v : vehicles)
-          out.push_back(vehicle_json(v));
-        return json_response(out);
+        return json_response(vehicles_json(vehicles));
       },
       kJsonOrCsv);
   routes.get("/api/v1/vehicles/{vid}", [&ctx](const ApiRequest&, const PathParams& p) {

@@ -8,13 +8,14 @@
 #include <string>
 
 #include "app/current.hpp"
-#include "app/current_view.hpp"
+#include "app/current_compensation.hpp"
 #include "app/predict.hpp"
 #include "app/vehicle_motion.hpp"
 #include "kinematics/current_estimate.hpp"
 #include "kinematics/drift_scatter.hpp"
 #include "kinematics/speed_reference.hpp"
 #include "kinematics/water_current.hpp"
+#include "app/current_view.hpp"
 
 namespace avk::server {
 
@@ -27,6 +28,13 @@ nlohmann::json current_json(const std::string& vehicle_id, const app::CurrentVie
 // An estimate from a mission's navigation, with the stored one (null when none).
 nlohmann::json mission_current_json(const app::MissionCurrent& c,
                                     const std::optional<app::CurrentView>& stored);
+// An estimate stored (`avk current estimate --store`): mission_current_json of it with the
+// number of turns given their water-frame form (water_frame_turns).
+nlohmann::json applied_current_json(const app::AppliedCurrent& a);
+// `avk current compare`: the table's and the test missions, each test mission's current, and
+// every test turn's path error with and without it.
+nlohmann::json compensation_comparison_json(const std::string& vehicle_id,
+                                            const app::CompensationComparison& c);
 // {legs, rms_over_ground_mps, rms_through_water_mps, separation_mps, identified}; identified is
 // "over_ground", "through_water" or null (undetermined); null when not evaluated.
 nlohmann::json speed_reference_evidence_json(

@@ -77,6 +77,40 @@ json mission_current_json(const app::MissionCurrent& c,
           {"drift_scatter", drift_scatter_json(c.drift_scatter)}};
 }
 
+json applied_current_json(const app::AppliedCurrent& a) {
+  json j = mission_current_json(a.current, a.stored);
+  j["water_frame_turns"] = a.water_turns;
+  return j;
+}
+
+json compensation_comparison_json(const std::string& vehicle_id,
+                                  const app::CompensationComparison& c) {
+  json turns = json::array();
+  for (const auto& t : c.turns)
+    turns.push_back({{"turn_id", t.turn_id},
+                     {"speed_mps", t.speed_mps},
+                     {"dheading_deg", t.dheading_deg},
+                     {"uncompensated_m", t.uncompensated_m},
+                     {"compensated_m", t.compensated_m}});
+  json currents = json::array();
+  for (const auto& [mission, e] : c.test_currents) {
+    json j = current_estimate_json(e);
+    j["mission_id"] = mission;
+    currents.push_back(std::move(j));
+  }
+  return {{"vehicle_id", vehicle_id},
+          {"table_missions", c.table_missions},
+          {"test_missions", c.test_missions},
+          {"table_turns", c.table_turns},
+          {"table_water_turns", c.table_water_turns},
+          {"test_currents", currents},
+          {"turns_outside_table", c.turns_outside_table},
+          {"uncompensated_mean_m", c.uncompensated_mean_m},
+          {"compensated_mean_m", c.compensated_mean_m},
+          {"improvement", c.improvement()},
+          {"turns", turns}};
+}
+
 json current_json(const std::string& vehicle_id, const app::CurrentView& c) {
   json j = current_estimate_json(c.estimate);
   j["vehicle_id"] = vehicle_id;

@@ -13,6 +13,7 @@
 #include "kinematics/geometry.hpp"
 #include "kinematics/maneuver.hpp"
 #include "kinematics/timed_path.hpp"
+#include "server/maneuver_requests.hpp"
 
 namespace avk::server {
 
@@ -34,5 +35,17 @@ nlohmann::json ongoing_maneuver_json(const app::OngoingManeuver& o);
 // with a standoff, whether it was violated.
 nlohmann::json simulated_maneuver_json(const app::SimulatedManeuver& s, kinematics::Point origin,
                                        std::optional<double> standoff_m, double path_step_s);
+// POST /vehicles/{vid}/maneuvers/simulate: the flight of the request with the vehicle and the
+// setup it was flown with; a vehicle other than the station's simulated one (station_setup
+// false) is flown with the default setup named, and the answer says so.
+nlohmann::json maneuver_simulation_json(const app::SimulatedManeuver& m,
+                                        const SimulateRequest& request,
+                                        const std::string& vehicle_id, bool station_setup,
+                                        const std::string& default_setup);
+// `avk maneuver fly --format json`: the flight with its setup, horizon and settling time.
+nlohmann::json maneuver_flight_json(const app::SimulatedManeuver& m,
+                                    const SimulateRequest& request);
+// [t_s, x_m, y_m] rows at thinned_indices(path, step_s).
+std::string timed_path_csv(const kinematics::TimedPath& path, double step_s);
 
 }  // namespace avk::server

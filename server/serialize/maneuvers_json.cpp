@@ -236,4 +236,34 @@ json simulated_maneuver_json(const app::SimulatedManeuver& s, kin::Point origin,
           {"violated", standoff_m ? json(s.min_cpa_m < *standoff_m) : json()}};
 }
 
+json maneuver_simulation_json(const app::SimulatedManeuver& m, const SimulateRequest& request,
+                              const std::string& vehicle_id, bool station_setup,
+                              const std::string& default_setup) {
+  const app::SimulatedManeuverQuery& q = request.query;
+  json j =
+      simulated_maneuver_json(m, request.own_position, request.standoff_m, request.path_step_s);
+  j["vehicle_id"] = vehicle_id;
+  j["sim_vehicle"] = vehicle::to_string(q.setup.vehicle.kind);
+  j["station_setup"] = station_setup;
+  if (!station_setup)
+    j["note"] = "the vehicle is not the station's simulated one: flown with the default " +
+                default_setup + " setup";
+  j["seed"] = q.seed;
+  j["dheading_deg"] = q.dheading_deg;
+  j["speed_mps"] = q.speed_mps.value_or(q.own_speed_mps);
+  return j;
+}
+
+json maneuver_flight_json(const app::SimulatedManeuver& m, const SimulateRequest& request) {
+  const app::SimulatedManeuverQuery& q = request.query;
+  json j =
+      simulated_maneuver_json(m, request.own_position, request.standoff_m, request.path_step_s);
+  j["sim_vehicle"] = vehicle::to_string(q.setup.vehicle.kind);
+  j["seed"] = q.seed;
+  j["dheading_deg"] = q.dheading_deg;
+  j["horizon_s"] = q.horizon_s;
+  j["settle_s"] = m.settle_s;
+  return j;
+}
+
 }  // namespace avk::server

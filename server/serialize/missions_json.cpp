@@ -89,4 +89,51 @@ json track_point_json(const app::TrackPoint& n) {
           {"helm_mode", n.helm_mode}};
 }
 
+json missions_json(const std::vector<app::MissionSummary>& missions) {
+  json out = json::array();
+  for (const auto& m : missions)
+    out.push_back(mission_json(m));
+  return out;
+}
+
+json events_page_json(const app::Page<app::MissionEventView>& page) {
+  return page_json(page, [](const app::MissionEventView& e) { return event_json(e); });
+}
+
+json nav_page_json(const app::Page<app::TrackPoint>& page) {
+  return page_json(page, [](const app::TrackPoint& row) { return track_point_json(row); });
+}
+
+json turn_started_json(const mission::RunningTurn& t, std::int64_t mission_id) {
+  json j = running_turn_json(t);
+  j["event"] = "started";
+  j["mission_id"] = mission_id;
+  return j;
+}
+
+json turn_ended_json(const mission::TurnOutcome& t, std::int64_t mission_id) {
+  json j = {{"event",
+             t.status == kinematics::TurnStatus::ok ? "finished" : kinematics::to_string(t.status)},
+            {"mission_id", mission_id},
+            {"status", kinematics::to_string(t.status)},
+            {"reason", t.reason},
+            {"speed_mps", t.task.speed_mps},
+            {"goal_dheading_deg", t.raw.meta().goal_dheading_deg},
+            {"requeued", t.requeued},
+            {"given_up", t.given_up}};
+  j["id"] = t.stored_id ? json(*t.stored_id) : json();
+  j["advance_m"] = t.advance_m ? json(*t.advance_m) : json();
+  j["transfer_m"] = t.transfer_m ? json(*t.transfer_m) : json();
+  j["condition_set_time_s"] = t.condition_set_time_s ? json(*t.condition_set_time_s) : json();
+  return j;
+}
+
+json mission_progress_json(std::int64_t mission_id, const std::string& state,
+                           mission::HelmMode helm_mode, const std::vector<app::CellReport>& cells) {
+  return {{"mission_id", mission_id},
+          {"state", state},
+          {"helm_mode", mission::to_string(helm_mode)},
+          {"cells", cells_json(cells)}};
+}
+
 }  // namespace avk::server

@@ -13,6 +13,8 @@ namespace avk::server {
 
 // with_coefficients: the full model document; without, the listing's summary.
 nlohmann::json model_json(const app::ModelView& m, bool with_coefficients = true);
+// The listing: model_json of each without its coefficients.
+nlohmann::json models_json(const std::vector<app::ModelView>& models);
 // The listing's summary (no coefficients), the speed model as speed_gain, ...
 std::string models_csv(const std::vector<app::ModelView>& models);
 nlohmann::json model_headings_json(const app::ModelHeadings& h);

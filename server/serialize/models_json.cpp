@@ -58,4 +58,11 @@ json sweep_json(const std::vector<kin::HistorySweepRow>& rows) {
   return out;
 }
 
+json models_json(const std::vector<app::ModelView>& models) {
+  json out = json::array();
+  for (const auto& m : models)
+    out.push_back(model_json(m, false));
+  return out;
+}
+
 }  // namespace avk::server

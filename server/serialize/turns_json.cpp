@@ -50,4 +50,15 @@ json turn_json(const app::TurnDetail& t) {
   return j;
 }
 
+json harvest_reports_json(const std::vector<app::HarvestReport>& reports) {
+  json missions = json::array();
+  for (const auto& r : reports)
+    missions.push_back(harvest_report_json(r));
+  return {{"missions", std::move(missions)}};
+}
+
+json turns_page_json(const app::Page<app::TurnView>& page) {
+  return page_json(page, [](const app::TurnView& t) { return turn_row_json(t); });
+}
+
 }  // namespace avk::server

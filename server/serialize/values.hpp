@@ -23,6 +23,15 @@ nlohmann::json optional_json(const std::optional<std::int64_t>& v);
 nlohmann::json mean_sd_json(const std::optional<kinematics::MeanSd>& v);
 nlohmann::json points_json(const kinematics::Polyline& line);  // [[x_m, y_m], ...]
 
+// A page of a listing: {items: [to_json(item), ...], next: the cursor of the next page or null}.
+template <class Page, class ToJson>
+nlohmann::json page_json(const Page& page, ToJson to_json) {
+  nlohmann::json items = nlohmann::json::array();
+  for (const auto& item : page.items)
+    items.push_back(to_json(item));
+  return {{"items", std::move(items)}, {"next", optional_json(page.next)}};
+}
+
 // A value a client sent, for an error message: a scalar shortened, a container by its kind only.
 std::string describe_value(const nlohmann::json& v);
 

@@ -19,6 +19,7 @@ nlohmann::json frontseat_json(const vehicle::M200Status& s);
 // The helm's mode by name; null when the helm has not reported one.
 nlohmann::json helm_mode_json(const std::optional<mission::HelmMode>& m);
 nlohmann::json vehicle_json(const app::VehicleStatus& v);
+nlohmann::json vehicles_json(const std::vector<app::VehicleStatus>& vehicles);  // vehicle_json's
 // The vehicles as vehicle_json's scalar fields, the last navigation as nav_t_s, x_m, ... (an
 // M200's frontseat block is JSON only).
 std::string vehicles_csv(const std::vector<app::VehicleStatus>& vehicles);

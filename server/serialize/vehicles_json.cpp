@@ -74,4 +74,11 @@ json helm_topic_json(const app::VehicleSnapshot& s) {
           {"mission_id", optional_json(s.mission_id)}};
 }
 
+json vehicles_json(const std::vector<app::VehicleStatus>& vehicles) {
+  json out = json::array();
+  for (const auto& v : vehicles)
+    out.push_back(vehicle_json(v));
+  return out;
+}
+
 }  // namespace avk::server

@@ -8,8 +8,8 @@
 
 #include "mission/event_kind.hpp"
 #include "mission/helm_mode.hpp"
+#include "server/serialize/vocabulary.hpp"
 #include "server/stream_hub.hpp"
-#include "server/vocabulary_json.hpp"
 #include "vehicle/vehicle.hpp"
 
 using nlohmann::json;

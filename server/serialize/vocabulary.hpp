@@ -1,7 +1,7 @@
 #pragma once
 // The names a client needs to interpret the station's messages: every event kind with its
-// severity, the helm modes and the link states. Sent in the live stream's hello (and meant for
-// GET /api/v1/meta), so the dashboard takes them from the server instead of keeping copies.
+// severity, the helm modes and the link states. Sent in the live stream's hello and by
+// GET /api/v1/meta, so the dashboard takes them from the server instead of keeping copies.
 
 #include <nlohmann/json.hpp>
 

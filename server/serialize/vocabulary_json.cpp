@@ -1,4 +1,4 @@
-#include "server/vocabulary_json.hpp"
+#include "server/serialize/vocabulary.hpp"
 
 #include <string>
 
