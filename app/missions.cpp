@@ -301,4 +301,12 @@ Result<Page<TrackPoint>> mission_track(Context& ctx, std::int64_t mission_id, st
       [](const TrackPoint& r) { return r.rowid; });
 }
 
+Result<TrackPoint> mission_last_position(Context& ctx, std::int64_t mission_id) {
+  store::Store& db = store_of(ctx);
+  if (!db.missions().get(mission_id)) return not_found("no mission " + std::to_string(mission_id));
+  const auto last = db.navigation().last(mission_id);
+  if (!last) return not_found("mission " + std::to_string(mission_id) + " recorded no navigation");
+  return view_of(*last);
+}
+
 }  // namespace avk::app

@@ -115,4 +115,8 @@ Result<Page<MissionEventView>> mission_events(Context& ctx, std::int64_t mission
 Result<Page<TrackPoint>> mission_track(Context& ctx, std::int64_t mission_id, std::int64_t after,
                                        int limit);
 
+// Where the mission's vehicle was last seen: its latest navigation report. not_found for an
+// unknown mission and for one that recorded no navigation.
+Result<TrackPoint> mission_last_position(Context& ctx, std::int64_t mission_id);
+
 }  // namespace avk::app

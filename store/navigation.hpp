@@ -48,6 +48,9 @@ class NavigationRepository {
   // Insertion order, not time order, so that a page boundary never moves while a mission records.
   virtual std::vector<NavPageRow> page(std::int64_t mission_id, std::int64_t after_rowid,
                                        int limit) = 0;
+  // The latest report on the mission clock (of two at one time, the one recorded last): where
+  // the vehicle was last seen. None when the mission recorded no navigation.
+  virtual std::optional<NavPageRow> last(std::int64_t mission_id) = 0;
 };
 
 }  // namespace avk::store

@@ -107,6 +107,10 @@ void add_mission_routes(RouteTable& routes, app::Context& ctx,
                       });
       },
       kJsonOrCsv);
+  routes.get("/api/v1/missions/{id}/last-position", [&ctx](const ApiRequest&, const PathParams& p) {
+    return answer(app::mission_last_position(ctx, path_id(p, "id", "mission")), false,
+                  [](const app::TrackPoint& t) { return json_response(track_point_json(t)); });
+  });
   // The mission as an MCAP recording for Foxglove/Lichtblick (docs/foxglove.md).
   routes.get(
       "/api/v1/missions/{id}/export",

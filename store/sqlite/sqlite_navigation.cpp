@@ -79,4 +79,14 @@ std::vector<NavPageRow> SqliteNavigation::page(std::int64_t mission_id, std::int
   return out;
 }
 
+std::optional<NavPageRow> SqliteNavigation::last(std::int64_t mission_id) {
+  // Walks the (mission_id, t_s) index from its end: one row read, however long the mission.
+  auto s = db_.prepare("SELECT rowid, " + kNav.list() +
+                       " FROM nav_samples WHERE mission_id = ? ORDER BY t_s DESC, rowid DESC "
+                       "LIMIT 1");
+  s.bind(1, mission_id);
+  if (!s.step()) return std::nullopt;
+  return NavPageRow{s.column_int64(0), read_nav(s, 1)};
+}
+
 }  // namespace avk::store::sqlite

@@ -19,6 +19,7 @@ class SqliteNavigation final : public NavigationRepository {
   std::int64_t count(std::int64_t mission_id) override;
   std::vector<NavPageRow> page(std::int64_t mission_id, std::int64_t after_rowid,
                                int limit) override;
+  std::optional<NavPageRow> last(std::int64_t mission_id) override;
 
  private:
   Connection& db_;

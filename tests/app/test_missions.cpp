@@ -136,6 +136,29 @@ TEST_F(Missions, TrackAndEventPagesNeitherSkipNorRepeat) {
   EXPECT_EQ(app::mission_events(ctx_, 9999, 0, 10).error().code, app::ErrorCode::not_found);
 }
 
+TEST_F(Missions, TheLastPositionIsTheLatestStoredReport) {
+  const auto nav = app::store_of(ctx_).navigation().for_mission(mission_);
+  ASSERT_FALSE(nav.empty());
+  const auto last = app::mission_last_position(ctx_, mission_);
+  ASSERT_TRUE(last) << last.error().message;
+  // for_mission is in time order: its last row is the latest.
+  EXPECT_EQ(last->t_s, nav.back().t_s);
+  EXPECT_EQ(last->x_m, nav.back().x_m);
+  EXPECT_EQ(last->y_m, nav.back().y_m);
+  EXPECT_EQ(last->heading_deg, nav.back().heading_deg);
+  EXPECT_EQ(last->helm_mode, nav.back().helm_mode);
+  EXPECT_EQ(app::mission_last_position(ctx_, 9999).error().code, app::ErrorCode::not_found);
+  // A mission that recorded nothing, in a database of its own (the suite's is shared).
+  avk::testing::TempDb path{"avk_last_position"};
+  app::Context fresh(path.path());
+  app::store_of(fresh).vehicles().upsert({"sim-a", "usim", 2.0, std::nullopt});
+  const auto empty = app::store_of(fresh).missions().create("sim-a", "empty", "{}");
+  const auto none = app::mission_last_position(fresh, empty);
+  ASSERT_FALSE(none);
+  EXPECT_EQ(none.error().code, app::ErrorCode::not_found);
+  EXPECT_NE(none.error().message.find("recorded no navigation"), std::string::npos);
+}
+
 TEST_F(Missions, TurnPagesCoverEveryStoredTurnOnce) {
   app::TurnQuery f;
   f.mission_id = mission_;

@@ -96,6 +96,11 @@ TEST_F(StationApi, NavPagesConcatenateToTheStoredTrack) {
   // The default page is 5000 rows.
   EXPECT_EQ(body(call(get(path)))["items"].size(), std::min<std::size_t>(stored.size(), 5000));
   EXPECT_EQ(call(get("/api/v1/missions/999/nav")).status, 404);
+  // Where the vehicle was last seen: the track's latest row.
+  const ApiResponse last = call(get("/api/v1/missions/" + std::to_string(id) + "/last-position"));
+  ASSERT_EQ(last.status, 200) << last.body;
+  EXPECT_EQ(body(last), rows.back());
+  EXPECT_EQ(call(get("/api/v1/missions/999/last-position")).status, 404);
   for (const auto& [k, v] : std::vector<std::pair<std::string, std::string>>{
            {"limit", "0"}, {"limit", "10001"}, {"limit", "2.5"}, {"after", "-1"}, {"after", "x"}}) {
     const ApiResponse bad = call(get(path, {{k, v}}));

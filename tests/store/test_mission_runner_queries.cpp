@@ -173,6 +173,33 @@ TEST(MissionQueries, NavPageCoversEveryRowOnceInInsertionOrder) {
   EXPECT_TRUE(s.navigation().page(other + 10, 0, 1000).empty());
 }
 
+TEST(MissionQueries, LastPositionIsTheLatestOnTheMissionClockNotTheLastRecorded) {
+  Store s(":memory:");
+  const auto m = make_mission(s);
+  const auto other = make_mission(s);
+  EXPECT_FALSE(s.navigation().last(m));
+  std::vector<NavRow> rows = nav_until(3.0);
+  for (auto& r : rows)
+    r.x_m = 10.0 * r.t_s;
+  // Recorded after the others but earlier on the clock (a resumed run's replay, an import).
+  NavRow early = rows.front();
+  early.t_s = -5.0;
+  early.x_m = -1.0;
+  s.navigation().append(m, rows);
+  s.navigation().append(m, std::vector<NavRow>{early});
+  s.navigation().append(other, nav_until(9.0));
+  const auto last = s.navigation().last(m);
+  ASSERT_TRUE(last);
+  EXPECT_EQ(last->row, rows.back());
+  // Of two reports at one time, the one recorded last.
+  NavRow again = rows.back();
+  again.x_m = 99.0;
+  s.navigation().append(m, std::vector<NavRow>{again});
+  EXPECT_EQ(s.navigation().last(m)->row, again);
+  EXPECT_GT(s.navigation().last(m)->rowid, last->rowid);
+  EXPECT_FALSE(s.navigation().last(other + 10));
+}
+
 TEST(MissionQueries, ClockEndIsTheLatestOfEverySource) {
   Store s(":memory:");
   const auto m = make_mission(s);
