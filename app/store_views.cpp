@@ -2,6 +2,23 @@
 
 namespace avk::app {
 
+namespace {
+
+// A model goes both ways (stored when fitted, read when listed) with the same fields.
+template <class To, class From>
+To same_model(const From& m) {
+  return {.id = m.id,
+          .created_utc = m.created_utc,
+          .vehicle_id = m.vehicle_id,
+          .training_missions = m.training_missions,
+          .model = m.model,
+          .train_one_step_rms_deg = m.train_one_step_rms_deg,
+          .validation_mse_m2 = m.validation_mse_m2,
+          .validation_heading_rms_deg = m.validation_heading_rms_deg};
+}
+
+}  // namespace
+
 MissionStatus view_of(store::MissionStatus s) {
   switch (s) {
     case store::MissionStatus::created:
@@ -121,14 +138,7 @@ CurrentView view_of(const store::StoredCurrent& c) {
 }
 
 ModelView view_of(const store::StoredModel& m) {
-  return {.id = m.id,
-          .created_utc = m.created_utc,
-          .vehicle_id = m.vehicle_id,
-          .training_missions = m.training_missions,
-          .model = m.model,
-          .train_one_step_rms_deg = m.train_one_step_rms_deg,
-          .validation_mse_m2 = m.validation_mse_m2,
-          .validation_heading_rms_deg = m.validation_heading_rms_deg};
+  return same_model<ModelView>(m);
 }
 
 std::vector<vehicle::GuidedNav> guided_log(const std::vector<store::NavRow>& rows) {
@@ -160,14 +170,7 @@ store::TurnFilter to_store(const TurnQuery& q) {
 }
 
 store::StoredModel to_store(const ModelView& m) {
-  return {.id = m.id,
-          .created_utc = m.created_utc,
-          .vehicle_id = m.vehicle_id,
-          .training_missions = m.training_missions,
-          .model = m.model,
-          .train_one_step_rms_deg = m.train_one_step_rms_deg,
-          .validation_mse_m2 = m.validation_mse_m2,
-          .validation_heading_rms_deg = m.validation_heading_rms_deg};
+  return same_model<store::StoredModel>(m);
 }
 
 }  // namespace avk::app
