@@ -17,26 +17,11 @@
 #include <utility>
 #include <vector>
 
+#include "support/c_strings.hpp"
+
 extern char** environ;
 
 namespace avk::testing {
-
-// A null-terminated array of C strings over strings it owns: an argv or an envp.
-class CStrings {
- public:
-  explicit CStrings(std::vector<std::string> strings) : strings_(std::move(strings)) {
-    for (auto& s : strings_)
-      pointers_.push_back(s.data());
-    pointers_.push_back(nullptr);
-  }
-  CStrings(const CStrings&) = delete;
-  CStrings& operator=(const CStrings&) = delete;
-  char** get() { return pointers_.data(); }
-
- private:
-  std::vector<std::string> strings_;
-  std::vector<char*> pointers_;
-};
 
 inline std::vector<std::string> avk_argv(const std::vector<std::string>& args) {
   std::vector<std::string> argv = {AVK_BINARY};
