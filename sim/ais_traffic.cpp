@@ -43,16 +43,16 @@ TrafficContact read_contact(const json& v, const std::string& path,
   mission::DocumentReader r(v, path, errors);
   int mmsi = 0;
   if (r.get("mmsi", true)) r.integer("mmsi", mmsi, 1, 999999999);
-  c.mmsi = static_cast<std::uint32_t>(mmsi);
-  r.text("name", c.name, false, kMaxNameBytes);
+  c.vessel.mmsi = static_cast<std::uint32_t>(mmsi);
+  r.text("name", c.vessel.name, false, kMaxNameBytes);
   std::string ais_class = "A";
   r.text("class", ais_class, false, 1);
   if (ais_class == "B") {
-    c.ais_class = AisClass::b;
+    c.vessel.ais_class = AisClass::b;
   } else if (ais_class != "A") {
     r.error(r.at("class"), "expected \"A\" or \"B\"");
   }
-  r.integer("ship_type", c.ship_type, 0, 99);
+  r.integer("ship_type", c.vessel.ship_type, 0, 99);
   r.number("speed_mps", c.speed_mps, 0.0, kMaxSpeed_mps, true);
   const json* start = r.get("start", false);
   const json* waypoints = r.get("waypoints", false);
@@ -124,9 +124,7 @@ std::vector<TrafficState> AisTraffic::at(double t_s) const {
   std::vector<TrafficState> out;
   for (const auto& c : contacts_) {
     TrafficState s;
-    s.mmsi = c.mmsi;
-    s.name = c.name;
-    s.ais_class = c.ais_class;
+    s.vessel = c.vessel;
     s.speed_mps = c.speed_mps;
     const double run_m = c.speed_mps * t_s;
     if (c.waypoints.empty()) {
@@ -174,14 +172,14 @@ std::vector<std::string> AisTraffic::position_sentences(double t_s) const {
   const int second = static_cast<int>(std::fmod(std::max(t_s, 0.0), 60.0));
   for (const auto& s : at(t_s)) {
     AisPositionMessage m;
-    m.mmsi = s.mmsi;
+    m.mmsi = s.vessel.mmsi;
     m.lat_deg = s.position.lat_deg;
     m.lon_deg = s.position.lon_deg;
     m.speed_mps = s.speed_mps;
     m.course_deg = s.course_deg;
     m.heading_deg = s.course_deg;
     m.utc_second = second;
-    const bool class_a = s.ais_class == AisClass::a;
+    const bool class_a = s.vessel.ais_class == AisClass::a;
     if (class_a) m.nav_status = 0;  // under way using engine
     const auto lines = class_a ? encode_class_a_position(m) : encode_class_b_position(m);
     out.insert(out.end(), lines.begin(), lines.end());
@@ -193,11 +191,11 @@ std::vector<std::string> AisTraffic::static_sentences() const {
   std::vector<std::string> out;
   int sequence = 0;
   for (const auto& c : contacts_) {
-    if (c.name.empty()) continue;
+    if (c.vessel.name.empty()) continue;
     AisStaticMessage m;
-    m.mmsi = c.mmsi;
-    m.name = c.name;
-    m.ship_type = c.ship_type;
+    m.mmsi = c.vessel.mmsi;
+    m.name = c.vessel.name;
+    m.ship_type = c.vessel.ship_type;
     const auto lines = encode_static_voyage(m, sequence++ % 10);
     out.insert(out.end(), lines.begin(), lines.end());
   }

@@ -25,11 +25,16 @@ namespace avk::sim {
 
 enum class AisClass { a, b };
 
-struct TrafficContact {
+// Who a contact is, as its static data says.
+struct TrafficVessel {
   std::uint32_t mmsi = 0;
   std::string name;
   AisClass ais_class = AisClass::a;
   int ship_type = 0;
+};
+
+struct TrafficContact {
+  TrafficVessel vessel;
   double speed_mps = 0.0;
   // A straight track from start, or a closed circuit of waypoints (when there are any).
   kinematics::Point start;
@@ -38,9 +43,7 @@ struct TrafficContact {
 };
 
 struct TrafficState {
-  std::uint32_t mmsi = 0;
-  std::string name;
-  AisClass ais_class = AisClass::a;
+  TrafficVessel vessel;
   double x_m = 0.0;
   double y_m = 0.0;
   vehicle::LatLon position;

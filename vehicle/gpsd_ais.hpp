@@ -38,7 +38,8 @@ class GpsdAis {
   GpsdAis& operator=(const GpsdAis&) = delete;
 
   void start();
-  // Closes the connection and joins the thread, within about a quarter second. Idempotent.
+  // Closes the connection and joins the thread, within about a quarter second (longer only while
+  // a connect to an unresponsive remote host is pending). Idempotent.
   void stop();
 
  private:

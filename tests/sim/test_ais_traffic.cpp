@@ -38,8 +38,8 @@ TEST(AisTraffic, TheExampleScenarioParsesNearTheSimulatorsDatum) {
   ASSERT_GE(t.contacts().size(), 3u);
   ASSERT_LE(t.contacts().size(), 5u);
   for (const auto& s : t.at(120.0)) {
-    EXPECT_LT(std::hypot(s.x_m, s.y_m), 2000.0) << s.mmsi;
-    EXPECT_FALSE(s.name.empty());
+    EXPECT_LT(std::hypot(s.x_m, s.y_m), 2000.0) << s.vessel.mmsi;
+    EXPECT_FALSE(s.vessel.name.empty());
   }
 }
 

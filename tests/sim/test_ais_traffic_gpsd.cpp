@@ -41,8 +41,8 @@ TEST(AisTrafficGpsd, EncodedTrafficDecodesToWhatWasEncoded) {
   AisCollector ais(gpsd.port_text());
   std::set<AisCollector::Key> expected;
   for (const auto& c : traffic.contacts()) {
-    expected.insert({c.mmsi, c.ais_class == avk::sim::AisClass::a ? 1 : 18});
-    expected.insert({c.mmsi, 5});
+    expected.insert({c.vessel.mmsi, c.vessel.ais_class == avk::sim::AisClass::a ? 1 : 18});
+    expected.insert({c.vessel.mmsi, 5});
   }
   ASSERT_TRUE(ais.wait_for([&](const AisCollector& c) { return c.has_all(expected); }))
       << "received: " << ais.received() << "\ngpsfake: " << gpsd.output();
@@ -50,9 +50,9 @@ TEST(AisTrafficGpsd, EncodedTrafficDecodesToWhatWasEncoded) {
   const auto reports = ais.reports();
 
   for (const auto& s : traffic.at(t_s)) {
-    SCOPED_TRACE(s.mmsi);
-    const bool class_a = s.ais_class == avk::sim::AisClass::a;
-    const auto& p = reports.at({s.mmsi, class_a ? 1 : 18});
+    SCOPED_TRACE(s.vessel.mmsi);
+    const bool class_a = s.vessel.ais_class == avk::sim::AisClass::a;
+    const auto& p = reports.at({s.vessel.mmsi, class_a ? 1 : 18});
     ASSERT_TRUE(p.lat_deg && p.lon_deg && p.speed_mps && p.course_deg && p.heading_deg);
     EXPECT_NEAR(*p.lat_deg, s.position.lat_deg, kLatLonTol_deg);
     EXPECT_NEAR(*p.lon_deg, s.position.lon_deg, kLatLonTol_deg);
@@ -60,12 +60,12 @@ TEST(AisTrafficGpsd, EncodedTrafficDecodesToWhatWasEncoded) {
     EXPECT_LE(angle_diff_deg(*p.course_deg, s.course_deg), kCourseTol_deg);
     EXPECT_LE(angle_diff_deg(*p.heading_deg, s.course_deg), 0.5 + 1e-9);
     EXPECT_EQ(p.nav_status, class_a ? std::optional<int>(0) : std::nullopt);
-    const auto& st = reports.at({s.mmsi, 5});
-    EXPECT_EQ(st.name, s.name);  // the example's names are upper case and at most 20 long
+    const auto& st = reports.at({s.vessel.mmsi, 5});
+    EXPECT_EQ(st.name, s.vessel.name);  // the example's names are upper case and at most 20 long
   }
   for (const auto& c : traffic.contacts()) {
-    const auto& st = reports.at({c.mmsi, 5});
-    EXPECT_EQ(st.ship_type, c.ship_type) << c.mmsi;
+    const auto& st = reports.at({c.vessel.mmsi, 5});
+    EXPECT_EQ(st.ship_type, c.vessel.ship_type) << c.vessel.mmsi;
   }
 }
 
