@@ -6,6 +6,7 @@
 #include "app/ckt_tables.hpp"
 #include "app/mission_liveness.hpp"
 #include "app/store_access.hpp"
+#include "app/traffic_watch.hpp"
 
 namespace avk::app {
 
@@ -18,12 +19,18 @@ Context::~Context() {
   shutdown();
 }
 
+void Context::watch_traffic(const TrafficOptions& options) {
+  traffic_ = std::make_unique<TrafficWatch>(options);
+}
+
 void Context::start() {
   mark_orphaned_missions_interrupted(store_of(*this));
   if (loop_) loop_->start();
+  if (traffic_) traffic_->start();
 }
 
 void Context::shutdown(const std::string& reason) {
+  if (traffic_) traffic_->stop();
   if (loop_) loop_->stop(reason);
 }
 

@@ -13,6 +13,8 @@
 namespace avk::app {
 
 class TableCache;
+class TrafficWatch;
+struct TrafficOptions;
 
 class Context {
  public:
@@ -24,7 +26,10 @@ class Context {
   Context(const Context&) = delete;
   Context& operator=(const Context&) = delete;
 
-  // Marks missions whose process died as interrupted and starts the vehicle loop.
+  // Watches AIS traffic through gpsd from start() on (app/traffic_watch.hpp); before start().
+  void watch_traffic(const TrafficOptions& options);
+  // Marks missions whose process died as interrupted, starts the vehicle loop and the traffic
+  // watch.
   void start();
   // Interrupts a running mission (stored, resumable), flushes and stops the vehicle.
   void shutdown(const std::string& reason = "the server stopped");
@@ -33,12 +38,14 @@ class Context {
   const std::string& db_path() const { return db_path_; }
   VehicleLoop* vehicle_loop() { return loop_.get(); }
   TableCache& tables() { return *tables_; }
+  const TrafficWatch* traffic() const { return traffic_.get(); }
 
  private:
   std::string db_path_;
   SilentFeed silent_;
   std::unique_ptr<VehicleLoop> loop_;
   std::unique_ptr<TableCache> tables_;
+  std::unique_ptr<TrafficWatch> traffic_;
 };
 
 }  // namespace avk::app

@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "app/foxglove_scene.hpp"
+#include "app/traffic_watch.hpp"
 #include "server/map_tile_routes.hpp"
 #include "server/routes/routes.hpp"
 #include "server/serialize/station.hpp"
@@ -25,6 +26,11 @@ Station::Station(StationOptions options, StreamHub& hub)
           options_.datum),
       feeds_({&feed_, &foxglove_}),
       context_(options_.db_path, options_.vehicle, &feeds_) {
+  // AIS positions are placed on the local grid, which only a datum puts on the earth.
+  if (options_.ais) {
+    if (!options_.datum) throw std::invalid_argument("AIS traffic needs the station's datum");
+    context_.watch_traffic({*options_.ais, *options_.datum, {}});
+  }
   add_routes();
 }
 
@@ -101,6 +107,7 @@ void Station::add_routes() {
   add_prediction_routes(routes, ctx);
   add_maneuver_routes(routes, ctx, options_.vehicle);
   add_model_routes(routes, ctx);
+  add_traffic_routes(routes, ctx);
 
   // --- the map background (avk serve --tiles) ---------------------------------------------
   add_map_tile_routes(*this, options_.tiles, options_.datum);

@@ -16,6 +16,7 @@
 #include "server/http/router.hpp"
 #include "server/stream_feed.hpp"
 #include "server/stream_hub.hpp"
+#include "vehicle/gpsd_ais.hpp"
 
 namespace avk::server {
 
@@ -28,6 +29,8 @@ struct StationOptions {
   // Where the local grid lies on the earth (`--datum`): the Foxglove connection's LocationFix for
   // a simulated vehicle, whose navigation has no latitude/longitude of its own.
   std::optional<vehicle::LatLon> datum;
+  // AIS traffic watched through gpsd (`--ais HOST:PORT`), placed about `datum`; none: no traffic.
+  std::optional<vehicle::GpsdAisOptions> ais;
   // The dashboard's offline map background (`--tiles`); none: GET /tiles says it is unavailable.
   std::shared_ptr<const app::tiles::MapTiles> tiles;
 };

@@ -113,6 +113,22 @@ bool is_unspecified(const std::string& address) {
   return address == "0.0.0.0" || address == "::" || address == "[::]";
 }
 
+// --ais HOST:PORT: gpsd's socket. Its positions go on the local grid, so the datum is needed.
+vehicle::GpsdAisOptions gpsd_options_from(const Args& a,
+                                          const std::optional<vehicle::LatLon>& datum) {
+  const std::string where = *a.get("ais");
+  const auto colon = where.rfind(':');
+  if (colon == std::string::npos || colon == 0 || colon + 1 == where.size() ||
+      where.find_first_not_of("0123456789", colon + 1) != std::string::npos)
+    throw UsageError("--ais " + where + ": expected HOST:PORT of gpsd (e.g. 127.0.0.1:2947)");
+  if (!datum)
+    throw UsageError("--ais needs --datum LAT,LON: AIS positions are placed on the local grid");
+  vehicle::GpsdAisOptions o;
+  o.host = where.substr(0, colon);
+  o.port = where.substr(colon + 1);
+  return o;
+}
+
 std::string vehicle_id(const app::VehicleLoopOptions& v) {
   return app::planned_vehicle_info(v).id;
 }
@@ -138,6 +154,7 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
                 "pid",
                 "controller-hz",
                 "vehicle-id",
+                "ais",
                 "allow-host",
                 "allow-origin",
                 "max-connections",
@@ -150,6 +167,7 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
                {"sim", "jitter"}, {"allow-host", "allow-origin"});
   if (a.flag("sim") && a.get("m200")) throw UsageError("give one vehicle: --sim or --m200");
   auto m200 = m200_options_from(a);  // option mistakes show before anything is opened
+  const auto ais = a.get("ais") ? std::optional(gpsd_options_from(a, datum_from(a))) : std::nullopt;
   const double port = a.number("port").value_or(8080);
   if (port < 0 || port > 65535 || port != static_cast<int>(port))
     throw UsageError("--port must be a whole number from 0 to 65535");
@@ -247,6 +265,7 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
   }();
   so.datum = datum_from(a);
   so.tiles = tiles;
+  so.ais = ais;
   if (a.flag("sim")) {
     app::VehicleLoopOptions v;
     v.setup = sim_setup_from(a, io);

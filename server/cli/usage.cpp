@@ -213,13 +213,15 @@ const std::vector<CommandUsage>& command_usages() {
        {},
        "  avk serve [--db FILE] [--sim [--vehicle KIND] [--sim-config FILE]\n"
        "                  | --m200 HOST:PORT [--pid P]] [--datum LAT,LON] [--realtime-factor K]\n"
+       "                  [--ais HOST:PORT (gpsd, with --datum)]\n"
        "                  [--bind 127.0.0.1] [--port 8080] [--web DIR] [--token T]\n"
        "                  [--allow-host NAME]... [--allow-origin ORIGIN]...\n"
        "                  [--max-connections 512] [--max-connections-per-address 64]\n"
        "                  [--max-streams-per-address 256] [--request-workers 4]\n"
        "                  [--request-queue 64] [--expensive-requests 2]\n"
        "                  [--expensive-requests-per-address 4]\n"
-       "      the ground station: REST + WebSocket API under /api/v1 and the dashboard\n"},
+       "      the ground station: REST + WebSocket API under /api/v1 and the dashboard;\n"
+       "      --ais watches AIS traffic decoded by gpsd (docs/ais.md)\n"},
       {"frontseat-emulator",
        {},
        "  avk frontseat-emulator [--port 29500] [--bind 127.0.0.1] [--vehicle catamaran:m200]\n"

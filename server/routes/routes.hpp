@@ -32,5 +32,7 @@ void add_maneuver_routes(RouteTable& routes, app::Context& ctx,
                          const std::optional<app::VehicleLoopOptions>& station_vehicle);
 // The comparison of the prediction methods, and the identified yaw models.
 void add_model_routes(RouteTable& routes, app::Context& ctx);
+// The AIS traffic the station watches.
+void add_traffic_routes(RouteTable& routes, app::Context& ctx);
 
 }  // namespace avk::server

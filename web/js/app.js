@@ -7,6 +7,7 @@ import { Stream } from './stream.js';
 import { attachStream, catchUp, onHello, onMessage, onStreamClose, onGap, updateLink } from './sync.js';
 import { initRouter } from './router.js';
 import { initLive, showLive } from './live.js';
+import { initTraffic } from './traffic.js';
 import { initReplay, showReplay } from './replay.js';
 import { initMission, showMission } from './mission.js';
 import { initCkt, showCkt } from './ckt.js';
@@ -52,6 +53,7 @@ function main() {
   initTheme(); // before anything is drawn: the plots take its colours
   for (const el of document.querySelectorAll('.plot')) framePlot(el);
   initLive();
+  initTraffic();
   initReplay();
   initMission();
   initCkt();

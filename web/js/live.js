@@ -10,6 +10,7 @@
 import { state, on } from './state.js';
 import { C, METHOD_STYLE, baseLayout, draw, showEmpty, corridorTrace, vehicleMarker, updateScaleBar } from './plots.js';
 import { regionRings, along } from './geometry.js';
+import { trafficTrace } from './traffic.js';
 import { TrackDecimator } from './decimate.js';
 import { el } from './format.js';
 import { drawSeries } from './timeseries.js';
@@ -70,6 +71,7 @@ export function initLive() {
     markText();
   });
   on('recorded-turns', markPlot);
+  on('traffic', markPlot);
   on('restart', markPlot);
   on('nav-history', markPlot);
   on('previous-track', markPlot);
@@ -287,6 +289,8 @@ function renderPlot() {
     showlegend: Boolean(state.previousTrack),
     hoverinfo: 'skip',
   };
+  // AIS contacts may be kilometres away: drawn, but the view is fitted to this vehicle's own.
+  const traffic = trafficTrace();
   const traces = [
     grid,
     { type: 'scatter', mode: 'lines', name: 'region', x: reg.region.x, y: reg.region.y, line: { color: C.black, width: 2 }, hoverinfo: 'skip' },
@@ -308,6 +312,7 @@ function renderPlot() {
     { type: 'scatter', mode: 'lines', name: 'measured heading', x: headingRay.x, y: headingRay.y, line: { color: C.green, width: 2.5 }, hoverinfo: 'name' },
     expectedTrace(),
     currentTrace(nav),
+    traffic,
     {
       type: 'scatter',
       mode: 'markers',
@@ -320,7 +325,7 @@ function renderPlot() {
   ];
   const layout = {
     ...baseLayout({ margin: { l: 56, r: 10, t: 40, b: 40 } }),
-    ...axesToDraw(plotEl, traces.filter((t) => t !== previous && t !== grid)),
+    ...axesToDraw(plotEl, traces.filter((t) => t !== previous && t !== grid && t !== traffic)),
     uirevision,
     showlegend: true,
     images: mapImages(plotEl),

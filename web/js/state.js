@@ -99,6 +99,7 @@ export const state = {
   previousTrack: null,   // {missionId, x, y}: the track of the mission before, drawn faded (tracks.js)
   okTurns: 0,            // stored ok turns of the vehicle (0: the CKT and the comparison 404)
   datum: null,           // {lat_deg, lon_deg} of avk serve --datum (GET /health), else null
+  traffic: null,         // GET /traffic: the AIS contacts the station watches (traffic.js)
   testFeed: false,       // a ?test=1 hook feeds nav (the stream's nav is dropped meanwhile)
 };
 
