@@ -17,6 +17,7 @@
 #include "app/vehicles.hpp"
 #include "sim/sim_config.hpp"
 #include "support/recorded_mission.hpp"
+#include "support/sim_vehicle_loop.hpp"
 #include "support/temp_db.hpp"
 
 namespace {
@@ -53,14 +54,7 @@ class VehicleCommands : public ::testing::Test {
  protected:
   VehicleCommands() : ctx_(db_.path(), options(), &feed_) { ctx_.start(); }
 
-  static app::VehicleLoopOptions options() {
-    app::VehicleLoopOptions v;
-    v.setup = sim::default_sim_setup("usim");
-    v.setup.vehicle.id = "sim-usim";
-    v.realtime_factor = 400.0;
-    v.start = {0.0, -70.0, 0.0};
-    return v;
-  }
+  static app::VehicleLoopOptions options() { return avk::testing::sim_usim_loop_options(400.0); }
 
   app::VehicleSnapshot snapshot() { return *app::get_vehicle(ctx_, "sim-usim")->live; }
   // The snapshot once done(snapshot) holds, bounded at 60 s of wall clock.
