@@ -6,6 +6,8 @@
 #include <map>
 
 #include "app/mission_recorder.hpp"
+#include "kinematics/number_text.hpp"
+#include "mission/command_helm.hpp"
 #include "sim/scheduler.hpp"
 #include "store/store.hpp"
 
@@ -25,14 +27,18 @@ struct VehicleLoop::Impl {
   std::condition_variable ticked;
   std::uint64_t ticks = 0;
   std::deque<std::function<void(double)>> pending;
-  std::optional<std::int64_t> attached;  // set when a mission is accepted, before it runs
+  std::optional<std::int64_t> attached;           // set when a mission is accepted, before it runs
+  std::optional<kinematics::Point> return_point;  // the last mission's
   VehicleSnapshot snapshot;
   std::map<std::int64_t, MissionLive> live;
 
   // Loop thread only.
   std::unique_ptr<store::Store> store;
+  // The helm while no mission runs: the operator's commands, the hold after a mission's end.
+  std::unique_ptr<mission::CommandHelm> helm;
   struct Running {
     std::int64_t id;
+    mission::MissionConfig config;
     std::unique_ptr<mission::MissionRunner> runner;
     std::unique_ptr<MissionRecorder> recorder;
     std::unique_ptr<mission::MissionObserver> follower;
@@ -61,6 +67,7 @@ struct VehicleLoop::Impl {
         scheduler(scheduler_options(options)) {
     options.realtime = true;  // the station's vehicle lives on the wall clock
     source = make_vehicle_source(options, scheduler);
+    helm = std::make_unique<mission::CommandHelm>(source->vehicle());
   }
 
   vehicle::Vehicle& vehicle() { return source->vehicle(); }
@@ -83,6 +90,11 @@ struct VehicleLoop::Impl {
       running->runner->tick(now);
       update_live();
       if (running->runner->finished()) finish_running(now);
+    } else if (helm->mode()) {
+      helm->tick(now);
+      if (helm->take_arrival())
+        feed.station_event(now, mission::EventKind::arrived, arrival_text());
+      update_command();
     } else {
       vehicle().take_nav();  // no mission: nothing records it, but the mailbox must not grow
       if (!idle_stopped) vehicle().all_stop(now);
@@ -101,6 +113,9 @@ struct VehicleLoop::Impl {
     ro.mission_label = std::to_string(plan.mission_id);
     Running r;
     r.id = plan.mission_id;
+    r.config = plan.config;
+    helm->mission_started(plan.config);
+    helm->clear();  // the mission drives the vehicle now
     r.runner = std::make_unique<mission::MissionRunner>(plan.config, vehicle(), plan.tasks, ro);
     r.runner->add_observer(helm_sync);  // first: see HelmSync
     r.recorder = std::make_unique<MissionRecorder>(
@@ -112,6 +127,11 @@ struct VehicleLoop::Impl {
     store->missions().set_runner(plan.mission_id, static_cast<std::int64_t>(::getpid()));
     idle_stopped = false;
     running = std::move(r);
+    {
+      std::lock_guard lock(mutex);
+      return_point = running->config.region.return_point;
+      snapshot.command.reset();
+    }
     feed.station_event(now, mission::EventKind::mission_attached,
                        "mission " + std::to_string(plan.mission_id) + " started with " +
                            std::to_string(plan.tasks.size()) + " turns to do");
@@ -125,9 +145,55 @@ struct VehicleLoop::Impl {
         now, mission::EventKind::mission_detached,
         "mission " + std::to_string(running->id) + " " +
             (running->runner->state() ? mission::to_string(*running->runner->state()) : "ended"));
+    const std::optional<mission::MissionState> state = running->runner->state();
+    if (state && helm->mission_ended(running->config, *state, now))
+      feed.station_event(now, mission::EventKind::vehicle_command,
+                         "mission " + std::to_string(running->id) + " " +
+                             mission::to_string(*state) + ": " +
+                             mission::describe(*helm->active()));
     running.reset();
+    update_command();
     std::lock_guard lock(mutex);
     attached.reset();
+  }
+
+  // The operator's command, on the loop's thread: an attached mission is aborted first.
+  void apply_command(mission::VehicleCommand c, double now) {
+    if (running) {
+      running->runner->abort(now, "aborted by the operator's command: " + mission::describe(c));
+      update_live();
+      finish_running(now);
+    }
+    helm->command(c, now);
+    feed.station_event(now, mission::EventKind::vehicle_command,
+                       mission::describe(*helm->active()));
+    update_command();
+  }
+
+  // "arrived at (12.0, -3.5), 2.1 m away: holding within 5.0 m".
+  std::string arrival_text() const {
+    using kinematics::fixed_text;
+    const mission::VehicleCommand& c = *helm->active();
+    std::string out = "arrived";
+    if (c.point)
+      out += " at (" + fixed_text(c.point->x_m, 1) + ", " + fixed_text(c.point->y_m, 1) + ")";
+    if (const auto d = helm->distance_m()) out += ", " + fixed_text(*d, 1) + " m away";
+    return out + ": holding within " + fixed_text(c.radius_m, 1) + " m";
+  }
+
+  // The helm's command in the snapshot, the moment it changes (like update_live for a mission).
+  void update_command() {
+    if (running) return;
+    std::lock_guard lock(mutex);
+    fill_command(snapshot);
+  }
+  void fill_command(VehicleSnapshot& s) const {
+    s.helm_mode = helm->mode();
+    s.desired_heading_deg = helm->desired_heading_deg();
+    s.desired_speed_mps = helm->desired_speed_mps();
+    s.mission_id.reset();
+    s.command.reset();
+    if (helm->active()) s.command = VehicleCommandState{*helm->active(), helm->distance_m()};
   }
 
   // The mission's live view and the vehicle's helm fields in one step (one lock), so that
@@ -161,6 +227,8 @@ struct VehicleLoop::Impl {
       s.desired_heading_deg = running->runner->desired_heading_deg();
       s.desired_speed_mps = running->runner->desired_speed_mps();
       s.mission_id = running->id;
+    } else {
+      fill_command(s);
     }
     feed.telemetry(s);
     std::lock_guard lock(mutex);
@@ -255,6 +323,19 @@ bool VehicleLoop::command(std::int64_t mission_id, Command c) {
     if (r.finished()) i->finish_running(now);
   });
   return true;
+}
+
+bool VehicleLoop::command_vehicle(mission::VehicleCommand c) {
+  std::lock_guard lock(impl_->mutex);
+  if (impl_->stop_requested.load()) return false;
+  Impl* i = impl_.get();
+  impl_->pending.push_back([i, c](double now) { i->apply_command(c, now); });
+  return true;
+}
+
+std::optional<kinematics::Point> VehicleLoop::last_return_point() const {
+  std::lock_guard lock(impl_->mutex);
+  return impl_->return_point;
 }
 
 bool VehicleLoop::wait_for_tick(std::chrono::milliseconds timeout) {

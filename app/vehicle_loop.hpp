@@ -21,6 +21,7 @@
 #include "app/vehicle_snapshot.hpp"
 #include "app/vehicle_source.hpp"
 #include "mission/mission_runner.hpp"
+#include "mission/vehicle_command.hpp"
 #include "vehicle/vehicle.hpp"
 
 namespace avk::app {
@@ -51,6 +52,12 @@ class VehicleLoop {
   // Queues the command for the attached mission; false when that mission is not attached. The
   // result shows in live() after the next helm tick.
   bool command(std::int64_t mission_id, Command c);
+  // Queues a vehicle command (hold, go to, return, stop), applied at the next helm tick: an
+  // attached mission is aborted first (its log says why), then the helm runs the command until
+  // another command or a mission replaces it. False while the loop is stopping.
+  bool command_vehicle(mission::VehicleCommand c);
+  // The return point of the last mission that ran on the vehicle (where `return` goes).
+  std::optional<kinematics::Point> last_return_point() const;
   // Blocks until the loop has run a helm tick after this call (bounded by timeout); for callers
   // that want to read the effect of a command.
   bool wait_for_tick(std::chrono::milliseconds timeout);

@@ -49,6 +49,10 @@ std::string_view to_string(EventKind k) {
       return "mission_halted";
     case EventKind::mission_done:
       return "mission_done";
+    case EventKind::vehicle_command:
+      return "vehicle_command";
+    case EventKind::arrived:
+      return "arrived";
   }
   return {};  // not an enumerator: all_event_kinds() stops here
 }
@@ -94,6 +98,8 @@ Severity severity(EventKind k) {
     case EventKind::mission_aborted:
     case EventKind::mission_halted:
     case EventKind::mission_done:
+    case EventKind::vehicle_command:
+    case EventKind::arrived:
       return Severity::info;
   }
   return Severity::info;

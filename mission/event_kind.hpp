@@ -36,6 +36,10 @@ enum class EventKind {
   mission_aborted,
   mission_halted,
   mission_done,
+  // The operator commanded the vehicle (hold, go to, return, stop), or a mission's end left it
+  // holding at its return point; and the vehicle arrived at the point it holds.
+  vehicle_command,
+  arrived,
 };
 
 enum class Severity { info, warning };

@@ -5,8 +5,9 @@
 namespace avk::mission {
 
 namespace {
-constexpr std::array<const char*, 8> kNames = {"CONTAINING", "CONDITIONING", "TURNING", "EXCITING",
-                                               "RETURNING",  "PAUSED",       "DONE",    "HALTED"};
+constexpr std::array<const char*, 11> kNames = {"CONTAINING", "CONDITIONING", "TURNING", "EXCITING",
+                                                "RETURNING",  "PAUSED",       "DONE",    "HALTED",
+                                                "TRANSITING", "HOLDING",      "STOPPED"};
 }
 
 const char* to_string(HelmMode m) {
@@ -31,7 +32,8 @@ const std::vector<HelmMode>& all_helm_modes() {
 
 bool commands_motion(HelmMode m) {
   return m == HelmMode::containing || m == HelmMode::conditioning || m == HelmMode::turning ||
-         m == HelmMode::exciting || m == HelmMode::returning;
+         m == HelmMode::exciting || m == HelmMode::returning || m == HelmMode::transiting ||
+         m == HelmMode::holding;
 }
 
 }  // namespace avk::mission

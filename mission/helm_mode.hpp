@@ -1,5 +1,6 @@
 #pragma once
-// The helm modes of the collection mission (thesis §4.5), as MOOS' helm mode tree names them.
+// The helm modes of the collection mission (thesis §4.5), as MOOS' helm mode tree names them,
+// and those of a vehicle no mission drives (mission/command_helm.hpp).
 
 #include <optional>
 #include <string_view>
@@ -16,6 +17,10 @@ enum class HelmMode {
   paused,        // all stop, waiting for resume
   done,          // at the return point, all stop
   halted,        // all stop after leaving the region or an operator abort
+  // No mission: the operator's command, or the hold at a mission's return point after it ended.
+  transiting,  // heading for the point to hold
+  holding,     // station keeping at the point
+  stopped,     // all stop by the operator's command
 };
 const char* to_string(HelmMode m);
 std::optional<HelmMode> helm_mode_from_string(std::string_view s);

@@ -251,6 +251,11 @@ void MissionRunner::update_desired(double) {
         desired_speed_mps_ = return_speed_mps(config_);
       }
       break;
+    case HelmMode::transiting:
+      // Outside the region, before the mission: to its interior at the mission's transit speed.
+      desired_heading_deg_ = container_.heading_to_interior_deg({s.x_m, s.y_m});
+      desired_speed_mps_ = return_speed_mps(config_);
+      break;
     case HelmMode::returning: {
       const auto& rp = config_.region.return_point;
       desired_heading_deg_ = kinematics::heading_of_deg(rp.x_m - s.x_m, rp.y_m - s.y_m);
@@ -268,16 +273,26 @@ void MissionRunner::process(const vehicle::NavSample& s) {
   last_nav_ = s;
   if (finished() || mode_ == HelmMode::paused || holding_) return;
   const RegionZone zone = container_.zone({s.x_m, s.y_m});
-  if (zone != RegionZone::outside) {
+  // Only the interior counts as having been inside: a mission that starts in the buffer, or
+  // outside, with the vehicle drifting out in a current, transits back instead of halting.
+  if (zone == RegionZone::interior) {
     been_inside_ = true;
-  } else if (been_inside_) {
+  } else if (zone == RegionZone::outside && been_inside_) {
     // OpRegion: outside the polygon the vehicle is shut down (thesis §4.4.2).
     if (turn_) abort_turn(s.t_s, "left the operating region", false);
     stop_all(s.t_s, HelmMode::halted, MissionState::halted,
              "left the operating region at " + position_text(s));
     return;
   }
+  if (!been_inside_ && zone == RegionZone::outside && mode_ == HelmMode::containing) {
+    event(s.t_s, EventKind::containment,
+          "outside the operating region at " + position_text(s) + ": transiting to it");
+    set_mode(HelmMode::transiting, s.t_s);
+  }
   switch (mode_) {
+    case HelmMode::transiting:
+      if (zone != RegionZone::outside) set_mode(HelmMode::containing, s.t_s);
+      break;
     case HelmMode::containing:
       if (zone == RegionZone::buffer) {
         turn_back_course_deg_.reset();  // in the buffer the container steers, as always

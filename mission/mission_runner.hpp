@@ -3,9 +3,10 @@
 // state machine. It talks to the vehicle only through vehicle::Vehicle and reports everything it
 // records to its observers; whoever owns the clock calls tick() at the helm's AppTick.
 //
-// Modes: CONTAINING -> CONDITIONING -> TURNING -> CONDITIONING -> ... -> RETURNING -> DONE, and
-// EXCITING for a persistent-excitation mission. Entering the buffer aborts a turn in progress
-// (stored as aborted, re-queued) and contains; leaving the region halts (all stop).
+// Modes: (TRANSITING, when it starts outside the region ->) CONTAINING -> CONDITIONING -> TURNING
+// -> CONDITIONING -> ... -> RETURNING -> DONE, and EXCITING for a persistent-excitation mission.
+// Entering the buffer aborts a turn in progress (stored as aborted, re-queued) and contains;
+// leaving the region after having reached its interior halts (all stop).
 
 #include <deque>
 #include <optional>

@@ -1,9 +1,11 @@
 #include "server/api_params.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <string_view>
 
+#include "server/routes/route_table.hpp"
 #include "server/serialize.hpp"
 
 namespace avk::server {
@@ -152,6 +154,27 @@ Format negotiate(const ApiRequest& r, bool csv_available) {
 
 void require_media_type(const ApiRequest& r, const std::string& type, const std::string& what) {
   if (media_type(r.content_type) != type) throw RequestError(415, what + " (" + type + ")");
+}
+
+std::optional<double> BodyNumbers::get(const std::string& name) const {
+  const auto it = values.find(name);
+  if (it == values.end()) return std::nullopt;
+  return it->second;
+}
+
+BodyNumbers body_numbers(const ApiRequest& r, const std::vector<std::string>& names,
+                         const std::string& what) {
+  BodyNumbers out;
+  if (r.body.empty()) return out;
+  const nlohmann::json body = body_object(r, what);
+  for (const auto& [key, value] : body.items()) {
+    if (std::find(names.begin(), names.end(), key) == names.end())
+      throw bad_field("/" + key, "is not a field of " + what);
+    if (value.is_null()) continue;
+    if (!value.is_number()) throw bad_field("/" + key, "must be a number");
+    out.values[key] = value.get<double>();
+  }
+  return out;
 }
 
 }  // namespace avk::server

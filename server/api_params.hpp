@@ -4,6 +4,7 @@
 // what is wrong.
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -63,5 +64,16 @@ Format negotiate(const ApiRequest& r, bool csv_available);
 void require_media_type(const ApiRequest& r, const std::string& type, const std::string& what);
 
 RequestError bad_parameter(const std::string& name, const std::string& why);
+
+// A request document's optional number fields: the body as an object (an empty body is an empty
+// object, so a command without parameters needs no document), then each named field as a number
+// (absent or null: none). A field of another type, or one not in `names` (a misspelt
+// "radius" must not be ignored in favour of a default), is 422 naming its JSON pointer.
+struct BodyNumbers {
+  std::map<std::string, double> values;
+  std::optional<double> get(const std::string& name) const;
+};
+BodyNumbers body_numbers(const ApiRequest& r, const std::vector<std::string>& names,
+                         const std::string& what);
 
 }  // namespace avk::server

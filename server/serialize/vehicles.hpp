@@ -18,6 +18,9 @@ namespace avk::server {
 nlohmann::json frontseat_json(const vehicle::M200Status& s);
 // The helm's mode by name; null when the helm has not reported one.
 nlohmann::json helm_mode_json(const std::optional<mission::HelmMode>& m);
+// The helm's command while no mission runs: {kind, x_m, y_m, radius_m, speed_mps, distance_m}
+// (null fields where they do not apply or are not known yet), or null.
+nlohmann::json vehicle_command_json(const std::optional<app::VehicleCommandState>& c);
 nlohmann::json vehicle_json(const app::VehicleStatus& v);
 nlohmann::json vehicles_json(const std::vector<app::VehicleStatus>& vehicles);  // vehicle_json's
 // The vehicles as vehicle_json's scalar fields, the last navigation as nav_t_s, x_m, ... (an

@@ -24,6 +24,17 @@ json helm_mode_json(const std::optional<mission::HelmMode>& m) {
   return m ? json(mission::to_string(*m)) : json();
 }
 
+json vehicle_command_json(const std::optional<app::VehicleCommandState>& c) {
+  if (!c) return nullptr;
+  const mission::VehicleCommand& k = c->command;
+  return {{"kind", mission::to_string(k.kind)},
+          {"x_m", k.point ? json(k.point->x_m) : json()},
+          {"y_m", k.point ? json(k.point->y_m) : json()},
+          {"radius_m", k.kind == mission::VehicleCommandKind::stop ? json() : json(k.radius_m)},
+          {"speed_mps", optional_json(k.speed_mps)},
+          {"distance_m", optional_json(c->distance_m)}};
+}
+
 json vehicle_json(const app::VehicleStatus& v) {
   json j = {{"id", v.info.id},
             {"kind", v.info.kind.empty() ? json() : json(v.info.kind)},
@@ -39,6 +50,7 @@ json vehicle_json(const app::VehicleStatus& v) {
   j["desired_heading_deg"] = optional_json(s.desired_heading_deg);
   j["desired_speed_mps"] = optional_json(s.desired_speed_mps);
   j["mission_id"] = optional_json(s.mission_id);
+  j["command"] = vehicle_command_json(s.command);
   j["t_s"] = s.t_s;
   j["nav"] = s.nav ? json{{"t_s", s.nav->t_s},
                           {"x_m", s.nav->x_m},
@@ -71,7 +83,8 @@ json helm_topic_json(const app::VehicleSnapshot& s) {
           {"mode", helm_mode_json(s.helm_mode)},
           {"desired_heading_deg", optional_json(s.desired_heading_deg)},
           {"desired_speed_mps", optional_json(s.desired_speed_mps)},
-          {"mission_id", optional_json(s.mission_id)}};
+          {"mission_id", optional_json(s.mission_id)},
+          {"command", vehicle_command_json(s.command)}};
 }
 
 json vehicles_json(const std::vector<app::VehicleStatus>& vehicles) {

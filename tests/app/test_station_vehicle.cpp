@@ -13,6 +13,7 @@
 #include "kinematics/angles.hpp"
 #include "sim/sim_config.hpp"
 #include "support/recorded_mission.hpp"
+#include "support/sim_vehicle_loop.hpp"
 #include "support/temp_db.hpp"
 
 namespace {
@@ -23,14 +24,7 @@ class StationVehicle : public ::testing::Test {
  protected:
   StationVehicle() : ctx_(db_.path(), options()) { ctx_.start(); }
 
-  static app::VehicleLoopOptions options() {
-    app::VehicleLoopOptions v;
-    v.setup = sim::default_sim_setup("usim");
-    v.setup.vehicle.id = "sim-usim";
-    v.realtime_factor = 400.0;
-    v.start = {0.0, -70.0, 0.0};
-    return v;
-  }
+  static app::VehicleLoopOptions options() { return avk::testing::sim_usim_loop_options(400.0); }
 
   // The report once its status is one of `states`.
   app::MissionReport wait_for(std::int64_t id, const std::set<std::string>& states) {

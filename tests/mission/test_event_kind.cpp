@@ -28,8 +28,8 @@ TEST(EventKind, ListsEveryEnumeratorOnceAndNamesAreUnique) {
   EXPECT_EQ(kinds.size(), all_event_kinds().size());
   // The first and the last enumerator bound the list: nothing is skipped in between.
   EXPECT_EQ(all_event_kinds().front(), EventKind::link);
-  EXPECT_EQ(all_event_kinds().back(), EventKind::mission_done);
-  EXPECT_EQ(all_event_kinds().size(), static_cast<std::size_t>(EventKind::mission_done) + 1);
+  EXPECT_EQ(all_event_kinds().back(), EventKind::arrived);
+  EXPECT_EQ(all_event_kinds().size(), static_cast<std::size_t>(EventKind::arrived) + 1);
 }
 
 TEST(EventKind, UnknownNamesAreNotKinds) {
@@ -69,8 +69,8 @@ TEST(EventKind, StateChangesHaveTheirStatusKind) {
 }
 
 TEST(HelmMode, EveryModeRoundTripsThroughItsName) {
-  ASSERT_EQ(all_helm_modes().size(), 8u);
+  ASSERT_EQ(all_helm_modes().size(), 11u);
   for (const HelmMode m : all_helm_modes())
     EXPECT_EQ(helm_mode_from_string(to_string(m)), m) << to_string(m);
-  EXPECT_EQ(all_helm_modes().back(), HelmMode::halted);
+  EXPECT_EQ(all_helm_modes().back(), HelmMode::stopped);
 }

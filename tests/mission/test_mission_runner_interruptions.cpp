@@ -8,16 +8,19 @@ using namespace avk::testing::mission_sim;
 
 // ---- 2. Dockside start ----------------------------------------------------------------------
 
-TEST(MissionRunner, StartingOutsideTheRegionContainsInsteadOfHalting) {
+TEST(MissionRunner, StartingOutsideTheRegionTransitsInsteadOfHalting) {
   Sim r(turns_config({1.0}, {90}, DirectionPolicy::right, square_region(200, 20)),
         FakeVehicle(0, -230, 180, 1.0));  // outside, heading away
   r.run_for(10);
-  EXPECT_EQ(r.runner.mode(), HelmMode::containing);
+  EXPECT_EQ(r.runner.mode(), HelmMode::transiting);
   EXPECT_EQ(r.runner.state(), MissionState::running);
   EXPECT_EQ(r.vehicle.all_stops, 0);
   ASSERT_TRUE(r.runner.desired_heading_deg());
   const double to_interior = k::heading_of_deg(-r.vehicle.x(), -r.vehicle.y());
   EXPECT_NEAR(k::angle180_deg(*r.runner.desired_heading_deg() - to_interior), 0.0, 2.0);
+  EXPECT_NE(r.rec.event(EventKind::containment, "transiting to it"), nullptr);
+  ASSERT_TRUE(r.until_mode(HelmMode::containing, 200));  // in the buffer
+  EXPECT_GT(r.vehicle.y(), -200.0);
   ASSERT_TRUE(r.until_mode(HelmMode::conditioning, 200));
   EXPECT_GT(r.vehicle.y(), -180.0);  // conditions only in the interior
   EXPECT_EQ(r.vehicle.all_stops, 0);

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "server/station.hpp"
-#include "sim/sim_config.hpp"
+#include "support/sim_vehicle_loop.hpp"
 
 namespace avk::testing {
 
@@ -16,13 +16,7 @@ inline server::StationOptions sim_station_options(const std::string& db_path,
   o.db_path = db_path;
   o.token = token;
   o.server_version = "test";
-  app::VehicleLoopOptions v;
-  v.setup = sim::default_sim_setup("usim");
-  v.setup.vehicle.id = "sim-usim";
-  v.realtime_factor = realtime_factor;
-  v.telemetry_hz = telemetry_hz;
-  v.start = {0.0, -70.0, 0.0};
-  o.vehicle = v;
+  o.vehicle = sim_usim_loop_options(realtime_factor, telemetry_hz);
   return o;
 }
 
