@@ -21,6 +21,7 @@
 #include "support/spawn_avk.hpp"
 #include "support/temp_db.hpp"
 #include "support/temp_dir.hpp"
+#include "support/traffic_log.hpp"
 #include "vehicle/local_grid.hpp"
 
 namespace {
@@ -61,12 +62,7 @@ TEST(TrafficApi, ContactsFromGpsdAppearOnTheLocalGridWithTheirNames) {
       avk::sim::AisTraffic::parse(avk::testing::example_text("traffic-charles.json"));
   const double t_s = 47.3;
   avk::testing::TempDir dir("traffic_api");
-  std::string log;
-  for (const auto& l : traffic.static_sentences())
-    log += l;
-  for (const auto& l : traffic.position_sentences(t_s))
-    log += l;
-  dir.write("traffic.aivdm", log);
+  dir.write("traffic.aivdm", avk::testing::traffic_log_at(traffic, t_s));
   avk::testing::Gpsfake gpsd(dir.path() / "traffic.aivdm");
 
   avk::testing::TempDb db("avk_traffic_api");

@@ -11,6 +11,7 @@
 #include "support/example_file.hpp"
 #include "support/gpsfake.hpp"
 #include "support/temp_dir.hpp"
+#include "support/traffic_log.hpp"
 #include "vehicle/nmea.hpp"
 
 namespace {
@@ -30,12 +31,7 @@ TEST(AisTrafficGpsd, EncodedTrafficDecodesToWhatWasEncoded) {
       avk::sim::AisTraffic::parse(avk::testing::example_text("traffic-charles.json"));
   const double t_s = 47.3;  // mid-leg on the circuits, at an odd time
   avk::testing::TempDir dir("ais_traffic_gpsd");
-  std::string log;
-  for (const auto& l : traffic.static_sentences())
-    log += l;
-  for (const auto& l : traffic.position_sentences(t_s))
-    log += l;
-  dir.write("traffic.aivdm", log);
+  dir.write("traffic.aivdm", avk::testing::traffic_log_at(traffic, t_s));
 
   avk::testing::Gpsfake gpsd(dir.path() / "traffic.aivdm");
   AisCollector ais(gpsd.port_text());
