@@ -9,13 +9,13 @@
 
 #include "app/current.hpp"
 #include "app/current_compensation.hpp"
+#include "app/current_view.hpp"
 #include "app/predict.hpp"
 #include "app/vehicle_motion.hpp"
 #include "kinematics/current_estimate.hpp"
 #include "kinematics/drift_scatter.hpp"
 #include "kinematics/speed_reference.hpp"
 #include "kinematics/water_current.hpp"
-#include "app/current_view.hpp"
 
 namespace avk::server {
 
