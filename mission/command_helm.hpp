@@ -47,7 +47,6 @@ class CommandHelm {
   std::optional<double> distance_m() const {
     return keeper_ ? keeper_->distance_m() : std::nullopt;
   }
-  std::optional<kinematics::Point> return_point() const { return return_point_; }
   // True once per arrival: the vehicle reached its point and now holds (for an event).
   bool take_arrival();
 
