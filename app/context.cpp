@@ -2,8 +2,11 @@
 #include "app/table_cache.hpp"
 
 #include <map>
+#include <set>
+#include <stdexcept>
 
 #include "app/ckt_tables.hpp"
+#include "app/collision_watch.hpp"
 #include "app/mission_liveness.hpp"
 #include "app/store_access.hpp"
 #include "app/traffic_watch.hpp"
@@ -11,8 +14,33 @@
 namespace avk::app {
 
 Context::Context(std::string db_path, std::optional<VehicleLoopOptions> vehicle, LiveFeed* feed)
+    : Context(std::move(db_path), vehicle ? std::vector<FleetVehicle>{{*vehicle, feed}}
+                                          : std::vector<FleetVehicle>{}) {}
+
+Context::Context(std::string db_path, std::vector<FleetVehicle> fleet)
     : db_path_(std::move(db_path)), tables_(std::make_unique<TableCache>()) {
-  if (vehicle) loop_ = std::make_unique<VehicleLoop>(*vehicle, db_path_, feed ? *feed : silent_);
+  std::set<std::string> ids;
+  for (auto& v : fleet) {
+    const std::string id = planned_vehicle_info(v.options).id;
+    if (!ids.insert(id).second)
+      throw std::invalid_argument("two vehicles of the fleet are called '" + id + "'");
+  }
+  for (auto& v : fleet)
+    loops_.push_back(
+        std::make_unique<VehicleLoop>(std::move(v.options), db_path_, v.feed ? *v.feed : silent_));
+}
+
+VehicleLoop* Context::vehicle_loop(std::string_view vehicle_id) {
+  for (auto& l : loops_)
+    if (l->info().id == vehicle_id) return l.get();
+  return nullptr;
+}
+
+std::vector<VehicleLoop*> Context::vehicle_loops() {
+  std::vector<VehicleLoop*> out;
+  for (auto& l : loops_)
+    out.push_back(l.get());
+  return out;
 }
 
 Context::~Context() {
@@ -23,15 +51,27 @@ void Context::watch_traffic(const TrafficOptions& options) {
   traffic_ = std::make_unique<TrafficWatch>(options);
 }
 
+void Context::watch_collisions(const CollisionWatchOptions& options) {
+  const double factor = loops_.empty() ? 1.0 : loops_.front()->options().realtime_factor;
+  collisions_ = std::make_unique<CollisionWatch>(*this, options, factor);
+}
+
 void Context::start() {
   mark_orphaned_missions_interrupted(store_of(*this));
-  if (loop_) loop_->start();
+  for (auto& l : loops_)
+    l->start();
   if (traffic_) traffic_->start();
+  if (collisions_) collisions_->start();
 }
 
 void Context::shutdown(const std::string& reason) {
+  if (collisions_) collisions_->stop();
   if (traffic_) traffic_->stop();
-  if (loop_) loop_->stop(reason);
+  // Every vehicle is told to stop first, so the fleet stops together rather than one by one.
+  for (auto& l : loops_)
+    l->request_stop(reason);
+  for (auto& l : loops_)
+    l->stop(reason);
 }
 
 store::Store& store_of(Context& ctx) {

@@ -135,7 +135,7 @@ Result<MissionReport> mission_report(Context& ctx, std::int64_t mission_id) {
   if (!m) return not_found("no mission " + std::to_string(mission_id));
   MissionReport r;
   const auto stats = db.missions().cell_stats(mission_id);
-  VehicleLoop* loop = ctx.vehicle_loop();
+  VehicleLoop* loop = ctx.vehicle_loop(m->vehicle_id);
   const auto live = loop ? loop->live(mission_id) : std::nullopt;
   if (live && loop->attached_mission() == mission_id) {
     // State, helm and cells from one live snapshot: the store may be a step ahead or behind.
@@ -191,9 +191,8 @@ Result<MissionReport> mission_report(Context& ctx, std::int64_t mission_id) {
 
 Result<std::int64_t> start_mission(Context& ctx, const std::string& vehicle_id,
                                    const std::string& config_text) {
-  VehicleLoop* loop = ctx.vehicle_loop();
-  if (!loop || loop->info().id != vehicle_id)
-    return conflict("vehicle '" + vehicle_id + "' is not connected to this station");
+  VehicleLoop* loop = ctx.vehicle_loop(vehicle_id);
+  if (!loop) return conflict("vehicle '" + vehicle_id + "' is not connected to this station");
   if (const auto busy = loop->attached_mission())
     return conflict("mission " + std::to_string(*busy) + " is running", *busy);
   auto plan = create_mission_plan(ctx, config_text, loop->info());
@@ -248,7 +247,7 @@ Result<MissionReport> command_mission(Context& ctx, std::int64_t mission_id, Mis
   store::Store& db = store_of(ctx);
   const auto m = db.missions().get(mission_id);
   if (!m) return not_found("no mission " + std::to_string(mission_id));
-  VehicleLoop* loop = ctx.vehicle_loop();
+  VehicleLoop* loop = ctx.vehicle_loop(m->vehicle_id);
   if (loop && loop->attached_mission() == mission_id) {
     const auto command = c == MissionCommand::pause    ? VehicleLoop::Command::pause
                          : c == MissionCommand::resume ? VehicleLoop::Command::resume
@@ -260,8 +259,7 @@ Result<MissionReport> command_mission(Context& ctx, std::int64_t mission_id, Mis
   if (c != MissionCommand::resume)
     return conflict("mission " + std::to_string(mission_id) + " is not running (" +
                     store::to_string(effective_status(*m)) + ")");
-  if (!loop || loop->info().id != m->vehicle_id)
-    return conflict("vehicle '" + m->vehicle_id + "' is not connected to this station");
+  if (!loop) return conflict("vehicle '" + m->vehicle_id + "' is not connected to this station");
   if (const auto busy = loop->attached_mission())
     return conflict("mission " + std::to_string(*busy) + " is running", *busy);
   auto plan = resume_mission_plan(ctx, mission_id, loop->info().max_speed_mps);

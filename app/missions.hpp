@@ -26,7 +26,7 @@ class Context;
 Result<mission::MissionConfig> validate_mission(const std::string& config_text,
                                                 double max_speed_mps);
 
-// Stores the mission and hands it to the station's vehicle; the mission id. conflict when the
+// Stores the mission and hands it to that vehicle of the station; the mission id. conflict when the
 // vehicle is not this station's or another mission runs.
 Result<std::int64_t> start_mission(Context& ctx, const std::string& vehicle_id,
                                    const std::string& config_text);
@@ -56,7 +56,7 @@ struct MissionSummary {
 
 struct MissionReport {
   MissionSummary summary;
-  // Attached to the station's vehicle now: state and helm from the same live moment.
+  // Attached to its vehicle's loop now: state and helm from the same live moment.
   bool live = false;
   std::optional<mission::MissionState> live_state;   // live, none until it starts
   std::optional<mission::HelmMode> helm_mode;        // live only
@@ -88,7 +88,7 @@ Result<MissionReport> mission_report(Context& ctx, std::int64_t mission_id);
 
 enum class MissionCommand { pause, resume, abort };
 const char* to_string(MissionCommand c);
-// Applies the command to the running mission, or resumes a stored one on the station's vehicle;
+// Applies the command to the running mission, or resumes a stored one on its vehicle;
 // the report after the command took effect. conflict when it cannot apply now.
 Result<MissionReport> command_mission(Context& ctx, std::int64_t mission_id, MissionCommand c);
 

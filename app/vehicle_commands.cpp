@@ -58,8 +58,8 @@ Result<mission::VehicleCommand> command_of(const VehicleCommandRequest& r, doubl
 
 Result<VehicleStatus> command_vehicle(Context& ctx, const std::string& vehicle_id,
                                       const VehicleCommandRequest& request) {
-  VehicleLoop* loop = ctx.vehicle_loop();
-  if (!loop || loop->info().id != vehicle_id) {
+  VehicleLoop* loop = ctx.vehicle_loop(vehicle_id);
+  if (!loop) {
     if (store_of(ctx).vehicles().get(vehicle_id))
       return conflict("vehicle '" + vehicle_id + "' is not connected to this station");
     return not_found("no vehicle '" + vehicle_id + "'");

@@ -27,7 +27,8 @@ struct VehicleLoop::Impl {
   std::condition_variable ticked;
   std::uint64_t ticks = 0;
   std::deque<std::function<void(double)>> pending;
-  std::optional<std::int64_t> attached;           // set when a mission is accepted, before it runs
+  std::optional<std::int64_t> attached;  // set when a mission is accepted, before it runs
+  bool present = false;  // reporting navigation over a link (announced when it changes)
   std::optional<kinematics::Point> return_point;  // the last mission's
   VehicleSnapshot snapshot;
   std::map<std::int64_t, MissionLive> live;
@@ -215,6 +216,24 @@ struct VehicleLoop::Impl {
     live[l.mission_id] = std::move(l);
   }
 
+  // A vehicle joins when its navigation first arrives and leaves when its link is lost, so an
+  // operator of a fleet learns of a boat that went silent without watching each one.
+  void announce_presence(const VehicleSnapshot& s) {
+    const bool now_present = s.link != vehicle::LinkState::disconnected && s.nav.has_value();
+    if (now_present == present) return;
+    present = now_present;
+    const std::string& id = s.info.id;
+    if (present) {
+      std::string kind = s.info.kind.empty() ? "" : " (" + s.info.kind + ")";
+      feed.station_event(s.t_s, mission::EventKind::vehicle_joined,
+                         "vehicle " + id + kind + " joined" +
+                             (source->link_name().empty() ? "" : " over " + source->link_name()));
+    } else {
+      feed.station_event(s.t_s, mission::EventKind::vehicle_left,
+                         "vehicle " + id + " left: its link is lost");
+    }
+  }
+
   void telemetry_tick(double now) {
     VehicleSnapshot s;
     s.info = vehicle().info();
@@ -231,6 +250,7 @@ struct VehicleLoop::Impl {
       fill_command(s);
     }
     feed.telemetry(s);
+    announce_presence(s);
     std::lock_guard lock(mutex);
     snapshot = std::move(s);
   }
@@ -264,14 +284,23 @@ void VehicleLoop::start() {
   impl_->thread = std::thread([this] { impl_->run(); });
 }
 
-void VehicleLoop::stop(const std::string& reason) {
-  if (!impl_->thread.joinable()) return;
+void VehicleLoop::request_stop(const std::string& reason) {
+  if (!impl_->thread.joinable() || impl_->stop_requested.load()) return;
   {
     std::lock_guard lock(impl_->mutex);
     impl_->stop_reason = reason;
   }
   impl_->stop_requested.store(true);
+}
+
+void VehicleLoop::stop(const std::string& reason) {
+  if (!impl_->thread.joinable()) return;
+  request_stop(reason);
   impl_->thread.join();
+}
+
+const VehicleLoopOptions& VehicleLoop::options() const {
+  return impl_->options;
 }
 
 VehicleSnapshot VehicleLoop::snapshot() const {
@@ -331,6 +360,10 @@ bool VehicleLoop::command_vehicle(mission::VehicleCommand c) {
   Impl* i = impl_.get();
   impl_->pending.push_back([i, c](double now) { i->apply_command(c, now); });
   return true;
+}
+
+void VehicleLoop::announce(double t_s, mission::EventKind kind, const std::string& message) {
+  impl_->feed.station_event(t_s, kind, message);
 }
 
 std::optional<kinematics::Point> VehicleLoop::last_return_point() const {

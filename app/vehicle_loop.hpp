@@ -1,7 +1,7 @@
 #pragma once
-// The station's vehicle, always running (at rest under all stop when no mission runs): a vehicle
-// source of any kind (the simulator paced to the wall clock x a factor, or a real vehicle over
-// its link on a clock at the same factor). Missions attach to it; the helm ticks the attached
+// One vehicle of the station, always running (at rest under all stop when no mission runs): a
+// vehicle source of any kind (the simulator paced to the wall clock x a factor, or a real vehicle
+// over its link on a clock at the same factor). Missions attach to it; the helm ticks the attached
 // mission, a 10 Hz telemetry tick tells the live feed where the vehicle is. Operator commands from
 // other threads are queued and applied at the next helm tick, on the loop's own thread.
 
@@ -38,10 +38,14 @@ class VehicleLoop {
   ~VehicleLoop();
 
   void start();
+  // Asks the loop to stop without waiting for it: a fleet stops all its vehicles at once.
+  void request_stop(const std::string& reason = "the server stopped");
   // Interrupts an attached mission (stored as interrupted, resumable), flushes, joins.
   void stop(const std::string& reason = "the server stopped");
 
   const vehicle::VehicleInfo& info() const { return info_; }
+  // What the vehicle was made from (its kind, simulator setup, start pose, clock).
+  const VehicleLoopOptions& options() const;
   VehicleSnapshot snapshot() const;
   std::optional<MissionLive> live(std::int64_t mission_id) const;
   std::optional<std::int64_t> attached_mission() const;
@@ -56,6 +60,9 @@ class VehicleLoop {
   // attached mission is aborted first (its log says why), then the helm runs the command until
   // another command or a mission replaces it. False while the loop is stopping.
   bool command_vehicle(mission::VehicleCommand c);
+  // Tells the vehicle's live feed a station event about it, from any thread (the collision
+  // watch's alarms).
+  void announce(double t_s, mission::EventKind kind, const std::string& message);
   // The return point of the last mission that ran on the vehicle (where `return` goes).
   std::optional<kinematics::Point> last_return_point() const;
   // Blocks until the loop has run a helm tick after this call (bounded by timeout); for callers

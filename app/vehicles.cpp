@@ -20,7 +20,7 @@ VehicleStatus stored_vehicle(Context& ctx, const std::string& id) {
 
 std::vector<VehicleStatus> list_vehicles(Context& ctx) {
   std::vector<VehicleStatus> out;
-  if (VehicleLoop* loop = ctx.vehicle_loop()) {
+  for (VehicleLoop* loop : ctx.vehicle_loops()) {
     VehicleSnapshot snap = loop->snapshot();
     out.push_back({snap.info, std::move(snap)});
   }
@@ -33,7 +33,7 @@ std::vector<VehicleStatus> list_vehicles(Context& ctx) {
 }
 
 Result<VehicleStatus> get_vehicle(Context& ctx, const std::string& vehicle_id) {
-  if (VehicleLoop* loop = ctx.vehicle_loop(); loop && loop->info().id == vehicle_id) {
+  if (VehicleLoop* loop = ctx.vehicle_loop(vehicle_id)) {
     VehicleSnapshot snap = loop->snapshot();
     return VehicleStatus{snap.info, std::move(snap)};
   }

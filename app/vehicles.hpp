@@ -1,5 +1,6 @@
 #pragma once
-// The vehicles the station knows: the one it drives now (live), and those of stored missions.
+// The vehicles the station knows: those it drives now (live, its fleet), and those of stored
+// missions.
 
 #include <optional>
 #include <string>
@@ -14,12 +15,12 @@ class Context;
 
 struct VehicleStatus {
   vehicle::VehicleInfo info;
-  // The station's own vehicle: its live state. None for a vehicle known only from the store
-  // (its link is disconnected).
+  // A vehicle of the station's fleet: its live state. None for a vehicle known only from the
+  // store (its link is disconnected).
   std::optional<VehicleSnapshot> live;
 };
 
-// The station's vehicle first, then every other vehicle of a stored mission.
+// The station's fleet first, in its order, then every other vehicle of a stored mission.
 std::vector<VehicleStatus> list_vehicles(Context& ctx);
 Result<VehicleStatus> get_vehicle(Context& ctx, const std::string& vehicle_id);
 

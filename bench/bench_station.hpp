@@ -50,7 +50,7 @@ struct BenchStation {
     v.realtime_factor = realtime_factor;
     v.start_clock_s = store::Store(db.path()).missions().station_clock_end_s() + 1.0;
     v.start = {0.0, -70.0, 0.0};
-    so.vehicle = v;
+    so.vehicles.push_back(v);
     station = std::make_unique<server::Station>(so, hub);
     station->start();
     server::HttpServerOptions ho;

@@ -53,6 +53,14 @@ std::string_view to_string(EventKind k) {
       return "vehicle_command";
     case EventKind::arrived:
       return "arrived";
+    case EventKind::vehicle_joined:
+      return "vehicle_joined";
+    case EventKind::vehicle_left:
+      return "vehicle_left";
+    case EventKind::collision_watch:
+      return "collision_watch";
+    case EventKind::collision_clear:
+      return "collision_clear";
   }
   return {};  // not an enumerator: all_event_kinds() stops here
 }
@@ -84,6 +92,8 @@ Severity severity(EventKind k) {
     case EventKind::halted:
     case EventKind::aborted:
     case EventKind::interrupted:
+    case EventKind::vehicle_left:
+    case EventKind::collision_watch:
       return Severity::warning;
     case EventKind::excitation:
     case EventKind::returning:
@@ -100,6 +110,8 @@ Severity severity(EventKind k) {
     case EventKind::mission_done:
     case EventKind::vehicle_command:
     case EventKind::arrived:
+    case EventKind::vehicle_joined:
+    case EventKind::collision_clear:
       return Severity::info;
   }
   return Severity::info;

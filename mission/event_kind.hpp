@@ -40,6 +40,14 @@ enum class EventKind {
   // holding at its return point; and the vehicle arrived at the point it holds.
   vehicle_command,
   arrived,
+  // A vehicle of the station's fleet reported for the first time or again after its link was
+  // lost, and one whose link was lost (the station no longer knows where it is).
+  vehicle_joined,
+  vehicle_left,
+  // Two vehicles (of the fleet, or one of them an AIS contact) are predicted to pass closer than
+  // the standoff within the watch's horizon; and the pair is predicted clear again.
+  collision_watch,
+  collision_clear,
 };
 
 enum class Severity { info, warning };

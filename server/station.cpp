@@ -12,25 +12,39 @@
 
 namespace avk::server {
 
+Station::VehicleFeeds::VehicleFeeds(StreamHub& hub, const std::string& vehicle_id,
+                                    app::foxglove::TurnPredictor p,
+                                    std::optional<vehicle::LatLon> datum)
+    : stream(hub, vehicle_id),
+      foxglove(hub.foxglove(), std::move(p), datum),
+      both({&stream, &foxglove}) {}
+
+std::vector<app::FleetVehicle> Station::make_fleet() {
+  std::vector<app::FleetVehicle> fleet;
+  for (const auto& v : options_.vehicles) {
+    auto predictor = [this](const std::string& vid, double speed_mps, double dheading_deg,
+                            const kinematics::Pose& start) {
+      return app::foxglove::scene_predictions(context_, vid, speed_mps, dheading_deg, start);
+    };
+    feeds_.push_back(std::make_unique<VehicleFeeds>(hub_, app::planned_vehicle_info(v).id,
+                                                    predictor, options_.datum));
+    fleet.push_back({v, &feeds_.back()->both});
+  }
+  return fleet;
+}
+
 Station::Station(StationOptions options, StreamHub& hub)
     : Router(options.token),
       options_(std::move(options)),
       hub_(hub),
-      feed_(hub),
-      foxglove_(
-          hub.foxglove(),
-          [this](const std::string& vid, double speed_mps, double dheading_deg,
-                 const kinematics::Pose& start) {
-            return app::foxglove::scene_predictions(context_, vid, speed_mps, dheading_deg, start);
-          },
-          options_.datum),
-      feeds_({&feed_, &foxglove_}),
-      context_(options_.db_path, options_.vehicle, &feeds_) {
+      context_(options_.db_path, make_fleet()) {
   // AIS positions are placed on the local grid, which only a datum puts on the earth.
   if (options_.ais) {
     if (!options_.datum) throw std::invalid_argument("AIS traffic needs the station's datum");
     context_.watch_traffic({*options_.ais, *options_.datum, {}});
   }
+  if (options_.collision_watch && !options_.vehicles.empty())
+    context_.watch_collisions(*options_.collision_watch);
   add_routes();
 }
 
@@ -44,7 +58,8 @@ void Station::start() {
 
 void Station::shutdown() {
   context_.shutdown("the server stopped");
-  foxglove_.withdraw();
+  for (auto& f : feeds_)
+    f->foxglove.withdraw();
 }
 
 void Station::add_routes() {
@@ -76,20 +91,24 @@ void Station::add_routes() {
 
   // --- the station -------------------------------------------------------------------------
   routes.get("/api/v1/health", [this, &ctx](const ApiRequest&, const PathParams&) {
-    app::VehicleLoop* loop = ctx.vehicle_loop();
+    const std::vector<app::VehicleLoop*> loops = ctx.vehicle_loops();
+    app::VehicleLoop* loop = loops.empty() ? nullptr : loops.front();
     HealthStatus h;
     h.server_version = options_.server_version;
     h.session_id = hub_.session_id();
     if (loop) h.vehicle_id = loop->info().id;
+    for (const app::VehicleLoop* l : loops)
+      h.vehicle_ids.push_back(l->info().id);
     h.utc_ms = std::chrono::duration_cast<std::chrono::milliseconds>(
                    std::chrono::system_clock::now().time_since_epoch())
                    .count();
-    if (options_.vehicle) {
+    if (loop) {
       // Before the loop's first telemetry tick its snapshot has no time yet: the clock is at its
-      // start then.
-      if (loop) h.clock_s = std::max(loop->snapshot().t_s, options_.vehicle->start_clock_s);
-      h.realtime_factor = options_.vehicle->realtime_factor;
-      h.session_start_clock_s = options_.vehicle->start_clock_s;
+      // start then. The fleet shares one station clock; the first vehicle's shows it.
+      const app::VehicleLoopOptions& v = loop->options();
+      h.clock_s = std::max(loop->snapshot().t_s, v.start_clock_s);
+      h.realtime_factor = v.realtime_factor;
+      h.session_start_clock_s = v.start_clock_s;
     }
     h.datum = options_.datum;
     return json_response(health_json(h));
@@ -105,7 +124,7 @@ void Station::add_routes() {
   add_ckt_routes(routes, ctx);
   add_current_routes(routes, ctx);
   add_prediction_routes(routes, ctx);
-  add_maneuver_routes(routes, ctx, options_.vehicle);
+  add_maneuver_routes(routes, ctx);
   add_model_routes(routes, ctx);
   add_traffic_routes(routes, ctx);
 

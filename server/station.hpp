@@ -1,13 +1,15 @@
 #pragma once
 // The ground station behind /api/v1: the route table of the REST API and its adapters, each of
 // which reads the request, calls one use case of app/ and writes the answer (server/serialize).
-// Missions run on the station's vehicle loop (app::Context); its live feed goes to the stream and
-// to the Foxglove connection (docs/foxglove.md).
+// Missions run on the vehicle loops of the station's fleet (app::Context); each vehicle's live
+// feed goes to the stream and to the Foxglove connection (docs/foxglove.md), named by its id.
 
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
+#include "app/collision_watch.hpp"
 #include "app/context.hpp"
 #include "app/foxglove_live.hpp"
 #include "app/live_feeds.hpp"
@@ -24,13 +26,16 @@ struct StationOptions {
   std::string db_path;
   std::string token;  // bearer token for control endpoints (and for any non-loopback client)
   std::string server_version;
-  // The vehicle missions run on (simulated, or an M200 over its link); none: no vehicle.
-  std::optional<app::VehicleLoopOptions> vehicle;
+  // The vehicles missions run on (simulated, or M200s over their links), each with its own
+  // loop; none: a station that only reads.
+  std::vector<app::VehicleLoopOptions> vehicles;
   // Where the local grid lies on the earth (`--datum`): the Foxglove connection's LocationFix for
   // a simulated vehicle, whose navigation has no latitude/longitude of its own.
   std::optional<vehicle::LatLon> datum;
   // AIS traffic watched through gpsd (`--ais HOST:PORT`), placed about `datum`; none: no traffic.
   std::optional<vehicle::GpsdAisOptions> ais;
+  // The collision watch over the fleet and its AIS contacts; none: not watched.
+  std::optional<app::CollisionWatchOptions> collision_watch = app::CollisionWatchOptions{};
   // The dashboard's offline map background (`--tiles`); none: GET /tiles says it is unavailable.
   std::shared_ptr<const app::tiles::MapTiles> tiles;
 };
@@ -53,16 +58,22 @@ class Station final : public Router {
   void shutdown();
 
   app::Context& context() { return context_; }
-  app::VehicleLoop* vehicle_loop() { return context_.vehicle_loop(); }
 
  private:
+  // Each vehicle's feeds: the stream's and the Foxglove connection's, told the same things.
+  struct VehicleFeeds {
+    VehicleFeeds(StreamHub& hub, const std::string& vehicle_id, app::foxglove::TurnPredictor p,
+                 std::optional<vehicle::LatLon> datum);
+    StreamFeed stream;
+    app::foxglove::FoxgloveLive foxglove;
+    app::LiveFeeds both;
+  };
+  std::vector<app::FleetVehicle> make_fleet();
   void add_routes();
 
   StationOptions options_;
   StreamHub& hub_;
-  StreamFeed feed_;
-  app::foxglove::FoxgloveLive foxglove_;
-  app::LiveFeeds feeds_;
+  std::vector<std::unique_ptr<VehicleFeeds>> feeds_;
   app::Context context_;
 };
 

@@ -11,7 +11,7 @@ void StreamFeed::telemetry(const app::VehicleSnapshot& s) {
 }
 
 void StreamFeed::station_event(double t_s, mission::EventKind kind, const std::string& message) {
-  hub_.status(t_s, kind, message);
+  hub_.status(t_s, kind, message, vehicle_id_);
 }
 
 void StreamFeed::current(const std::string& vehicle_id, const app::CurrentView& c) {
@@ -20,7 +20,7 @@ void StreamFeed::current(const std::string& vehicle_id, const app::CurrentView& 
 
 std::unique_ptr<mission::MissionObserver> StreamFeed::follow(std::int64_t mission_id,
                                                              const mission::MissionRunner& runner) {
-  return std::make_unique<StreamPublisher>(hub_, mission_id, runner);
+  return std::make_unique<StreamPublisher>(hub_, mission_id, runner, vehicle_id_);
 }
 
 }  // namespace avk::server

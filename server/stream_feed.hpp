@@ -1,6 +1,9 @@
 #pragma once
-// The station's live feed as the stream's topics: telemetry becomes nav and helm, station events
-// become status, and each mission the vehicle loop starts is followed by a StreamPublisher.
+// One vehicle's live feed as the stream's topics: telemetry becomes nav and helm, station events
+// become status, and each mission the vehicle loop starts is followed by a StreamPublisher. Every
+// message names the vehicle, so a client of a fleet station tells the vehicles apart.
+
+#include <string>
 
 #include "app/live_feed.hpp"
 #include "server/stream_hub.hpp"
@@ -9,7 +12,8 @@ namespace avk::server {
 
 class StreamFeed final : public app::LiveFeed {
  public:
-  explicit StreamFeed(StreamHub& hub) : hub_(hub) {}
+  StreamFeed(StreamHub& hub, std::string vehicle_id)
+      : hub_(hub), vehicle_id_(std::move(vehicle_id)) {}
   void telemetry(const app::VehicleSnapshot& s) override;
   void station_event(double t_s, mission::EventKind kind, const std::string& message) override;
   std::unique_ptr<mission::MissionObserver> follow(std::int64_t mission_id,
@@ -18,6 +22,7 @@ class StreamFeed final : public app::LiveFeed {
 
  private:
   StreamHub& hub_;
+  std::string vehicle_id_;
 };
 
 }  // namespace avk::server

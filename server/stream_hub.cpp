@@ -83,11 +83,11 @@ void StreamHub::publish(const std::string& topic, double t_s, const std::string&
 }
 
 void StreamHub::status(double t_s, const std::string& kind, const std::string& level,
-                       const std::string& message) {
+                       const std::string& message, const std::string& vehicle_id) {
   std::uint64_t suppressed = 0;
   {
     std::lock_guard lock(mutex_);
-    StatusGate& g = status_gates_[kind];
+    StatusGate& g = status_gates_[vehicle_id + '/' + kind];
     const auto now = std::chrono::steady_clock::now();
     if (g.last.time_since_epoch().count() != 0 && now - g.last < status_min_interval) {
       ++g.suppressed;
@@ -97,12 +97,13 @@ void StreamHub::status(double t_s, const std::string& kind, const std::string& l
     suppressed = g.suppressed;
     g.suppressed = 0;
   }
-  publish("status", t_s, stream_status_json(kind, level, message, suppressed).dump());
+  publish("status", t_s, stream_status_json(kind, level, message, suppressed, vehicle_id).dump());
 }
 
-void StreamHub::status(double t_s, mission::EventKind kind, const std::string& message) {
+void StreamHub::status(double t_s, mission::EventKind kind, const std::string& message,
+                       const std::string& vehicle_id) {
   status(t_s, std::string(mission::to_string(kind)),
-         std::string(mission::to_string(mission::severity(kind))), message);
+         std::string(mission::to_string(mission::severity(kind))), message, vehicle_id);
 }
 
 std::size_t StreamHub::subscriber_count(const std::string& topic) const {

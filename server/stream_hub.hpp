@@ -41,12 +41,14 @@ class StreamHub final : public StreamSource {
 
   // data_json is the "data" member, already serialised. t_s is the mission (or wall) clock.
   void publish(const std::string& topic, double t_s, const std::string& data_json);
-  // Status: at most one message per kind per min_interval; suppressed ones are counted into the
-  // next message that goes out.
+  // Status: at most one message per vehicle and kind per min_interval (one vehicle's burst does
+  // not hide another's); suppressed ones are counted into the next message that goes out.
+  // vehicle_id: the vehicle the event is about; empty for the station as a whole.
   void status(double t_s, const std::string& kind, const std::string& level,
-              const std::string& message);
+              const std::string& message, const std::string& vehicle_id = {});
   // The level is the kind's severity.
-  void status(double t_s, mission::EventKind kind, const std::string& message);
+  void status(double t_s, mission::EventKind kind, const std::string& message,
+              const std::string& vehicle_id = {});
 
   std::size_t subscriber_count(const std::string& topic) const;
   std::uint64_t published(const std::string& topic) const;

@@ -3,6 +3,7 @@
 // fetch over REST), mission progress and state, and the events an operator must read.
 
 #include <cstdint>
+#include <string>
 
 #include "mission/mission_observer.hpp"
 #include "mission/mission_runner.hpp"
@@ -12,8 +13,9 @@ namespace avk::server {
 
 class StreamPublisher final : public mission::MissionObserver {
  public:
-  StreamPublisher(StreamHub& hub, std::int64_t mission_id, const mission::MissionRunner& runner)
-      : hub_(hub), mission_id_(mission_id), runner_(runner) {}
+  StreamPublisher(StreamHub& hub, std::int64_t mission_id, const mission::MissionRunner& runner,
+                  std::string vehicle_id = {})
+      : hub_(hub), mission_id_(mission_id), runner_(runner), vehicle_id_(std::move(vehicle_id)) {}
 
   void on_turn_started(const mission::TurnTask& task, const mission::RunningTurn& turn) override;
   void on_turn(mission::TurnOutcome& t) override;
@@ -28,6 +30,7 @@ class StreamPublisher final : public mission::MissionObserver {
   StreamHub& hub_;
   std::int64_t mission_id_;
   const mission::MissionRunner& runner_;
+  std::string vehicle_id_;  // named in every message (left out when empty)
   std::string state_ = "running";
 };
 

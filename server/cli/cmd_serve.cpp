@@ -23,6 +23,8 @@
 #include "server/cli/args.hpp"
 #include "server/cli/commands.hpp"
 #include "server/cli/database_location.hpp"
+#include "server/cli/files.hpp"
+#include "server/cli/fleet_file.hpp"
 #include "server/cli/m200_options.hpp"
 #include "server/cli/sim_options.hpp"
 #include "server/http/http_server.hpp"
@@ -129,8 +131,13 @@ vehicle::GpsdAisOptions gpsd_options_from(const Args& a,
   return o;
 }
 
-std::string vehicle_id(const app::VehicleLoopOptions& v) {
-  return app::planned_vehicle_info(v).id;
+// ", vehicle sim-usim", ", vehicles alpha, bravo, charlie" or ", no vehicle".
+std::string vehicles_text(const std::vector<app::VehicleLoopOptions>& vehicles) {
+  if (vehicles.empty()) return ", no vehicle";
+  std::string out = vehicles.size() == 1 ? ", vehicle " : ", vehicles ";
+  for (std::size_t i = 0; i < vehicles.size(); ++i)
+    out += (i ? ", " : "") + app::planned_vehicle_info(vehicles[i]).id;
+  return out;
 }
 
 }  // namespace
@@ -155,6 +162,9 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
                 "controller-hz",
                 "vehicle-id",
                 "ais",
+                "vehicles",
+                "standoff",
+                "watch-horizon",
                 "allow-host",
                 "allow-origin",
                 "max-connections",
@@ -166,6 +176,8 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
                 "expensive-requests-per-address"},
                {"sim", "jitter"}, {"allow-host", "allow-origin"});
   if (a.flag("sim") && a.get("m200")) throw UsageError("give one vehicle: --sim or --m200");
+  if (a.get("vehicles") && (a.flag("sim") || a.get("m200")))
+    throw UsageError("--vehicles gives the whole fleet: leave out --sim and --m200");
   auto m200 = m200_options_from(a);  // option mistakes show before anything is opened
   const auto ais = a.get("ais") ? std::optional(gpsd_options_from(a, datum_from(a))) : std::nullopt;
   const double port = a.number("port").value_or(8080);
@@ -264,22 +276,33 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
     return app::station_clock_start_s(stored);
   }();
   so.datum = datum_from(a);
+  if (const auto s = a.number("standoff")) {
+    if (!(*s > 0.0 && *s <= 1000.0)) throw UsageError("--standoff must be in (0, 1000] m");
+    so.collision_watch->standoff_m = *s;
+  }
+  if (const auto h = a.number("watch-horizon")) {
+    if (!(*h >= 5.0 && *h <= 600.0)) throw UsageError("--watch-horizon must be in [5, 600] s");
+    so.collision_watch->horizon_s = *h;
+  }
   so.tiles = tiles;
   so.ais = ais;
-  if (a.flag("sim")) {
+  if (const auto fleet = a.get("vehicles")) {
+    so.vehicles =
+        parse_fleet_file(*fleet, read_file(*fleet, io.in), factor, clock_start_s, so.datum);
+  } else if (a.flag("sim")) {
     app::VehicleLoopOptions v;
     v.setup = sim_setup_from(a, io);
     v.setup.vehicle.id = std::string("sim-") + vehicle::to_string(v.setup.vehicle.kind);
     v.realtime_factor = factor;
     v.start_clock_s = clock_start_s;
-    so.vehicle = v;
+    so.vehicles.push_back(v);
   } else if (m200) {
     app::VehicleLoopOptions v;
     v.kind = vehicle::VehicleKind::m200;
     v.m200 = std::move(m200);
     v.realtime_factor = factor;
     v.start_clock_s = clock_start_s;
-    so.vehicle = v;
+    so.vehicles.push_back(v);
   }
   ho.bind_address = a.get("bind").value_or("127.0.0.1");
   if (ho.bind_address == "[::]") ho.bind_address = "::";
@@ -312,8 +335,7 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
                            : v6       ? "[" + ho.bind_address + "]"
                                       : ho.bind_address;
   io.out << "AVK Station on http://" << host << ":" << http.port() << "/ (database " << db_path
-         << (so.vehicle ? ", vehicle " + vehicle_id(*so.vehicle) : std::string(", no vehicle"))
-         << ")\n"
+         << vehicles_text(so.vehicles) << ")\n"
          << "dashboard with control: http://" << host << ":" << http.port()
          << "/?token=" << so.token << std::endl;
   if (!ho.allowed_hosts.empty()) {

@@ -212,8 +212,10 @@ const std::vector<CommandUsage>& command_usages() {
       {"serve",
        {},
        "  avk serve [--db FILE] [--sim [--vehicle KIND] [--sim-config FILE]\n"
-       "                  | --m200 HOST:PORT [--pid P]] [--datum LAT,LON] [--realtime-factor K]\n"
-       "                  [--ais HOST:PORT (gpsd, with --datum)]\n"
+       "                  | --m200 HOST:PORT [--pid P] | --vehicles FLEET.json]\n"
+       "                  [--datum LAT,LON] [--realtime-factor K]\n"
+       "                  [--ais HOST:PORT (gpsd, with --datum)] [--standoff 20] [--watch-horizon "
+       "60]\n"
        "                  [--bind 127.0.0.1] [--port 8080] [--web DIR] [--token T]\n"
        "                  [--allow-host NAME]... [--allow-origin ORIGIN]...\n"
        "                  [--max-connections 512] [--max-connections-per-address 64]\n"
@@ -221,7 +223,10 @@ const std::vector<CommandUsage>& command_usages() {
        "                  [--request-queue 64] [--expensive-requests 2]\n"
        "                  [--expensive-requests-per-address 4]\n"
        "      the ground station: REST + WebSocket API under /api/v1 and the dashboard;\n"
-       "      --ais watches AIS traffic decoded by gpsd (docs/ais.md)\n"},
+       "      --vehicles runs a fleet (examples/fleet.json), each vehicle on its own loop;\n"
+       "      --ais watches AIS traffic decoded by gpsd (docs/ais.md); the collision watch\n"
+       "      warns when two vehicles (or a vehicle and a contact) are predicted closer than\n"
+       "      --standoff m within --watch-horizon s\n"},
       {"frontseat-emulator",
        {},
        "  avk frontseat-emulator [--port 29500] [--bind 127.0.0.1] [--vehicle catamaran:m200]\n"

@@ -28,8 +28,7 @@ void add_current_routes(RouteTable& routes, app::Context& ctx);
 void add_prediction_routes(RouteTable& routes, app::Context& ctx);
 // Maneuvers: candidates scored by CPA, a maneuver in progress, one flown in the simulator (on
 // the station's simulated vehicle when it is the one asked, else the default setup).
-void add_maneuver_routes(RouteTable& routes, app::Context& ctx,
-                         const std::optional<app::VehicleLoopOptions>& station_vehicle);
+void add_maneuver_routes(RouteTable& routes, app::Context& ctx);
 // The comparison of the prediction methods, and the identified yaw models.
 void add_model_routes(RouteTable& routes, app::Context& ctx);
 // The AIS traffic the station watches.

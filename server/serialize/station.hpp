@@ -20,7 +20,8 @@ nlohmann::json datum_json(const std::optional<vehicle::LatLon>& datum);
 struct HealthStatus {
   std::string server_version;
   std::string session_id;
-  std::optional<std::string> vehicle_id;  // the station's vehicle, when it runs one
+  std::optional<std::string> vehicle_id;  // the station's first vehicle, when it runs any
+  std::vector<std::string> vehicle_ids;   // every vehicle of its fleet, in order
   std::int64_t utc_ms = 0;                // the wall clock
   // The station clock beside the wall clock at that moment: every time of this session (nav,
   // events, turns) is in the station clock, which runs x realtime_factor on the simulator; a
@@ -41,8 +42,10 @@ nlohmann::json map_tiles_json(const app::tiles::MapTileInfo* tiles,
 // The hello a new stream connection receives: the vocabulary with the session and its topics.
 nlohmann::json stream_hello_json(const std::string& server_version, const std::string& session_id,
                                  const std::vector<std::string>& topics);
-// A `status` message; suppressed_before counts those of its kind held back since the last one.
+// A `status` message; suppressed_before counts those of its kind held back since the last one;
+// vehicle_id (left out when empty) is the vehicle the event is about.
 nlohmann::json stream_status_json(const std::string& kind, const std::string& level,
-                                  const std::string& message, std::uint64_t suppressed_before);
+                                  const std::string& message, std::uint64_t suppressed_before,
+                                  const std::string& vehicle_id = {});
 
 }  // namespace avk::server

@@ -16,6 +16,7 @@ json health_json(const HealthStatus& h) {
           {"server_version", h.server_version},
           {"session_id", h.session_id},
           {"vehicle_id", h.vehicle_id ? json(*h.vehicle_id) : json()},
+          {"vehicles", h.vehicle_ids},
           {"utc_ms", h.utc_ms},
           {"clock_s", optional_json(h.clock_s)},
           {"realtime_factor", optional_json(h.realtime_factor)},
@@ -57,11 +58,14 @@ json stream_hello_json(const std::string& server_version, const std::string& ses
 }
 
 json stream_status_json(const std::string& kind, const std::string& level,
-                        const std::string& message, std::uint64_t suppressed_before) {
-  return {{"kind", kind},
-          {"level", level},
-          {"message", message},
-          {"suppressed_before", suppressed_before}};
+                        const std::string& message, std::uint64_t suppressed_before,
+                        const std::string& vehicle_id) {
+  json j = {{"kind", kind},
+            {"level", level},
+            {"message", message},
+            {"suppressed_before", suppressed_before}};
+  if (!vehicle_id.empty()) j["vehicle_id"] = vehicle_id;
+  return j;
 }
 
 }  // namespace avk::server

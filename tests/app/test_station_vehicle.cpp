@@ -73,9 +73,10 @@ TEST_F(StationVehicle, AMissionStartsPausesResumesAndAborts) {
   EXPECT_EQ(aborted.summary.mission.id, *id);
   // Once the loop has let it go, the stored status answers and pause is a conflict.
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (ctx_.vehicle_loop()->attached_mission() && std::chrono::steady_clock::now() < deadline)
+  while (ctx_.vehicle_loops().front()->attached_mission() &&
+         std::chrono::steady_clock::now() < deadline)
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  ASSERT_FALSE(ctx_.vehicle_loop()->attached_mission());
+  ASSERT_FALSE(ctx_.vehicle_loops().front()->attached_mission());
   EXPECT_EQ(app::mission_report(ctx_, *id)->summary.status, app::MissionStatus::aborted);
   EXPECT_EQ(app::command_mission(ctx_, *id, app::MissionCommand::pause).error().code,
             app::ErrorCode::conflict);

@@ -117,7 +117,7 @@ TEST_F(VehicleCommands, ValidationErrorsNameTheField) {
   auto fast = request(VehicleCommandKind::go_to);
   fast.x_m = 0.0;
   fast.y_m = 0.0;
-  fast.speed_mps = ctx_.vehicle_loop()->info().max_speed_mps + 0.1;
+  fast.speed_mps = ctx_.vehicle_loops().front()->info().max_speed_mps + 0.1;
   const app::Error too_fast = error_of(fast);
   EXPECT_EQ(too_fast.field, "speed_mps");
   EXPECT_NE(too_fast.message.find("top speed"), std::string::npos) << too_fast.message;

@@ -28,8 +28,8 @@ TEST(EventKind, ListsEveryEnumeratorOnceAndNamesAreUnique) {
   EXPECT_EQ(kinds.size(), all_event_kinds().size());
   // The first and the last enumerator bound the list: nothing is skipped in between.
   EXPECT_EQ(all_event_kinds().front(), EventKind::link);
-  EXPECT_EQ(all_event_kinds().back(), EventKind::arrived);
-  EXPECT_EQ(all_event_kinds().size(), static_cast<std::size_t>(EventKind::arrived) + 1);
+  EXPECT_EQ(all_event_kinds().back(), EventKind::collision_clear);
+  EXPECT_EQ(all_event_kinds().size(), static_cast<std::size_t>(EventKind::collision_clear) + 1);
 }
 
 TEST(EventKind, UnknownNamesAreNotKinds) {

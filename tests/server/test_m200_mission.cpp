@@ -482,7 +482,7 @@ TEST(M200Mission, TheStationServesAnM200AndRunsAMissionOnIt) {
   v.kind = vehicle::VehicleKind::m200;
   v.m200 = driver_options(emulator);
   v.realtime_factor = kFactor;
-  so.vehicle = v;
+  so.vehicles.push_back(v);
   // The live stream's nav frames carry the frontseat's battery and link health.
   struct LastNav final : server::StreamSink {
     void deliver(std::shared_ptr<const server::StreamMessage> m) override {

@@ -16,7 +16,7 @@ inline server::StationOptions sim_station_options(const std::string& db_path,
   o.db_path = db_path;
   o.token = token;
   o.server_version = "test";
-  o.vehicle = sim_usim_loop_options(realtime_factor, telemetry_hz);
+  o.vehicles.push_back(sim_usim_loop_options(realtime_factor, telemetry_hz));
   return o;
 }
 
