@@ -1,0 +1,283 @@
+// The fleet in the dashboard and the commands that keep a boat safe: a real `avk serve --sim` and
+// Debian's Chromium through playwright-core. Other vehicles are fed through the page's stream path
+// (the ?test=1 hooks): the Live map draws each with its id and helm mode, fits them in, and their
+// moves redraw the traces only; events say which vehicle they are about and the log filters to
+// the selected one. Hold, Go to (a point picked on the map), Return and Stop are asked in the page
+// first (a cancel sends nothing), sent with the token, and their answer or the station's error is
+// shown; without the token they are off. Run with `node --test web/tests/fleet.test.mjs` (CTest:
+// web_fleet).
+//
+// Environment as e2e.test.mjs: AVK_BINARY, AVK_SCREENSHOTS, AVK_CHROMIUM, AVK_E2E_SLOW.
+
+import { test, before, after } from 'node:test';
+import assert from 'node:assert/strict';
+import { mkdtempSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import path from 'node:path';
+
+import { slow, until } from './wait.mjs';
+import { startAvkServer, apiRequest } from './avk_server.mjs';
+import { AVK, webDir, launchBrowser, tearDown, killServerOnExit, showView, screenshot } from './browser.mjs';
+
+const tmp = mkdtempSync(path.join(tmpdir(), 'avk-web-fleet-'));
+let server = null;
+let b = null;
+let page = null;
+let vid = null;
+
+const api = (pathname, options) => apiRequest(server, pathname, options);
+const hook = (name, ...args) => page.evaluate(([n, a]) => window.avkTest[n](...a), [name, args]);
+
+before(async () => {
+  b = await launchBrowser();
+  server = await startAvkServer(AVK, ['serve', '--db', path.join(tmp, 'station.db'), '--sim', '--port', '0', '--web', webDir]);
+  vid = (await api('/health')).vehicle_id;
+  page = await b.newPage();
+  await page.goto(`${server.base}/?token=${server.token}&test=1#live`, { waitUntil: 'load', timeout: slow(20000) });
+  await page.waitForFunction(() => window.avkTest?.state().vehicleId && document.querySelector('#live-plot .main-svg'), null, { timeout: slow(20000) });
+});
+
+after(() => tearDown({ browser: b?.browser, server, dir: tmp }));
+killServerOnExit(() => server);
+
+/** The vehicle list as shown: [{id, link, mode, pressed, text}]. */
+const fleetList = (p = page) =>
+  p.$$eval('#fleet-list li[data-vehicle]', (lis) =>
+    lis.map((li) => ({ id: li.dataset.vehicle, link: li.dataset.link, mode: li.dataset.mode, command: li.dataset.command, pressed: li.querySelector('button').getAttribute('aria-pressed'), text: li.textContent })),
+  );
+
+test('the station\'s vehicle is listed with its link; without the token the commands are off and say why', async () => {
+  await until('the vehicle listed as LIVE', async () => (await fleetList()).some((v) => v.id === vid && v.link === 'LIVE' && v.pressed === 'true'), 20000);
+  // A page of its own without the token (sessionStorage is the tab's): reads work on loopback,
+  // the commands do not.
+  const p = await b.newPage();
+  try {
+    await p.goto(`${server.base}/#live`, { waitUntil: 'load', timeout: slow(20000) });
+    await until('the vehicle listed', async () => (await fleetList(p)).some((v) => v.id === vid), 20000);
+    for (const id of ['cmd-hold', 'cmd-goto', 'cmd-return', 'cmd-stop']) {
+      assert.equal(await p.isDisabled(`#${id}`), true, `${id} is off without the token`);
+      assert.match(await p.getAttribute(`#${id}`, 'title'), /control token/);
+    }
+    assert.equal(await p.isVisible('#cmd-token-note'), true, 'the panel says the token is needed');
+  } finally {
+    await p.close();
+  }
+  for (const id of ['cmd-hold', 'cmd-goto', 'cmd-return', 'cmd-stop']) assert.equal(await page.isDisabled(`#${id}`), false, `${id} is on with the token`);
+});
+
+test('other vehicles are drawn with their ids and helm modes, fitted in, and their moves redraw the traces only', async () => {
+  await hook('holdNav'); // the simulator's own nav no longer moves the figure: what moves it is ours
+  await hook('fleetNav', 'bravo', 40, 30, 90);
+  await hook('fleetHelm', 'bravo', 'HOLDING', { kind: 'hold', x_m: 40, y_m: 30, radius_m: 5, speed_mps: null, distance_m: 0.4 });
+  await hook('fleetNav', 'charlie', -60, -50, 180);
+  const drawn = await until('three vehicles on the Live map', async () => {
+    const d = await hook('liveVehicles');
+    return d.selected && d.others.length === 2 ? d : null;
+  }, 20000);
+  assert.equal(drawn.selected.text, vid, 'the selected vehicle is named on a fleet');
+  const byText = Object.fromEntries(drawn.others.map((o) => [o.text, o]));
+  assert.deepEqual(Object.keys(byText).sort(), ['bravo · HOLDING', 'charlie · idle']);
+  assert.deepEqual([byText['bravo · HOLDING'].x, byText['bravo · HOLDING'].y, byText['bravo · HOLDING'].angle], [40, 30, 90]);
+  assert.deepEqual([byText['charlie · idle'].x, byText['charlie · idle'].y, byText['charlie · idle'].angle], [-60, -50, 180]);
+  // In the fitted view (after Fit view: the fit may hold what it had only while it still fits).
+  await page.click('#live-fit');
+  const range = await until('the view fitted to the fleet', () =>
+    page.evaluate(() => {
+      const fl = document.getElementById('live-plot')._fullLayout;
+      const [x0, x1] = fl.xaxis.range;
+      const [y0, y1] = fl.yaxis.range;
+      return x0 < -60 && x1 > 40 && y0 < -50 && y1 > 30 ? { x: [x0, x1], y: [y0, y1] } : null;
+    }), 10000);
+  assert.ok(range.x[1] - range.x[0] < 1000, `a view ${range.x} wide is not fitted to the fleet`);
+  // The list has all three, the selected one pressed, bravo with its mode and command.
+  const list = await until('the three vehicles listed', async () => {
+    const l = await fleetList();
+    return l.length === 3 ? l : null;
+  }, 10000);
+  assert.deepEqual(list.map((v) => [v.id, v.pressed]), [[vid, 'true'], ['bravo', 'false'], ['charlie', 'false']]);
+  const bravo = list.find((v) => v.id === 'bravo');
+  assert.equal(bravo.mode, 'HOLDING');
+  assert.match(bravo.text, /hold at \(40\.0, 30\.0\) r 5 m/);
+  assert.equal(await page.isVisible('#vehicle-select'), true, 'the header selector shows on a fleet');
+
+  // Another vehicle moving inside the view: the traces are drawn again, not the figure.
+  const result = await page.evaluate(async () => {
+    const plot = document.getElementById('live-plot');
+    window.avkTest.renderTimes(true);
+    let fullRedraws = 0;
+    let tracesOnly = 0;
+    plot.on('plotly_afterplot', () => fullRedraws++);
+    plot.on('plotly_transitioning', () => tracesOnly++);
+    const frame = () => new Promise((r) => requestAnimationFrame(() => r()));
+    await frame();
+    await frame();
+    window.avkTest.renderTimes(true);
+    fullRedraws = 0;
+    tracesOnly = 0;
+    for (let i = 1; i <= 30; i++) {
+      window.avkTest.fleetNav('bravo', 40 + i * 0.3, 30, 90 + i);
+      await frame();
+    }
+    await frame();
+    const d = window.avkTest.liveVehicles();
+    return { renders: window.avkTest.renderTimes().length, fullRedraws, tracesOnly, bravo: d.others.find((o) => o.text.startsWith('bravo')), trail: d.trail };
+  });
+  assert.ok(result.renders >= 10, `${result.renders} plot updates for 30 moves`);
+  assert.ok(result.tracesOnly >= result.renders - 2, `${result.fullRedraws} full redraws and ${result.tracesOnly} of the traces only for ${result.renders} updates`);
+  assert.ok(result.fullRedraws <= 2, `${result.fullRedraws} full redraws for ${result.renders} updates`);
+  assert.equal(result.bravo.x.toFixed(1), '49.0', 'the newest position is drawn');
+  assert.equal(result.bravo.angle, 120, 'and the newest heading');
+  assert.ok(result.trail >= 5, `bravo's trail has ${result.trail} points`);
+  await screenshot(page, 'fleet-live');
+});
+
+test('events say which vehicle they are about, and the log filters to the selected one', async () => {
+  const watch = 'bravo and charlie: closest approach 3.2 m in 20 s, below the 10 m standoff';
+  await hook('streamMessage', 'status', { kind: 'collision_watch', level: 'warning', message: watch, vehicle_id: 'bravo' });
+  await hook('streamMessage', 'status', { kind: 'vehicle_left', level: 'warning', message: 'charlie: navigation lost', vehicle_id: 'charlie' });
+  await hook('streamMessage', 'status', { kind: 'vehicle_command', level: 'info', message: `${vid}: hold`, vehicle_id: vid });
+  const log = await until('the three events in the log', async () => {
+    const l = await hook('eventLog');
+    return ['collision_watch', 'vehicle_left', 'vehicle_command'].every((k) => l.some((e) => e.kind === k)) ? l : null;
+  }, 10000);
+  assert.equal(log.find((e) => e.kind === 'collision_watch').vehicle, 'bravo');
+  assert.equal(log.find((e) => e.kind === 'vehicle_left').vehicle, 'charlie');
+  // Shown with its vehicle, and alarmed: a collision watch and a vehicle lost are not to be missed.
+  await until('the vehicle shown with the event', () => page.evaluate(() => document.querySelector('#event-log li[data-kind="collision_watch"] .veh')?.textContent === 'bravo'), 10000);
+  const alarms = await hook('alarms');
+  assert.ok(alarms.active.some((a) => a.kind === 'collision'), JSON.stringify(alarms));
+  assert.ok(alarms.active.some((a) => a.kind === 'vehicle_left'), JSON.stringify(alarms));
+  const shownKinds = () => page.$$eval('#event-log li[data-kind]', (lis) => lis.map((li) => [li.dataset.kind, li.dataset.vehicle ?? null]));
+  const all = await shownKinds();
+  assert.ok(all.some(([k]) => k === 'vehicle_left'), 'charlie\'s event listed before filtering');
+  // Only the selected vehicle's (and the station's): charlie's link is not this vehicle's.
+  await page.check('#event-filter');
+  assert.equal(await page.textContent('#event-filter-vehicle'), vid);
+  const mine = await until('the log filtered', async () => {
+    const k = await shownKinds();
+    return k.some(([kind]) => kind === 'vehicle_command') && !k.some(([kind]) => kind === 'vehicle_left') ? k : null;
+  }, 10000);
+  assert.ok(mine.every(([, v]) => v === null || v === vid), JSON.stringify(mine));
+  assert.ok(!mine.some(([k]) => k === 'collision_watch'), 'a collision watch of two other vehicles is not this one\'s');
+  await page.uncheck('#event-filter');
+  await until('the log unfiltered', async () => (await shownKinds()).some(([k]) => k === 'vehicle_left'), 10000);
+  await page.click('#alarm-ack');
+});
+
+// ---------------------------------------------------------------- commands
+
+/** POSTs the page sends to /vehicles/{vid}/<command>, counted as they go. */
+const sent = [];
+function recordCommands() {
+  page.on('request', (r) => {
+    const m = r.url().match(/\/api\/v1\/vehicles\/[^/]+\/(hold|go-to|return|stop)$/);
+    if (m && r.method() === 'POST') sent.push({ command: m[1], body: r.postData() });
+  });
+}
+
+const helmMode = async () => (await api(`/vehicles/${vid}`)).helm_mode;
+
+test('Stop asks first, naming the vehicle; cancelled, nothing is sent', async () => {
+  recordCommands();
+  await page.click('#cmd-stop');
+  await page.waitForSelector('#cmd-confirm:not([hidden])');
+  assert.equal(await page.textContent('#cmd-question'), `Stop ${vid}: all stop, it will drift.`);
+  assert.equal(await page.textContent('#cmd-yes'), `Stop ${vid}`);
+  await page.click('#cmd-no');
+  assert.equal(await page.isHidden('#cmd-confirm'), true);
+  assert.equal(await page.getAttribute('#cmd-result', 'data-state'), 'cancelled');
+  // Hold goes out next: had the cancelled Stop been sent, it would be before it.
+  await page.click('#cmd-hold');
+  await page.waitForSelector('#cmd-confirm:not([hidden])');
+  assert.match(await page.textContent('#cmd-question'), new RegExp(`^Hold ${vid}: it keeps station where it is now, within 5 m\\.`));
+  await page.click('#cmd-yes');
+  await until('the Hold sent', () => sent.length > 0, 10000);
+  assert.deepEqual(sent.map((s) => s.command), ['hold'], 'the cancelled Stop was never sent');
+  assert.deepEqual(JSON.parse(sent[0].body), {});
+});
+
+test('Hold: the answer is shown, and the helm topic brings HOLDING to the vehicle panel and the list', async () => {
+  await until('the Hold answered', async () => (await page.getAttribute('#cmd-result', 'data-state')) === 'ok', 10000);
+  assert.match(await page.textContent('#cmd-result'), new RegExp(`^${vid}: Hold taken: HOLDING, hold at \\(`));
+  assert.equal(await helmMode(), 'HOLDING');
+  await hook('releaseNav');
+  await until('HOLDING in the panel and the list', async () => {
+    const now = await page.textContent('#cmd-current');
+    const item = (await fleetList()).find((v) => v.id === vid);
+    return now.startsWith('HOLDING · hold at') && item?.mode === 'HOLDING' && item.command === 'hold';
+  }, 10000);
+  assert.equal(await page.textContent('#live-mode'), 'HOLDING');
+  // Its point, with the hold radius, on the map.
+  const cmd = await page.evaluate(() => document.getElementById('live-plot').data.find((t) => String(t.name).startsWith('command:'))?.name);
+  assert.equal(cmd, 'command: hold point');
+});
+
+test('Go to: a point picked on the map, confirmed, sent; the vehicle transits to it', async () => {
+  await showView(page, 'live');
+  await page.click('#cmd-pick');
+  assert.equal(await page.getAttribute('#cmd-pick', 'aria-pressed'), 'true');
+  // A point inside the plot area: where it lies on the grid is what the axes say.
+  const target = await page.evaluate(() => {
+    const plot = document.getElementById('live-plot');
+    plot.scrollIntoView({ block: 'center' });
+    const fl = plot._fullLayout;
+    const r = plot.getBoundingClientRect();
+    const px = fl.xaxis._length * 0.7;
+    const py = fl.yaxis._length * 0.3;
+    return { cx: r.left + fl.xaxis._offset + px, cy: r.top + fl.yaxis._offset + py, x: fl.xaxis.p2c(px), y: fl.yaxis.p2c(py) };
+  });
+  await page.mouse.click(target.cx, target.cy);
+  const x = Number(await page.inputValue('#cmd-x'));
+  const y = Number(await page.inputValue('#cmd-y'));
+  assert.ok(Math.abs(x - target.x) < 0.1 && Math.abs(y - target.y) < 0.1, `picked (${x}, ${y}), clicked (${target.x}, ${target.y})`);
+  assert.equal(await page.getAttribute('#cmd-pick', 'aria-pressed'), 'false');
+  // Drawn as a cross beside the hold point until it is sent.
+  await until('the picked point drawn', () => page.evaluate(([px, py]) => document.getElementById('live-plot').data.some((t) => t.name === 'command: hold point' && t.x.some((v, i) => Math.abs(v - (px - 3)) < 1e-9 && Math.abs(t.y[i] - (py - 3)) < 1e-9)), [x, y]), 10000);
+  await page.fill('#cmd-speed', '1.2');
+  await page.click('#cmd-goto');
+  await page.waitForSelector('#cmd-confirm:not([hidden])');
+  assert.equal(await page.textContent('#cmd-question'), `Go to: ${vid} goes to (${x.toFixed(1)}, ${y.toFixed(1)}) at 1.2 m/s, then holds there within 5 m.`);
+  await page.click('#cmd-yes');
+  await until('the Go to answered', async () => (await page.getAttribute('#cmd-result', 'data-state')) === 'ok', 10000);
+  assert.deepEqual(JSON.parse(sent.at(-1).body), { x_m: x, y_m: y, speed_mps: 1.2 });
+  const v = await api(`/vehicles/${vid}`);
+  assert.equal(v.command.kind, 'go_to');
+  assert.deepEqual([v.command.x_m, v.command.y_m, v.command.speed_mps], [x, y, 1.2]);
+  await until('go to in the panel', async () => /^(TRANSITING|HOLDING) · go to \(/.test(await page.textContent('#cmd-current')), 10000);
+});
+
+test('Return with no mission run and a bad radius: the station\'s error is shown', async () => {
+  await page.fill('#cmd-speed', '');
+  await page.click('#cmd-return');
+  await page.waitForSelector('#cmd-confirm:not([hidden])');
+  await page.click('#cmd-yes');
+  await until('the Return refused', async () => (await page.getAttribute('#cmd-result', 'data-state')) === 'error', 10000);
+  assert.match(await page.textContent('#cmd-result'), new RegExp(`^${vid}: Return refused: no mission has run on vehicle '${vid}' since the station started`));
+  await page.fill('#cmd-radius', '0');
+  await page.click('#cmd-hold');
+  await page.waitForSelector('#cmd-confirm:not([hidden])');
+  await page.click('#cmd-yes');
+  await until('the Hold refused', async () => /Hold refused: .*radius_m.*must be more than 0/.test(await page.textContent('#cmd-result')), 10000);
+  assert.equal(await page.getAttribute('#cmd-result', 'data-state'), 'error');
+  assert.equal((await api(`/vehicles/${vid}`)).command.kind, 'go_to', 'nothing changed on the vehicle');
+  await page.fill('#cmd-radius', '');
+  // Go to without a point: said in the page, nothing asked or sent.
+  const before = sent.length;
+  await page.fill('#cmd-x', '');
+  await page.click('#cmd-goto');
+  assert.match(await page.textContent('#cmd-result'), /Go to: Go to needs the point/);
+  assert.equal(await page.isHidden('#cmd-confirm'), true);
+  assert.equal(sent.length, before);
+});
+
+test('Stop, confirmed: all stop, STOPPED on the vehicle and in the page', async () => {
+  await page.click('#cmd-stop');
+  await page.waitForSelector('#cmd-confirm:not([hidden])');
+  await page.click('#cmd-yes');
+  await until('the Stop answered', async () => (await page.getAttribute('#cmd-result', 'data-state')) === 'ok', 10000);
+  assert.equal(sent.at(-1).command, 'stop');
+  assert.equal(await helmMode(), 'STOPPED');
+  await until('STOPPED in the panel', async () => (await page.textContent('#cmd-current')) === 'STOPPED · all stop', 10000);
+  // The refusals asked for above are logged by the browser as failed loads; nothing else is.
+  assert.deepEqual(b.errors.filter((e) => !/the server responded with a status of (409|422)/.test(e)), [], 'no console errors or exceptions');
+});
