@@ -124,6 +124,13 @@ export function noteVehicles(list) {
   changed();
 }
 
+/** The ids of the station's live vehicles in a GET /health answer: `vehicles`, or on an older
+ *  station its one `vehicle_id`. */
+export function fleetIdsOf(health) {
+  if (Array.isArray(health?.vehicles)) return health.vehicles.filter((id) => typeof id === 'string');
+  return health?.vehicle_id ? [health.vehicle_id] : [];
+}
+
 /** The station's live vehicles (GET /health `vehicles`; an older station names its one). */
 export function noteFleetIds(ids) {
   if (ids.length === state.fleetIds.length && ids.every((id, i) => id === state.fleetIds[i])) return;
@@ -137,6 +144,16 @@ export function fleetList() {
   const live = state.fleetIds.filter((id) => state.fleet.has(id)).map((id) => state.fleet.get(id));
   const rest = [...state.fleet.values()].filter((v) => !state.fleetIds.includes(v.id)).sort((a, b) => a.id.localeCompare(b.id));
   return [...live, ...rest];
+}
+
+const QUIET_MS = 3000; // a vehicle heard LIVE but not since this long reads STALE
+
+/** A vehicle's link as the page can vouch for it: the station's word, STALE when the stream has
+ *  said nothing of it for a while. */
+export function linkOf(v) {
+  if (v.stored) return 'DISCONNECTED';
+  if (v.link === 'LIVE' && v.heardMs > 0 && performance.now() - v.heardMs > QUIET_MS) return 'STALE';
+  return v.link ?? '–';
 }
 
 /** Whether a vehicle is drawn on the map: it has a position and the station hears it. */

@@ -5,7 +5,7 @@
 
 import { state, on } from './state.js';
 import { el } from './format.js';
-import { fleetList, helmText } from './fleet.js';
+import { fleetList, helmText, linkOf } from './fleet.js';
 import { selectVehicle } from './sync.js';
 
 const $ = (id) => document.getElementById(id);
@@ -47,7 +47,7 @@ function render() {
   const list = $('fleet-list');
   const items = vehicles.map((v) => {
     const li = itemFor(list, v.id);
-    const link = v.stored ? 'DISCONNECTED' : v.link ?? '–';
+    const link = linkOf(v);
     li.dataset.link = link;
     li.dataset.mode = v.helm?.mode ?? '';
     li.dataset.command = v.helm?.command?.kind ?? '';
@@ -73,7 +73,7 @@ function renderSelect(vehicles) {
   const sel = $('vehicle-select');
   const wrap = $('vehicle-select-wrap');
   wrap.hidden = vehicles.length < 2;
-  const labels = vehicles.map((v) => `${v.id} · ${v.stored ? 'DISCONNECTED' : v.link ?? '–'} · ${v.helm?.mode ?? (v.stored ? 'stored' : 'idle')}`);
+  const labels = vehicles.map((v) => `${v.id} · ${linkOf(v)} · ${v.helm?.mode ?? (v.stored ? 'stored' : 'idle')}`);
   const opts = [...sel.options];
   if (opts.length !== vehicles.length || opts.some((o, i) => o.value !== vehicles[i].id)) {
     sel.replaceChildren(...vehicles.map((v, i) => el('option', { value: v.id, text: labels[i] })));
@@ -89,5 +89,6 @@ export function initFleetPanel() {
   on('helm', request);
   on('vehicle-changed', request);
   on('synced', request);
+  setInterval(request, 1000); // a vehicle gone quiet reads STALE without a message to say so
   request();
 }

@@ -8,7 +8,7 @@ import { setClockMapping } from './clock.js';
 import { retireTrack } from './tracks.js';
 import { refreshCktSummary, fetchPredictions } from './predictions.js';
 import { loadTrackHistory } from './trackhistory.js';
-import { noteFleetNav, noteFleetHelm, noteVehicles, noteFleetIds, helmOf, wantedVehicle, setWantedVehicle } from './fleet.js';
+import { noteFleetNav, noteFleetHelm, noteVehicles, noteFleetIds, fleetIdsOf, helmOf, wantedVehicle, setWantedVehicle } from './fleet.js';
 import { markLabel, setTurnMarks, turnFromServer, adoptRunningTurn, endTurn, adoptLastTurn } from './turnstate.js';
 
 const STALE_AFTER_MS = 2000;
@@ -45,8 +45,7 @@ async function doCatchUp() {
   // so views that cache a grid by it keep theirs.
   const d = health.datum ?? null;
   if (JSON.stringify(d) !== JSON.stringify(state.datum)) state.datum = d;
-  // The station's vehicles: an older station names its one only.
-  noteFleetIds(Array.isArray(health.vehicles) ? health.vehicles.filter((id) => typeof id === 'string') : health.vehicle_id ? [health.vehicle_id] : []);
+  noteFleetIds(fleetIdsOf(health));
   let list = await getJson('/vehicles').catch(() => []);
   if (!Array.isArray(list)) list = [];
   noteVehicles(list);
@@ -132,6 +131,14 @@ export async function selectVehicle(id) {
   emit('mission', null);
   emit('events', state.events);
   await catchUp();
+}
+
+/** The station's vehicles read again (GET /health, GET /vehicles), the vehicle shown kept. */
+export async function refreshFleet() {
+  const health = await getJson('/health');
+  noteFleetIds(fleetIdsOf(health));
+  const list = await getJson('/vehicles');
+  if (Array.isArray(list)) noteVehicles(list);
 }
 
 /** Whether a mission (by id) is another vehicle's than the one shown, as far as the missions read
@@ -320,6 +327,8 @@ export function onMessage(msg) {
     case 'status':
       // vehicle_id: the vehicle the event is about (none: the station's).
       addEvent({ t: msg.t, kind: d.kind, level: d.level, message: d.message, suppressed: d.suppressed_before, vehicle_id: d.vehicle_id ?? null });
+      // A vehicle come or gone: the station's list of them is read again.
+      if (d.kind === 'vehicle_joined' || d.kind === 'vehicle_left') refreshFleet().catch((e) => console.warn('fleet re-read failed', e));
       break;
     default:
   }
