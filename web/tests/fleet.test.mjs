@@ -4,14 +4,18 @@
 // moves redraw the traces only; events say which vehicle they are about and the log filters to
 // the selected one. Hold, Go to (a point picked on the map), Return and Stop are asked in the page
 // first (a cancel sends nothing), sent with the token, and their answer or the station's error is
-// shown; without the token they are off. Run with `node --test web/tests/fleet.test.mjs` (CTest:
+// shown; without the token they are off. A vehicle the station knows from a stored mission only
+// (a catamaran's mission run before `avk serve` starts) is chosen in the list: every view switches
+// to it as a fresh load with it would, the address keeps it over a reload, and the header's
+// selector brings the station's own vehicle back. Run with `node --test web/tests/fleet.test.mjs` (CTest:
 // web_fleet).
 //
 // Environment as e2e.test.mjs: AVK_BINARY, AVK_SCREENSHOTS, AVK_CHROMIUM, AVK_E2E_SLOW.
 
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
-import { mkdtempSync } from 'node:fs';
+import { execFileSync } from 'node:child_process';
+import { mkdtempSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 
@@ -24,14 +28,30 @@ let server = null;
 let b = null;
 let page = null;
 let vid = null;
+let stored = null; // the vehicle of the stored mission: known to the station, not connected
+let storedMission = null;
+
+// A small mission of another vehicle (a simulated catamaran), run before the station starts.
+const MISSION = {
+  name: 'catamaran-small',
+  turn_array: { speeds_mps: [1.0], dheadings_deg: [90], repeats: 2 },
+  operating_region: { polygon_m: [[-100, -100], [100, -100], [100, 100], [-100, 100]], buffer_m: 25, return_point_m: [0, -70] },
+};
 
 const api = (pathname, options) => apiRequest(server, pathname, options);
 const hook = (name, ...args) => page.evaluate(([n, a]) => window.avkTest[n](...a), [name, args]);
 
 before(async () => {
   b = await launchBrowser();
-  server = await startAvkServer(AVK, ['serve', '--db', path.join(tmp, 'station.db'), '--sim', '--port', '0', '--web', webDir]);
+  const db = path.join(tmp, 'station.db');
+  writeFileSync(path.join(tmp, 'mission.json'), JSON.stringify(MISSION));
+  execFileSync(AVK, ['mission', 'run', '--config', path.join(tmp, 'mission.json'), '--db', db, '--sim', '--vehicle', 'catamaran', '--quiet'], { stdio: 'ignore', timeout: slow(30000) });
+  server = await startAvkServer(AVK, ['serve', '--db', db, '--sim', '--port', '0', '--web', webDir]);
   vid = (await api('/health')).vehicle_id;
+  stored = (await api('/vehicles')).find((v) => v.id !== vid && v.link === 'DISCONNECTED')?.id;
+  assert.ok(stored, 'the catamaran of the stored mission is known to the station');
+  storedMission = (await api('/missions')).find((m) => m.vehicle_id === stored)?.id;
+  assert.ok(storedMission, 'its mission is stored');
   page = await b.newPage();
   await page.goto(`${server.base}/?token=${server.token}&test=1#live`, { waitUntil: 'load', timeout: slow(20000) });
   await page.waitForFunction(() => window.avkTest?.state().vehicleId && document.querySelector('#live-plot .main-svg'), null, { timeout: slow(20000) });
@@ -48,6 +68,9 @@ const fleetList = (p = page) =>
 
 test('the station\'s vehicle is listed with its link; without the token the commands are off and say why', async () => {
   await until('the vehicle listed as LIVE', async () => (await fleetList()).some((v) => v.id === vid && v.link === 'LIVE' && v.pressed === 'true'), 20000);
+  const other = (await fleetList()).find((v) => v.id === stored);
+  assert.equal(other?.link, 'DISCONNECTED', 'the stored mission\'s vehicle is listed, not connected');
+  assert.equal(other.pressed, 'false');
   // A page of its own without the token (sessionStorage is the tab's): reads work on loopback,
   // the commands do not.
   const p = await b.newPage();
@@ -89,12 +112,13 @@ test('other vehicles are drawn with their ids and helm modes, fitted in, and the
       return x0 < -60 && x1 > 40 && y0 < -50 && y1 > 30 ? { x: [x0, x1], y: [y0, y1] } : null;
     }), 10000);
   assert.ok(range.x[1] - range.x[0] < 1000, `a view ${range.x} wide is not fitted to the fleet`);
-  // The list has all three, the selected one pressed, bravo with its mode and command.
-  const list = await until('the three vehicles listed', async () => {
+  // The list has them all (the station's own first), the selected one pressed, bravo with its mode
+  // and command; the stored mission's vehicle is listed but not drawn.
+  const list = await until('the four vehicles listed', async () => {
     const l = await fleetList();
-    return l.length === 3 ? l : null;
+    return l.length === 4 ? l : null;
   }, 10000);
-  assert.deepEqual(list.map((v) => [v.id, v.pressed]), [[vid, 'true'], ['bravo', 'false'], ['charlie', 'false']]);
+  assert.deepEqual(list.map((v) => [v.id, v.pressed]), [[vid, 'true'], ['bravo', 'false'], ['charlie', 'false'], [stored, 'false']]);
   const bravo = list.find((v) => v.id === 'bravo');
   assert.equal(bravo.mode, 'HOLDING');
   assert.match(bravo.text, /hold at \(40\.0, 30\.0\) r 5 m/);
@@ -279,5 +303,57 @@ test('Stop, confirmed: all stop, STOPPED on the vehicle and in the page', async 
   assert.equal(await helmMode(), 'STOPPED');
   await until('STOPPED in the panel', async () => (await page.textContent('#cmd-current')) === 'STOPPED · all stop', 10000);
   // The refusals asked for above are logged by the browser as failed loads; nothing else is.
+  assert.deepEqual(b.errors.filter((e) => !/the server responded with a status of (409|422)/.test(e)), [], 'no console errors or exceptions');
+});
+
+// ---------------------------------------------------------------- choosing another vehicle
+
+test('choosing another vehicle switches every view to it, the address keeps it, and the selector brings the first back', async () => {
+  await showView(page, 'live');
+  await page.click(`#fleet-list li[data-vehicle="${stored}"] button`);
+  const st = await until('the stored vehicle shown', async () => {
+    const s = await hook('state');
+    return s.vehicleId === stored && s.mission === storedMission ? s : null;
+  }, 20000);
+  assert.ok(st.okTurns >= 1, `its turns counted (${st.okTurns}), not the station's`);
+  assert.equal(new URL(page.url()).searchParams.get('vehicle'), stored, 'the choice is in the address');
+  assert.ok((await page.textContent('#vehicle-name')).startsWith(`${stored} (`), 'the header names it');
+  assert.equal(await page.getAttribute(`#fleet-list li[data-vehicle="${stored}"] button`, 'aria-pressed'), 'true');
+  // Its mission's stored track is read, and the station's own vehicle is drawn as another.
+  await until('its stored track read', async () => (await hook('trackLength')) > 10, 20000);
+  const drawn = await until('the station\'s vehicle drawn as another', async () => {
+    const d = await hook('liveVehicles');
+    return d.others.some((o) => o.text.startsWith(`${vid} · `)) ? d : null;
+  }, 10000);
+  assert.equal(drawn.selected, null, 'a vehicle with no live navigation has no marker');
+  await screenshot(page, 'fleet-stored-vehicle');
+  // Not connected: no commands for it, and the panel says why.
+  assert.equal(await page.isDisabled('#cmd-hold'), true);
+  assert.match(await page.getAttribute('#cmd-stop', 'title'), /not connected/);
+  assert.equal(await page.textContent('#event-filter-vehicle'), stored);
+  // The Mission view starts on it; the CKT view is its table.
+  await showView(page, 'mission');
+  assert.equal(await page.textContent('#m-start'), `Start mission on ${stored}`);
+  await showView(page, 'ckt');
+  await until('its CKT', async () => (await page.textContent('#ckt-status')).startsWith(`${stored}: 1 speeds × 1 heading changes, 2 turns`), 20000);
+
+  // A reload keeps it (the address), as a fresh load with it.
+  await page.reload({ waitUntil: 'load' });
+  await until('the stored vehicle shown after a reload', async () => {
+    const s = await page.evaluate(() => window.avkTest?.state());
+    return s?.vehicleId === stored && s.mission === storedMission;
+  }, 20000);
+
+  // The header's selector brings the station's own back: no mission, no turns.
+  await page.selectOption('#vehicle-select', vid);
+  await until('the station\'s vehicle shown again', async () => {
+    const s = await hook('state');
+    return s.vehicleId === vid && s.mission === null;
+  }, 20000);
+  assert.equal(new URL(page.url()).searchParams.get('vehicle'), vid);
+  await until('its CKT: none', async () => /No turns yet/.test(await page.textContent('#ckt-status')), 20000);
+  await showView(page, 'live');
+  await until('its marker back', async () => (await hook('liveVehicles')).selected?.x !== undefined, 20000);
+  assert.equal(await page.isDisabled('#cmd-hold'), false, 'commands are on for a connected vehicle');
   assert.deepEqual(b.errors.filter((e) => !/the server responded with a status of (409|422)/.test(e)), [], 'no console errors or exceptions');
 });
