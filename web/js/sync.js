@@ -180,7 +180,9 @@ export async function refreshTurnCount() {
 export async function loadMission(id, { force = false } = {}) {
   const seqBefore = missionMessages;
   const turnsBefore = turnMessages;
+  const vid = state.vehicleId;
   const m = await getJson(`/missions/${id}`);
+  if (state.vehicleId !== vid) return; // another vehicle chosen meanwhile: its own are read
   const isNew = force || state.mission?.id !== id;
   if (!isNew && missionMessages !== seqBefore && state.mission) {
     // A stream message overtook this answer: its progress is the newer one.
@@ -197,6 +199,7 @@ export async function loadMission(id, { force = false } = {}) {
   adoptRunningTurn(m, turnMessages === turnsBefore);
   if (isNew) {
     await Promise.all([loadEvents(id, m.vehicle_id), loadRecordedTurns(id), loadTrackHistory(id)]);
+    if (state.vehicleId !== vid) return;
     if (!state.shownTurn) await adoptLastTurn(m);
   }
 }
@@ -208,7 +211,9 @@ function levelOf(kind) {
 }
 
 async function loadEvents(id, vehicleId) {
+  const vid = state.vehicleId;
   const items = await getAllItems(`/missions/${id}/events`, {}, 2000);
+  if (state.vehicleId !== vid) return;
   // `logged`: the level is ours, not the server's, so a later vocabulary may correct it. The
   // mission's events are of its vehicle.
   state.events = items.map((e) => ({
@@ -242,6 +247,7 @@ function applyVocabulary(hello) {
 }
 
 async function loadRecordedTurns(id) {
+  const vid = state.vehicleId;
   const items = await getAllItems('/turns', { mission: id }, 5000);
   const recent = items.slice(-MAX_RECORDED_TURNS);
   const paths = [];
@@ -250,6 +256,7 @@ async function loadRecordedTurns(id) {
     const batch = await Promise.all(recent.slice(i, i + 4).map((t) => fetchRawPath(t.id)));
     paths.push(...batch.filter(Boolean));
   }
+  if (state.vehicleId !== vid) return;
   state.recordedTurns = paths;
   emit('recorded-turns', paths);
 }
@@ -387,6 +394,7 @@ export function applyVehicleAnswer(v) {
 }
 
 let missionMessages = 0; // stream mission messages so far (to order them against REST answers)
+const asking = new Set(); // missions whose vehicle is being read (GET /missions)
 
 function applyMission(d, t) {
   const others = othersMission(d.mission_id);
@@ -394,9 +402,12 @@ function applyMission(d, t) {
   missionMessages++;
   if (others === null) {
     // Of a vehicle not known yet (a mission just started on a fleet): the list says whose.
+    if (asking.has(d.mission_id)) return;
+    asking.add(d.mission_id);
     refreshMissions()
       .then(() => (othersMission(d.mission_id) ? null : loadMission(d.mission_id)))
-      .catch((e) => console.warn(e));
+      .catch((e) => console.warn(e))
+      .finally(() => asking.delete(d.mission_id));
     return;
   }
   if (!state.mission || state.mission.id !== d.mission_id) {
