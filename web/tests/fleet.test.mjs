@@ -7,7 +7,9 @@
 // shown; without the token they are off. A vehicle the station knows from a stored mission only
 // (a catamaran's mission run before `avk serve` starts) is chosen in the list: every view switches
 // to it as a fresh load with it would, the address keeps it over a reload, and the header's
-// selector brings the station's own vehicle back. Run with `node --test web/tests/fleet.test.mjs` (CTest:
+// selector brings the station's own vehicle back. Last, a station of three simulated vehicles
+// (`avk serve --vehicles FLEET.json`): all listed and drawn with their ids, another chosen switches
+// the views, and a command goes to the vehicle chosen only. Run with `node --test web/tests/fleet.test.mjs` (CTest:
 // web_fleet).
 //
 // Environment as e2e.test.mjs: AVK_BINARY, AVK_SCREENSHOTS, AVK_CHROMIUM, AVK_E2E_SLOW.
@@ -20,7 +22,7 @@ import { tmpdir } from 'node:os';
 import path from 'node:path';
 
 import { slow, until } from './wait.mjs';
-import { startAvkServer, apiRequest } from './avk_server.mjs';
+import { startAvkServer, stopAvkServer, apiRequest } from './avk_server.mjs';
 import { AVK, webDir, launchBrowser, tearDown, killServerOnExit, showView, screenshot } from './browser.mjs';
 
 const tmp = mkdtempSync(path.join(tmpdir(), 'avk-web-fleet-'));
@@ -356,4 +358,93 @@ test('choosing another vehicle switches every view to it, the address keeps it, 
   await until('its marker back', async () => (await hook('liveVehicles')).selected?.x !== undefined, 20000);
   assert.equal(await page.isDisabled('#cmd-hold'), false, 'commands are on for a connected vehicle');
   assert.deepEqual(b.errors.filter((e) => !/the server responded with a status of (409|422)/.test(e)), [], 'no console errors or exceptions');
+});
+
+// ---------------------------------------------------------------- a station of three vehicles
+
+// Three simulated vehicles apart on the grid (the format of examples/fleet.json).
+const FLEET = {
+  vehicles: [
+    { id: 'alpha', vehicle: 'usim', start: { x_m: 0, y_m: -70, heading_deg: 0 } },
+    { id: 'bravo', vehicle: 'usim', start: { x_m: 60, y_m: -70, heading_deg: 90 } },
+    { id: 'charlie', vehicle: 'usim', start: { x_m: -60, y_m: -70, heading_deg: 180 } },
+  ],
+};
+
+test('a station of three vehicles: all listed and drawn with their ids; another chosen switches the views and takes the commands', { timeout: slow(180000) }, async () => {
+  writeFileSync(path.join(tmp, 'fleet.json'), JSON.stringify(FLEET));
+  const s3 = await startAvkServer(AVK, ['serve', '--db', path.join(tmp, 'fleet.db'), '--vehicles', path.join(tmp, 'fleet.json'), '--port', '0', '--web', webDir]);
+  const p = await b.newPage();
+  const call = (pathname, options) => apiRequest(s3, pathname, options);
+  const on3 = (name, ...args) => p.evaluate(([n, a]) => window.avkTest[n](...a), [name, args]);
+  const idOf = (label) => label.split(' · ')[0];
+  try {
+    const ids = (await call('/health')).vehicles;
+    assert.deepEqual(ids, FLEET.vehicles.map((v) => v.id));
+    await p.goto(`${s3.base}/?token=${s3.token}&test=1#live`, { waitUntil: 'load', timeout: slow(20000) });
+    const listed = await until('the three vehicles listed LIVE', async () => {
+      const l = await fleetList(p);
+      return l.length === 3 && l.every((v) => v.link === 'LIVE') ? l : null;
+    }, 30000);
+    assert.deepEqual(listed.map((v) => v.id), ids, 'in the station\'s order');
+    const first = (await on3('state')).vehicleId;
+    assert.equal(first, (await call('/health')).vehicle_id, 'the station\'s own shown first');
+    const othersOf = (shown) => ids.filter((id) => id !== shown).sort();
+    // Three markers where the station places them: the selected one named over its own, the
+    // other two with their id and helm mode.
+    const drawn = await until('three vehicle markers', async () => {
+      const d = await on3('liveVehicles');
+      return d.selected && d.others.length === 2 ? d : null;
+    }, 30000);
+    assert.equal(drawn.selected.text, first);
+    assert.deepEqual(drawn.others.map((o) => idOf(o.text)).sort(), othersOf(first));
+    for (const o of drawn.others) {
+      const v = await call(`/vehicles/${encodeURIComponent(idOf(o.text))}`);
+      assert.equal(o.text, `${v.id} · ${v.helm_mode ?? 'idle'}`);
+      assert.ok(Math.hypot(o.x - v.nav.x_m, o.y - v.nav.y_m) < 5, `${v.id} drawn at (${o.x}, ${o.y}), the station has (${v.nav.x_m}, ${v.nav.y_m})`);
+    }
+    await screenshot(p, 'fleet-three');
+
+    // Another one chosen in the list: every view is of it.
+    const second = ids.find((id) => id !== first);
+    await p.click(`#fleet-list li[data-vehicle="${second}"] button`);
+    await until('the second vehicle shown', async () => (await on3('state')).vehicleId === second, 20000);
+    assert.equal(new URL(p.url()).searchParams.get('vehicle'), second);
+    const now = await until('its marker the selected one', async () => {
+      const d = await on3('liveVehicles');
+      return d.selected?.text === second && d.others.length === 2 ? d : null;
+    }, 20000);
+    assert.deepEqual(now.others.map((o) => idOf(o.text)).sort(), othersOf(second));
+    assert.equal(await p.textContent('#cmd-vehicle'), `· ${second}`);
+    // A command goes to it, and to it only.
+    await p.click('#cmd-hold');
+    await p.waitForSelector('#cmd-confirm:not([hidden])');
+    assert.match(await p.textContent('#cmd-question'), new RegExp(`^Hold ${second}: `));
+    await p.click('#cmd-yes');
+    await until('the Hold answered', async () => (await p.getAttribute('#cmd-result', 'data-state')) === 'ok', 20000);
+    assert.equal((await call(`/vehicles/${encodeURIComponent(second)}`)).helm_mode, 'HOLDING');
+    for (const id of othersOf(second)) assert.notEqual((await call(`/vehicles/${encodeURIComponent(id)}`)).helm_mode, 'HOLDING', `${id} was not told to hold`);
+    // The Mission view starts on it; a mission started on it is the one the page shows.
+    await showView(p, 'mission');
+    assert.equal(await p.textContent('#m-start'), `Start mission on ${second}`);
+    const nav = (await call(`/vehicles/${encodeURIComponent(second)}`)).nav;
+    const ring = [[-150, -150], [150, -150], [150, 150], [-150, 150]].map(([dx, dy]) => [nav.x_m + dx, nav.y_m + dy]);
+    const mission = { name: 'second', turn_array: { speeds_mps: [1.0], dheadings_deg: [90], repeats: 1 }, operating_region: { polygon_m: ring, buffer_m: 25, return_point_m: [nav.x_m, nav.y_m] } };
+    const mid = (await call(`/vehicles/${encodeURIComponent(second)}/missions`, { method: 'POST', body: mission })).id;
+    await until('its mission shown', async () => (await on3('state')).mission === mid, 20000);
+    // The header's selector: back to the first, which has no mission.
+    await p.selectOption('#vehicle-select', first);
+    await until('the first vehicle shown, without the mission', async () => {
+      const st = await on3('state');
+      return st.vehicleId === first && st.mission === null;
+    }, 20000);
+    assert.equal(await p.textContent('#m-start'), `Start mission on ${first}`);
+    // The other's mission goes on (its helm on the stream), and is not shown as this one's.
+    await until('the second vehicle listed under its mission', async () => /mission \d+/.test((await fleetList(p)).find((v) => v.id === second)?.text ?? ''), 20000);
+    assert.equal((await on3('state')).mission, null);
+    assert.deepEqual(b.errors.filter((e) => !/the server responded with a status of (409|422)/.test(e)), [], 'no console errors or exceptions');
+  } finally {
+    await p.close().catch(() => {});
+    await stopAvkServer(s3);
+  }
 });
