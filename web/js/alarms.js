@@ -8,6 +8,7 @@
 
 import { state, on, emit } from './state.js';
 import { el } from './format.js';
+import { namesVehicle } from './fleet.js';
 
 const LINK_GRACE_MS = 3000; // a link this long not LIVE while a mission runs is an alarm
 const BEEP_EVERY_MS = 4000; // repeated while unacknowledged
@@ -30,10 +31,11 @@ const seenEvents = new WeakSet();
 /** Raises an alarm: once per `kind` while it is unacknowledged, unless it now says something else
  *  (the link stale, then lost): then the new one takes the old one's place in the bar, so the bar
  *  shows the state as it is, not the first alarm of the kind. */
-export function raise(kind, title, message) {
-  const shown = active.findIndex((a) => a.kind === kind);
+export function raise(kind, title, message, { vehicleId = null, key = vehicleId } = {}) {
+  // On a fleet, one alarm of a kind per vehicle (or pair of vehicles: `key`).
+  const shown = active.findIndex((a) => a.kind === kind && a.key === key);
   if (shown >= 0 && active[shown].title === title) return false;
-  const a = { id: nextId++, kind, title, message, t: state.nav?.t_s ?? null };
+  const a = { id: nextId++, kind, key, title, message, t: state.nav?.t_s ?? null, vehicleId };
   if (shown >= 0) active.splice(shown, 1, a);
   else active.push(a);
   log.push(a);
@@ -47,7 +49,7 @@ export function raise(kind, title, message) {
 /** Every alarm raised, as event-log entries (kept here: a re-read of the log over REST replaces
  *  the station's events, and must not drop the alarms). */
 export function alarmEntries() {
-  return log.map((a) => ({ t: a.t, kind: 'alarm', level: 'alarm', message: `${a.title}: ${a.message}`, alarm: a.kind, acknowledged: !active.includes(a) }));
+  return log.map((a) => ({ t: a.t, kind: 'alarm', level: 'alarm', message: `${a.title}: ${a.message}`, alarm: a.kind, vehicle_id: a.vehicleId, acknowledged: !active.includes(a) }));
 }
 
 export function acknowledge() {
@@ -147,9 +149,22 @@ function checkEvents() {
     if (seenEvents.has(e)) continue;
     seenEvents.add(e);
     if (!ready || e.logged) continue;
-    if (e.kind === 'containment') raise('containment', 'Containment', e.message || 'the vehicle reached the buffer zone');
-    if (e.kind === 'halted' || e.kind === 'mission_halted') raise('halted', 'Mission halted', e.message || 'the mission stopped itself');
+    // On a fleet an event says which vehicle it is about: so does its alarm.
+    const vid = e.vehicle_id ?? null;
+    const of = (text) => (vid && !String(text).startsWith(vid) ? `${vid}: ${text}` : text);
+    if (e.kind === 'containment') raise('containment', 'Containment', of(e.message || 'the vehicle reached the buffer zone'), { vehicleId: vid });
+    if (e.kind === 'halted' || e.kind === 'mission_halted') raise('halted', 'Mission halted', of(e.message || 'the mission stopped itself'), { vehicleId: vid });
+    // Two vehicles' predicted closest approach below the standoff, one alarm per pair; a vehicle
+    // whose link is lost.
+    if (e.kind === 'collision_watch') raise('collision', 'Collision watch', e.message || 'two vehicles are closing', { vehicleId: vid, key: pairOf(e) });
+    if (e.kind === 'vehicle_left') raise('vehicle_left', 'Vehicle lost', of(e.message || 'its link is lost'), { vehicleId: vid });
   }
+}
+
+/** The vehicles a collision watch names (the fleet's ids in its message), sorted: its pair. */
+function pairOf(e) {
+  const named = [...state.fleet.keys()].filter((id) => namesVehicle(e.message, id));
+  return (named.length ? named : [e.vehicle_id ?? '']).sort().join('+');
 }
 
 /** The mission's state: halted as the state change of a mission message, too. */

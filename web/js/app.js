@@ -22,6 +22,8 @@ import { initBanner } from './banner.js';
 import { initEventLog } from './eventlog.js';
 import { initAlarms } from './alarms.js';
 import { initKeys } from './keys.js';
+import { initFleetPanel } from './fleetpanel.js';
+import { initCommands } from './commands.js';
 
 function renderBadge(link) {
   const b = document.getElementById('link-badge');
@@ -53,6 +55,8 @@ function main() {
   initTheme(); // before anything is drawn: the plots take its colours
   for (const el of document.querySelectorAll('.plot')) framePlot(el);
   initLive();
+  initFleetPanel();
+  initCommands();
   initTraffic();
   initReplay();
   initMission();

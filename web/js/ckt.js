@@ -35,6 +35,11 @@ export function initCkt() {
   on('restart', () => {
     table = null;
   });
+  // Another vehicle: its own table, read at the catch-up's end (below).
+  on('vehicle-changed', () => {
+    table = null;
+    chosen = null;
+  });
   // A page opened at #ckt shows the view before it knows the vehicle: load once it does.
   on('synced', () => {
     if (visible && !table) load();

@@ -76,6 +76,9 @@ export function initCompare() {
   on('turns-changed', () => {
     if (visible) load();
   });
+  on('vehicle-changed', () => {
+    last = null; // another vehicle's comparison: read again at the catch-up's end (below)
+  });
   // A page opened at #compare shows the view before it knows the vehicle: load once it does.
   on('synced', () => {
     if (visible && !last) load();

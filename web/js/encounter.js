@@ -86,6 +86,9 @@ export function initEncounter() {
   on('ckt', () => {
     if (visible) changed(true);
   });
+  on('vehicle-changed', () => {
+    result = { main: null, inst: null, method: null, note: '' }; // asked again of the new vehicle (below)
+  });
   on('synced', () => {
     if (visible && !result.main) changed(true);
   });

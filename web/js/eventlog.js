@@ -13,6 +13,7 @@ import { el, num } from './format.js';
 import { timeLabel } from './clock.js';
 import { alarmEntries } from './alarms.js';
 import { plannedTurns, turnLabel } from './turnlabel.js';
+import { namesVehicle } from './fleet.js';
 
 /** kind → what an operator reads. A kind not listed reads as its name with spaces. */
 export const PHRASES = {
@@ -41,6 +42,11 @@ export const PHRASES = {
   mission_done: 'Mission done',
   station: 'Station',
   alarm: 'Alarm',
+  vehicle_command: 'Vehicle command',
+  arrived: 'Arrived at the point',
+  vehicle_joined: 'Vehicle joined',
+  vehicle_left: 'Vehicle left',
+  collision_watch: 'Collision watch',
 };
 
 export function phrase(kind, message = '') {
@@ -166,6 +172,7 @@ export function logEntries(events = state.events, extra = [...turnEntries(), ...
       logged: Boolean(e.logged),
       message: e.message ?? '',
       level: e.level ?? 'info',
+      vehicle: e.vehicle_id ?? null, // the vehicle the event is about; none: the station's
       severity: severityOf(e),
       suppressed: e.suppressed ?? 0,
       count: 1,
@@ -179,6 +186,7 @@ export function logEntries(events = state.events, extra = [...turnEntries(), ...
     if (prev && prev.canon === canon && (prev.message === entry.message || near)) {
       prev.count++;
       prev.t = entry.t ?? prev.t;
+      prev.vehicle ??= entry.vehicle;
       prev.suppressed += entry.suppressed;
       if (entry.message !== prev.message && !prev.variants.includes(entry.message)) prev.variants.push(entry.message);
       continue;
@@ -190,11 +198,21 @@ export function logEntries(events = state.events, extra = [...turnEntries(), ...
 
 // ---------------------------------------------------------------- drawing
 
+/** Whether an entry is of vehicle `vid`: its own, the station's (no vehicle), or a collision watch
+ *  naming it (the message names both vehicles, vehicle_id only one). */
+export function aboutVehicle(e, vid) {
+  if (!e.vehicle || !vid || e.vehicle === vid) return true;
+  return (e.kind === 'collision_watch' || e.message?.startsWith('Collision watch:')) && namesVehicle(e.message, vid);
+}
+
+let onlySelected = false; // the operator's filter: the selected vehicle's events only
+
 /** Fills the event log list, newest first (live.js calls it when the log changes). */
 export function renderEventLog(list) {
-  const entries = logEntries().slice(-200).reverse();
+  let entries = logEntries().slice(-200).reverse();
+  if (onlySelected) entries = entries.filter((e) => aboutVehicle(e, state.vehicleId));
   if (entries.length === 0) {
-    list.replaceChildren(el('li', { class: 'muted', text: 'No events yet.' }));
+    list.replaceChildren(el('li', { class: 'muted', text: onlySelected ? `No events of ${state.vehicleId ?? 'this vehicle'} yet.` : 'No events yet.' }));
     return;
   }
   list.replaceChildren(
@@ -204,9 +222,10 @@ export function renderEventLog(list) {
       const time = timeLabel(e.t, e.kind === 'station' || e.kind === 'alarm' ? null : state.mission);
       return el(
         'li',
-        { class: `lvl-${e.level} sev-${e.severity}`, 'data-kind': e.kind, 'data-count': e.count },
+        { class: `lvl-${e.level} sev-${e.severity}`, 'data-kind': e.kind, 'data-count': e.count, 'data-vehicle': e.vehicle ?? undefined },
         el('span', { class: 'sev', title: `severity: ${SEVERITY_WORD[e.severity]}` }, el('span', { 'aria-hidden': 'true', text: `${SEVERITY_ICON[e.severity]} ` }), SEVERITY_WORD[e.severity]),
         el('time', { class: 't', title: time.title, text: time.text }),
+        e.vehicle ? el('span', { class: 'veh', title: `about vehicle ${e.vehicle}`, text: e.vehicle }) : null,
         el('span', { class: 'kind', title: e.kind, text: phrase(e.kind, e.message) }),
         e.count > 1 ? el('span', { class: 'count', title: `${e.count} times`, text: `×${e.count}` }) : null,
         el('span', { class: 'msg', title: e.variants.length ? ['also:', ...e.variants.slice(0, 5)].join('\n') : undefined, text: e.message + (e.suppressed ? ` (+${e.suppressed} suppressed)` : '') }),
@@ -223,4 +242,18 @@ export function initEventLog() {
     if (turnFromStream()) emit('events', state.events);
   });
   on('clock', () => emit('events', state.events));
+  const filter = document.getElementById('event-filter');
+  const filterName = () => {
+    document.getElementById('event-filter-vehicle').textContent = state.vehicleId ?? 'this vehicle';
+  };
+  filter?.addEventListener('change', () => {
+    onlySelected = filter.checked;
+    emit('events', state.events);
+  });
+  on('vehicle', filterName);
+  on('vehicle-changed', () => {
+    turns.clear(); // the finished turns listed were the other vehicle's mission's
+    turnMission = null;
+    lastTurnList = null;
+  });
 }

@@ -21,6 +21,8 @@ import { setPredictionFrame } from './predictions.js';
 import { axesToDraw, resetAxes } from './liveaxes.js';
 import { graticuleTrace, currentTrace, expectedTrace, renderTurnPlot } from './livetraces.js';
 import { renderReadout, renderTurnPanel, renderProgress } from './livepanels.js';
+import { fleetTraces, selectedLabel, commandTrace } from './fleettraces.js';
+import { pendingPoint } from './commands.js';
 
 const RAY_M = 20; // length of the goal-heading and heading rays
 
@@ -72,7 +74,15 @@ export function initLive() {
   });
   on('recorded-turns', markPlot);
   on('traffic', markPlot);
+  on('fleet', markPlot);
+  on('command-point', markPlot);
   on('restart', markPlot);
+  // Another vehicle shown: the view is fitted to it afresh (the operator's zoom was of the other).
+  on('vehicle-changed', () => {
+    uirevision++;
+    resetAxes();
+    markPlot();
+  });
   on('nav-history', markPlot);
   on('previous-track', markPlot);
   on('events', renderEvents);
@@ -291,6 +301,9 @@ function renderPlot() {
   };
   // AIS contacts may be kilometres away: drawn, but the view is fitted to this vehicle's own.
   const traffic = trafficTrace();
+  // The station's other vehicles, and where the selected one is told to go or hold.
+  const fleet = fleetTraces();
+  const command = commandTrace(pendingPoint());
   const traces = [
     grid,
     { type: 'scatter', mode: 'lines', name: 'region', x: reg.region.x, y: reg.region.y, line: { color: C.black, width: 2 }, hoverinfo: 'skip' },
@@ -313,19 +326,28 @@ function renderPlot() {
     expectedTrace(),
     currentTrace(nav),
     traffic,
+    fleet.trails,
+    command,
+    fleet.markers,
     {
       type: 'scatter',
-      mode: 'markers',
+      mode: 'markers+text',
       name: 'vehicle',
       x: nav ? [nav.x_m] : [],
       y: nav ? [nav.y_m] : [],
+      text: selectedLabel(),
+      textposition: 'top center',
+      textfont: { size: 12, color: C.black },
       marker: vehicleMarker(nav, 26),
-      hovertemplate: 'x %{x:.1f} m<br>y %{y:.1f} m<extra>vehicle</extra>',
+      hovertemplate: `${state.vehicleId ?? ''}<br>x %{x:.1f} m<br>y %{y:.1f} m<extra>vehicle</extra>`,
     },
   ];
+  // Fitted to this vehicle's mission, its command point and the fleet's positions; AIS contacts
+  // and the trails are drawn wherever they lie.
+  const unfitted = new Set([previous, grid, traffic, fleet.trails]);
   const layout = {
     ...baseLayout({ margin: { l: 56, r: 10, t: 40, b: 40 } }),
-    ...axesToDraw(plotEl, traces.filter((t) => t !== previous && t !== grid && t !== traffic)),
+    ...axesToDraw(plotEl, traces.filter((t) => !unfitted.has(t))),
     uirevision,
     showlegend: true,
     images: mapImages(plotEl),

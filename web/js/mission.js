@@ -323,11 +323,14 @@ function updateStart() {
   const b = $('m-start');
   const busy = busyMission();
   b.disabled = starting || Boolean(busy);
+  // The vehicle it starts on: the one shown (on a fleet, chosen in the vehicle list).
+  const label = state.vehicleId ? `Start mission on ${state.vehicleId}` : 'Start mission';
+  if (b.textContent !== label) b.textContent = label;
   b.title = busy
     ? `Mission ${busy.id} “${busy.name}” is ${busy.status}: one mission at a time. Abort it, or wait for it to end.`
     : starting
       ? 'Starting…'
-      : 'Send the mission to the vehicle';
+      : `Send the mission to ${state.vehicleId ?? 'the vehicle'}`;
 }
 
 function targetMission() {
@@ -354,7 +357,8 @@ function renderControl() {
   const sel = $('m-target');
   const keep = Number(sel.value) || state.mission?.id;
   const missions = [...state.missions].sort((a, b) => b.id - a.id);
-  sel.replaceChildren(...missions.map((m) => el('option', { value: m.id, text: `${m.id} · ${m.name} · ${m.status}` })));
+  const fleet = state.fleet.size > 1; // whose each mission is, when it can be another's
+  sel.replaceChildren(...missions.map((m) => el('option', { value: m.id, text: `${m.id} · ${m.name} · ${m.status}${fleet && m.vehicle_id ? ` · ${m.vehicle_id}` : ''}` })));
   if (missions.length === 0) sel.append(el('option', { value: '', text: 'none' }));
   const live = state.mission?.live ? state.mission.id : null;
   sel.value = String(live ?? keep ?? missions[0]?.id ?? '');
@@ -455,6 +459,7 @@ export function initMission() {
   });
   on('missions', renderControl);
   on('mission', renderControl);
+  on('vehicle', updateStart);
   applyKind();
   onFormChanged();
 }

@@ -17,6 +17,11 @@ export function initModel() {
   $('model-sweep-run').addEventListener('click', sweep);
   on('models', renderModels);
   on('missions', renderMissions);
+  // Another vehicle: its own missions are swept (the one drawn was of the other).
+  on('vehicle-changed', () => {
+    autoSwept = false;
+    showEmpty($('model-sweep'), 'Choose missions and press “Sweep history”.');
+  });
   initHeadings();
 }
 

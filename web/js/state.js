@@ -71,8 +71,11 @@ export const SERIES_CAPACITY = 36000;
 export const state = {
   sessionId: null,       // the server's session; a new one means it restarted
   serverVersion: null,
-  vehicleId: null,
+  vehicleId: null,       // the selected vehicle: every view but the fleet's is of it
   vehicle: null,         // GET /vehicles/{vid} (max speed, kind …)
+  fleetIds: [],          // the station's live vehicles, in its order (GET /health `vehicles`)
+  // Every vehicle heard of, by id (fleet.js): {id, kind, link, nav, helm, trail, …}; bounded.
+  fleet: new Map(),
   link: 'DISCONNECTED',  // LIVE | STALE | DISCONNECTED, from the socket and the nav age
   nav: null,             // latest nav message data
   navWallMs: 0,          // performance.now() when it arrived

@@ -8,6 +8,7 @@ import { setClockMapping } from './clock.js';
 import { retireTrack } from './tracks.js';
 import { refreshCktSummary, fetchPredictions } from './predictions.js';
 import { loadTrackHistory } from './trackhistory.js';
+import { noteFleetNav, noteFleetHelm, noteVehicles, noteFleetIds, fleetIdsOf, helmOf, wantedVehicle, setWantedVehicle } from './fleet.js';
 import { markLabel, setTurnMarks, turnFromServer, adoptRunningTurn, endTurn, adoptLastTurn } from './turnstate.js';
 
 const STALE_AFTER_MS = 2000;
@@ -44,20 +45,24 @@ async function doCatchUp() {
   // so views that cache a grid by it keep theirs.
   const d = health.datum ?? null;
   if (JSON.stringify(d) !== JSON.stringify(state.datum)) state.datum = d;
-  state.vehicleId = health.vehicle_id ?? null;
-  const vid = state.vehicleId;
+  noteFleetIds(fleetIdsOf(health));
+  let list = await getJson('/vehicles').catch(() => []);
+  if (!Array.isArray(list)) list = [];
+  noteVehicles(list);
+  const vid = chooseVehicle(health, list);
+  if (vid !== state.vehicleId) {
+    if (state.vehicleId !== null) forgetVehicle();
+    state.vehicleId = vid;
+    emit('vehicle-changed', vid);
+  }
+  state.vehicle = null;
+  state.helm = null;
   if (vid) {
-    const v = await getJson(`/vehicles/${encodeURIComponent(vid)}`);
+    const v = list.find((r) => r.id === vid) ?? (await getJson(`/vehicles/${encodeURIComponent(vid)}`));
     state.vehicle = v;
     // A ?test=1 hook feeding nav replaces the vehicle's, from REST as from the stream.
     if (v.nav && !state.testFeed) applyNav({ ...v.nav, link: v.link, vehicle_id: vid }, false);
-    state.helm = {
-      vehicle_id: vid,
-      mode: v.helm_mode,
-      desired_heading_deg: v.desired_heading_deg,
-      desired_speed_mps: v.desired_speed_mps,
-      mission_id: v.mission_id,
-    };
+    if ('helm_mode' in v) state.helm = helmOf(v); // a vehicle known from stored missions only has none
   }
   emit('vehicle', state.vehicle);
   emit('helm', state.helm);
@@ -77,6 +82,74 @@ async function doCatchUp() {
   emit('synced');
 }
 
+/** The vehicle shown: the one chosen (in the address) when the station knows it, else the
+ *  station's own (an older station's only one), else its first. */
+function chooseVehicle(health, list) {
+  const wanted = wantedVehicle();
+  if (wanted && (state.fleetIds.includes(wanted) || list.some((r) => r.id === wanted))) return wanted;
+  return health.vehicle_id ?? state.fleetIds[0] ?? null;
+}
+
+/** What the page holds of the vehicle shown, dropped when another is chosen: its track, turns,
+ *  mission, table and models are read for the new one as at a fresh load. */
+function forgetVehicle() {
+  state.track.clear();
+  state.series.clear();
+  state.nav = null;
+  state.navWallMs = 0;
+  state.helm = null;
+  state.vehicle = null;
+  state.turn = null;
+  state.shownTurn = null;
+  state.lastTurn = null;
+  state.ongoing = null;
+  state.current = null;
+  state.ckt = null;
+  state.okTurns = 0;
+  state.models = [];
+  state.mission = null;
+  state.events = [];
+  state.recordedTurns = [];
+  state.previousTrack = null;
+  state.turnMarks = [];
+  state.turnMarksMission = null;
+  state.conditioningSinceT = null;
+}
+
+/** Shows another vehicle: the address keeps the choice, and the page reads the station again as
+ *  a fresh load with that vehicle would (a catch-up under way finishes first). */
+export async function selectVehicle(id) {
+  if (!id || id === state.vehicleId) return;
+  setWantedVehicle(id);
+  if (catchingUp) await catchingUp.catch(() => {});
+  if (!state.fleet.has(id) || id === state.vehicleId) return; // gone meanwhile, or shown already
+  forgetVehicle();
+  state.vehicleId = id;
+  emit('vehicle-changed', id); // the views that keep what they drew of a vehicle start afresh
+  emit('recorded-turns', state.recordedTurns);
+  emit('previous-track', null);
+  emit('mission', null);
+  emit('events', state.events);
+  await catchUp();
+}
+
+/** The station's vehicles read again (GET /health, GET /vehicles), the vehicle shown kept. */
+export async function refreshFleet() {
+  const health = await getJson('/health');
+  noteFleetIds(fleetIdsOf(health));
+  const list = await getJson('/vehicles');
+  if (Array.isArray(list)) noteVehicles(list);
+}
+
+/** Whether a mission (by id) is another vehicle's than the one shown, as far as the missions read
+ *  say; a mission not read yet is taken as this one's on a station of one vehicle. */
+function othersMission(missionId) {
+  if (state.mission?.id === missionId) return false;
+  const m = state.missions.find((q) => q.id === missionId);
+  if (m) return Boolean(state.vehicleId && m.vehicle_id && m.vehicle_id !== state.vehicleId);
+  return state.fleetIds.length > 1 ? null : false; // null: not known yet
+}
+
 export async function refreshMissions() {
   state.missions = await getJson('/missions');
   emit('missions', state.missions);
@@ -94,6 +167,11 @@ export async function refreshTurnCount() {
   if (!state.vehicleId) return;
   const page = await getJson('/turns', { status: 'ok', limit: 1 });
   state.okTurns = page.items.length;
+  // GET /turns is the station's, every vehicle's: on a fleet the vehicle's own are its missions'.
+  if (state.okTurns > 0 && state.fleet.size > 1) {
+    const missions = await getJson('/missions');
+    state.okTurns = missions.filter((m) => m.vehicle_id === state.vehicleId).reduce((n, m) => n + (m.turns?.ok ?? 0), 0);
+  }
 }
 
 
@@ -102,7 +180,9 @@ export async function refreshTurnCount() {
 export async function loadMission(id, { force = false } = {}) {
   const seqBefore = missionMessages;
   const turnsBefore = turnMessages;
+  const vid = state.vehicleId;
   const m = await getJson(`/missions/${id}`);
+  if (state.vehicleId !== vid) return; // another vehicle chosen meanwhile: its own are read
   const isNew = force || state.mission?.id !== id;
   if (!isNew && missionMessages !== seqBefore && state.mission) {
     // A stream message overtook this answer: its progress is the newer one.
@@ -118,7 +198,8 @@ export async function loadMission(id, { force = false } = {}) {
   setTurnMarks(m);
   adoptRunningTurn(m, turnMessages === turnsBefore);
   if (isNew) {
-    await Promise.all([loadEvents(id), loadRecordedTurns(id), loadTrackHistory(id)]);
+    await Promise.all([loadEvents(id, m.vehicle_id), loadRecordedTurns(id), loadTrackHistory(id)]);
+    if (state.vehicleId !== vid) return;
     if (!state.shownTurn) await adoptLastTurn(m);
   }
 }
@@ -129,15 +210,19 @@ function levelOf(kind) {
   return state.eventLevels.get(kind) ?? 'info';
 }
 
-async function loadEvents(id) {
+async function loadEvents(id, vehicleId) {
+  const vid = state.vehicleId;
   const items = await getAllItems(`/missions/${id}/events`, {}, 2000);
-  // `logged`: the level is ours, not the server's, so a later vocabulary may correct it.
+  if (state.vehicleId !== vid) return;
+  // `logged`: the level is ours, not the server's, so a later vocabulary may correct it. The
+  // mission's events are of its vehicle.
   state.events = items.map((e) => ({
     t: e.t_s,
     kind: e.kind,
     level: levelOf(e.kind),
     message: e.message,
     logged: true,
+    vehicle_id: e.vehicle_id ?? vehicleId ?? null,
   }));
   emit('events', state.events);
 }
@@ -162,6 +247,7 @@ function applyVocabulary(hello) {
 }
 
 async function loadRecordedTurns(id) {
+  const vid = state.vehicleId;
   const items = await getAllItems('/turns', { mission: id }, 5000);
   const recent = items.slice(-MAX_RECORDED_TURNS);
   const paths = [];
@@ -170,6 +256,7 @@ async function loadRecordedTurns(id) {
     const batch = await Promise.all(recent.slice(i, i + 4).map((t) => fetchRawPath(t.id)));
     paths.push(...batch.filter(Boolean));
   }
+  if (state.vehicleId !== vid) return;
   state.recordedTurns = paths;
   emit('recorded-turns', paths);
 }
@@ -228,7 +315,9 @@ export function onMessage(msg) {
   const d = msg.data;
   switch (msg.topic) {
     case 'nav':
-      if (!state.testFeed) applyNav(d, true); // a ?test=1 hook is feeding nav instead
+      // A ?test=1 hook may be feeding the shown vehicle's nav instead; the others' go on.
+      if (!state.testFeed) applyNav(d, true);
+      else if (d?.vehicle_id && d.vehicle_id !== state.vehicleId) noteFleetNav(d);
       break;
     case 'helm':
       applyHelm(d);
@@ -243,7 +332,10 @@ export function onMessage(msg) {
       applyCurrent(d);
       break;
     case 'status':
-      addEvent({ t: msg.t, kind: d.kind, level: d.level, message: d.message, suppressed: d.suppressed_before });
+      // vehicle_id: the vehicle the event is about (none: the station's).
+      addEvent({ t: msg.t, kind: d.kind, level: d.level, message: d.message, suppressed: d.suppressed_before, vehicle_id: d.vehicle_id ?? null });
+      // A vehicle come or gone: the station's list of them is read again.
+      if (d.kind === 'vehicle_joined' || d.kind === 'vehicle_left') refreshFleet().catch((e) => console.warn('fleet re-read failed', e));
       break;
     default:
   }
@@ -252,6 +344,7 @@ export function onMessage(msg) {
 /** A nav sample: the readout and the bounded live track. Samples that repeat the last position
  *  are not stored: an idle vehicle must not push the track out. */
 export function applyNav(d, live) {
+  noteFleetNav(d); // every vehicle's, for the fleet list and the map
   if (state.vehicleId && d.vehicle_id && d.vehicle_id !== state.vehicleId) return;
   state.nav = d;
   if (live) state.navWallMs = performance.now();
@@ -283,6 +376,8 @@ async function refreshCurrent(vid) {
 }
 
 function applyHelm(d) {
+  noteFleetHelm(d);
+  if (state.vehicleId && d.vehicle_id && d.vehicle_id !== state.vehicleId) return;
   const prevMode = state.helm?.mode;
   state.helm = d;
   if (d.mode === 'CONDITIONING' && prevMode !== 'CONDITIONING') state.conditioningSinceT = state.nav?.t_s ?? null;
@@ -290,10 +385,31 @@ function applyHelm(d) {
   emit('helm', d);
 }
 
+/** A vehicle command's answer (the vehicle after it, commands.js): its entry in the fleet, and the
+ *  helm when it is the vehicle shown; the stream's next helm message says the same. */
+export function applyVehicleAnswer(v) {
+  if (!v?.id) return;
+  noteVehicles([v]);
+  if (v.id === state.vehicleId && 'helm_mode' in v) applyHelm(helmOf(v));
+}
+
 let missionMessages = 0; // stream mission messages so far (to order them against REST answers)
+const asking = new Set(); // missions whose vehicle is being read (GET /missions)
 
 function applyMission(d, t) {
+  const others = othersMission(d.mission_id);
+  if (others) return; // another vehicle's: its progress is not shown
   missionMessages++;
+  if (others === null) {
+    // Of a vehicle not known yet (a mission just started on a fleet): the list says whose.
+    if (asking.has(d.mission_id)) return;
+    asking.add(d.mission_id);
+    refreshMissions()
+      .then(() => (othersMission(d.mission_id) ? null : loadMission(d.mission_id)))
+      .catch((e) => console.warn(e))
+      .finally(() => asking.delete(d.mission_id));
+    return;
+  }
   if (!state.mission || state.mission.id !== d.mission_id) {
     // A mission started elsewhere (another tab, the CLI over the API): read it whole.
     loadMission(d.mission_id).then(refreshMissions).catch((e) => console.warn(e));
@@ -323,6 +439,9 @@ function applyMission(d, t) {
 let turnMessages = 0; // stream turn messages so far (a report asked before one is older than it)
 
 function applyTurn(d, t) {
+  // Another vehicle's turn, or one of a mission not read yet on a fleet (its report, read when
+  // its mission message comes, has the turn under way).
+  if (othersMission(d.mission_id) !== false) return;
   turnMessages++;
   if (d.event === 'started') {
     // The event is the report's running_turn: the signed Δψ (the side the runner chose; a half

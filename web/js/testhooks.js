@@ -11,6 +11,7 @@ import { replayState, seek as replaySeek, poseAt as replayPoseAt } from './repla
 import { logEntries } from './eventlog.js';
 import { alarmsState } from './alarms.js';
 import { clockMapping } from './clock.js';
+import { fleetList } from './fleet.js';
 
 /** A lawn-mower survey at 1 m/s sampled at 10 Hz: long straight legs joined by half circles,
  *  which is what two hours of turn collection looks like to the renderer. */
@@ -146,6 +147,32 @@ export function installTestHooks() {
       renderNow();
       return h;
     },
+    /** A nav message of vehicle `id` (another of a fleet) through the stream's path: at (x, y) m
+     *  on `heading`, at station time `t` (by default the shown vehicle's newest). */
+    fleetNav(id, x, y, heading = 0, t = null) {
+      const tS = t ?? state.nav?.t_s ?? 0;
+      onMessage({ topic: 'nav', seq: 0, t: tS, data: { vehicle_id: id, link: 'LIVE', t_s: tS, x_m: x, y_m: y, heading_deg: heading, speed_mps: 1.0 } });
+      return state.fleet.get(id)?.nav?.x_m ?? null;
+    },
+    /** A helm message of vehicle `id` through the stream's path: its mode and command. */
+    fleetHelm(id, mode, command = null) {
+      onMessage({ topic: 'helm', seq: 0, t: state.nav?.t_s ?? 0, data: { vehicle_id: id, mode, desired_heading_deg: null, desired_speed_mps: null, mission_id: null, command } });
+      return state.fleet.get(id)?.helm?.mode ?? null;
+    },
+    /** The fleet as the page holds it, in the list's order. */
+    fleet: () =>
+      fleetList().map((v) => ({ id: v.id, link: v.link, mode: v.helm?.mode ?? null, command: v.helm?.command?.kind ?? null, x: v.nav?.x_m ?? null, y: v.nav?.y_m ?? null, trail: v.trail.x.length, selected: v.id === state.vehicleId })),
+    /** The vehicles the Live map draws: the selected one and the others (x, y, label, heading). */
+    liveVehicles: () => {
+      const data = document.getElementById('live-plot')?.data ?? [];
+      const others = data.find((t) => t.mode === 'markers+text' && String(t.name).startsWith('other vehicles ('));
+      const own = data.find((t) => t.name === 'vehicle');
+      return {
+        selected: own?.x?.length ? { x: own.x[0], y: own.y[0], text: own.text?.[0] ?? null } : null,
+        others: others ? others.x.map((x, i) => ({ x, y: others.y[i], text: others.text[i], angle: others.marker.angle[i] })) : [],
+        trail: data.find((t) => t.name === 'other vehicles (trails)')?.x.filter((v) => Number.isFinite(v)).length ?? 0,
+      };
+    },
     /** Stops taking the stream's navigation (as a tab too loaded to keep up: the link goes STALE);
      *  releaseNav() takes it again. */
     holdNav() {
@@ -166,7 +193,7 @@ export function installTestHooks() {
     trackCapacity: () => state.track.capacity,
     /** The deviations from the prediction the Live view showed while turns ran. */
     deviations: () => deviationLog.slice(),
-    state: () => ({ link: state.link, sessionId: state.sessionId, vehicleId: state.vehicleId, mission: state.mission?.id ?? null, okTurns: state.okTurns }),
+    state: () => ({ link: state.link, sessionId: state.sessionId, vehicleId: state.vehicleId, fleetIds: state.fleetIds.slice(), mission: state.mission?.id ?? null, okTurns: state.okTurns }),
     /** The event log as shown ({kind, level}) and the levels the hello gave each kind. */
     events: () => state.events.map((e) => ({ kind: e.kind, level: e.level })),
     eventLevels: () => Object.fromEntries(state.eventLevels),
@@ -192,7 +219,7 @@ export function installTestHooks() {
     },
     replayPose: (t) => replayPoseAt(t),
     /** The event log as drawn, oldest first: one entry per happening ({kind, severity, count, message}). */
-    eventLog: () => logEntries().map((e) => ({ kind: e.kind, severity: e.severity, count: e.count, message: e.message, t: e.t })),
+    eventLog: () => logEntries().map((e) => ({ kind: e.kind, severity: e.severity, count: e.count, message: e.message, t: e.t, vehicle: e.vehicle })),
     /** Alarms: the unacknowledged ones, every kind raised, the beeps played, mute and audio state. */
     alarms: () => alarmsState(),
     /** The station clock -> wall clock mapping from GET /health ({utcMs, clockS, factor}). */

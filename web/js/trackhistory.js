@@ -18,6 +18,7 @@ let navCursor = { missionId: null, after: 0, epoch: -1, rows: 0 };
 export async function loadTrackHistory(id) {
   const tr = state.track;
   const resume = navCursor.missionId === id && navCursor.epoch === tr.epoch;
+  const vid = state.vehicleId;
   let after = resume ? navCursor.after : 0;
   const t = [];
   const x = [];
@@ -44,6 +45,7 @@ export async function loadTrackHistory(id) {
     const again = await getJson(`/missions/${id}/nav`, { limit: lastCount, after: lastAfter || undefined });
     after = again.next ?? lastAfter;
   }
+  if (state.vehicleId !== vid) return; // another vehicle chosen meanwhile: not its track
   const rows = (resume ? navCursor.rows : 0) + t.length;
   if (t.length && !state.testFeed) {
     mergeIntoTrack(t, x, y); // a test hook owns the track then
