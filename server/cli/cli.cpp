@@ -44,6 +44,7 @@ int run_cli(const std::vector<std::string>& args, std::istream& in, std::ostream
     if (args[0] == "vehicle") return cmd_vehicle(rest, io);
     if (args[0] == "serve") return cmd_serve(rest, io);
     if (args[0] == "frontseat-emulator") return cmd_frontseat_emulator(rest, io);
+    if (args[0] == "traffic") return cmd_traffic(rest, io);
   } catch (const HelpRequested&) {
     // --help or -h among a command's options (Args): its usage, or its subcommand's.
     const bool sub = args.size() > 1 && knows_command(args[0], args[1]);

@@ -52,5 +52,7 @@ void print_speed_reference(const kinematics::SpeedReferenceEvidence& e, std::ost
 // "along … m/s, across … m/s (N legs of … s on average)"
 void print_drift_scatter(const kinematics::DriftScatter& d, std::ostream& out);
 int cmd_frontseat_emulator(const std::vector<std::string>& args, Io& io);
+// avk traffic: a scenario's contacts as AIVDM over UDP to gpsd (cmd_traffic.cpp).
+int cmd_traffic(const std::vector<std::string>& args, Io& io);
 
 }  // namespace avk::server

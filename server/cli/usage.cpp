@@ -227,6 +227,12 @@ const std::vector<CommandUsage>& command_usages() {
        "      --ais watches AIS traffic decoded by gpsd (docs/ais.md); the collision watch\n"
        "      warns when two vehicles (or a vehicle and a contact) are predicted closer than\n"
        "      --standoff m within --watch-horizon s\n"},
+      {"traffic",
+       {},
+       "  avk traffic --scenario FILE --udp HOST:PORT [--interval 2] [--realtime-factor K]\n"
+       "                  [--duration S]\n"
+       "      simulated AIS traffic: the scenario's contacts (examples/traffic-charles.json) as\n"
+       "      AIVDM sentences over UDP to gpsd (gpsd udp://HOST:PORT); runs until SIGINT/SIGTERM\n"},
       {"frontseat-emulator",
        {},
        "  avk frontseat-emulator [--port 29500] [--bind 127.0.0.1] [--vehicle catamaran:m200]\n"

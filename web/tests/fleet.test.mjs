@@ -7,17 +7,17 @@
 // shown; without the token they are off. A vehicle the station knows from a stored mission only
 // (a catamaran's mission run before `avk serve` starts) is chosen in the list: every view switches
 // to it as a fresh load with it would, the address keeps it over a reload, and the header's
-// selector brings the station's own vehicle back. Last, a station of three simulated vehicles
-// (`avk serve --vehicles FLEET.json`): all listed and drawn with their ids, another chosen switches
-// the views, and a command goes to the vehicle chosen only. Run with `node --test web/tests/fleet.test.mjs` (CTest:
-// web_fleet).
+// selector brings the station's own vehicle back. Last, the README's fleet (`avk serve --vehicles
+// examples/fleet.json`) with the three collection missions running at once: all listed under their
+// missions and drawn with their ids, another chosen switches the views, and a command goes to the
+// vehicle chosen only. Run with `node --test web/tests/fleet.test.mjs` (CTest: web_fleet).
 //
 // Environment as e2e.test.mjs: AVK_BINARY, AVK_SCREENSHOTS, AVK_CHROMIUM, AVK_E2E_SLOW.
 
 import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { execFileSync } from 'node:child_process';
-import { mkdtempSync, writeFileSync } from 'node:fs';
+import { mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 
@@ -362,33 +362,33 @@ test('choosing another vehicle switches every view to it, the address keeps it, 
 
 // ---------------------------------------------------------------- a station of three vehicles
 
-// Three simulated vehicles apart on the grid (the format of examples/fleet.json).
-const FLEET = {
-  vehicles: [
-    { id: 'alpha', vehicle: 'usim', start: { x_m: 0, y_m: -70, heading_deg: 0 } },
-    { id: 'bravo', vehicle: 'usim', start: { x_m: 60, y_m: -70, heading_deg: 90 } },
-    { id: 'charlie', vehicle: 'usim', start: { x_m: -60, y_m: -70, heading_deg: 180 } },
-  ],
-};
+// The README's fleet: examples/fleet.json (three simulated M200s 300 m apart) with each one's
+// collection mission from examples/fleet-missions/, all running at once.
+const FLEET_FILE = path.join(webDir, '..', 'examples', 'fleet.json');
+const FLEET_IDS = JSON.parse(readFileSync(FLEET_FILE, 'utf8')).vehicles.map((v) => v.id);
+const fleetMission = (id) => JSON.parse(readFileSync(path.join(webDir, '..', 'examples', 'fleet-missions', `${id}.json`), 'utf8'));
 
-test('a station of three vehicles: all listed and drawn with their ids; another chosen switches the views and takes the commands', { timeout: slow(180000) }, async () => {
-  writeFileSync(path.join(tmp, 'fleet.json'), JSON.stringify(FLEET));
-  const s3 = await startAvkServer(AVK, ['serve', '--db', path.join(tmp, 'fleet.db'), '--vehicles', path.join(tmp, 'fleet.json'), '--port', '0', '--web', webDir]);
+test('a station of three vehicles running their missions at once: all listed and drawn with their ids; another chosen switches the views and takes the commands', { timeout: slow(180000) }, async () => {
+  const s3 = await startAvkServer(AVK, ['serve', '--db', path.join(tmp, 'fleet.db'), '--vehicles', FLEET_FILE, '--realtime-factor', '10', '--port', '0', '--web', webDir]);
   const p = await b.newPage();
   const call = (pathname, options) => apiRequest(s3, pathname, options);
   const on3 = (name, ...args) => p.evaluate(([n, a]) => window.avkTest[n](...a), [name, args]);
   const idOf = (label) => label.split(' · ')[0];
   try {
     const ids = (await call('/health')).vehicles;
-    assert.deepEqual(ids, FLEET.vehicles.map((v) => v.id));
+    assert.deepEqual(ids, FLEET_IDS);
+    const missionOf = {};
+    for (const id of ids) missionOf[id] = (await call(`/vehicles/${encodeURIComponent(id)}/missions`, { method: 'POST', body: fleetMission(id) })).id;
     await p.goto(`${s3.base}/?token=${s3.token}&test=1#live`, { waitUntil: 'load', timeout: slow(20000) });
-    const listed = await until('the three vehicles listed LIVE', async () => {
+    const listed = await until('the three vehicles listed LIVE, each under its own mission', async () => {
       const l = await fleetList(p);
-      return l.length === 3 && l.every((v) => v.link === 'LIVE') ? l : null;
-    }, 30000);
+      return l.length === 3 && l.every((v) => v.link === 'LIVE' && v.text.includes(`mission ${missionOf[v.id]}`)) ? l : null;
+    }, 60000);
     assert.deepEqual(listed.map((v) => v.id), ids, 'in the station\'s order');
+    for (const id of ids) assert.equal((await call(`/missions/${missionOf[id]}`)).vehicle_id, id);
     const first = (await on3('state')).vehicleId;
     assert.equal(first, (await call('/health')).vehicle_id, 'the station\'s own shown first');
+    await until('the first vehicle\'s mission shown', async () => (await on3('state')).mission === missionOf[first], 20000);
     const othersOf = (shown) => ids.filter((id) => id !== shown).sort();
     // Three markers where the station places them: the selected one named over its own, the
     // other two with their id and helm mode.
@@ -400,12 +400,12 @@ test('a station of three vehicles: all listed and drawn with their ids; another 
     assert.deepEqual(drawn.others.map((o) => idOf(o.text)).sort(), othersOf(first));
     for (const o of drawn.others) {
       const v = await call(`/vehicles/${encodeURIComponent(idOf(o.text))}`);
-      assert.equal(o.text, `${v.id} · ${v.helm_mode ?? 'idle'}`);
-      assert.ok(Math.hypot(o.x - v.nav.x_m, o.y - v.nav.y_m) < 5, `${v.id} drawn at (${o.x}, ${o.y}), the station has (${v.nav.x_m}, ${v.nav.y_m})`);
+      // Moving: drawn within a few seconds' travel of where the station has it.
+      assert.ok(Math.hypot(o.x - v.nav.x_m, o.y - v.nav.y_m) < 30, `${v.id} drawn at (${o.x}, ${o.y}), the station has (${v.nav.x_m}, ${v.nav.y_m})`);
     }
     await screenshot(p, 'fleet-three');
 
-    // Another one chosen in the list: every view is of it.
+    // Another one chosen in the list: every view is of it, its mission the one shown.
     const second = ids.find((id) => id !== first);
     await p.click(`#fleet-list li[data-vehicle="${second}"] button`);
     await until('the second vehicle shown', async () => (await on3('state')).vehicleId === second, 20000);
@@ -415,33 +415,29 @@ test('a station of three vehicles: all listed and drawn with their ids; another 
       return d.selected?.text === second && d.others.length === 2 ? d : null;
     }, 20000);
     assert.deepEqual(now.others.map((o) => idOf(o.text)).sort(), othersOf(second));
+    await until('its mission shown', async () => (await on3('state')).mission === missionOf[second], 20000);
+    await showView(p, 'mission');
+    assert.equal(await p.textContent('#m-start'), `Start mission on ${second}`);
+    await showView(p, 'live');
     assert.equal(await p.textContent('#cmd-vehicle'), `· ${second}`);
-    // A command goes to it, and to it only.
+    // A command goes to it, and to it only: the other two go on with their missions.
     await p.click('#cmd-hold');
     await p.waitForSelector('#cmd-confirm:not([hidden])');
     assert.match(await p.textContent('#cmd-question'), new RegExp(`^Hold ${second}: `));
     await p.click('#cmd-yes');
     await until('the Hold answered', async () => (await p.getAttribute('#cmd-result', 'data-state')) === 'ok', 20000);
-    assert.equal((await call(`/vehicles/${encodeURIComponent(second)}`)).helm_mode, 'HOLDING');
-    for (const id of othersOf(second)) assert.notEqual((await call(`/vehicles/${encodeURIComponent(id)}`)).helm_mode, 'HOLDING', `${id} was not told to hold`);
-    // The Mission view starts on it; a mission started on it is the one the page shows.
-    await showView(p, 'mission');
-    assert.equal(await p.textContent('#m-start'), `Start mission on ${second}`);
-    const nav = (await call(`/vehicles/${encodeURIComponent(second)}`)).nav;
-    const ring = [[-150, -150], [150, -150], [150, 150], [-150, 150]].map(([dx, dy]) => [nav.x_m + dx, nav.y_m + dy]);
-    const mission = { name: 'second', turn_array: { speeds_mps: [1.0], dheadings_deg: [90], repeats: 1 }, operating_region: { polygon_m: ring, buffer_m: 25, return_point_m: [nav.x_m, nav.y_m] } };
-    const mid = (await call(`/vehicles/${encodeURIComponent(second)}/missions`, { method: 'POST', body: mission })).id;
-    await until('its mission shown', async () => (await on3('state')).mission === mid, 20000);
-    // The header's selector: back to the first, which has no mission.
+    assert.equal((await call(`/vehicles/${encodeURIComponent(second)}`)).command?.kind, 'hold');
+    for (const id of othersOf(second)) {
+      const v = await call(`/vehicles/${encodeURIComponent(id)}`);
+      assert.equal(v.command, null, `${id} was not told to hold`);
+      assert.equal(v.mission_id, missionOf[id], `${id} still runs its mission`);
+    }
+    // The header's selector: back to the first, its own mission shown.
     await p.selectOption('#vehicle-select', first);
-    await until('the first vehicle shown, without the mission', async () => {
+    await until('the first vehicle shown, with its mission', async () => {
       const st = await on3('state');
-      return st.vehicleId === first && st.mission === null;
+      return st.vehicleId === first && st.mission === missionOf[first];
     }, 20000);
-    assert.equal(await p.textContent('#m-start'), `Start mission on ${first}`);
-    // The other's mission goes on (its helm on the stream), and is not shown as this one's.
-    await until('the second vehicle listed under its mission', async () => /mission \d+/.test((await fleetList(p)).find((v) => v.id === second)?.text ?? ''), 20000);
-    assert.equal((await on3('state')).mission, null);
     assert.deepEqual(b.errors.filter((e) => !/the server responded with a status of (409|422)/.test(e)), [], 'no console errors or exceptions');
   } finally {
     await p.close().catch(() => {});
