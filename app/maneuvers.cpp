@@ -3,10 +3,12 @@
 #include <cmath>
 #include <string>
 
+#include "app/ais_contacts.hpp"
 #include "app/ckt_tables.hpp"
 #include "app/context.hpp"
 #include "app/current.hpp"
 #include "app/store_access.hpp"
+#include "app/traffic.hpp"
 #include "app/vehicle_motion.hpp"
 #include "app/yaw_rate_table.hpp"
 #include "kinematics/ckt.hpp"
@@ -233,6 +235,34 @@ kin::BandSources band_sources(const AnswerMotion& motion,
   return b;
 }
 
+namespace {
+
+// The fleet's other vehicles and the AIS traffic, as straight-line contacts now.
+void add_live_contacts(Context& ctx, ManeuverEvaluation& out) {
+  for (VehicleLoop* loop : ctx.vehicle_loops()) {
+    if (loop->info().id == out.query.vehicle_id) continue;
+    const VehicleSnapshot s = loop->snapshot();
+    if (!s.nav || s.link == vehicle::LinkState::disconnected) continue;
+    kin::Contact c;
+    c.x_m = s.nav->x_m;
+    c.y_m = s.nav->y_m;
+    c.course_deg = s.nav->heading_deg;
+    c.speed_mps = s.nav->speed_mps;
+    c.position_sd_m = kNavigationPositionSdM;
+    out.query.contacts.push_back(c);
+    out.live_contact_names.push_back(s.info.id);
+  }
+  for (const auto& a : traffic(ctx).contacts) {
+    const auto c = to_kinematics_contact(a);
+    if (!c) continue;
+    out.query.contacts.push_back(*c);
+    out.live_contact_names.push_back("AIS " + std::to_string(a.mmsi) +
+                                     (a.name.empty() ? "" : " " + a.name));
+  }
+}
+
+}  // namespace
+
 Result<ManeuverEvaluation> evaluate_maneuvers(Context& ctx, const ManeuverQuery& q) {
   if (auto e = check(q)) return *e;
   if (!(q.max_risk >= 0.0 && q.max_risk <= 1.0))
@@ -248,6 +278,7 @@ Result<ManeuverEvaluation> evaluate_maneuvers(Context& ctx, const ManeuverQuery&
   if (!pred) return pred.error();
   ManeuverEvaluation out;
   out.query = q;
+  if (q.live_contacts) add_live_contacts(ctx, out);
   out.current = current->current;
   out.current_source = current->source;
   out.frame = current->frame;
@@ -262,7 +293,7 @@ Result<ManeuverEvaluation> evaluate_maneuvers(Context& ctx, const ManeuverQuery&
                                              : q.candidates_deg;
   kin::ManeuverProblem problem;
   problem.own = q.own;
-  problem.contacts = q.contacts;
+  problem.contacts = out.query.contacts;
   problem.standoff_m = q.standoff_m;
   problem.horizon_s = q.horizon_s;
   problem.use_corridor = q.use_corridor;

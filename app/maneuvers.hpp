@@ -31,6 +31,9 @@ struct ManeuverQuery {
   kinematics::Pose own;    // position (local grid) and heading now
   double speed_mps = 1.0;  // steady speed now
   std::vector<kinematics::Contact> contacts;
+  // Also the station's live contacts: every other vehicle of its fleet (on its heading at its
+  // speed) and every AIS contact it watches, at their positions now, after `contacts`.
+  bool live_contacts = false;
   double standoff_m = 10.0;
   double horizon_s = 120.0;
   // Candidate heading changes (deg, + starboard); empty: -180..180 in candidate_step_deg.
@@ -67,7 +70,10 @@ struct ManeuverQuery {
 };
 
 struct ManeuverEvaluation {
-  ManeuverQuery query;
+  ManeuverQuery query;  // with the live contacts added to its contacts
+  // Who each live contact is (a vehicle id, or "AIS <MMSI> <name>"), in the order they follow
+  // the request's own contacts.
+  std::vector<std::string> live_contact_names;
   std::vector<kinematics::CandidateEvaluation> candidates;  // in the order asked
   std::optional<std::size_t> chosen;                        // index into candidates
   std::optional<std::int64_t> model_id;                     // model: the model that answered

@@ -112,9 +112,10 @@ Own own_of(Reader& body, Errors& errors) {
   return own;
 }
 
-std::vector<kinematics::Contact> contacts_of(Reader& body, Errors& errors, std::size_t max_count) {
+std::vector<kinematics::Contact> contacts_of(Reader& body, Errors& errors, std::size_t max_count,
+                                             bool required = true) {
   std::vector<kinematics::Contact> out;
-  const json* list = array(body, "contacts", true, max_count);
+  const json* list = array(body, "contacts", required, max_count);
   if (!list) return out;
   for (std::size_t i = 0; i < list->size(); ++i) {
     Reader r((*list)[i], "/contacts/" + std::to_string(i), errors);
@@ -149,7 +150,9 @@ app::Result<ManeuverRequest> maneuver_request(const json& body, const std::strin
   const Own own = own_of(r, errors);
   q.own = own.pose;
   q.speed_mps = own.speed_mps;
-  q.contacts = contacts_of(r, errors, kMaxManeuverContacts);
+  // With the station's live contacts, a request may name none of its own.
+  q.live_contacts = boolean(r, "live_contacts").value_or(false);
+  q.contacts = contacts_of(r, errors, kMaxManeuverContacts, !q.live_contacts);
   q.standoff_m = number(r, "standoff_m", 0.0, 1000.0, false, true).value_or(q.standoff_m);
   q.horizon_s =
       number(r, "horizon_s", 0.0, kMaxManeuverHorizonS, false, true).value_or(q.horizon_s);

@@ -137,6 +137,7 @@ json evaluation_document(const app::ManeuverEvaluation& e, double path_step_s,
         {"explanation", e.choice.explanation}};
   }
   json out = {{"vehicle_id", q.vehicle_id},
+              {"live_contacts", e.live_contact_names},
               {"method", app::to_string(q.method)},
               {"model_id", optional_json(e.model_id)},
               {"table_source", e.table_source ? json(*e.table_source) : json()},

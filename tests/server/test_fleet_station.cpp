@@ -190,4 +190,43 @@ TEST(FleetStation, ThreeVehiclesRunTheirOwnMissionsAtOnceInOneStation) {
   server.stop();
 }
 
+TEST(FleetStation, TheOtherVehiclesAreLiveContactsOfAManeuverEvaluation) {
+  avk::testing::TempDb db("avk_fleet_contacts");
+  avk::server::StreamHub hub;
+  avk::server::Station station(fleet_options(db.path()), hub);
+  avk::server::HttpServer server({}, station, hub);
+  server.start();
+  station.start();
+  const unsigned short port = server.port();
+  ASSERT_TRUE(wait_for([&] {
+    const json v = json::parse(http_call(port, "GET", "/api/v1/vehicles").body);
+    int with_nav = 0;
+    for (const auto& x : v)
+      with_nav += x["nav"].is_object();
+    return with_nav == 3;
+  }));
+  const json body = {
+      {"own", {{"x_m", 0.0}, {"y_m", -70.0}, {"heading_deg", 90.0}, {"speed_mps", 1.0}}},
+      {"live_contacts", true},
+      {"method", "instantaneous"},
+      {"candidates_deg", {0, 90}},
+      {"standoff_m", 20.0},
+      {"horizon_s", 400.0}};
+  const auto r = http_call(port, "POST", "/api/v1/vehicles/alpha/maneuvers/evaluate", body.dump(),
+                           control_headers());
+  ASSERT_EQ(r.status, 200) << r.body;
+  const json e = json::parse(r.body);
+  // Every vehicle but alpha itself, where the station has it.
+  EXPECT_EQ(e["live_contacts"], json::array({"bravo", "charlie"}));
+  ASSERT_EQ(e["contacts"].size(), 2u);
+  EXPECT_NEAR(e["contacts"][0]["x_m"].get<double>(), 300.0, 5.0);
+  EXPECT_NEAR(e["contacts"][1]["x_m"].get<double>(), -300.0, 5.0);
+  // Heading east at bravo, which sits at rest 300 m ahead: straight on (0) meets it, 90 does not.
+  ASSERT_EQ(e["candidates"].size(), 2u);
+  EXPECT_LT(e["candidates"][0]["min_cpa_m"].get<double>(), 20.0);
+  EXPECT_GT(e["candidates"][1]["min_cpa_m"].get<double>(), 20.0);
+  station.shutdown();
+  server.stop();
+}
+
 }  // namespace
