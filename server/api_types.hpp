@@ -95,6 +95,9 @@ struct StreamMessage {
   // Telemetry (nav, helm) is latest-value-wins: an unsent older frame of the same topic is
   // replaced. Events (mission, turn, status) are queued and never dropped silently.
   bool latest_value_wins = false;
+  // What a latest-value-wins frame replaces: an unsent frame of the same topic about the same
+  // vehicle (one vehicle's telemetry never replaces another's).
+  std::string latest_key;
   std::shared_ptr<const std::string> payload;  // {"topic","seq","t","data"} as text
 };
 

@@ -60,7 +60,8 @@ void StreamHub::unsubscribe_all(const StreamSink* sink) {
     unsubscribe(sink, t);
 }
 
-void StreamHub::publish(const std::string& topic, double t_s, const std::string& data_json) {
+void StreamHub::publish(const std::string& topic, double t_s, const std::string& data_json,
+                        const std::string& vehicle_id) {
   std::vector<std::shared_ptr<StreamSink>> targets;
   auto message = std::make_shared<StreamMessage>();
   {
@@ -68,6 +69,7 @@ void StreamHub::publish(const std::string& topic, double t_s, const std::string&
     message->topic = topic;
     message->seq = ++seq_[topic];
     message->latest_value_wins = topic == "nav" || topic == "helm" || topic == "current";
+    message->latest_key = topic + '/' + vehicle_id;
     auto& list = subscribers_[topic];
     std::erase_if(list, [](const std::weak_ptr<StreamSink>& w) { return w.expired(); });
     for (const auto& w : list)

@@ -40,7 +40,10 @@ class StreamHub final : public StreamSource {
   void unsubscribe_all(const StreamSink* sink) override;
 
   // data_json is the "data" member, already serialised. t_s is the mission (or wall) clock.
-  void publish(const std::string& topic, double t_s, const std::string& data_json);
+  // vehicle_id: the vehicle the message is about, so that latest-value-wins telemetry of one
+  // vehicle never replaces another's.
+  void publish(const std::string& topic, double t_s, const std::string& data_json,
+               const std::string& vehicle_id = {});
   // Status: at most one message per vehicle and kind per min_interval (one vehicle's burst does
   // not hide another's); suppressed ones are counted into the next message that goes out.
   // vehicle_id: the vehicle the event is about; empty for the station as a whole.

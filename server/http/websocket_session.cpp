@@ -47,7 +47,7 @@ void WebSocketSession::on_binary() {
 void WebSocketSession::deliver(std::shared_ptr<const StreamMessage> message) {
   on_strand([self = shared_from_this(), m = std::move(message)]() mutable {
     std::optional<std::uint64_t> key;
-    if (m->latest_value_wins) key = std::hash<std::string>{}(m->topic);
+    if (m->latest_value_wins) key = std::hash<std::string>{}(m->latest_key);
     self->enqueue(std::move(m), key);
   });
 }

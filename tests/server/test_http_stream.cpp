@@ -2,6 +2,8 @@
 // subprotocol, and the slow-client policy of both (events close, telemetry keeps the newest).
 #include <gtest/gtest.h>
 
+#include <map>
+
 #include "server/http_server_fixture.hpp"
 
 namespace {
@@ -187,6 +189,39 @@ TEST_F(HttpServerTest, StalledTelemetryClientStaysOpen) {
   EXPECT_EQ(last_seq, kMessages);
   EXPECT_LT(got, kMessages);  // older frames were replaced, not queued
   EXPECT_EQ(server->open_stream_sessions(), 1u);
+}
+
+// A fleet's telemetry: a stalled client's unsent nav of one vehicle is replaced by that vehicle's
+// newer nav only, never by another vehicle's, so each vehicle's newest sample reaches it.
+TEST_F(HttpServerTest, StalledTelemetryKeepsEachVehiclesNewestSample) {
+  start({});
+  WsClient stalled(port, "", 4096);
+  ASSERT_TRUE(stalled.read());
+  stalled.send(R"({"subscribe":["nav"]})");
+  ASSERT_TRUE(stalled.read());
+
+  constexpr int kMessages = 2000;  // alternately vehicle a (odd i) and vehicle b (even i)
+  const std::string pad(64 * 1024, 'n');
+  for (int i = 1; i <= kMessages; ++i) {
+    const std::string vid = i % 2 ? "a" : "b";
+    hub.publish("nav", i * 0.1,
+                R"({"vehicle_id":")" + vid + R"(","i":)" + std::to_string(i) + R"(,"pad":")" + pad +
+                    R"("})",
+                vid);
+  }
+  std::map<std::string, int> newest;
+  int got = 0;
+  std::int64_t last_seq = 0;
+  while (last_seq < kMessages) {
+    const auto m = stalled.read();
+    ASSERT_TRUE(m) << stalled.error().message();
+    ++got;
+    last_seq = (*m)["seq"].get<std::int64_t>();
+    newest[(*m)["data"]["vehicle_id"].get<std::string>()] = (*m)["data"]["i"].get<int>();
+  }
+  EXPECT_LT(got, kMessages);  // older frames were replaced
+  EXPECT_EQ(newest["a"], kMessages - 1);
+  EXPECT_EQ(newest["b"], kMessages);
 }
 
 // --- the Foxglove connection ---------------------------------------------------------------

@@ -16,6 +16,7 @@
 
 #include "support/c_strings.hpp"
 #include "support/gpsfake.hpp"
+#include "support/process_group.hpp"
 #include "support/temp_dir.hpp"
 
 extern char** environ;
@@ -45,20 +46,7 @@ class GpsdUdp {
     posix_spawn_file_actions_destroy(&fa);
     if (rc != 0) throw std::runtime_error("cannot start gpsd (scripts/setup installs it)");
   }
-  ~GpsdUdp() {
-    if (pid_ <= 0) return;
-    ::kill(-pid_, SIGTERM);
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-    int status = 0;
-    while (::waitpid(pid_, &status, WNOHANG) == 0) {
-      if (std::chrono::steady_clock::now() > deadline) {
-        ::kill(-pid_, SIGKILL);
-        ::waitpid(pid_, &status, 0);
-        break;
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-  }
+  ~GpsdUdp() { stop_process_group(pid_); }
   GpsdUdp(const GpsdUdp&) = delete;
   GpsdUdp& operator=(const GpsdUdp&) = delete;
 

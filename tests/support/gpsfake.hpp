@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "support/c_strings.hpp"
+#include "support/process_group.hpp"
 #include "support/temp_dir.hpp"
 
 extern char** environ;
@@ -88,22 +89,9 @@ class Gpsfake {
     return s.str();
   }
 
-  // Ends gpsfake and gpsd: SIGTERM to the group, SIGKILL to whatever is left after 10 s.
+  // Ends gpsfake and gpsd (support/process_group.hpp).
   void stop() {
-    if (pid_ <= 0) return;
-    ::kill(-pid_, SIGTERM);
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-    int status = 0;
-    while (::waitpid(pid_, &status, WNOHANG) == 0) {
-      if (std::chrono::steady_clock::now() > deadline) {
-        ::kill(-pid_, SIGKILL);
-        ::waitpid(pid_, &status, 0);
-        break;
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    }
-    // gpsd, if gpsfake went first.
-    ::kill(-pid_, SIGKILL);
+    stop_process_group(pid_);
     pid_ = -1;
   }
 

@@ -363,13 +363,14 @@ test('choosing another vehicle switches every view to it, the address keeps it, 
 // ---------------------------------------------------------------- a station of three vehicles
 
 // The README's fleet: examples/fleet.json (three simulated M200s 300 m apart) with each one's
-// collection mission from examples/fleet-missions/, all running at once.
+// collection mission from examples/fleet-missions/, all running at once (in real time: each takes
+// minutes, so all three are still running when the test ends).
 const FLEET_FILE = path.join(webDir, '..', 'examples', 'fleet.json');
 const FLEET_IDS = JSON.parse(readFileSync(FLEET_FILE, 'utf8')).vehicles.map((v) => v.id);
 const fleetMission = (id) => JSON.parse(readFileSync(path.join(webDir, '..', 'examples', 'fleet-missions', `${id}.json`), 'utf8'));
 
 test('a station of three vehicles running their missions at once: all listed and drawn with their ids; another chosen switches the views and takes the commands', { timeout: slow(180000) }, async () => {
-  const s3 = await startAvkServer(AVK, ['serve', '--db', path.join(tmp, 'fleet.db'), '--vehicles', FLEET_FILE, '--realtime-factor', '10', '--port', '0', '--web', webDir]);
+  const s3 = await startAvkServer(AVK, ['serve', '--db', path.join(tmp, 'fleet.db'), '--vehicles', FLEET_FILE, '--realtime-factor', '1', '--port', '0', '--web', webDir]);
   const p = await b.newPage();
   const call = (pathname, options) => apiRequest(s3, pathname, options);
   const on3 = (name, ...args) => p.evaluate(([n, a]) => window.avkTest[n](...a), [name, args]);
