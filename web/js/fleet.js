@@ -53,8 +53,24 @@ function bound() {
 }
 
 function changed() {
+  clearTimeout(soon);
+  soon = null;
+  lastEmitMs = performance.now();
   version++;
   emit('fleet', state.fleet);
+}
+
+// The stream's nav and helm of ten vehicles at x10 are a thousand messages a second: the map and
+// the list follow the other vehicles at most every FLEET_REDRAW_MS (the selected vehicle is
+// followed at once, as its own track is), so the page keeps its frame rate with a fleet.
+const FLEET_REDRAW_MS = 250;
+let soon = null;
+let lastEmitMs = 0;
+function changedSoon() {
+  if (soon) return;
+  const wait = FLEET_REDRAW_MS - (performance.now() - lastEmitMs);
+  if (wait <= 0) return changed();
+  soon = setTimeout(changed, wait);
 }
 
 function pushTrail(v, x, y) {
@@ -79,7 +95,8 @@ export function noteFleetNav(d) {
     v.nav = d;
     pushTrail(v, d.x_m, d.y_m);
   }
-  changed();
+  if (d.vehicle_id === state.vehicleId) changed();
+  else changedSoon();
 }
 
 /** A helm message of any vehicle: its mode, desired values, mission and command. */
@@ -88,7 +105,8 @@ export function noteFleetHelm(d) {
   const v = entry(d.vehicle_id);
   v.heardMs = performance.now();
   v.helm = d;
-  changed();
+  if (d.vehicle_id === state.vehicleId) changed();
+  else changedSoon();
 }
 
 /** The helm message a vehicle of GET /vehicles amounts to. */

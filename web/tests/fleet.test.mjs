@@ -140,15 +140,19 @@ test('other vehicles are drawn with their ids and helm modes, fitted in, and the
     window.avkTest.renderTimes(true);
     fullRedraws = 0;
     tracesOnly = 0;
+    // Another vehicle is redrawn at most every 250 ms (web/js/fleet.js): each move waits for it.
+    const pause = () => new Promise((r) => setTimeout(r, 300));
     for (let i = 1; i <= 30; i++) {
       window.avkTest.fleetNav('bravo', 40 + i * 0.3, 30, 90 + i);
+      if (i % 3 === 0) await pause();
       await frame();
     }
+    await pause();
     await frame();
     const d = window.avkTest.liveVehicles();
     return { renders: window.avkTest.renderTimes().length, fullRedraws, tracesOnly, bravo: d.others.find((o) => o.text.startsWith('bravo')), trail: d.trail };
   });
-  assert.ok(result.renders >= 10, `${result.renders} plot updates for 30 moves`);
+  assert.ok(result.renders >= 8, `${result.renders} plot updates for 30 moves in 10 pauses`);
   assert.ok(result.tracesOnly >= result.renders - 2, `${result.fullRedraws} full redraws and ${result.tracesOnly} of the traces only for ${result.renders} updates`);
   assert.ok(result.fullRedraws <= 2, `${result.fullRedraws} full redraws for ${result.renders} updates`);
   assert.equal(result.bravo.x.toFixed(1), '49.0', 'the newest position is drawn');
