@@ -98,6 +98,8 @@ struct StreamMessage {
   // What a latest-value-wins frame replaces: an unsent frame of the same topic about the same
   // vehicle (one vehicle's telemetry never replaces another's).
   std::string latest_key;
+  // Telemetry sent continuously (nav, helm): a client may ask for fewer per second (max_hz).
+  bool rate_limitable = false;
   std::shared_ptr<const std::string> payload;  // {"topic","seq","t","data"} as text
 };
 

@@ -70,6 +70,7 @@ void StreamHub::publish(const std::string& topic, double t_s, const std::string&
     message->seq = ++seq_[topic];
     message->latest_value_wins = topic == "nav" || topic == "helm" || topic == "current";
     message->latest_key = topic + '/' + vehicle_id;
+    message->rate_limitable = topic == "nav" || topic == "helm";
     auto& list = subscribers_[topic];
     std::erase_if(list, [](const std::weak_ptr<StreamSink>& w) { return w.expired(); });
     for (const auto& w : list)

@@ -1,7 +1,9 @@
 #include "server/http/websocket_session.hpp"
 
+#include <chrono>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -46,6 +48,16 @@ void WebSocketSession::on_binary() {
 
 void WebSocketSession::deliver(std::shared_ptr<const StreamMessage> message) {
   on_strand([self = shared_from_this(), m = std::move(message)]() mutable {
+    if (m->rate_limitable && self->max_hz_ > 0.0) {
+      // A frame within 1/max_hz of the key's last one is not taken: telemetry is sent
+      // continuously, so the next one after the interval carries the newest state.
+      const auto now = std::chrono::steady_clock::now();
+      auto& last = self->taken_[m->latest_key];
+      if (last.time_since_epoch().count() != 0 &&
+          now - last < std::chrono::duration<double>(1.0 / self->max_hz_))
+        return;
+      last = now;
+    }
     std::optional<std::uint64_t> key;
     if (m->latest_value_wins) key = std::hash<std::string>{}(m->latest_key);
     self->enqueue(std::move(m), key);
@@ -81,8 +93,16 @@ void WebSocketSession::on_text(const std::string& text) {
     }
     changes.push_back(std::move(change));
   }
-  if (changes.empty())
-    return send_control(error_message(R"(expected "subscribe" or "unsubscribe")"));
+  std::optional<double> max_hz;
+  if (const auto it = command.find("max_hz"); it != command.end()) {
+    if (!it->is_number() || !(it->get<double>() >= 0.0 && it->get<double>() <= 1000.0))
+      return send_control(
+          error_message("max_hz takes the most nav and helm messages a second per vehicle, "
+                        "from 0 (all of them) to 1000"));
+    max_hz = it->get<double>();
+  }
+  if (changes.empty() && !max_hz)
+    return send_control(error_message(R"(expected "subscribe", "unsubscribe" or "max_hz")"));
   // All or nothing, so a client never has to work out which half of a request took effect.
   if (!unknown.empty()) {
     std::string list;
@@ -92,6 +112,10 @@ void WebSocketSession::on_text(const std::string& text) {
     for (const auto& t : state_->hub().topic_names())
       offered += (offered.empty() ? "" : ", ") + t;
     return send_control(error_message("unknown topic: " + list + " (topics: " + offered + ")"));
+  }
+  if (max_hz) {
+    max_hz_ = *max_hz;
+    taken_.clear();
   }
   auto& hub = state_->hub();
   for (const auto& change : changes) {
@@ -105,7 +129,8 @@ void WebSocketSession::on_text(const std::string& text) {
       }
     }
   }
-  send_control(nlohmann::json{{"type", "subscribed"}, {"topics", topics_}}.dump());
+  send_control(
+      nlohmann::json{{"type", "subscribed"}, {"topics", topics_}, {"max_hz", max_hz_}}.dump());
 }
 
 void WebSocketSession::send_control(std::string text) {

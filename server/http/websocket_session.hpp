@@ -1,9 +1,13 @@
 #pragma once
 // One client of the live stream at /api/v1/stream (server/http/live_websocket.hpp for the queue,
 // the timeouts and how a session ends): telemetry (nav, helm, current) is latest-value-wins per
-// topic, events are queued, and a client that lets more than stream_event_queue_limit of them
-// pile up is closed with 1008 to re-sync over REST.
+// topic and vehicle, events are queued, and a client that lets more than stream_event_queue_limit
+// of them pile up is closed with 1008 to re-sync over REST. A client may ask for at most max_hz
+// nav and helm messages a second per vehicle (a dashboard of a fleet at x10 needs far fewer than
+// the 100 a second each vehicle sends).
 
+#include <chrono>
+#include <map>
 #include <memory>
 #include <set>
 #include <string>
@@ -44,6 +48,9 @@ class WebSocketSession
 
   std::shared_ptr<WebSocketStreamSink> sink_;
   std::set<std::string> topics_;
+  // On the strand: the client's telemetry rate (0: all) and when each key's last frame was taken.
+  double max_hz_ = 0.0;
+  std::map<std::string, std::chrono::steady_clock::time_point> taken_;
 };
 
 }  // namespace avk::server

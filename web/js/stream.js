@@ -24,6 +24,15 @@ export class Stream {
     this.open = false;
     this.lastSeq = {}; // per topic, to notice gaps
     this.gaps = 0;
+    this.maxHz = null; // the telemetry rate asked of the server per vehicle; null: all of it
+  }
+
+  /** Asks the server for at most hz nav and helm messages a second per vehicle (null: every
+   *  one), now and on every reconnection. */
+  setTelemetryRate(hz) {
+    if (hz === this.maxHz) return;
+    this.maxHz = hz;
+    if (this.open && this.ws) this.ws.send(JSON.stringify({ max_hz: hz ?? 0 }));
   }
 
   start() {
@@ -64,7 +73,7 @@ export class Stream {
     this.ws = ws;
     ws.addEventListener('open', () => {
       this.open = true;
-      ws.send(JSON.stringify({ subscribe: TOPICS }));
+      ws.send(JSON.stringify(this.maxHz ? { subscribe: TOPICS, max_hz: this.maxHz } : { subscribe: TOPICS }));
       this.handlers.onOpen?.();
     });
     ws.addEventListener('message', (ev) => {

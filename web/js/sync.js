@@ -24,6 +24,15 @@ export function attachStream(s) {
   stream = s;
 }
 
+// A fleet's telemetry at full rate is 100 nav and 100 helm messages a second per vehicle at x10:
+// more than a page can handle beside its drawing. With several vehicles the page asks for 20 a
+// second per vehicle (every 50 ms of wall clock, smoother than the eye follows); one vehicle is
+// followed at full rate, as before.
+const FLEET_TELEMETRY_HZ = 20;
+function limitFleetTelemetry() {
+  stream?.setTelemetryRate(state.fleetIds.length > 1 ? FLEET_TELEMETRY_HZ : null);
+}
+
 /** Re-reads the station over REST. Concurrent calls share one run. */
 export function catchUp() {
   if (!catchingUp) {
@@ -46,6 +55,7 @@ async function doCatchUp() {
   const d = health.datum ?? null;
   if (JSON.stringify(d) !== JSON.stringify(state.datum)) state.datum = d;
   noteFleetIds(fleetIdsOf(health));
+  limitFleetTelemetry();
   let list = await getJson('/vehicles').catch(() => []);
   if (!Array.isArray(list)) list = [];
   noteVehicles(list);
@@ -137,6 +147,7 @@ export async function selectVehicle(id) {
 export async function refreshFleet() {
   const health = await getJson('/health');
   noteFleetIds(fleetIdsOf(health));
+  limitFleetTelemetry();
   const list = await getJson('/vehicles');
   if (Array.isArray(list)) noteVehicles(list);
 }
