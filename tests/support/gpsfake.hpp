@@ -58,21 +58,8 @@ class Gpsfake {
     std::vector<std::string> args = {
         "gpsfake", "-q",  "-c",        std::to_string(cycle_s), "-P", std::to_string(port_),
         "-W",      "600", log.string()};
-    CStrings argv(args);
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0);
-    posix_spawn_file_actions_addopen(&fa, 1, output_.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_adddup2(&fa, 1, 2);
-    // A process group of its own, gpsd included, so that one signal reaches both.
-    posix_spawnattr_t attr;
-    posix_spawnattr_init(&attr);
-    posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETPGROUP);
-    posix_spawnattr_setpgroup(&attr, 0);
-    const int rc = posix_spawnp(&pid_, "gpsfake", &fa, &attr, argv.get(), environ);
-    posix_spawnattr_destroy(&attr);
-    posix_spawn_file_actions_destroy(&fa);
-    if (rc != 0) throw std::runtime_error("cannot start gpsfake (scripts/setup installs it)");
+    pid_ = spawn_process_group(args, output_);
+    if (pid_ <= 0) throw std::runtime_error("cannot start gpsfake (scripts/setup installs it)");
   }
   ~Gpsfake() { stop(); }
   Gpsfake(const Gpsfake&) = delete;
