@@ -28,13 +28,12 @@ import { spawn } from 'node:child_process';
 import { createSocket } from 'node:dgram';
 import { existsSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { createRequire } from 'node:module';
-import { createServer } from 'node:net';
 import { cpus, loadavg, tmpdir } from 'node:os';
 import path from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { parseArgs } from 'node:util';
 
-import { apiRequest, startAvkServer, stopAvkServer } from '../tests/avk_server.mjs';
+import { apiRequest, startAvkServer, stopAvkServer, freeLoopbackPort } from '../tests/avk_server.mjs';
 import { launchChromium } from '../tests/browser.mjs';
 import { sleep, until } from '../tests/wait.mjs';
 
@@ -152,16 +151,6 @@ function trafficScenario() {
 // ---------------------------------------------------------------------------------------------
 // Processes
 
-function freeTcpPort() {
-  return new Promise((resolve, reject) => {
-    const s = createServer();
-    s.on('error', reject);
-    s.listen(0, '127.0.0.1', () => {
-      const { port } = s.address();
-      s.close(() => resolve(port));
-    });
-  });
-}
 
 function freeUdpPort() {
   return new Promise((resolve, reject) => {
@@ -638,7 +627,7 @@ async function main() {
     writeFileSync(fleetPath, JSON.stringify(fleetFile(), null, 1));
     writeFileSync(scenarioPath, JSON.stringify(trafficScenario(), null, 1));
 
-    const gpsdPort = await freeTcpPort();
+    const gpsdPort = await freeLoopbackPort();
     const udpPort = await freeUdpPort();
     const gpsd = startChild(GPSD, ['-N', '-n', '-S', String(gpsdPort), `udp://127.0.0.1:${udpPort}`]);
     const traffic = startChild(AVK, ['traffic', '--scenario', scenarioPath, '--udp', `127.0.0.1:${udpPort}`, '--realtime-factor', String(FACTOR), '--interval', '2']);

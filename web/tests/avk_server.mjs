@@ -3,6 +3,7 @@
 
 import assert from 'node:assert/strict';
 import { spawn } from 'node:child_process';
+import { createServer } from 'node:net';
 import { slow, sleep } from './wait.mjs';
 
 const SERVER_START_MS = slow(20000);
@@ -67,4 +68,16 @@ export async function apiRequest(s, pathname, { method = 'GET', body } = {}) {
   const text = await res.text();
   assert.ok(res.ok, `${method} ${pathname}: ${res.status} ${text}`);
   return text ? JSON.parse(text) : null;
+}
+
+/** A loopback TCP port nobody listens on at the moment of asking (the kernel's pick for port 0). */
+export function freeLoopbackPort() {
+  return new Promise((resolve, reject) => {
+    const s = createServer();
+    s.on('error', reject);
+    s.listen(0, '127.0.0.1', () => {
+      const { port } = s.address();
+      s.close(() => resolve(port));
+    });
+  });
 }

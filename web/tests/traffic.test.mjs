@@ -9,12 +9,11 @@ import { test, before, after } from 'node:test';
 import assert from 'node:assert/strict';
 import { spawn, execFileSync } from 'node:child_process';
 import { mkdtempSync, writeFileSync } from 'node:fs';
-import { createServer } from 'node:net';
 import { tmpdir } from 'node:os';
 import path from 'node:path';
 
 import { until } from './wait.mjs';
-import { startAvkServer } from './avk_server.mjs';
+import { startAvkServer, freeLoopbackPort } from './avk_server.mjs';
 import { AVK, repo, webDir, launchBrowser, tearDown, killServerOnExit, showView } from './browser.mjs';
 
 const MAKE_AIS_LOG = path.join(path.dirname(AVK), '..', 'tests', 'make_ais_log');
@@ -27,22 +26,12 @@ let server = null;
 let b = null;
 let page = null;
 
-function freePort() {
-  return new Promise((resolve, reject) => {
-    const s = createServer();
-    s.on('error', reject);
-    s.listen(0, '127.0.0.1', () => {
-      const { port } = s.address();
-      s.close(() => resolve(port));
-    });
-  });
-}
 
 before(async () => {
   const log = path.join(tmp, 'traffic.aivdm');
   // The vessels at one moment, played over and over: they stay where the station first puts them.
   writeFileSync(log, execFileSync(MAKE_AIS_LOG, [SCENARIO, '0', '2']));
-  const port = await freePort();
+  const port = await freeLoopbackPort();
   // Its own process group, gpsd included, so that one signal ends both.
   gpsfake = spawn('gpsfake', ['-q', '-c', '0.05', '-P', String(port), '-W', '600', log], { detached: true, stdio: 'ignore' });
   b = await launchBrowser();
