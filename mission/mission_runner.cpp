@@ -155,7 +155,8 @@ void MissionRunner::tick(double now_s) {
   if (!state_) set_state(MissionState::running, "", now_s);
   for (const vehicle::NavSample& s : vehicle_.take_nav())
     process(s);
-  if (finished() || mode_ == HelmMode::paused) return;
+  if (finished()) return;
+  if (mode_ == HelmMode::paused) return keep_station_while_paused(now_s);
 
   const bool live = vehicle_.link_state(now_s) == vehicle::LinkState::live;
   if (!live && last_nav_ && !holding_) {
@@ -395,12 +396,30 @@ bool MissionRunner::pause(double now_s, const std::string& reason) {
   paused_from_ = mode_;
   event(now_s, EventKind::pause, reason);
   stop_all(now_s, HelmMode::paused, MissionState::paused, reason);
+  pause_stopped_ = true;
+  if (last_nav_)
+    pause_keeper_.emplace(kinematics::Point{last_nav_->x_m, last_nav_->y_m}, StationKeepConfig{});
   return true;
+}
+
+void MissionRunner::keep_station_while_paused(double now_s) {
+  if (!pause_keeper_ || state_ != MissionState::paused || !last_nav_) return;
+  if (vehicle_.link_state(now_s) != vehicle::LinkState::live) {
+    if (!pause_stopped_) vehicle_.all_stop(now_s);
+    pause_stopped_ = true;
+    return;
+  }
+  const HelmOutput out = pause_keeper_->update(*last_nav_);
+  // Idle inside the inner radius: nothing to command but the stop already given.
+  if (out.speed_mps <= 0.0 && pause_stopped_) return;
+  pause_stopped_ = out.speed_mps <= 0.0;
+  vehicle_.command({now_s, out.heading_deg, out.speed_mps});
 }
 
 bool MissionRunner::resume(double now_s) {
   if (mode_ != HelmMode::paused || finished()) return false;
   event(now_s, EventKind::resume, "resumed");
+  pause_keeper_.reset();
   set_state(MissionState::running, "", now_s);
   turn_back_course_deg_.reset();
   if (paused_from_ == HelmMode::returning) {

@@ -21,6 +21,7 @@
 #include "mission/helm_mode.hpp"
 #include "mission/mission_config.hpp"
 #include "mission/mission_observer.hpp"
+#include "mission/station_keeping.hpp"
 #include "mission/turn_monitor.hpp"
 #include "mission/turn_plan.hpp"
 #include "vehicle/vehicle.hpp"
@@ -61,6 +62,7 @@ class MissionRunner {
   void tick(double now_s);
 
   // Operator commands. A turn in progress is aborted and re-queued (not counted as an attempt).
+  // Paused, the vehicle keeps station where it was paused until resumed.
   // Each returns false when it does not apply (resume of a mission that is not paused, ...).
   bool pause(double now_s, const std::string& reason = "paused by operator");
   bool resume(double now_s);
@@ -132,6 +134,11 @@ class MissionRunner {
   std::optional<vehicle::NavSample> last_nav_;
   bool been_inside_ = false;
   bool holding_ = false;  // navigation is not live: all stop until it is
+  // Paused: the vehicle keeps station where it was paused (against current and wind) rather than
+  // drifting, as long as navigation is live; all stop without it.
+  std::optional<StationKeeping> pause_keeper_;
+  bool pause_stopped_ = true;
+  void keep_station_while_paused(double now_s);
 
   std::optional<ConditionSetMonitor> condition_set_;
   double condition_set_start_s_ = 0.0;

@@ -2,7 +2,11 @@
 // room ahead, cells given up, leaving the region, the operator, link loss, conditions never set.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
+#include "kinematics/geometry.hpp"
 #include "mission/mission_sim.hpp"
+#include "mission/station_keeping.hpp"
 
 using namespace avk::testing::mission_sim;
 
@@ -176,10 +180,14 @@ TEST(MissionRunner, PauseDuringATurnThenResumeCompletesTheMission) {
   EXPECT_TRUE(r.rec.turns[0].requeued);
   EXPECT_EQ(r.rec.turns[0].task.attempts, 0);  // an operator's pause is not an attempt
   EXPECT_EQ(r.runner.queue().front().attempts, 0);
-  const std::size_t commands = r.vehicle.commands.size();
-  r.run_for(10);
-  EXPECT_EQ(r.vehicle.commands.size(), commands);
-  EXPECT_NEAR(r.vehicle.speed(), 0.0, 1e-9);
+  // Paused, it keeps station where it was paused: it coasts on, turns back and settles within
+  // the hold radius of that point, still paused.
+  const avk::kinematics::Point paused_at{r.vehicle.x(), r.vehicle.y()};
+  r.run_for(120);
+  EXPECT_EQ(r.runner.mode(), HelmMode::paused);
+  EXPECT_EQ(r.runner.state(), MissionState::paused);
+  EXPECT_LE(avk::kinematics::distance_m({r.vehicle.x(), r.vehicle.y()}, paused_at),
+            avk::mission::kDefaultHoldRadiusM);
   ASSERT_TRUE(r.runner.resume(r.now()));
   EXPECT_FALSE(r.runner.resume(r.now()));
   EXPECT_EQ(r.runner.state(), MissionState::running);
@@ -189,6 +197,29 @@ TEST(MissionRunner, PauseDuringATurnThenResumeCompletesTheMission) {
   EXPECT_EQ(r.rec.turns[1].task.index, 0u);  // the paused turn again
   EXPECT_EQ(r.runner.cells()[0].aborted, 1);
   EXPECT_EQ(r.runner.cells()[0].ok, 1);
+}
+
+// A paused mission in a current: without a hold the vehicle would drift 0.27 m/s x 600 s = 162 m;
+// paused, it keeps station within the hold radius's reach of where it was paused.
+TEST(MissionRunner, APausedMissionHoldsAgainstTheCurrent) {
+  Sim r(turns_config({1.0}, {40, 90}, DirectionPolicy::alternate, square_region(400, 20)),
+        FakeVehicle(0, 0, 0));
+  ASSERT_TRUE(r.until_mode(HelmMode::conditioning));
+  ASSERT_TRUE(r.runner.pause(r.now()));
+  const avk::kinematics::Point paused_at{r.vehicle.x(), r.vehicle.y()};
+  const auto drift = [&](double) {
+    r.vehicle.teleport(r.vehicle.x() + 0.027, r.vehicle.y() - 0.0);
+  };
+  double worst_m = 0.0;
+  for (int i = 0; i < 600; ++i) {
+    r.run_for(1.0, drift);
+    worst_m =
+        std::max(worst_m, avk::kinematics::distance_m({r.vehicle.x(), r.vehicle.y()}, paused_at));
+  }
+  EXPECT_EQ(r.runner.state(), MissionState::paused);
+  EXPECT_LT(worst_m, 10.0);
+  ASSERT_TRUE(r.runner.resume(r.now()));
+  EXPECT_EQ(r.runner.state(), MissionState::running);
 }
 
 TEST(MissionRunner, AbortStopsForGood) {
