@@ -48,7 +48,8 @@ int cmd_traffic(const std::vector<std::string>& args, Io& io) {
   const Args a(args, {"scenario", "udp", "interval", "realtime-factor", "duration"});
   if (!a.positional().empty()) throw UsageError("unexpected argument '" + a.positional()[0] + "'");
   const auto scenario = a.get("scenario");
-  if (!scenario) throw UsageError("--scenario FILE is required (e.g. examples/traffic-charles.json)");
+  if (!scenario)
+    throw UsageError("--scenario FILE is required (e.g. examples/traffic-charles.json)");
   const auto where = a.get("udp");
   if (!where) throw UsageError("--udp HOST:PORT is required: where gpsd listens for AIVDM");
   const double interval_s = a.number("interval").value_or(2.0);

@@ -231,8 +231,8 @@ const std::vector<CommandUsage>& command_usages() {
        {},
        "  avk traffic --scenario FILE --udp HOST:PORT [--interval 2] [--realtime-factor K]\n"
        "                  [--duration S]\n"
-       "      simulated AIS traffic: the scenario's contacts (examples/traffic-charles.json) as\n"
-       "      AIVDM sentences over UDP to gpsd (gpsd udp://HOST:PORT); runs until SIGINT/SIGTERM\n"},
+       "      simulated AIS traffic: the scenario's contacts (examples/traffic-charles.json)\n"
+       "      as AIVDM over UDP to gpsd (gpsd udp://HOST:PORT); runs until SIGINT/SIGTERM\n"},
       {"frontseat-emulator",
        {},
        "  avk frontseat-emulator [--port 29500] [--bind 127.0.0.1] [--vehicle catamaran:m200]\n"

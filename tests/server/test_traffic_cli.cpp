@@ -47,7 +47,8 @@ TEST(TrafficCli, ScenarioContactsReachGpsdOverUdpWithPositionsAndNames) {
   for (const auto& c : traffic.contacts()) {
     EXPECT_EQ(reports.at({c.vessel.mmsi, 5}).name, c.vessel.name);
     // Moving along its track: a speed over ground that is the scenario's.
-    const auto& p = reports.at({c.vessel.mmsi, c.vessel.ais_class == avk::sim::AisClass::a ? 1 : 18});
+    const auto& p =
+        reports.at({c.vessel.mmsi, c.vessel.ais_class == avk::sim::AisClass::a ? 1 : 18});
     ASSERT_TRUE(p.speed_mps.has_value());
     EXPECT_NEAR(*p.speed_mps, c.speed_mps, 0.06);
   }
