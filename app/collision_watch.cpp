@@ -51,7 +51,6 @@ std::optional<WatchedParty> turn_party(Context& ctx, const VehicleSnapshot& s,
 }
 
 std::string pair_text(const WatchPair& p) {
-  using kinematics::fixed_text;
   return p.a_name + " and " + p.b_name;
 }
 

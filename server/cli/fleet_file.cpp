@@ -8,6 +8,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "server/cli/m200_options.hpp"
 #include "sim/sim_config.hpp"
 #include "vehicle/m200.hpp"
 
@@ -108,13 +109,10 @@ app::VehicleLoopOptions m200(const json& v, const std::string& at,
   if (datum) m.config.datum = *datum;
   if (v.contains("pid")) {
     const std::string pid = text_at(v, "pid", at);
-    if (pid == "thesis_sim") {
-      m.config.pid = vehicle::MarinePidConfig::thesis_sim();
-    } else if (pid == "m200_in_water") {
-      m.config.pid = vehicle::MarinePidConfig::m200_in_water();
-    } else {
+    const auto preset = pid_preset(pid);
+    if (!preset)
       throw FleetError(at + "/pid", "must be thesis_sim or m200_in_water, got '" + pid + "'");
-    }
+    m.config.pid = *preset;
   }
   const double hz = number_at(v, "controller_hz", at, m.config.controller_hz);
   if (!(hz >= 1.0 && hz <= 100.0)) throw FleetError(at + "/controller_hz", "must be in [1, 100]");

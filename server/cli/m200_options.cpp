@@ -15,6 +15,12 @@ std::optional<vehicle::LatLon> datum_from(const Args& a) {
   return vehicle::LatLon{(*d)[0], (*d)[1]};
 }
 
+std::optional<vehicle::MarinePidConfig> pid_preset(const std::string& name) {
+  if (name == "thesis_sim") return vehicle::MarinePidConfig::thesis_sim();
+  if (name == "m200_in_water") return vehicle::MarinePidConfig::m200_in_water();
+  return std::nullopt;
+}
+
 std::optional<vehicle::M200Options> m200_options_from(const Args& a) {
   const auto where = a.get("m200");
   if (!where) return std::nullopt;
@@ -26,13 +32,9 @@ std::optional<vehicle::M200Options> m200_options_from(const Args& a) {
   }
   if (const auto d = datum_from(a)) o.config.datum = *d;
   if (const auto pid = a.get("pid")) {
-    if (*pid == "thesis_sim") {
-      o.config.pid = vehicle::MarinePidConfig::thesis_sim();
-    } else if (*pid == "m200_in_water") {
-      o.config.pid = vehicle::MarinePidConfig::m200_in_water();
-    } else {
-      throw UsageError("--pid must be thesis_sim or m200_in_water, got '" + *pid + "'");
-    }
+    const auto preset = pid_preset(*pid);
+    if (!preset) throw UsageError("--pid must be thesis_sim or m200_in_water, got '" + *pid + "'");
+    o.config.pid = *preset;
   }
   if (const auto hz = a.number("controller-hz")) {
     if (!(*hz >= 1.0 && *hz <= 100.0)) throw UsageError("--controller-hz must be in [1, 100]");

@@ -14,6 +14,9 @@ namespace avk::server {
 // --datum LAT,LON in decimal degrees, when given. Throws UsageError naming the option.
 std::optional<vehicle::LatLon> datum_from(const Args& a);
 
+// The yaw controller preset by name (thesis_sim, m200_in_water); none for another name.
+std::optional<vehicle::MarinePidConfig> pid_preset(const std::string& name);
+
 // The driver options when --m200 is given, nullopt otherwise. Throws UsageError naming the
 // option that is wrong.
 std::optional<vehicle::M200Options> m200_options_from(const Args& a);
