@@ -43,9 +43,10 @@ RUN AVK_WEB_DEPS=none bash scripts/build -DAVK_BUILD_TESTS=OFF -DAVK_BUILD_BENCH
 FROM debian:12-slim
 # A fixed uid and gid, 999 (what `useradd --system` picked here before, so existing volumes keep
 # their owner): a bind-mounted folder must be writable by it (README.md, "Docker").
-# The runtime libraries avk links: SQLite, zstd (MCAP), libgps (gpsd's client, AIS traffic).
+# The runtime libraries avk links: SQLite, zstd (MCAP), libgps (gpsd's client, AIS traffic), libpq
+# (a PostgreSQL store).
 RUN apt-get update \
- && apt-get install -y --no-install-recommends libsqlite3-0 libzstd1 libgps28 curl \
+ && apt-get install -y --no-install-recommends libsqlite3-0 libzstd1 libgps28 libpq5 curl \
  && rm -rf /var/lib/apt/lists/* \
  && groupadd --system --gid 999 avk \
  && useradd --system --uid 999 --gid 999 --create-home --home-dir /var/lib/avk \

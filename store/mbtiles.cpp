@@ -44,7 +44,8 @@ Connection open_read_only(const std::string& path) {
 // here, so this is where it is named.
 bool has_relation(const Connection& db, const std::string& path, const char* name) {
   try {
-    Statement s(db, "SELECT 1 FROM sqlite_master WHERE name = ?1 AND type IN ('table', 'view')");
+    auto s =
+        db.prepare("SELECT 1 FROM sqlite_master WHERE name = ?1 AND type IN ('table', 'view')");
     s.bind(1, name);
     return s.step();
   } catch (const StoreError& e) {
@@ -58,9 +59,8 @@ Statement checked_tiles(const Connection& db, const std::string& path) {
   if (!has_relation(db, path, "tiles"))
     throw StoreError("'" + path +
                      "' is not an MBTiles file: it is an SQLite database without a `tiles` table");
-  return Statement(db,
-                   "SELECT tile_data FROM tiles "
-                   "WHERE zoom_level = ?1 AND tile_column = ?2 AND tile_row = ?3");
+  return db.prepare(
+      "SELECT tile_data FROM tiles WHERE zoom_level = ?1 AND tile_column = ?2 AND tile_row = ?3");
 }
 
 std::string blob_string(const Statement& s, int column) {
@@ -80,7 +80,7 @@ std::map<std::string, std::string> MbtilesReader::metadata() const {
   std::lock_guard lock(mutex_);
   std::map<std::string, std::string> out;
   if (!has_relation(db_, path_, "metadata")) return out;
-  Statement s(db_, "SELECT name, value FROM metadata");
+  auto s = db_.prepare("SELECT name, value FROM metadata");
   while (s.step())
     if (!s.is_null(0) && !s.is_null(1)) out[s.column_text(0)] = s.column_text(1);
   return out;
@@ -88,7 +88,7 @@ std::map<std::string, std::string> MbtilesReader::metadata() const {
 
 std::optional<std::pair<int, int>> MbtilesReader::zoom_range() const {
   std::lock_guard lock(mutex_);
-  Statement s(db_, "SELECT MIN(zoom_level), MAX(zoom_level) FROM tiles");
+  auto s = db_.prepare("SELECT MIN(zoom_level), MAX(zoom_level) FROM tiles");
   if (!s.step() || s.is_null(0) || s.is_null(1)) return std::nullopt;
   return std::pair{static_cast<int>(s.column_int64(0)), static_cast<int>(s.column_int64(1))};
 }
@@ -106,7 +106,7 @@ std::optional<std::string> MbtilesReader::tile(int zoom, std::int64_t column,
 
 std::optional<std::string> MbtilesReader::any_tile() const {
   std::lock_guard lock(mutex_);
-  Statement s(db_, "SELECT tile_data FROM tiles WHERE tile_data IS NOT NULL LIMIT 1");
+  auto s = db_.prepare("SELECT tile_data FROM tiles WHERE tile_data IS NOT NULL LIMIT 1");
   if (!s.step()) return std::nullopt;
   return blob_string(s, 0);
 }

@@ -35,6 +35,9 @@ struct Mission {
   // the end; none for a mission stored before they were kept (schema 11).
   std::optional<std::string> started_utc;
   std::optional<std::string> ended_utc;
+  // The station that created it (several may share a PostgreSQL database); none for a mission
+  // stored before stations were recorded (schema 13) or by a store without a station id.
+  std::optional<std::string> station_id;
 };
 
 // One ConditionSet episode (thesis: the time spent establishing a turn's initial conditions).

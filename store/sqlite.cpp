@@ -2,6 +2,8 @@
 
 #include <sqlite3.h>
 
+#include <memory>
+
 namespace avk::store {
 
 Connection::Connection(const std::string& path) {
@@ -38,8 +40,102 @@ void Connection::exec(const char* sql) {
   }
 }
 
-Statement Connection::prepare(std::string_view sql) {
-  return Statement(*this, sql);
+namespace {
+
+class SqliteStatement final : public StatementImpl {
+ public:
+  SqliteStatement(const Connection& db, std::string_view sql) : db_(&db) {
+    const int rc =
+        sqlite3_prepare_v2(db.handle(), sql.data(), static_cast<int>(sql.size()), &stmt_, nullptr);
+    db.check(rc, "prepare");
+  }
+  ~SqliteStatement() override { sqlite3_finalize(stmt_); }
+  SqliteStatement(const SqliteStatement&) = delete;
+  SqliteStatement& operator=(const SqliteStatement&) = delete;
+
+  void bind_double(int index, double value) override {
+    db_->check(sqlite3_bind_double(stmt_, index, value), "bind");
+  }
+  void bind_int64(int index, std::int64_t value) override {
+    db_->check(sqlite3_bind_int64(stmt_, index, value), "bind");
+  }
+  void bind_text(int index, std::string_view text) override {
+    // SQLITE_TRANSIENT: SQLite copies, so temporaries passed in are safe.
+    db_->check(
+        sqlite3_bind_text64(stmt_, index, text.data(), text.size(), SQLITE_TRANSIENT, SQLITE_UTF8),
+        "bind");
+  }
+  void bind_blob(int index, std::span<const unsigned char> bytes) override {
+    // A zero-length blob from a null pointer would bind NULL; "" keeps it an empty blob.
+    static const unsigned char kEmpty = 0;
+    const void* data = bytes.empty() ? &kEmpty : bytes.data();
+    db_->check(sqlite3_bind_blob64(stmt_, index, data, bytes.size(), SQLITE_TRANSIENT), "bind");
+  }
+  void bind_null(int index, ColumnKind) override {
+    db_->check(sqlite3_bind_null(stmt_, index), "bind");
+  }
+
+  bool step() override {
+    const int rc = sqlite3_step(stmt_);
+    if (rc == SQLITE_ROW) return true;
+    if (rc == SQLITE_DONE) return false;
+    // Reset so the statement does not keep a half-finished write open after the error.
+    sqlite3_reset(stmt_);
+    db_->check(rc, "step");
+    return false;
+  }
+  void reset() override {
+    sqlite3_reset(stmt_);
+    sqlite3_clear_bindings(stmt_);
+  }
+
+  int column_count() const override { return sqlite3_column_count(stmt_); }
+  std::string column_name(int column) const override {
+    const char* name = sqlite3_column_name(stmt_, column);
+    return name ? name : "";
+  }
+  ColumnKind column_kind(int column) const override {
+    switch (sqlite3_column_type(stmt_, column)) {
+      case SQLITE_INTEGER:
+        return ColumnKind::integer;
+      case SQLITE_FLOAT:
+        return ColumnKind::real;
+      case SQLITE_TEXT:
+        return ColumnKind::text;
+      case SQLITE_BLOB:
+        return ColumnKind::blob;
+      default:
+        return ColumnKind::null;
+    }
+  }
+  double column_double(int column) const override { return sqlite3_column_double(stmt_, column); }
+  std::int64_t column_int64(int column) const override {
+    return sqlite3_column_int64(stmt_, column);
+  }
+  std::string column_text(int column) const override {
+    const auto* p = sqlite3_column_text(stmt_, column);
+    const int n = sqlite3_column_bytes(stmt_, column);
+    return p ? std::string(reinterpret_cast<const char*>(p), static_cast<std::size_t>(n))
+             : std::string();
+  }
+  std::span<const unsigned char> column_blob(int column) const override {
+    // sqlite3_column_blob before sqlite3_column_bytes: the documented order that avoids a
+    // conversion invalidating the pointer.
+    const auto* p = static_cast<const unsigned char*>(sqlite3_column_blob(stmt_, column));
+    const int n = sqlite3_column_bytes(stmt_, column);
+    if (!p) return {};
+    return {p, static_cast<std::size_t>(n)};
+  }
+
+ private:
+  const Connection* db_;
+  sqlite3_stmt* stmt_ = nullptr;
+};
+
+}  // namespace
+
+Statement Connection::prepare(std::string_view sql) const {
+  return Statement(std::make_unique<SqliteStatement>(*this, sql));
 }
 
 std::int64_t Connection::last_insert_rowid() const {
@@ -49,130 +145,16 @@ int Connection::changes() const {
   return sqlite3_changes(db_);
 }
 
-Statement::Statement(const Connection& db, std::string_view sql) : db_(&db) {
-  const int rc =
-      sqlite3_prepare_v2(db.handle(), sql.data(), static_cast<int>(sql.size()), &stmt_, nullptr);
-  db.check(rc, "prepare");
+void Connection::begin() {
+  exec("BEGIN IMMEDIATE");
 }
 
-Statement::~Statement() {
-  sqlite3_finalize(stmt_);
+void Connection::commit() {
+  exec("COMMIT");
 }
 
-Statement::Statement(Statement&& other) noexcept : db_(other.db_), stmt_(other.stmt_) {
-  other.stmt_ = nullptr;
-}
-
-Statement& Statement::bind(int index, double value) {
-  db_->check(sqlite3_bind_double(stmt_, index, value), "bind");
-  return *this;
-}
-
-Statement& Statement::bind(int index, std::int64_t value) {
-  db_->check(sqlite3_bind_int64(stmt_, index, value), "bind");
-  return *this;
-}
-
-Statement& Statement::bind(int index, std::string_view text) {
-  // SQLITE_TRANSIENT: SQLite copies, so temporaries passed in are safe.
-  db_->check(
-      sqlite3_bind_text64(stmt_, index, text.data(), text.size(), SQLITE_TRANSIENT, SQLITE_UTF8),
-      "bind");
-  return *this;
-}
-
-Statement& Statement::bind(int index, std::optional<double> value) {
-  return value ? bind(index, *value) : bind_null(index);
-}
-
-Statement& Statement::bind(int index, std::optional<std::int64_t> value) {
-  return value ? bind(index, *value) : bind_null(index);
-}
-
-Statement& Statement::bind_blob(int index, std::span<const unsigned char> bytes) {
-  // A zero-length blob from a null pointer would bind NULL; "" keeps it an empty blob.
-  static const unsigned char kEmpty = 0;
-  const void* data = bytes.empty() ? &kEmpty : bytes.data();
-  db_->check(sqlite3_bind_blob64(stmt_, index, data, bytes.size(), SQLITE_TRANSIENT), "bind");
-  return *this;
-}
-
-Statement& Statement::bind_null(int index) {
-  db_->check(sqlite3_bind_null(stmt_, index), "bind");
-  return *this;
-}
-
-bool Statement::step() {
-  const int rc = sqlite3_step(stmt_);
-  if (rc == SQLITE_ROW) return true;
-  if (rc == SQLITE_DONE) return false;
-  // Reset so the statement does not keep a half-finished write open after the error.
-  sqlite3_reset(stmt_);
-  db_->check(rc, "step");
-  return false;
-}
-
-void Statement::run() {
-  while (step()) {
-  }
-}
-
-void Statement::reset() {
-  sqlite3_reset(stmt_);
-  sqlite3_clear_bindings(stmt_);
-}
-
-bool Statement::is_null(int column) const {
-  return sqlite3_column_type(stmt_, column) == SQLITE_NULL;
-}
-
-double Statement::column_double(int column) const {
-  return sqlite3_column_double(stmt_, column);
-}
-
-std::int64_t Statement::column_int64(int column) const {
-  return sqlite3_column_int64(stmt_, column);
-}
-
-std::string Statement::column_text(int column) const {
-  const auto* p = sqlite3_column_text(stmt_, column);
-  const int n = sqlite3_column_bytes(stmt_, column);
-  return p ? std::string(reinterpret_cast<const char*>(p), static_cast<std::size_t>(n))
-           : std::string();
-}
-
-std::optional<double> Statement::column_optional_double(int column) const {
-  if (is_null(column)) return std::nullopt;
-  return column_double(column);
-}
-
-std::optional<std::int64_t> Statement::column_optional_int64(int column) const {
-  if (is_null(column)) return std::nullopt;
-  return column_int64(column);
-}
-
-std::span<const unsigned char> Statement::column_blob(int column) const {
-  // sqlite3_column_blob before sqlite3_column_bytes: the documented order that avoids a
-  // conversion invalidating the pointer.
-  const auto* p = static_cast<const unsigned char*>(sqlite3_column_blob(stmt_, column));
-  const int n = sqlite3_column_bytes(stmt_, column);
-  if (!p) return {};
-  return {p, static_cast<std::size_t>(n)};
-}
-
-Transaction::Transaction(Connection& db) : db_(db) {
-  db_.exec("BEGIN IMMEDIATE");
-}
-
-Transaction::~Transaction() {
-  if (done_) return;
-  // Never throws from a destructor: a failed rollback leaves SQLite to roll back on close.
-  sqlite3_exec(db_.handle(), "ROLLBACK", nullptr, nullptr, nullptr);
-}
-
-void Transaction::commit() {
-  db_.exec("COMMIT");
-  done_ = true;
+void Connection::rollback() noexcept {
+  sqlite3_exec(db_, "ROLLBACK", nullptr, nullptr, nullptr);
 }
 
 }  // namespace avk::store

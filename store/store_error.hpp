@@ -19,4 +19,12 @@ class StoreError : public std::runtime_error {
   int code_;
 };
 
+// The database server cannot be reached (refused, restarted, connection lost mid-statement):
+// the write may be tried again later, unlike an error in what was written. Whether a statement
+// that was running when the connection broke committed is unknown.
+class StoreUnavailable : public StoreError {
+ public:
+  using StoreError::StoreError;
+};
+
 }  // namespace avk::store

@@ -34,6 +34,9 @@ struct TurnRow {
   kinematics::TurnSource source = kinematics::TurnSource::collection;
   std::optional<double> quality;          // harvested turns
   std::optional<double> speed_after_mps;  // u1 of a speed-change turn
+  // The key the recording station gave the turn (add's record_key); none for turns stored
+  // without one (before schema 13, imports).
+  std::optional<std::string> record_key;
 };
 
 // How steady the vehicle was when its turn was commanded, as the ConditionSet saw it.
@@ -79,9 +82,12 @@ class TurnRepository {
   // Stores the turn with the given status and reason (written into its metadata too), its
   // normalised form and advance/transfer, in one transaction. A turn that cannot be normalised
   // is kept without the normalised form only when it is not ok. Returns the turn id.
+  // record_key (non-empty): a key unique to this turn, given by the station that recorded it; a
+  // turn already stored under the key is not stored again, and its id is returned. A write whose
+  // outcome was unknown (the connection broke during its commit) can so be tried again safely.
   virtual std::int64_t add(std::int64_t mission_id, const kinematics::TurnSequence& raw,
                            kinematics::TurnStatus status, const std::string& reason,
-                           const TurnStart& start = {}) = 0;
+                           const TurnStart& start = {}, const std::string& record_key = {}) = 0;
   // The id of the vehicle's newest ok turn (0 without any): tells a cache whether the vehicle's
   // table changed. Collection turns only unless include_harvested.
   virtual std::int64_t newest_ok_id(const std::string& vehicle_id,

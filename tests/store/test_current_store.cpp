@@ -3,6 +3,8 @@
 // upgrades with everything it held.
 #include <gtest/gtest.h>
 
+#include "support/store_engines.hpp"
+
 #include <string>
 
 #include "kinematics/water_frame.hpp"
@@ -42,8 +44,11 @@ StoredCurrent current_of(std::int64_t mission, double east, double north) {
   return c;
 }
 
-TEST(CurrentStore, EstimateAndWaterTurnsRoundTripAndTheGroundFormStays) {
-  Store s(":memory:");
+class CurrentStoreOnEngine : public avk::testing::OnEachEngine {};
+AVK_ON_EACH_ENGINE(CurrentStoreOnEngine);
+
+TEST_P(CurrentStoreOnEngine, EstimateAndWaterTurnsRoundTripAndTheGroundFormStays) {
+  Store s(db());
   s.vehicles().upsert({"usim-1", "usim", 2.0, 1.2});
   const auto m = s.missions().create("usim-1", "collection", "{}");
   const TurnSequence raw = arc(90.0, 1);
@@ -81,8 +86,8 @@ TEST(CurrentStore, EstimateAndWaterTurnsRoundTripAndTheGroundFormStays) {
             raw.normalized());
 }
 
-TEST(CurrentStore, AnotherMissionsTurnIsRefusedAndNothingChanges) {
-  Store s(":memory:");
+TEST_P(CurrentStoreOnEngine, AnotherMissionsTurnIsRefusedAndNothingChanges) {
+  Store s(db());
   s.vehicles().upsert({"usim-1", "usim", 2.0, 1.2});
   const auto m = s.missions().create("usim-1", "a", "{}");
   const auto other = s.missions().create("usim-1", "b", "{}");
@@ -132,8 +137,8 @@ TEST(CurrentStore, MigratesASchemaNineDatabase) {
 
 // The speed reference and drift scatter judged in a current travel with it; an estimate without
 // them reads back without them, and an undetermined reference stays undetermined.
-TEST(CurrentStore, SpeedReferenceAndDriftScatterRoundTrip) {
-  Store s(":memory:");
+TEST_P(CurrentStoreOnEngine, SpeedReferenceAndDriftScatterRoundTrip) {
+  Store s(db());
   s.vehicles().upsert({"usim-1", "usim", 2.0, 1.2});
   const auto a = s.missions().create("usim-1", "a", "{}");
   const auto b = s.missions().create("usim-1", "b", "{}");

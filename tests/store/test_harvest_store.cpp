@@ -2,9 +2,12 @@
 // with or without them, harvest runs, and a database of the previous schema upgrading.
 #include <gtest/gtest.h>
 
+#include "support/store_engines.hpp"
+
 #include <string>
 
 #include "kinematics/turn_json.hpp"
+#include "store/sqlite.hpp"
 #include "store/store.hpp"
 #include "support/synthetic_turns.hpp"
 #include "support/temp_db.hpp"
@@ -33,8 +36,11 @@ TurnSequence harvested(TurnSequence t, double quality) {
   return t;
 }
 
-TEST(HarvestStore, TheCktLoadsCollectionTurnsUnlessAskedForHarvestedOnes) {
-  Store s(":memory:");
+class HarvestStoreOnEngine : public avk::testing::OnEachEngine {};
+AVK_ON_EACH_ENGINE(HarvestStoreOnEngine);
+
+TEST_P(HarvestStoreOnEngine, TheCktLoadsCollectionTurnsUnlessAskedForHarvestedOnes) {
+  Store s(db());
   s.vehicles().upsert({"m200", "catamaran", 2.0, 1.0});
   const auto mission = s.missions().create("m200", "log", "{}");
   const auto collected = s.turns().add(mission, arc(90.0, 1), TurnStatus::ok, "");
@@ -59,8 +65,8 @@ TEST(HarvestStore, TheCktLoadsCollectionTurnsUnlessAskedForHarvestedOnes) {
   EXPECT_EQ(s.turns().start_times(mission).size(), 2u);
 }
 
-TEST(HarvestStore, HarvestRunsAreKeptWithTheirCounts) {
-  Store s(":memory:");
+TEST_P(HarvestStoreOnEngine, HarvestRunsAreKeptWithTheirCounts) {
+  Store s(db());
   s.vehicles().upsert({"m200", "catamaran", 2.0, 1.0});
   const auto mission = s.missions().create("m200", "log", "{}");
   HarvestRecord h;

@@ -94,7 +94,7 @@ TEST(Mbtiles, AMissingFileIsNamedAndNotCreated) {
   EXPECT_FALSE(fs::exists(db.path())) << "opening for reading created the file";
 }
 
-TEST(Mbtiles, AFileThatIsNotSqliteIsNamed) {
+TEST(Mbtiles, AFileThatIsNotSqlIsNamed) {
   avk::testing::TempDb db("avk_mbtiles_text");
   std::ofstream(db.path()) << "these are not the tiles you are looking for\n";
   const std::string error = open_error(db.path());
@@ -102,7 +102,7 @@ TEST(Mbtiles, AFileThatIsNotSqliteIsNamed) {
   EXPECT_NE(error.find("not an MBTiles file"), std::string::npos) << error;
 }
 
-TEST(Mbtiles, AnSqliteDatabaseWithoutTilesIsNotMbtiles) {
+TEST(Mbtiles, AnSqlDatabaseWithoutTilesIsNotMbtiles) {
   avk::testing::TempDb db("avk_mbtiles_other");
   {
     Connection c(db.path());

@@ -2,6 +2,8 @@
 // nav pages, the mission clock, per-cell statistics, and a mission's wall-clock start and end.
 #include <gtest/gtest.h>
 
+#include "support/store_engines.hpp"
+
 #include "store/mission_rows.hpp"
 
 using namespace avk::testing::mission_rows;
@@ -29,8 +31,11 @@ std::vector<NavRow> nav_until(double t_end_s) {
 
 }  // namespace
 
-TEST(MissionQueries, RunnerPidSetClearedAndListed) {
-  Store s(":memory:");
+class MissionQueriesOnEngine : public avk::testing::OnEachEngine {};
+AVK_ON_EACH_ENGINE(MissionQueriesOnEngine);
+
+TEST_P(MissionQueriesOnEngine, RunnerPidSetClearedAndListed) {
+  Store s(db());
   const auto m = make_mission(s);
   const auto other = make_mission(s);
   EXPECT_FALSE(s.missions().get(m)->runner_pid);
@@ -49,8 +54,8 @@ TEST(MissionQueries, RunnerPidSetClearedAndListed) {
   EXPECT_THROW(s.missions().set_runner(other + 10, 1), StoreError);
 }
 
-TEST(MissionQueries, ConditionSetsOrderedByStartPerMission) {
-  Store s(":memory:");
+TEST_P(MissionQueriesOnEngine, ConditionSetsOrderedByStartPerMission) {
+  Store s(db());
   const auto m = make_mission(s);
   const auto other = make_mission(s);
   EXPECT_TRUE(s.missions().condition_sets(m).empty());
@@ -67,8 +72,8 @@ TEST(MissionQueries, ConditionSetsOrderedByStartPerMission) {
   EXPECT_TRUE(s.missions().condition_sets(other + 10).empty());
 }
 
-TEST(MissionQueries, ConditionSetRejectsBadRows) {
-  Store s(":memory:");
+TEST_P(MissionQueriesOnEngine, ConditionSetRejectsBadRows) {
+  Store s(db());
   const auto m = make_mission(s);
   EXPECT_THROW(s.missions().append_condition_set(m, {1.0, 2.0, 1.0, "done"}), StoreError);
   EXPECT_THROW(s.missions().append_condition_set(m, {2.0, 1.0, 1.0, "set"}),
@@ -79,8 +84,8 @@ TEST(MissionQueries, ConditionSetRejectsBadRows) {
   EXPECT_TRUE(s.missions().condition_sets(m).empty());
 }
 
-TEST(MissionQueries, ForeignKeysRejectRowsOfMissingMissions) {
-  Store s(":memory:");
+TEST_P(MissionQueriesOnEngine, ForeignKeysRejectRowsOfMissingMissions) {
+  Store s(db());
   const auto m = make_mission(s);
   EXPECT_THROW(s.missions().append_condition_set(m + 1, {1.0, 2.0, 1.0, "set"}), StoreError);
   EXPECT_THROW(s.missions().append_event(m + 1, 1.0, "halt", "operator"), StoreError);
@@ -90,8 +95,8 @@ TEST(MissionQueries, ForeignKeysRejectRowsOfMissingMissions) {
   EXPECT_TRUE(s.integrity_check());
 }
 
-TEST(MissionQueries, EventsKeysetPaginationOldestFirst) {
-  Store s(":memory:");
+TEST_P(MissionQueriesOnEngine, EventsKeysetPaginationOldestFirst) {
+  Store s(db());
   const auto m = make_mission(s);
   const auto other = make_mission(s);
   EXPECT_TRUE(s.missions().events(m).empty());
@@ -131,8 +136,8 @@ TEST(MissionQueries, EventsKeysetPaginationOldestFirst) {
   EXPECT_TRUE(s.missions().events(other + 10).empty());
 }
 
-TEST(MissionQueries, NavPageCoversEveryRowOnceInInsertionOrder) {
-  Store s(":memory:");
+TEST_P(MissionQueriesOnEngine, NavPageCoversEveryRowOnceInInsertionOrder) {
+  Store s(db());
   const auto m = make_mission(s);
   const auto other = make_mission(s);
   EXPECT_TRUE(s.navigation().page(m, 0, 10).empty());
@@ -173,8 +178,8 @@ TEST(MissionQueries, NavPageCoversEveryRowOnceInInsertionOrder) {
   EXPECT_TRUE(s.navigation().page(other + 10, 0, 1000).empty());
 }
 
-TEST(MissionQueries, LastPositionIsTheLatestOnTheMissionClockNotTheLastRecorded) {
-  Store s(":memory:");
+TEST_P(MissionQueriesOnEngine, LastPositionIsTheLatestOnTheMissionClockNotTheLastRecorded) {
+  Store s(db());
   const auto m = make_mission(s);
   const auto other = make_mission(s);
   EXPECT_FALSE(s.navigation().last(m));
@@ -200,8 +205,8 @@ TEST(MissionQueries, LastPositionIsTheLatestOnTheMissionClockNotTheLastRecorded)
   EXPECT_FALSE(s.navigation().last(other + 10));
 }
 
-TEST(MissionQueries, ClockEndIsTheLatestOfEverySource) {
-  Store s(":memory:");
+TEST_P(MissionQueriesOnEngine, ClockEndIsTheLatestOfEverySource) {
+  Store s(db());
   const auto m = make_mission(s);
   const auto other = make_mission(s);
   EXPECT_FALSE(s.missions().clock_end_s(m));
@@ -233,8 +238,8 @@ TEST(MissionQueries, ClockEndIsTheLatestOfEverySource) {
   EXPECT_EQ(s.missions().clock_end_s(other), 600.0);
 }
 
-TEST(MissionQueries, CellStatsMatchHandComputedValues) {
-  Store s(":memory:");
+TEST_P(MissionQueriesOnEngine, CellStatsMatchHandComputedValues) {
+  Store s(db());
   const auto m = make_mission(s);
   const auto other = make_mission(s);
   EXPECT_TRUE(s.missions().cell_stats(m).empty());
@@ -293,8 +298,8 @@ TEST(MissionQueries, CellStatsMatchHandComputedValues) {
 
 // When a mission ran, in wall-clock time, kept with it: its first start (a resume keeps
 // it) and its end, so a mission of an earlier server session still says when it ran.
-TEST(MissionQueries, AMissionKeepsTheWallClockMomentsItStartedAndEnded) {
-  Store s(":memory:");
+TEST_P(MissionQueriesOnEngine, AMissionKeepsTheWallClockMomentsItStartedAndEnded) {
+  Store s(db());
   s.vehicles().upsert({"usim-1", "usim", 2.0, 1.0});
   const auto m = s.missions().create("usim-1", "clock", "{}");
   EXPECT_FALSE(s.missions().get(m)->started_utc);
@@ -324,8 +329,8 @@ TEST(MissionQueries, AMissionKeepsTheWallClockMomentsItStartedAndEnded) {
 
 // A mission whose process was killed (kill -9) stored no end: closing it stores the end it is
 // given, clears the runner and leaves the wall-clock end unknown rather than making one up.
-TEST(MissionQueries, AnOrphanedMissionIsClosedAsInterruptedAtTheEndGiven) {
-  Store s(":memory:");
+TEST_P(MissionQueriesOnEngine, AnOrphanedMissionIsClosedAsInterruptedAtTheEndGiven) {
+  Store s(db());
   s.vehicles().upsert({"usim-1", "usim", 2.0, 1.0});
   const auto m = s.missions().create("usim-1", "killed", "{}");
   s.missions().set_status(m, MissionStatus::running, "", 100.0);

@@ -2,12 +2,17 @@
 // yaw models and newest turn kept per vehicle.
 #include <gtest/gtest.h>
 
+#include "support/store_engines.hpp"
+
 #include "store/mission_rows.hpp"
 
 using namespace avk::testing::mission_rows;
 
-TEST(MissionQueries, LoadNormalizedTurnsEqualsGetTurn) {
-  Store s(":memory:");
+class NormalizedTurnsOnEngine : public avk::testing::OnEachEngine {};
+AVK_ON_EACH_ENGINE(NormalizedTurnsOnEngine);
+
+TEST_P(NormalizedTurnsOnEngine, LoadNormalizedTurnsEqualsGetTurn) {
+  Store s(db());
   const auto m1 = make_mission(s, "usim-1");
   const auto m2 = make_mission(s, "usim-2");
   TurnSequence warned = arc(1.5, -160.0, 4);
@@ -82,25 +87,25 @@ TEST(MissionQueries, LoadNormalizedTurnsEqualsGetTurn) {
   }
 }
 
-TEST(MissionQueries, LoadNormalizedTurnsEmptyDatabase) {
-  Store s(":memory:");
+TEST_P(NormalizedTurnsOnEngine, LoadNormalizedTurnsEmptyDatabase) {
+  Store s(db());
   EXPECT_TRUE(s.turns().load_normalized({}).empty());
   EXPECT_TRUE(s.turns().load_normalized({1, 2}).empty());
   EXPECT_TRUE(s.turns().load_normalized({}, "usim-1").empty());
 }
 
-TEST(MissionQueries, NormalizedSamplesArePackedLittleEndianFloat64) {
-  TempDb db;
+TEST_P(NormalizedTurnsOnEngine, NormalizedSamplesArePackedLittleEndianFloat64) {
   std::int64_t id = 0;
   TurnSequence norm;
   {
-    Store s(db.path());
+    Store s(db());
     const auto m = make_mission(s);
     id = s.turns().add(m, arc(1.0, -70.0, 9), TurnStatus::ok, "");
     norm = *s.turns().get(id)->normalized;
   }
   {
-    Connection c(db.path());
+    Store raw(db());
+    Database& c = raw.database();
     auto q = c.prepare("SELECT normalized_samples FROM turns WHERE id = ?");
     q.bind(1, id);
     ASSERT_TRUE(q.step());
@@ -123,25 +128,25 @@ TEST(MissionQueries, NormalizedSamplesArePackedLittleEndianFloat64) {
     // With the JSON document broken, only the packed path can still produce the turn.
     c.exec("UPDATE turns SET normalized_json = '{'");
   }
-  Store s(db.path());
+  Store s(db());
   const auto loaded = s.turns().load_normalized({});
   ASSERT_EQ(loaded.size(), 1u);
   EXPECT_EQ(loaded[0], norm);
   EXPECT_THROW(s.turns().get(id), StoreError);
 }
 
-TEST(MissionQueries, CorruptPackedSamplesNameTheTurn) {
-  TempDb db;
+TEST_P(NormalizedTurnsOnEngine, CorruptPackedSamplesNameTheTurn) {
   std::int64_t id = 0;
   {
-    Store s(db.path());
+    Store s(db());
     id = s.turns().add(make_mission(s), arc(1.0, 90.0), TurnStatus::ok, "");
   }
   {
-    Connection c(db.path());
-    c.exec("UPDATE turns SET normalized_samples = x'00010203'");
+    Store raw(db());
+    const unsigned char truncated[] = {0, 1, 2, 3};
+    raw.database().prepare("UPDATE turns SET normalized_samples = ?").bind_blob(1, truncated).run();
   }
-  Store s(db.path());
+  Store s(db());
   try {
     s.turns().load_normalized({});
     FAIL() << "a truncated sample blob was read";
@@ -151,8 +156,8 @@ TEST(MissionQueries, CorruptPackedSamplesNameTheTurn) {
   }
 }
 
-TEST(MissionQueries, YawModelsRoundTripAndAreFoundByVehicle) {
-  Store s(":memory:");
+TEST_P(NormalizedTurnsOnEngine, YawModelsRoundTripAndAreFoundByVehicle) {
+  Store s(db());
   EXPECT_FALSE(s.models().latest().has_value());
   StoredModel m;
   m.vehicle_id = "cat-1";
@@ -190,8 +195,8 @@ TEST(MissionQueries, YawModelsRoundTripAndAreFoundByVehicle) {
   EXPECT_EQ(s.models().list(std::string("usim-1")).size(), 1u);
 }
 
-TEST(MissionQueries, NewestOkTurnIdPerVehicle) {
-  Store s(":memory:");
+TEST_P(NormalizedTurnsOnEngine, NewestOkTurnIdPerVehicle) {
+  Store s(db());
   EXPECT_EQ(s.turns().newest_ok_id("usim-1"), 0);
   const auto m = make_mission(s);
   const auto a = s.turns().add(m, arc(1.0, 40.0, 1), TurnStatus::ok, "");

@@ -6,10 +6,10 @@
 
 using namespace avk::testing::mission_rows;
 
-TEST(MissionQueries, SchemaIsVersionTwelve) {
+TEST(MissionQueries, SchemaIsVersionThirteen) {
   Store s(":memory:");
-  EXPECT_EQ(schema_version(), 12);
-  EXPECT_EQ(s.user_version(), 12);
+  EXPECT_EQ(schema_version(), 13);
+  EXPECT_EQ(s.user_version(), 13);
   EXPECT_FALSE(migration_step_sql(0).empty());
   EXPECT_NE(migration_step_sql(1).find("normalized_samples"), std::string_view::npos);
   EXPECT_NE(migration_step_sql(2).find("yaw_models"), std::string_view::npos);
@@ -22,8 +22,29 @@ TEST(MissionQueries, SchemaIsVersionTwelve) {
   EXPECT_NE(migration_step_sql(9).find("mission_currents"), std::string_view::npos);
   EXPECT_NE(migration_step_sql(10).find("started_utc"), std::string_view::npos);
   EXPECT_NE(migration_step_sql(11).find("speed_reference"), std::string_view::npos);
-  EXPECT_THROW(migration_step_sql(12), std::out_of_range);
+  EXPECT_NE(migration_step_sql(12).find("record_key"), std::string_view::npos);
+  EXPECT_THROW(migration_step_sql(13), std::out_of_range);
   EXPECT_THROW(migration_step_sql(-1), std::out_of_range);
+}
+
+// Both engines run the same numbered steps, each in its own dialect: the step that adds a table
+// or a column adds it on both.
+TEST(MissionQueries, BothEnginesHaveEveryStepInTheirOwnDialect) {
+  for (int i = 0; i < schema_version(); ++i) {
+    const auto lite = migration_step_sql(i, Engine::sqlite);
+    const auto pg = migration_step_sql(i, Engine::postgresql);
+    EXPECT_FALSE(pg.empty()) << "step " << i + 1;
+    for (const char* word : {"CREATE TABLE ", "ADD COLUMN ", "CREATE INDEX ", "CREATE UNIQUE"}) {
+      std::size_t n_lite = 0, n_pg = 0;
+      for (auto at = lite.find(word); at != std::string_view::npos; at = lite.find(word, at + 1))
+        ++n_lite;
+      for (auto at = pg.find(word); at != std::string_view::npos; at = pg.find(word, at + 1))
+        ++n_pg;
+      EXPECT_EQ(n_lite, n_pg) << "step " << i + 1 << ": " << word;
+    }
+    // PostgreSQL's REAL is four bytes; every double is DOUBLE PRECISION there.
+    EXPECT_EQ(pg.find(" REAL"), std::string_view::npos) << "step " << i + 1;
+  }
 }
 
 // A file exactly as schema 1 left it: the released step 1, rows written the way the version 1

@@ -1,5 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "support/store_engines.hpp"
+
 #include "support/temp_db.hpp"
 
 #include <atomic>
@@ -12,6 +14,8 @@
 #include "kinematics/ckt.hpp"
 #include "kinematics/ckt_file.hpp"
 #include "kinematics/turn_json.hpp"
+#include "store/postgresql.hpp"
+#include "store/sqlite.hpp"
 #include "store/store.hpp"
 #include "support/synthetic_turns.hpp"
 
@@ -48,8 +52,11 @@ std::vector<NavRow> nav_rows(int n, double t0_s = 0.0) {
 
 }  // namespace
 
-TEST(Store, MigrationCreatesSchemaAndVersion) {
-  Store s(":memory:");
+class StoreOnEngine : public avk::testing::OnEachEngine {};
+AVK_ON_EACH_ENGINE(StoreOnEngine);
+
+TEST_P(StoreOnEngine, MigrationCreatesSchemaAndVersion) {
+  Store s(db());
   EXPECT_EQ(s.user_version(), schema_version());
   EXPECT_GE(schema_version(), 1);
   const auto m = make_mission(s);
@@ -65,15 +72,14 @@ TEST(Store, FileDatabaseUsesWal) {
   EXPECT_TRUE(s.integrity_check());
 }
 
-TEST(Store, ReopeningKeepsData) {
-  TempDb db;
+TEST_P(StoreOnEngine, ReopeningKeepsData) {
   std::int64_t mission = 0, turn = 0;
   {
-    Store s(db.path());
+    Store s(db());
     mission = make_mission(s);
     turn = s.turns().add(mission, arc(1.0, 90.0), TurnStatus::ok, "");
   }
-  Store s(db.path());
+  Store s(db());
   EXPECT_EQ(s.user_version(), schema_version());
   ASSERT_TRUE(s.missions().get(mission));
   EXPECT_EQ(s.missions().get(mission)->name, "collection");
@@ -81,17 +87,20 @@ TEST(Store, ReopeningKeepsData) {
   EXPECT_EQ(s.vehicles().get("usim-1")->length_m, 1.2);
 }
 
-TEST(Store, NewerSchemaRefused) {
-  TempDb db;
-  { Store s(db.path()); }
+TEST_P(StoreOnEngine, NewerSchemaRefused) {
+  { Store s(db()); }
   {
     // Simulates a database written by a future release.
-    Connection c(db.path());
-    const std::string sql = "PRAGMA user_version = " + std::to_string(schema_version() + 1);
-    c.exec(sql.c_str());
+    const std::string newer = std::to_string(schema_version() + 1);
+    if (engine() == Engine::sqlite) {
+      Connection(db()).exec("PRAGMA user_version = " + newer);
+    } else {
+      PgConnection c(db());
+      c.exec("UPDATE avk_schema SET version = " + newer);
+    }
   }
   try {
-    Store s(db.path());
+    Store s(db());
     FAIL() << "a newer database was opened";
   } catch (const StoreError& e) {
     EXPECT_NE(std::string(e.what()).find("newer than this program supports"), std::string::npos)
@@ -99,8 +108,8 @@ TEST(Store, NewerSchemaRefused) {
   }
 }
 
-TEST(Store, MissionLifecycle) {
-  Store s(":memory:");
+TEST_P(StoreOnEngine, MissionLifecycle) {
+  Store s(db());
   const auto id = make_mission(s);
   auto m = s.missions().get(id);
   ASSERT_TRUE(m);
@@ -123,14 +132,14 @@ TEST(Store, MissionLifecycle) {
   EXPECT_FALSE(mission_status_from_string("bogus"));
 }
 
-TEST(Store, MissionNeedsKnownVehicle) {
-  Store s(":memory:");
+TEST_P(StoreOnEngine, MissionNeedsKnownVehicle) {
+  Store s(db());
   EXPECT_THROW(s.missions().create("ghost", "x", "{}"), StoreError);
   EXPECT_TRUE(s.missions().list().empty());
 }
 
-TEST(Store, TurnRoundTripIsBitExact) {
-  Store s(":memory:");
+TEST_P(StoreOnEngine, TurnRoundTripIsBitExact) {
+  Store s(db());
   const auto mission = make_mission(s);
   const TurnSequence turn = arc(1.25, -70.0, 7);
   const auto id = s.turns().add(mission, turn, TurnStatus::ok, "", {4.75, -1.25, 0.375});
@@ -154,8 +163,8 @@ TEST(Store, TurnRoundTripIsBitExact) {
   EXPECT_FALSE(s.turns().get(id + 1));
 }
 
-TEST(Store, AbortedAndRejectedTurnsKeepReasons) {
-  Store s(":memory:");
+TEST_P(StoreOnEngine, AbortedAndRejectedTurnsKeepReasons) {
+  Store s(db());
   const auto mission = make_mission(s);
   const auto a = s.turns().add(mission, arc(1.0, 40.0), TurnStatus::aborted, "obstacle ahead");
   // Too short to normalise: still kept, without the normalised form.
@@ -177,8 +186,8 @@ TEST(Store, AbortedAndRejectedTurnsKeepReasons) {
   EXPECT_EQ(s.turns().list({}).size(), 2u);
 }
 
-TEST(Store, KeysetPaginationReturnsEveryIdOnceInOrder) {
-  Store s(":memory:");
+TEST_P(StoreOnEngine, KeysetPaginationReturnsEveryIdOnceInOrder) {
+  Store s(db());
   const auto mission = make_mission(s);
   const TurnSequence turn = arc(1.0, 90.0);
   std::vector<std::int64_t> stored;
@@ -202,8 +211,8 @@ TEST(Store, KeysetPaginationReturnsEveryIdOnceInOrder) {
   EXPECT_EQ(std::set<std::int64_t>(seen.begin(), seen.end()).size(), 250u);
 }
 
-TEST(Store, FiltersByMissionSpeedHeadingStatus) {
-  Store s(":memory:");
+TEST_P(StoreOnEngine, FiltersByMissionSpeedHeadingStatus) {
+  Store s(db());
   const auto m1 = make_mission(s);
   const auto m2 = make_mission(s);
   s.turns().add(m1, arc(1.0, 90.0), TurnStatus::ok, "");
@@ -232,8 +241,8 @@ TEST(Store, FiltersByMissionSpeedHeadingStatus) {
   EXPECT_EQ(count(f), 0u);
 }
 
-TEST(Store, NavBatchAppendReadsBackInOrder) {
-  Store s(":memory:");
+TEST_P(StoreOnEngine, NavBatchAppendReadsBackInOrder) {
+  Store s(db());
   const auto m1 = make_mission(s);
   const auto m2 = make_mission(s);
   const auto first = nav_rows(500);
@@ -247,23 +256,23 @@ TEST(Store, NavBatchAppendReadsBackInOrder) {
   EXPECT_EQ(s.navigation().for_mission(m2).size(), 10u);
 }
 
-TEST(Store, NavForMissingMissionStoresNothing) {
-  Store s(":memory:");
+TEST_P(StoreOnEngine, NavForMissingMissionStoresNothing) {
+  Store s(db());
   const auto m = make_mission(s);
   EXPECT_THROW(s.navigation().append(m + 1, nav_rows(5)), StoreError);
   EXPECT_TRUE(s.navigation().for_mission(m + 1).empty());
 }
 
-TEST(Store, TurnForMissingMissionThrowsAndStoresNothing) {
-  Store s(":memory:");
+TEST_P(StoreOnEngine, TurnForMissingMissionThrowsAndStoresNothing) {
+  Store s(db());
   const auto m = make_mission(s);
   EXPECT_THROW(s.turns().add(m + 42, arc(1.0, 90.0), TurnStatus::ok, ""), StoreError);
   EXPECT_TRUE(s.turns().list({}).empty());
   EXPECT_TRUE(s.integrity_check());
 }
 
-TEST(Store, FailureInsideStoreTurnLeavesNothing) {
-  Store s(":memory:");
+TEST_P(StoreOnEngine, FailureInsideStoreTurnLeavesNothing) {
+  Store s(db());
   const auto m = make_mission(s);
   s.set_store_turn_hook_for_testing([](std::string_view step) {
     if (step == "turn_inserted") throw std::runtime_error("injected failure");
@@ -277,10 +286,9 @@ TEST(Store, FailureInsideStoreTurnLeavesNothing) {
   EXPECT_TRUE(s.turns().get(id));
 }
 
-TEST(Store, ConcurrentReaderSeesCommittedTurns) {
-  TempDb db;
-  Store writer(db.path());
-  Store reader(db.path());
+TEST_P(StoreOnEngine, ConcurrentReaderSeesCommittedTurns) {
+  Store writer(db());
+  Store reader(db());
   const auto m = make_mission(writer);
   const auto first = writer.turns().add(m, arc(1.0, 90.0), TurnStatus::ok, "");
   ASSERT_EQ(reader.turns().list({}).size(), 1u);
@@ -295,8 +303,8 @@ TEST(Store, ConcurrentReaderSeesCommittedTurns) {
   EXPECT_EQ(reader.turns().list({}).size(), 2u);
 }
 
-TEST(Store, CorruptTurnJsonNamesTheTurn) {
-  Store s(":memory:");
+TEST_P(StoreOnEngine, CorruptTurnJsonNamesTheTurn) {
+  Store s(db());
   const auto m = make_mission(s);
   const auto id = s.turns().add(m, arc(1.0, 90.0), TurnStatus::ok, "");
   s.overwrite_turn_json_for_testing(id, R"({"samples": [1, 2)");
@@ -311,8 +319,8 @@ TEST(Store, CorruptTurnJsonNamesTheTurn) {
   EXPECT_EQ(s.turns().list({}).size(), 1u);
 }
 
-TEST(Store, CktSnapshotRoundTrip) {
-  Store s(":memory:");
+TEST_P(StoreOnEngine, CktSnapshotRoundTrip) {
+  Store s(db());
   const auto m = make_mission(s);
   const auto turns = avk::testing::thesis_grid_turns(2, 0.25, 0.02);
   const auto table = avk::kinematics::Ckt::build(turns);
@@ -328,9 +336,8 @@ TEST(Store, CktSnapshotRoundTrip) {
   EXPECT_FALSE(snap->created_utc.empty());
 }
 
-TEST(Store, IntegrityCheckPasses) {
-  TempDb db;
-  Store s(db.path());
+TEST_P(StoreOnEngine, IntegrityCheckPasses) {
+  Store s(db());
   const auto m = make_mission(s);
   s.turns().add(m, arc(1.0, 90.0), TurnStatus::ok, "");
   s.navigation().append(m, nav_rows(100));
@@ -338,8 +345,8 @@ TEST(Store, IntegrityCheckPasses) {
 }
 
 // Each vehicle's newest table answers for that vehicle only, whichever was imported last.
-TEST(Store, CktSnapshotIsTheVehiclesOwn) {
-  Store s(":memory:");
+TEST_P(StoreOnEngine, CktSnapshotIsTheVehiclesOwn) {
+  Store s(db());
   avk::kinematics::Ckt a =
       avk::kinematics::Ckt::build(avk::testing::thesis_grid_turns(1, 0.25, 0.02));
   avk::kinematics::Ckt b = a;

@@ -17,6 +17,11 @@ inline void downgrade_schema(store::Connection& c, int version) {
     throw std::invalid_argument("downgrade_schema: no undo for schema " + std::to_string(version));
   for (int v = store::schema_version(); v > version; --v) {
     switch (v) {
+      case 13:  // stations and turn record keys
+        c.exec("DROP INDEX turns_by_record_key");
+        c.exec("ALTER TABLE turns DROP COLUMN record_key");
+        c.exec("ALTER TABLE missions DROP COLUMN station_id");
+        break;
       case 12:  // the speed reference and drift scatter kept with a current
         for (const char* column : {"reference_legs", "rms_over_ground_mps", "rms_through_water_mps",
                                    "reference_separation_mps", "speed_reference", "drift_legs",
