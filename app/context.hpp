@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <thread>
 #include <vector>
 
 #include "app/live_feed.hpp"
@@ -68,6 +69,8 @@ class Context {
   SilentFeed silent_;
   std::vector<std::unique_ptr<VehicleLoop>> loops_;
   std::unique_ptr<TableCache> tables_;
+  // On a shared PostgreSQL database: follows other stations' changes (start() to shutdown()).
+  std::jthread table_changes_;
   std::unique_ptr<TrafficWatch> traffic_;
   std::unique_ptr<CollisionWatch> collisions_;
 };

@@ -61,7 +61,13 @@ void CurrentTracker::save(double t_s) {
   const auto water = current_is_significant(*estimate_)
                          ? water_frame_turns(ok_turns_, water_current(*estimate_))
                          : std::vector<std::pair<std::int64_t, kin::TurnSequence>>{};
-  sc.revision = store_.currents().save(sc, water);
+  try {
+    sc.revision = store_.currents().save(sc, water);
+  } catch (const store::StoreUnavailable&) {
+    // The database server is away: this estimate is not kept (the next one replaces it anyway,
+    // with every turn stored by then).
+    return;
+  }
   if (publish_) publish_(view_of(sc));
 }
 

@@ -6,6 +6,8 @@
 #include <fstream>
 #include <string>
 
+#include "app/station_identity.hpp"
+
 namespace avk::app {
 
 bool process_alive(std::int64_t pid) {
@@ -24,8 +26,15 @@ bool held_by_a_process(store::MissionStatus s) {
   return s == store::MissionStatus::running || s == store::MissionStatus::paused;
 }
 
+// Another station's mission is run by a process on another machine: its pid says nothing here,
+// so its stored status stands.
+bool run_by_another_station(const store::Mission& m) {
+  return m.station_id && *m.station_id != station_id();
+}
+
 store::MissionStatus effective_status(const store::Mission& m) {
-  if (held_by_a_process(m.status) && (!m.runner_pid || !process_alive(*m.runner_pid))) {
+  if (held_by_a_process(m.status) && !run_by_another_station(m) &&
+      (!m.runner_pid || !process_alive(*m.runner_pid))) {
     return store::MissionStatus::interrupted;
   }
   return m.status;

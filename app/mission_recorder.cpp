@@ -27,6 +27,7 @@ store::MissionStatus to_store_status(mission::MissionState s) {
 MissionRecorder::MissionRecorder(store::Store& store, std::int64_t mission_id,
                                  double flush_period_s, CurrentTracker::Publish on_current)
     : store_(store),
+      writer_(store),
       mission_id_(mission_id),
       flush_period_s_(flush_period_s),
       current_(store, mission_id, std::move(on_current)) {
@@ -54,30 +55,36 @@ void MissionRecorder::on_turn_started(const mission::TurnTask&, const mission::R
 
 void MissionRecorder::flush() {
   if (pending_.empty()) return;
-  store_.navigation().append(mission_id_, pending_);
+  writer_.nav(mission_id_, pending_);
   pending_.clear();
 }
 
+void MissionRecorder::set_runner(std::optional<std::int64_t> pid) {
+  writer_.runner(mission_id_, pid);
+}
+
 void MissionRecorder::on_turn(mission::TurnOutcome& t) {
+  ++turns_finished_;
   t.stored_id =
-      store_.turns().add(mission_id_, t.raw, t.status, t.reason,
-                         {t.condition_set_time_s, t.start_heading_error_deg, t.start_yaw_rate_dps});
-  current_.turn_stored(*t.stored_id, t.raw, t.status);
+      writer_.turn(mission_id_, t.raw, t.status, t.reason,
+                   {t.condition_set_time_s, t.start_heading_error_deg, t.start_yaw_rate_dps});
+  // A turn waiting in the spool has no id yet: the current is estimated again at the next turn
+  // the database takes.
+  if (t.stored_id) current_.turn_stored(*t.stored_id, t.raw, t.status);
 }
 
 void MissionRecorder::on_condition_set(const mission::ConditionSetEpisode& e) {
-  store_.missions().append_condition_set(
-      mission_id_, {e.start_s, e.end_s, e.target_speed_mps, to_string(e.outcome)});
+  writer_.condition_set(mission_id_,
+                        {e.start_s, e.end_s, e.target_speed_mps, to_string(e.outcome)});
 }
 
 void MissionRecorder::on_event(const mission::MissionEventRecord& e) {
-  store_.missions().append_event(mission_id_, e.t_s, std::string(mission::to_string(e.kind)),
-                                 e.message);
+  writer_.event(mission_id_, e.t_s, std::string(mission::to_string(e.kind)), e.message);
 }
 
 void MissionRecorder::on_state(mission::MissionState s, const std::string& reason, double t_s) {
   flush();
-  store_.missions().set_status(mission_id_, to_store_status(s), reason, t_s);
+  writer_.status(mission_id_, to_store_status(s), reason, t_s);
 }
 
 }  // namespace avk::app

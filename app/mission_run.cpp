@@ -3,10 +3,12 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <thread>
 
 #include "app/context.hpp"
 #include "app/mission_recorder.hpp"
 #include "app/store_access.hpp"
+#include "app/store_link.hpp"
 #include "mission/helm_loop.hpp"
 #include "mission/mission_runner.hpp"
 #include "mission/turn_plan.hpp"
@@ -60,7 +62,7 @@ Result<MissionRunOutcome> run_on(Context& ctx, const MissionPlan& plan, LocalVeh
   if (options.on_start) options.on_start(plan, out.planned);
 
   // The process is the mission's runner: if it dies, the mission reads as interrupted.
-  db.missions().set_runner(plan.mission_id, static_cast<std::int64_t>(::getpid()));
+  recorder.set_runner(static_cast<std::int64_t>(::getpid()));
   const auto wall_start = std::chrono::steady_clock::now();
   mission::HelmLoopResult r;
   if (const vehicle::ScaledClock* clock = source.wall_clock()) {
@@ -79,8 +81,22 @@ Result<MissionRunOutcome> run_on(Context& ctx, const MissionPlan& plan, LocalVeh
   out.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
   out.link_report = source.link_report();
   recorder.flush();
-  db.missions().set_runner(plan.mission_id, std::nullopt);
+  recorder.set_runner(std::nullopt);
+  // What the spool still holds goes to the database before the summary reads it; when the server
+  // is still away, the summary cannot be read, and the spool is replayed by the next run or serve.
+  // What the spool still holds goes to the database before the summary reads it. A server that
+  // is away at the end (restarting, a standby being promoted) is waited for a minute; after that
+  // the writes stay in the spool for the next run or serve to replay.
+  const auto give_up = std::chrono::steady_clock::now() + std::chrono::minutes(1);
+  while (!recorder.replay_spool()) {
+    if (std::chrono::steady_clock::now() > give_up || (options.stop && options.stop->load()))
+      return internal_error(
+          "the database is unreachable: " + std::to_string(store_link_view(ctx.db_path()).spooled) +
+          " writes wait in the spool " + spool_path());
+    std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  }
   out.turns_given_up = runner.turns_given_up();
+  out.turns_finished = recorder.turns_finished();
   auto summary = mission_summary(ctx, plan.mission_id);
   if (!summary) return summary.error();
   out.summary = std::move(*summary);

@@ -41,6 +41,8 @@ struct MissionRunOutcome {
   bool simulated = false;  // the vehicle was the simulator's
   int planned = 0;         // turns of the whole plan
   int turns_given_up = 0;
+  // Turns the mission finished in this run (ok, aborted or rejected), as its runner counted them.
+  int turns_finished = 0;
   std::string link_report;  // a real vehicle's link afterwards (counters, battery)
   MissionSummary summary;   // as stored after the run
 };

@@ -3,7 +3,9 @@
 // includes this: front ends call the use cases, which answer in view types, so no front end holds a
 // store (the layer rules forbid it).
 
-#include "app/store_access.hpp"
+#include <memory>
+#include <string>
+
 #include "app/store_views.hpp"
 #include "store/store.hpp"
 
@@ -14,5 +16,9 @@ class Context;
 // This thread's connection to the context's database: SQLite connections are not shared between
 // threads, and each thread opens its own on first use.
 store::Store& store_of(Context& ctx);
+
+// Opens the database as this station: the missions it creates record station_id()
+// (app/station_identity.hpp).
+std::unique_ptr<store::Store> open_station_store(const std::string& db);
 
 }  // namespace avk::app

@@ -32,8 +32,12 @@ const TableCache::Revision& TableCache::revision(Context& ctx, Entry& e,
                                                  const std::string& vehicle_id,
                                                  bool include_harvested, bool stale) {
   const auto now = std::chrono::steady_clock::now();
-  if (!stale && now - e.checked < recheck_) return e.seen;
+  // Read before the store: a change announced while the store is read causes another read.
+  const std::uint64_t generation = generation_.load();
+  if (!stale && (following_ ? e.generation == generation : now - e.checked < recheck_))
+    return e.seen;
   e.checked = now;
+  e.generation = generation;
   store::Store& db = store_of(ctx);
   Revision r;
   r.turns = db.turns().newest_ok_id(vehicle_id, include_harvested);

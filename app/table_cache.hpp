@@ -2,6 +2,7 @@
 // The cache of each vehicle's table behind the station's predictions (app/ckt_tables.hpp): for
 // app/ only, since it reads the store's revisions.
 
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <map>
@@ -40,6 +41,13 @@ class TableCache {
                                                   const store::TurnsLeftOut& left_out);
   void forget(const std::string& vehicle_id);
 
+  // From now on a table is re-read only after changed() (a shared database announces every
+  // change: store::TableChangeListener) instead of at most every recheck.
+  void follow_changes() { following_ = true; }
+  // Some vehicle's table may have changed (the vehicle is not told apart: a rare event, and one
+  // query per cached table re-reads them).
+  void changed() { ++generation_; }
+
   static constexpr std::size_t kHeldOutTables = 8;
 
  private:
@@ -54,8 +62,9 @@ class TableCache {
   struct Entry {
     std::mutex mutex;
     std::chrono::steady_clock::time_point checked{};
-    Revision seen;        // as last read from the store
-    Revision value_from;  // what `value` was built from
+    std::uint64_t generation = 0;  // of changed() when last read
+    Revision seen;                 // as last read from the store
+    Revision value_from;           // what `value` was built from
     std::optional<VehicleTable> value;
   };
   struct HeldOutKey {
@@ -76,6 +85,8 @@ class TableCache {
   const Revision& revision(Context& ctx, Entry& e, const std::string& vehicle_id,
                            bool include_harvested, bool stale);
   std::chrono::milliseconds recheck_;
+  std::atomic<bool> following_{false};
+  std::atomic<std::uint64_t> generation_{1};
   std::mutex mutex_;
   std::map<std::pair<std::string, bool>, std::unique_ptr<Entry>> entries_;
   // Apart from the entries: a held-out table takes a while to build, and predictions from the

@@ -6,6 +6,8 @@
 #include <map>
 
 #include "app/mission_recorder.hpp"
+#include "app/station_identity.hpp"
+#include "app/store_access.hpp"
 #include "kinematics/number_text.hpp"
 #include "mission/command_helm.hpp"
 #include "sim/scheduler.hpp"
@@ -125,7 +127,7 @@ struct VehicleLoop::Impl {
     r.follower = feed.follow(plan.mission_id, *r.runner);
     r.runner->add_observer(*r.recorder);
     r.runner->add_observer(*r.follower);
-    store->missions().set_runner(plan.mission_id, static_cast<std::int64_t>(::getpid()));
+    r.recorder->set_runner(static_cast<std::int64_t>(::getpid()));
     idle_stopped = false;
     running = std::move(r);
     {
@@ -140,7 +142,8 @@ struct VehicleLoop::Impl {
 
   void finish_running(double now) {
     running->recorder->flush();
-    store->missions().set_runner(running->id, std::nullopt);
+    running->recorder->set_runner(std::nullopt);
+    running->recorder->replay_spool();
     update_live();
     feed.station_event(
         now, mission::EventKind::mission_detached,
@@ -256,7 +259,7 @@ struct VehicleLoop::Impl {
   }
 
   void run() {
-    store = std::make_unique<store::Store>(db_path);
+    store = open_station_store(db_path);
     const std::unique_ptr<sim::Pacer> pacer = source->pacer();
     while (!stop_requested.load() || running) {
       if (!scheduler.run_until(scheduler.now_s() + 1.0, *pacer)) break;

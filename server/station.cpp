@@ -111,6 +111,7 @@ void Station::add_routes() {
       h.session_start_clock_s = v.start_clock_s;
     }
     h.datum = options_.datum;
+    h.store = app::store_link_view(ctx.db_path());
     return json_response(health_json(h));
   });
   // The names the station uses (event kinds with their severity, helm modes, link states, turn

@@ -38,6 +38,7 @@ int run_cli(const std::vector<std::string>& args, std::istream& in, std::ostream
     if (args[0] == "predict") return cmd_predict(rest, io);
     if (args[0] == "maneuver") return cmd_maneuver(rest, io);
     if (args[0] == "import") return cmd_import(rest, io);
+    if (args[0] == "db") return cmd_db(rest, io);
     if (args[0] == "encounter") return cmd_encounter(rest, io);
     if (args[0] == "band") return cmd_band(rest, io);
     if (args[0] == "current") return cmd_current(rest, io);

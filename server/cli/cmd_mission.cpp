@@ -23,6 +23,7 @@
 #include "server/cli/files.hpp"
 #include "server/cli/m200_options.hpp"
 #include "server/cli/sim_options.hpp"
+#include "server/cli/station_options.hpp"
 #include "server/serialize.hpp"
 #include "sim/sim_config.hpp"
 #include "vehicle/vehicle_kind.hpp"
@@ -199,6 +200,7 @@ int execute(const std::function<app::Result<app::MissionRunOutcome>()>& run,
   io.out << ": " << r.summary.turns.ok << "/" << r.planned << " turns ok, "
          << r.summary.turns.aborted << " aborted, " << r.summary.turns.rejected << " rejected";
   if (r.turns_given_up) io.out << ", " << r.turns_given_up << " given up";
+  io.out << "; " << r.turns_finished << " turns finished this run";
   io.out << "; " << (r.simulated ? "simulated " : "ran ") << fixed(run_s, 1) << " s in "
          << fixed(r.wall_s, 3) << " s of wall time (" << fixed(run_s / std::max(r.wall_s, 1e-9), 0)
          << "x)\n";
@@ -221,10 +223,10 @@ void require_vehicle(const Args& a) {
   }
 }
 
-const std::set<std::string> kRunValues = {"config",       "db",   "vehicle",         "sim-config",
-                                          "ticks",        "seed", "realtime-factor", "vehicle-id",
-                                          "max-sim-time", "m200", "datum",           "pid",
-                                          "controller-hz"};
+const std::set<std::string> kRunValues = {
+    "config",          "db",         "vehicle",      "sim-config", "ticks", "seed",
+    "realtime-factor", "vehicle-id", "max-sim-time", "m200",       "datum", "pid",
+    "controller-hz",   "station-id", "spool"};
 const std::set<std::string> kRunFlags = {"sim", "realtime", "jitter", "quiet"};
 
 int run(const std::vector<std::string>& rest, Io& io) {
@@ -238,6 +240,7 @@ int run(const std::vector<std::string>& rest, Io& io) {
         vehicle_id_option(a, std::string("sim-") + vehicle::to_string(vehicle.setup.vehicle.kind));
   }
   const std::string text = read_file(path, io.in);
+  apply_station_options(a);
   app::Context ctx(db_path);
   ProgressPrinter printer(io.out, a.flag("quiet"));
   const app::MissionRunOptions options = run_options(a, io, printer);
@@ -252,6 +255,7 @@ std::int64_t mission_id_arg(const Args& a) {
 int resume(const std::vector<std::string>& rest, Io& io) {
   const Args a(rest, kRunValues, kRunFlags);
   require_vehicle(a);
+  apply_station_options(a);
   app::Context ctx(a.require("db"));
   const std::int64_t id = mission_id_arg(a);
   // A simulated mission resumes on the simulator of its own kind unless --vehicle names one.

@@ -19,14 +19,17 @@
 
 #include "app/context.hpp"
 #include "app/missions.hpp"
+#include "app/station_identity.hpp"
 #include "app/tiles/map_tiles.hpp"
 #include "server/cli/args.hpp"
 #include "server/cli/commands.hpp"
 #include "server/cli/database_location.hpp"
+#include "server/cli/db_selection.hpp"
 #include "server/cli/files.hpp"
 #include "server/cli/fleet_file.hpp"
 #include "server/cli/m200_options.hpp"
 #include "server/cli/sim_options.hpp"
+#include "server/cli/station_options.hpp"
 #include "server/http/http_server.hpp"
 #include "server/station.hpp"
 #include "server/token_strength.hpp"
@@ -65,8 +68,7 @@ void check_user_token(const std::string& token) {
 // The token lives beside the database, readable by its owner only, so a restart keeps the
 // dashboard URL an operator already has. A token file others can read is refused rather than
 // used: whoever could read it has had the token. created: whether this call wrote the file.
-std::string station_token(const std::string& db_path, std::ostream& err, bool& created) {
-  const std::string path = db_path + ".token";
+std::string station_token(const std::string& path, std::ostream& err, bool& created) {
   created = false;
   struct stat st {};
   if (::stat(path.c_str(), &st) == 0) {
@@ -145,6 +147,9 @@ std::string vehicles_text(const std::vector<app::VehicleLoopOptions>& vehicles) 
 int cmd_serve(const std::vector<std::string>& args, Io& io) {
   const Args a(args,
                {"db",
+                "station-id",
+                "spool",
+                "token-file",
                 "vehicle",
                 "sim-config",
                 "realtime-factor",
@@ -255,17 +260,23 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
   // The default location is made only when it is used: a user without a home can still give
   // --db.
   const std::string db_path = a.get("db") ? *a.get("db") : default_db_path();
+  // A database server (PostgreSQL) has no file beside which the token could live: it goes to
+  // --token-file, or beside the default database file.
+  const bool server_db = app::is_database_server(db_path);
+  apply_station_options(a);
+  const std::string token_path =
+      a.get("token-file").value_or((server_db ? default_db_path() : db_path) + ".token");
   StationOptions so;
   so.db_path = db_path;
   so.server_version = "avk-station 0.1.0";
   // Before anything is written there: a folder this user cannot write (a Docker bind mount
   // owned by root) is named with its owner and this process's uid, not as a failed token file.
-  check_database_location(db_path);
+  if (!server_db) check_database_location(db_path);
   RemoveUnlessKept new_token_file;
   if (user_token.empty()) {
     bool created = false;
-    so.token = station_token(db_path, io.err, created);
-    if (created) new_token_file.set(db_path + ".token");
+    so.token = station_token(token_path, io.err, created);
+    if (created) new_token_file.set(token_path);
   } else {
     so.token = user_token;
   }
@@ -292,7 +303,8 @@ int cmd_serve(const std::vector<std::string>& args, Io& io) {
   } else if (a.flag("sim")) {
     app::VehicleLoopOptions v;
     v.setup = sim_setup_from(a, io);
-    v.setup.vehicle.id = std::string("sim-") + vehicle::to_string(v.setup.vehicle.kind);
+    v.setup.vehicle.id =
+        vehicle_id_option(a, std::string("sim-") + vehicle::to_string(v.setup.vehicle.kind));
     v.realtime_factor = factor;
     v.start_clock_s = clock_start_s;
     so.vehicles.push_back(v);

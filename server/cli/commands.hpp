@@ -36,6 +36,7 @@ int cmd_compare(const std::vector<std::string>& args, Io& io);
 int cmd_predict(const std::vector<std::string>& args, Io& io);
 int cmd_maneuver(const std::vector<std::string>& args, Io& io);
 int cmd_import(const std::vector<std::string>& args, Io& io);
+int cmd_db(const std::vector<std::string>& args, Io& io);
 // avk mission export (MCAP) and avk import mcap (cli/cmd_mcap.cpp).
 int mission_export(const std::vector<std::string>& args, Io& io);
 int import_mcap(const std::vector<std::string>& args, Io& io);

@@ -52,6 +52,8 @@ const std::vector<CommandUsage>& command_usages() {
        "  avk mission run --config FILE --db FILE --sim [--vehicle KIND] [--sim-config FILE]\n"
        "                  [--seed N] [--realtime [--realtime-factor K]] [--quiet]\n"
        "      run a collection mission on the simulator; every turn is stored\n"
+       "      (with --db postgresql://...: [--station-id NAME] [--spool FILE], writes wait in\n"
+       "      the spool while the server is away, docs/postgresql.md)\n"
        "  avk mission run --config FILE --db FILE --m200 HOST[:29500] [--datum LAT,LON]\n"
        "                  [--pid m200_in_water|thesis_sim] [--controller-hz 10]\n"
        "                  [--realtime-factor K] [--vehicle-id ID]\n"
@@ -79,6 +81,12 @@ const std::vector<CommandUsage>& command_usages() {
        "                  [--datum LAT,LON]\n"
        "      the mission as an MCAP recording for Foxglove/Lichtblick (docs/foxglove.md);\n"
        "      with a datum it carries positions on the earth too\n"},
+      {"db",
+       {"copy"},
+       "  avk db copy --from FILE_OR_URL --to FILE_OR_URL\n"
+       "      everything a database holds into an empty one, SQLite file or PostgreSQL\n"
+       "      (postgresql://USER@HOST/DB or a libpq string), ids kept, doubles exact,\n"
+       "      every table's rows counted in both (docs/postgresql.md)\n"},
       {"import",
        {"mcap"},
        "  avk import mcap FILE --db FILE\n"
@@ -211,7 +219,8 @@ const std::vector<CommandUsage>& command_usages() {
        "      time, inside the band predicted by the table of the other missions\n"},
       {"serve",
        {},
-       "  avk serve [--db FILE] [--sim [--vehicle KIND] [--sim-config FILE]\n"
+       "  avk serve [--db FILE|URL] [--station-id NAME] [--spool FILE] [--token-file FILE]\n"
+       "                  [--sim [--vehicle KIND] [--sim-config FILE]\n"
        "                  | --m200 HOST:PORT [--pid P] | --vehicles FLEET.json]\n"
        "                  [--datum LAT,LON] [--realtime-factor K]\n"
        "                  [--ais HOST:PORT (gpsd, with --datum)] [--standoff 20] [--watch-horizon "
@@ -226,7 +235,9 @@ const std::vector<CommandUsage>& command_usages() {
        "      --vehicles runs a fleet (examples/fleet.json), each vehicle on its own loop;\n"
        "      --ais watches AIS traffic decoded by gpsd (docs/ais.md); the collision watch\n"
        "      warns when two vehicles (or a vehicle and a contact) are predicted closer than\n"
-       "      --standoff m within --watch-horizon s\n"},
+       "      --standoff m within --watch-horizon s; --db postgresql://USER@HOST/DB (or a\n"
+       "      libpq string) shares a PostgreSQL database with other stations\n"
+       "      (docs/postgresql.md)\n"},
       {"traffic",
        {},
        "  avk traffic --scenario FILE --udp HOST:PORT [--interval 2] [--realtime-factor K]\n"

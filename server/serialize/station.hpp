@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "app/store_link.hpp"
 #include "app/tiles/map_tiles.hpp"
 #include "vehicle/local_grid.hpp"
 
@@ -32,6 +33,9 @@ struct HealthStatus {
   // whose times the mapping above does not fit.
   std::optional<double> session_start_clock_s;
   std::optional<vehicle::LatLon> datum;
+  // The database: its engine, and whether writes wait in the local spool (a PostgreSQL server
+  // that is away).
+  app::StoreLinkView store;
 };
 nlohmann::json health_json(const HealthStatus& h);
 

@@ -21,7 +21,13 @@ json health_json(const HealthStatus& h) {
           {"clock_s", optional_json(h.clock_s)},
           {"realtime_factor", optional_json(h.realtime_factor)},
           {"session_start_clock_s", optional_json(h.session_start_clock_s)},
-          {"datum", datum_json(h.datum)}};
+          {"datum", datum_json(h.datum)},
+          {"store",
+           {{"engine", h.store.engine},
+            {"state", h.store.spooling ? "spooling" : "connected"},
+            {"spooled", h.store.spooled},
+            {"spool", h.store.spool_path.empty() ? json() : json(h.store.spool_path)},
+            {"last_error", h.store.last_error.empty() ? json() : json(h.store.last_error)}}}};
 }
 
 json map_tiles_json(const app::tiles::MapTileInfo* tiles,

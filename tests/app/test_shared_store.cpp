@@ -1,0 +1,109 @@
+// Several stations on one PostgreSQL database: a table one station's turns change is seen by
+// another, whose cache learns of the change from the database's notifications (not by asking
+// the database on every prediction), and missions of other stations are left alone.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <thread>
+
+#include "app/ckt_tables.hpp"
+#include "app/context.hpp"
+#include "app/mission_liveness.hpp"
+#include "app/station_identity.hpp"
+#include "app/table_cache.hpp"
+#include "store/postgresql.hpp"
+#include "store/store.hpp"
+#include "support/pg_cluster.hpp"
+#include "support/synthetic_turns.hpp"
+
+namespace {
+
+using namespace avk;
+
+std::int64_t add_turns(store::Store& s, double speed_mps, int n) {
+  s.vehicles().upsert({"usim-1", "usim", 2.0, 1.2});
+  const auto m = s.missions().create("usim-1", "collection", "{}");
+  for (int k = 0; k < n; ++k) {
+    avk::testing::ArcTurnSpec spec;
+    spec.speed_mps = speed_mps;
+    spec.dheading_deg = 45.0 * (1 + k % 2);
+    spec.seed = static_cast<unsigned>(k + 1);
+    spec.vehicle_id = "usim-1";
+    s.turns().add(m, avk::testing::make_arc_turn(spec), kinematics::TurnStatus::ok, "");
+  }
+  return m;
+}
+
+std::size_t turns_in(const app::VehicleTable& t) {
+  std::size_t n = 0;
+  for (const auto& c : t.table->cells())
+    n += c.n_turns;
+  return n;
+}
+
+// Polls `done` until it holds or 60 s pass (a loaded machine may be slow; nothing is timed).
+template <typename Done>
+bool eventually(Done done) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (done()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  return done();
+}
+
+TEST(SharedStore, ANotificationIsWhatRefreshesAFollowingCache) {
+  avk::testing::PgTestDb pg;
+  store::Store other(pg.conninfo());
+  add_turns(other, 1.0, 4);
+  app::Context station(pg.conninfo());
+  // An hour between checks: only a notification can make this cache read the store again.
+  app::TableCache cache(std::chrono::hours(1));
+  store::TableChangeListener listener(pg.conninfo());
+  cache.follow_changes();
+  auto first = cache.get(station, "usim-1");
+  ASSERT_TRUE(first.ok());
+  EXPECT_EQ(turns_in(first.value()), 4u);
+
+  add_turns(other, 1.5, 2);
+  // Unannounced, the cache answers from what it built.
+  EXPECT_EQ(turns_in(cache.get(station, "usim-1").value()), 4u);
+  ASSERT_TRUE(eventually([&] {
+    for (const auto& vehicle : listener.wait(100))
+      if (vehicle == "usim-1") return true;
+    return false;
+  }));
+  cache.changed();
+  EXPECT_EQ(turns_in(cache.get(station, "usim-1").value()), 6u);
+}
+
+TEST(SharedStore, AStartedStationSeesTheTurnsAnotherStationStores) {
+  avk::testing::PgTestDb pg;
+  store::Store other(pg.conninfo());
+  add_turns(other, 1.0, 3);
+  app::Context station(pg.conninfo());
+  station.start();
+  ASSERT_EQ(turns_in(station.tables().get(station, "usim-1").value()), 3u);
+  add_turns(other, 1.5, 3);
+  EXPECT_TRUE(
+      eventually([&] { return turns_in(station.tables().get(station, "usim-1").value()) == 6u; }));
+  station.shutdown();
+}
+
+TEST(SharedStore, AnotherStationsRunningMissionIsNotTakenForAnOrphan) {
+  avk::testing::PgTestDb pg;
+  store::Store elsewhere(pg.conninfo());
+  elsewhere.set_station_id("station-elsewhere");
+  elsewhere.vehicles().upsert({"usim-2", "usim", 2.0, 1.2});
+  const auto theirs = elsewhere.missions().create("usim-2", "theirs", "{}");
+  elsewhere.missions().set_status(theirs, store::MissionStatus::running, "", 0.0);
+  // A pid that is not alive here: on its own station that would make the mission an orphan.
+  elsewhere.missions().set_runner(theirs, 999999999);
+  ASSERT_NE(app::station_id(), "station-elsewhere");
+  store::Store here(pg.conninfo());
+  EXPECT_EQ(app::mark_orphaned_missions_interrupted(here), 0);
+  EXPECT_EQ(here.missions().get(theirs)->status, store::MissionStatus::running);
+  EXPECT_EQ(here.missions().get(theirs)->station_id, "station-elsewhere");
+}
+
+}  // namespace

@@ -1,0 +1,122 @@
+// A PostgreSQL server that goes away during a mission: killed (SIGKILL, as a crash) three times
+// while `avk mission run` flies Figure 4-1 in real time x20, and started again each time. The
+// mission goes on, its writes wait in the spool, and when the server is back they are replayed:
+// every turn the mission finished is in the database exactly once, the spool is a sound SQLite
+// file left empty.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <chrono>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include "store/postgresql.hpp"
+#include "store/spool.hpp"
+#include "store/sqlite.hpp"
+#include "support/pg_cluster.hpp"
+#include "support/spawn_avk.hpp"
+#include "support/temp_dir.hpp"
+
+namespace {
+
+using namespace avk;
+
+// Polls `done` every 50 ms until it holds or `limit` passes; whether it held.
+template <typename Done>
+bool within(std::chrono::seconds limit, Done done) {
+  const auto deadline = std::chrono::steady_clock::now() + limit;
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (done()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  return done();
+}
+
+// The number a query answers on the cluster's database; -1 while it cannot be reached.
+std::int64_t ask(const std::string& conninfo, const std::string& sql) {
+  try {
+    store::PgConnection c(conninfo);
+    auto s = c.prepare(sql);
+    return s.step() ? s.column_int64(0) : -1;
+  } catch (const store::StoreError&) {
+    return -1;
+  }
+}
+
+std::int64_t spooled_turns(const std::string& spool) {
+  try {
+    store::Connection c(spool);
+    auto s = c.prepare("SELECT count(*) FROM spooled_writes WHERE kind = 'turn'");
+    return s.step() ? s.column_int64(0) : 0;
+  } catch (const store::StoreError&) {
+    return 0;  // not made yet
+  }
+}
+
+std::string read_all(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+TEST(PgOutage, KilledThreeTimesDuringAMissionEveryFinishedTurnIsStoredOnce) {
+  avk::testing::TempDir dir("avk_pg_outage");
+  avk::testing::PgCluster pg(dir.path() / "cluster");
+  const std::string db = pg.conninfo(pg.create_database());
+  const std::string spool = (dir.path() / "station.spool.db").string();
+  const std::string log = (dir.path() / "mission.log").string();
+  const pid_t child = avk::testing::spawn_avk(
+      {"mission", "run", "--config", std::string(AVK_SOURCE_DIR) + "/examples/thesis-fig4-1.json",
+       "--db", db, "--sim", "--vehicle", "usim", "--realtime", "--realtime-factor", "20",
+       "--station-id", "outage-test", "--spool", spool},
+      log);
+  ASSERT_GT(child, 0);
+  const std::string turns = "SELECT count(*) FROM turns";
+  std::int64_t before = 0;
+  for (int outage = 0; outage < 3; ++outage) {
+    // The spool was replayed and a turn reached the database since: the server is in use when
+    // it dies, and what the next outage spools is new.
+    ASSERT_TRUE(within(std::chrono::seconds(240),
+                       [&] { return spooled_turns(spool) == 0 && ask(db, turns) > before; }))
+        << "outage " << outage << "\n"
+        << read_all(log);
+    pg.kill9();
+    // The mission goes on without it: a turn it finishes now waits in the spool.
+    ASSERT_TRUE(within(std::chrono::seconds(240), [&] { return spooled_turns(spool) > 0; }))
+        << "outage " << outage << "\n"
+        << read_all(log);
+    pg.start();
+    ASSERT_TRUE(within(std::chrono::seconds(60), [&] { return ask(db, turns) >= 0; }));
+    before = ask(db, turns);
+  }
+  int status = 0;
+  ASSERT_TRUE(within(std::chrono::seconds(600), [&] {
+    return ::waitpid(child, &status, WNOHANG) == child;
+  })) << read_all(log);
+  const std::string out = read_all(log);
+  ASSERT_TRUE(WIFEXITED(status)) << out;
+  EXPECT_EQ(WEXITSTATUS(status), 0) << out;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(out, m, std::regex(R"((\d+) turns finished this run)"))) << out;
+  const std::int64_t finished = std::stoll(m[1]);
+  // Every cell once at least (a turn given up and flown again is finished twice).
+  EXPECT_GE(finished, 18) << out;
+  EXPECT_EQ(ask(db, "SELECT count(*) FROM turns WHERE status = 'ok'"), 18);
+  // Every finished turn once: as many rows as turns, each under its own key.
+  EXPECT_EQ(ask(db, turns), finished);
+  EXPECT_EQ(ask(db, "SELECT count(DISTINCT record_key) FROM turns"), finished);
+  EXPECT_EQ(ask(db,
+                "SELECT count(*) FROM missions WHERE status = 'done' AND runner_pid IS NULL "
+                "AND station_id = 'outage-test'"),
+            1);
+  store::Spool left(spool);
+  EXPECT_TRUE(left.integrity_check());
+  EXPECT_EQ(left.count(), 0);
+}
+
+}  // namespace
