@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iterator>
 #include <string>
 
 #include "app/context.hpp"
@@ -26,6 +27,33 @@ const char* to_string(TableSource s) {
 Result<VehicleTable> vehicle_table(Context& ctx, const std::string& vehicle_id,
                                    bool include_harvested) {
   return ctx.tables().get(ctx, vehicle_id, include_harvested);
+}
+
+Result<VehicleTable> class_table(Context& ctx, const std::string& vehicle_id,
+                                 bool include_harvested) {
+  store::Store& db = store_of(ctx);
+  const auto info = db.vehicles().get(vehicle_id);
+  if (!info) return not_found("no vehicle '" + vehicle_id + "' in the database");
+  VehicleTable t;
+  t.vehicle_id = vehicle_id;
+  t.include_harvested = include_harvested;
+  std::vector<kin::TurnSequence> turns;
+  for (const auto& v : db.vehicles().of_kind(info->kind)) {
+    auto own = db.turns().load_normalized({}, v.id, include_harvested,
+                                          store::TurnFrameChoice::water_where_known);
+    if (own.empty()) continue;
+    t.pooled_vehicles.push_back(v.id);
+    turns.insert(turns.end(), std::make_move_iterator(own.begin()),
+                 std::make_move_iterator(own.end()));
+  }
+  if (turns.empty()) return not_found("no vehicle of class '" + info->kind + "' has turns");
+  auto built = std::make_shared<kin::Ckt>(kin::Ckt::build(turns));
+  built->vehicle_id = vehicle_id;
+  t.speed_changes = std::make_shared<kin::SpeedChangeTable>(kin::SpeedChangeTable::build(turns));
+  t.measured_speed_response = kin::measured_speed_response(turns);
+  t.table = std::move(built);
+  if (t.table->speed_range_mps()) t.fine = std::make_shared<kin::MaterializedCkt>(*t.table);
+  return t;
 }
 
 Result<SidedCell> ckt_cell(Context& ctx, const std::string& vehicle_id, double speed_mps,

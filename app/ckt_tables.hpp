@@ -33,12 +33,21 @@ struct VehicleTable {
   // from them; empty for an imported table.
   std::shared_ptr<const kinematics::SpeedChangeTable> speed_changes;
   std::optional<kinematics::SpeedResponse> measured_speed_response;
+  // A vehicle class's pooled table (class_table): every vehicle whose turns it holds.
+  std::vector<std::string> pooled_vehicles;
 };
 
 // The vehicle's table (not_found when it has no turns and no imported table). Built from its
 // collection turns, and its harvested turns too when include_harvested.
 Result<VehicleTable> vehicle_table(Context& ctx, const std::string& vehicle_id,
                                    bool include_harvested = false);
+
+// The table of the vehicle's class: the ok turns of every stored vehicle of the same kind
+// (vehicles of one class on one station or several stations sharing a database), pooled on
+// request, as the thesis' table of one hull serves its sister hulls. Built on each call, not
+// cached. not_found for an unknown vehicle or a class without turns.
+Result<VehicleTable> class_table(Context& ctx, const std::string& vehicle_id,
+                                 bool include_harvested = false);
 
 // A cell on the side asked. The table stores right turns, so a port (negative) heading change is
 // the cell of its magnitude mirrored about the start heading (x -> -x), as a left prediction is;

@@ -127,6 +127,13 @@ bool include_harvested_param(const ApiRequest& r) {
   throw bad_parameter("include", "must be collection or harvested");
 }
 
+bool pool_param(const ApiRequest& r) {
+  const auto it = r.query.find("pool");
+  if (it == r.query.end() || it->second == "vehicle") return false;
+  if (it->second == "class") return true;
+  throw bad_parameter("pool", "must be vehicle or class");
+}
+
 std::int64_t path_id(const PathParams& p, const std::string& key, const std::string& what) {
   const std::string& segment = p.at(key);
   const auto id = record_id(segment);

@@ -54,6 +54,9 @@ std::optional<bool> speed_reference_param(const ApiRequest& r);
 // ?include=harvested: the vehicle's table of collection and harvested turns; absent or
 // ?include=collection: collection turns only. Anything else is 400.
 bool include_harvested_param(const ApiRequest& r);
+// ?pool=class: a vehicle class's pooled table (app::class_table); absent or "vehicle": the
+// vehicle's own. 400 otherwise.
+bool pool_param(const ApiRequest& r);
 
 enum class Format { json, csv };
 // JSON or CSV as choose_representation (router.hpp) picks it: ?format= wins, otherwise Accept.

@@ -14,8 +14,12 @@ void add_ckt_routes(RouteTable& routes, app::Context& ctx) {
       "/api/v1/vehicles/{vid}/ckt",
       [&ctx](const ApiRequest& r, const PathParams& p) {
         const Format f = negotiate(r, true);
-        return answer(app::vehicle_table(ctx, p.at("vid"), include_harvested_param(r)), false,
-                      [f](const app::VehicleTable& t) {
+        // ?pool=class: the table of every stored vehicle of this vehicle's kind.
+        const bool pooled = pool_param(r);
+        const bool harvested = include_harvested_param(r);
+        return answer(pooled ? app::class_table(ctx, p.at("vid"), harvested)
+                             : app::vehicle_table(ctx, p.at("vid"), harvested),
+                      false, [f](const app::VehicleTable& t) {
                         if (f == Format::csv) return csv_response(kinematics::ckt_to_csv(*t.table));
                         return json_response(ckt_summary_json(t));
                       });

@@ -33,6 +33,7 @@ json ckt_summary_json(const app::VehicleTable& t) {
           {"speeds_mps", t.table->grid().speeds_mps},
           {"dheadings_deg", t.table->grid().dheadings_deg},
           {"speed_range_mps", range ? json{range->first, range->second} : json()},
+          {"pooled_vehicles", t.pooled_vehicles.empty() ? json() : json(t.pooled_vehicles)},
           {"cells", cells}};
 }
 

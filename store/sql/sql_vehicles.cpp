@@ -28,13 +28,30 @@ void SqlVehicles::upsert(const vehicle::VehicleInfo& info) {
   insert_vehicle(db_, info, OnKnownVehicle::replace);
 }
 
+namespace {
+
+vehicle::VehicleInfo read_vehicle(const Statement& s) {
+  return vehicle::VehicleInfo{s.column_text(kVehicle["id"]), s.column_text(kVehicle["kind"]),
+                              s.column_double(kVehicle["max_speed_mps"]),
+                              s.column_optional_double(kVehicle["length_m"])};
+}
+
+}  // namespace
+
 std::optional<vehicle::VehicleInfo> SqlVehicles::get(const std::string& id) {
   auto s = db_.prepare("SELECT " + kVehicle.list() + " FROM vehicles WHERE id = ?");
   s.bind(1, id);
   if (!s.step()) return std::nullopt;
-  return vehicle::VehicleInfo{s.column_text(kVehicle["id"]), s.column_text(kVehicle["kind"]),
-                              s.column_double(kVehicle["max_speed_mps"]),
-                              s.column_optional_double(kVehicle["length_m"])};
+  return read_vehicle(s);
+}
+
+std::vector<vehicle::VehicleInfo> SqlVehicles::of_kind(const std::string& kind) {
+  auto s = db_.prepare("SELECT " + kVehicle.list() + " FROM vehicles WHERE kind = ? ORDER BY id");
+  s.bind(1, kind);
+  std::vector<vehicle::VehicleInfo> out;
+  while (s.step())
+    out.push_back(read_vehicle(s));
+  return out;
 }
 
 }  // namespace avk::store::sql

@@ -18,6 +18,7 @@ class SqlVehicles final : public VehicleRepository {
 
   void upsert(const vehicle::VehicleInfo& info) override;
   std::optional<vehicle::VehicleInfo> get(const std::string& id) override;
+  std::vector<vehicle::VehicleInfo> of_kind(const std::string& kind) override;
 
  private:
   Database& db_;

@@ -107,3 +107,38 @@ TEST(SharedStore, AnotherStationsRunningMissionIsNotTakenForAnOrphan) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(SharedStore, AClassTablePoolsTheTurnsOfEveryVehicleOfTheKindOnRequest) {
+  avk::testing::PgTestDb pg;
+  store::Store s(pg.conninfo());
+  const auto add = [&](const std::string& id, const std::string& kind, double speed, int n) {
+    s.vehicles().upsert({id, kind, 2.0, 1.2});
+    const auto m = s.missions().create(id, "collection", "{}");
+    for (int k = 0; k < n; ++k) {
+      avk::testing::ArcTurnSpec spec;
+      spec.speed_mps = speed;
+      spec.dheading_deg = 90.0;
+      spec.seed = static_cast<unsigned>(k + 1);
+      spec.vehicle_id = id;
+      s.turns().add(m, avk::testing::make_arc_turn(spec), kinematics::TurnStatus::ok, "");
+    }
+  };
+  add("m200-a", "catamaran:m200", 1.0, 3);
+  add("m200-b", "catamaran:m200", 1.5, 2);
+  add("usim-1", "usim", 1.0, 4);
+  app::Context station(pg.conninfo());
+  const auto own = app::vehicle_table(station, "m200-a");
+  ASSERT_TRUE(own.ok());
+  EXPECT_EQ(turns_in(own.value()), 3u);
+  EXPECT_TRUE(own.value().pooled_vehicles.empty());
+  const auto pooled = app::class_table(station, "m200-a");
+  ASSERT_TRUE(pooled.ok());
+  EXPECT_EQ(turns_in(pooled.value()), 5u);
+  EXPECT_EQ(pooled.value().pooled_vehicles, (std::vector<std::string>{"m200-a", "m200-b"}));
+  EXPECT_EQ(pooled.value().table->grid().speeds_mps, (std::vector<double>{1.0, 1.5}));
+  EXPECT_FALSE(app::class_table(station, "nobody").ok());
+}
+
+}  // namespace
