@@ -24,6 +24,7 @@ import { initAlarms } from './alarms.js';
 import { initKeys } from './keys.js';
 import { initFleetPanel } from './fleetpanel.js';
 import { initCommands } from './commands.js';
+import { initStoreLink } from './storelink.js';
 
 function renderBadge(link) {
   const b = document.getElementById('link-badge');
@@ -69,6 +70,7 @@ function main() {
   initEventLog();
   initBanner();
   initAlarms();
+  initStoreLink();
   on('link', renderBadge);
   on('vehicle', renderVehicle);
   renderBadge(state.link);

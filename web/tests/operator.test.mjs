@@ -158,6 +158,22 @@ test('the station clock maps to wall time by /health, and only for missions of t
   assert.equal(meanSd({ mean: 2, sd: 0.5 }, 1, ' s', 3), '2.0 ± 0.5 s');
 });
 
+test('the store link: the spool bar says how many writes wait, the engine shows for PostgreSQL only', async () => {
+  const { storeNotice, pollsHealth } = await import(pathToFileURL(path.join(webDir, 'js/storelink.js')).href);
+  const pg = { engine: 'postgresql', state: 'connected', spooled: 0, spool: '/var/lib/avk/station.spool', last_error: null };
+  assert.deepEqual(storeNotice({ engine: 'sqlite', state: 'connected', spooled: 0, spool: null, last_error: null }), { engine: null, spooling: false, text: '', title: '' });
+  assert.deepEqual(storeNotice(undefined), { engine: null, spooling: false, text: '', title: '' }, 'an older server says nothing of its store');
+  assert.deepEqual(storeNotice(pg), { engine: 'PostgreSQL', spooling: false, text: '', title: '' });
+  const out = storeNotice({ ...pg, state: 'spooling', spooled: 42, last_error: 'connection refused' });
+  assert.equal(out.spooling, true);
+  assert.equal(out.text, 'Database unreachable — recording into the local spool (42 writes waiting); they are written when the server is back');
+  assert.equal(out.title, 'Last error: connection refused\nSpool: /var/lib/avk/station.spool');
+  assert.match(storeNotice({ ...pg, state: 'spooling', spooled: 1 }).text, /\(1 write waiting\)/);
+  assert.match(storeNotice({ ...pg, state: 'spooling', spooled: null }).text, /\(writes waiting\)/);
+  assert.equal(storeNotice({ ...pg, state: 'spooling' }).title.split('\n')[0], 'The database server cannot be reached');
+  assert.deepEqual([pollsHealth(pg), pollsHealth({ engine: 'sqlite', state: 'connected' }), pollsHealth(undefined)], [true, false, false]);
+});
+
 // ---------------------------------------------------------------- the page
 
 test('Live shows wall-clock time with UTC and the station clock on hover', { timeout: slow(60000) }, async () => {
@@ -528,6 +544,46 @@ test('alarms: shown until acknowledged, beeping unless muted, listed in the even
   assert.ok((await page.locator('#event-log li.sev-alarm').count()) >= alarmsInLog + 3, 'each alarm is in the event log');
   await page.keyboard.press('m');
   assert.equal(await page.getAttribute('#mute-toggle', 'aria-pressed'), 'false');
+});
+
+test('a station spooling while its PostgreSQL server is away: a bar says so until it is connected again', { timeout: slow(60000) }, async () => {
+  errors.phase = 'store';
+  // This station stores into SQLite: nothing of the store shows.
+  const real = await api('/health');
+  assert.deepEqual([real.store?.engine, real.store?.state], ['sqlite', 'connected'], JSON.stringify(real));
+  assert.ok(await page.isHidden('#store-bar'));
+  assert.ok(await page.isHidden('#store-engine'));
+  // An outage cannot be made here: the page is given /health answers of a PostgreSQL station that
+  // spools, then of one connected again (the real answer with another `store`).
+  let store = { engine: 'postgresql', state: 'spooling', spooled: 17, spool: path.join(tmp, 'station.spool'), last_error: 'could not connect to server: Connection refused' };
+  const p = await openPage(context, DESKTOP, errors);
+  try {
+    await p.route('**/api/v1/health', async (route) => {
+      try {
+        const res = await route.fetch();
+        await route.fulfill({ response: res, json: { ...(await res.json()), store } });
+      } catch {
+        // the page closed meanwhile
+      }
+    });
+    await p.goto(`${server.base}/#live`, { waitUntil: 'load', timeout: slow(20000) });
+    await p.waitForSelector('#store-bar:not([hidden])', { timeout: slow(10000) });
+    assert.equal(await p.textContent('#store-text'), 'Database unreachable — recording into the local spool (17 writes waiting); they are written when the server is back');
+    assert.match(await p.getAttribute('#store-bar', 'title'), /Last error: could not connect to server: Connection refused\nSpool: .*station\.spool/);
+    assert.equal(await p.textContent('#store-engine'), 'db: PostgreSQL ⚠ spooling');
+    // The page reads /health again by itself: the count follows.
+    store = { ...store, spooled: 1 };
+    await p.waitForFunction(() => /\(1 write waiting\)/.test(document.getElementById('store-text').textContent), null, { timeout: slow(10000) });
+    await showView(p, 'mission');
+    assert.ok(await p.isVisible('#store-bar'), 'the bar stays in every view');
+    // The server back, the spool replayed: the bar goes, the engine stays in the header.
+    store = { ...store, state: 'connected', spooled: 0, last_error: null };
+    await p.waitForSelector('#store-bar', { state: 'hidden', timeout: slow(10000) });
+    assert.equal(await p.textContent('#store-engine'), 'db: PostgreSQL');
+    assert.ok(await p.isVisible('#store-engine'));
+  } finally {
+    await p.close();
+  }
 });
 
 test('keyboard shortcuts: ? lists them, digits switch views, not while typing', { timeout: slow(60000) }, async () => {
