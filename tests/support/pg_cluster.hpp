@@ -64,6 +64,23 @@ class PgCluster {
         "initdb");
     start();
   }
+  // A streaming-replication standby of `primary` in `dir`: its base backup (pg_basebackup -R,
+  // which also writes the standby's connection to the primary), started on a port of its own.
+  struct StandbyOf {
+    const PgCluster& primary;
+  };
+  PgCluster(std::filesystem::path dir, StandbyOf s) : dir_(std::move(dir)) {
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+    port_ = free_loopback_port();
+    if (::geteuid() == 0) run("chown postgres " + quoted(dir_.string()), "chown");
+    run(as_server_user(pg_bindir() + "/pg_basebackup -h " + quoted(s.primary.dir().string()) +
+                       " -p " + std::to_string(s.primary.port()) + " -U avk -D " + quoted(data()) +
+                       " -R -X stream -c fast") +
+            " > " + quoted(log("basebackup")) + " 2>&1",
+        "pg_basebackup");
+    start();
+  }
   // Adopts the cluster a PgCluster left running in `dir` (the CTest fixture's).
   struct Adopt {};
   PgCluster(std::filesystem::path dir, Adopt) : dir_(std::move(dir)), owned_(false) {
@@ -112,6 +129,12 @@ class PgCluster {
         (as_server_user(pg_bindir() + "/pg_ctl -D " + quoted(data()) + " -m immediate -w stop") +
          " > /dev/null 2>&1")
             .c_str());
+  }
+  // A standby becomes a primary that takes writes; returns once it does.
+  void promote() {
+    run(as_server_user(pg_bindir() + "/pg_ctl -D " + quoted(data()) + " -w -t 60 promote") + " > " +
+            quoted(log("promote")) + " 2>&1",
+        "pg_ctl promote");
   }
   // SIGKILL to the server and every process it started, as a crash would; returns once all are
   // gone, so that start() can recover the data folder.

@@ -1,0 +1,105 @@
+// A primary with a streaming-replication standby (two clusters on loopback, docs/postgresql.md):
+// the primary is killed during a mission, the standby promoted, and the station, given a
+// connection string that lists both with target_session_attrs=read-write, finds the new primary
+// and finishes the mission there: every finished turn is in the promoted standby once. The
+// primary waits for the standby at every commit (synchronous_standby_names): a turn the station
+// counted as stored is on the standby too.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <chrono>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include "store/postgresql.hpp"
+#include "support/pg_cluster.hpp"
+#include "support/spawn_avk.hpp"
+#include "support/temp_dir.hpp"
+
+namespace {
+
+using namespace avk;
+
+template <typename Done>
+bool within(std::chrono::seconds limit, Done done) {
+  const auto deadline = std::chrono::steady_clock::now() + limit;
+  while (std::chrono::steady_clock::now() < deadline) {
+    if (done()) return true;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  return done();
+}
+
+std::int64_t ask(const std::string& conninfo, const std::string& sql) {
+  try {
+    store::PgConnection c(conninfo);
+    auto s = c.prepare(sql);
+    return s.step() ? s.column_int64(0) : -1;
+  } catch (const store::StoreError&) {
+    return -1;
+  }
+}
+
+std::string read_all(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+TEST(PgStandby, APromotedStandbyTakesOverAMissionAndHoldsEveryFinishedTurnOnce) {
+  avk::testing::TempDir dir("avk_pg_standby");
+  avk::testing::PgCluster primary(dir.path() / "primary");
+  const std::string name = primary.create_database();
+  avk::testing::PgCluster standby(dir.path() / "standby",
+                                  avk::testing::PgCluster::StandbyOf{primary});
+  {
+    store::PgConnection admin(primary.conninfo());
+    admin.exec("ALTER SYSTEM SET synchronous_standby_names = '*'");
+    admin.exec("SELECT pg_reload_conf()");
+  }
+  // The standby streams: the primary lists it as a synchronous sender.
+  ASSERT_TRUE(within(std::chrono::seconds(60), [&] {
+    return ask(primary.conninfo(),
+               "SELECT count(*) FROM pg_stat_replication WHERE sync_state = 'sync'") == 1;
+  })) << read_all(standby.log("server"));
+
+  const std::string both = "host=" + primary.dir().string() + "," + standby.dir().string() +
+                           " port=" + std::to_string(primary.port()) + "," +
+                           std::to_string(standby.port()) + " user=avk dbname=" + name +
+                           " connect_timeout=5 target_session_attrs=read-write";
+  const std::string log = (dir.path() / "mission.log").string();
+  const pid_t child = avk::testing::spawn_avk(
+      {"mission", "run", "--config", std::string(AVK_SOURCE_DIR) + "/examples/thesis-fig4-1.json",
+       "--db", both, "--sim", "--vehicle", "usim", "--realtime", "--realtime-factor", "20",
+       "--station-id", "standby-test", "--spool", (dir.path() / "spool.db").string()},
+      log);
+  ASSERT_GT(child, 0);
+  const std::string turns = "SELECT count(*) FROM turns";
+  ASSERT_TRUE(within(std::chrono::seconds(240), [&] {
+    return ask(primary.conninfo(name), turns) >= 3;
+  })) << read_all(log);
+  primary.kill9();
+  standby.promote();
+  int status = 0;
+  ASSERT_TRUE(within(std::chrono::seconds(600), [&] {
+    return ::waitpid(child, &status, WNOHANG) == child;
+  })) << read_all(log);
+  const std::string out = read_all(log);
+  ASSERT_TRUE(WIFEXITED(status)) << out;
+  EXPECT_EQ(WEXITSTATUS(status), 0) << out;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(out, m, std::regex(R"((\d+) turns finished this run)"))) << out;
+  const std::int64_t finished = std::stoll(m[1]);
+  const std::string db = standby.conninfo(name);
+  EXPECT_EQ(ask(db, turns), finished);
+  EXPECT_EQ(ask(db, "SELECT count(DISTINCT record_key) FROM turns"), finished);
+  EXPECT_EQ(ask(db, "SELECT count(*) FROM turns WHERE status = 'ok'"), 18);
+  EXPECT_EQ(ask(db, "SELECT count(*) FROM missions WHERE status = 'done'"), 1);
+}
+
+}  // namespace
