@@ -14,6 +14,7 @@
 #include "store/postgresql.hpp"
 #include "store/store.hpp"
 #include "support/pg_cluster.hpp"
+#include "support/polling.hpp"
 #include "support/synthetic_turns.hpp"
 
 namespace {
@@ -41,17 +42,6 @@ std::size_t turns_in(const app::VehicleTable& t) {
   return n;
 }
 
-// Polls `done` until it holds or 60 s pass (a loaded machine may be slow; nothing is timed).
-template <typename Done>
-bool eventually(Done done) {
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
-  while (std::chrono::steady_clock::now() < deadline) {
-    if (done()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
-  return done();
-}
-
 TEST(SharedStore, ANotificationIsWhatRefreshesAFollowingCache) {
   avk::testing::PgTestDb pg;
   store::Store other(pg.conninfo());
@@ -68,7 +58,7 @@ TEST(SharedStore, ANotificationIsWhatRefreshesAFollowingCache) {
   add_turns(other, 1.5, 2);
   // Unannounced, the cache answers from what it built.
   EXPECT_EQ(turns_in(cache.get(station, "usim-1").value()), 4u);
-  ASSERT_TRUE(eventually([&] {
+  ASSERT_TRUE(avk::testing::within(std::chrono::seconds(60), [&] {
     for (const auto& vehicle : listener.wait(100))
       if (vehicle == "usim-1") return true;
     return false;
@@ -85,8 +75,9 @@ TEST(SharedStore, AStartedStationSeesTheTurnsAnotherStationStores) {
   station.start();
   ASSERT_EQ(turns_in(station.tables().get(station, "usim-1").value()), 3u);
   add_turns(other, 1.5, 3);
-  EXPECT_TRUE(
-      eventually([&] { return turns_in(station.tables().get(station, "usim-1").value()) == 6u; }));
+  EXPECT_TRUE(avk::testing::within(std::chrono::seconds(60), [&] {
+    return turns_in(station.tables().get(station, "usim-1").value()) == 6u;
+  }));
   station.shutdown();
 }
 

@@ -18,34 +18,13 @@
 #include "store/spool.hpp"
 #include "store/sqlite.hpp"
 #include "support/pg_cluster.hpp"
+#include "support/polling.hpp"
 #include "support/spawn_avk.hpp"
 #include "support/temp_dir.hpp"
 
 namespace {
 
 using namespace avk;
-
-// Polls `done` every 50 ms until it holds or `limit` passes; whether it held.
-template <typename Done>
-bool within(std::chrono::seconds limit, Done done) {
-  const auto deadline = std::chrono::steady_clock::now() + limit;
-  while (std::chrono::steady_clock::now() < deadline) {
-    if (done()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
-  return done();
-}
-
-// The number a query answers on the cluster's database; -1 while it cannot be reached.
-std::int64_t ask(const std::string& conninfo, const std::string& sql) {
-  try {
-    store::PgConnection c(conninfo);
-    auto s = c.prepare(sql);
-    return s.step() ? s.column_int64(0) : -1;
-  } catch (const store::StoreError&) {
-    return -1;
-  }
-}
 
 std::int64_t spooled_turns(const std::string& spool) {
   try {
@@ -55,13 +34,6 @@ std::int64_t spooled_turns(const std::string& spool) {
   } catch (const store::StoreError&) {
     return 0;  // not made yet
   }
-}
-
-std::string read_all(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 TEST(PgOutage, KilledThreeTimesDuringAMissionEveryFinishedTurnIsStoredOnce) {
@@ -81,24 +53,27 @@ TEST(PgOutage, KilledThreeTimesDuringAMissionEveryFinishedTurnIsStoredOnce) {
   for (int outage = 0; outage < 3; ++outage) {
     // The spool was replayed and a turn reached the database since: the server is in use when
     // it dies, and what the next outage spools is new.
-    ASSERT_TRUE(within(std::chrono::seconds(240),
-                       [&] { return spooled_turns(spool) == 0 && ask(db, turns) > before; }))
+    ASSERT_TRUE(avk::testing::within(
+        std::chrono::seconds(240),
+        [&] { return spooled_turns(spool) == 0 && avk::testing::pg_number(db, turns) > before; }))
         << "outage " << outage << "\n"
-        << read_all(log);
+        << avk::testing::file_text(log);
     pg.kill9();
     // The mission goes on without it: a turn it finishes now waits in the spool.
-    ASSERT_TRUE(within(std::chrono::seconds(240), [&] { return spooled_turns(spool) > 0; }))
+    ASSERT_TRUE(
+        avk::testing::within(std::chrono::seconds(240), [&] { return spooled_turns(spool) > 0; }))
         << "outage " << outage << "\n"
-        << read_all(log);
+        << avk::testing::file_text(log);
     pg.start();
-    ASSERT_TRUE(within(std::chrono::seconds(60), [&] { return ask(db, turns) >= 0; }));
-    before = ask(db, turns);
+    ASSERT_TRUE(avk::testing::within(std::chrono::seconds(60),
+                                     [&] { return avk::testing::pg_number(db, turns) >= 0; }));
+    before = avk::testing::pg_number(db, turns);
   }
   int status = 0;
-  ASSERT_TRUE(within(std::chrono::seconds(600), [&] {
+  ASSERT_TRUE(avk::testing::within(std::chrono::seconds(600), [&] {
     return ::waitpid(child, &status, WNOHANG) == child;
-  })) << read_all(log);
-  const std::string out = read_all(log);
+  })) << avk::testing::file_text(log);
+  const std::string out = avk::testing::file_text(log);
   ASSERT_TRUE(WIFEXITED(status)) << out;
   EXPECT_EQ(WEXITSTATUS(status), 0) << out;
   std::smatch m;
@@ -106,11 +81,12 @@ TEST(PgOutage, KilledThreeTimesDuringAMissionEveryFinishedTurnIsStoredOnce) {
   const std::int64_t finished = std::stoll(m[1]);
   // Every cell once at least (a turn given up and flown again is finished twice).
   EXPECT_GE(finished, 18) << out;
-  EXPECT_EQ(ask(db, "SELECT count(*) FROM turns WHERE status = 'ok'"), 18);
+  EXPECT_EQ(avk::testing::pg_number(db, "SELECT count(*) FROM turns WHERE status = 'ok'"), 18);
   // Every finished turn once: as many rows as turns, each under its own key.
-  EXPECT_EQ(ask(db, turns), finished);
-  EXPECT_EQ(ask(db, "SELECT count(DISTINCT record_key) FROM turns"), finished);
-  EXPECT_EQ(ask(db,
+  EXPECT_EQ(avk::testing::pg_number(db, turns), finished);
+  EXPECT_EQ(avk::testing::pg_number(db, "SELECT count(DISTINCT record_key) FROM turns"), finished);
+  EXPECT_EQ(avk::testing::pg_number(
+                db,
                 "SELECT count(*) FROM missions WHERE status = 'done' AND runner_pid IS NULL "
                 "AND station_id = 'outage-test'"),
             1);

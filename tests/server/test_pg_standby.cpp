@@ -17,39 +17,13 @@
 
 #include "store/postgresql.hpp"
 #include "support/pg_cluster.hpp"
+#include "support/polling.hpp"
 #include "support/spawn_avk.hpp"
 #include "support/temp_dir.hpp"
 
 namespace {
 
 using namespace avk;
-
-template <typename Done>
-bool within(std::chrono::seconds limit, Done done) {
-  const auto deadline = std::chrono::steady_clock::now() + limit;
-  while (std::chrono::steady_clock::now() < deadline) {
-    if (done()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
-  return done();
-}
-
-std::int64_t ask(const std::string& conninfo, const std::string& sql) {
-  try {
-    store::PgConnection c(conninfo);
-    auto s = c.prepare(sql);
-    return s.step() ? s.column_int64(0) : -1;
-  } catch (const store::StoreError&) {
-    return -1;
-  }
-}
-
-std::string read_all(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
 
 TEST(PgStandby, APromotedStandbyTakesOverAMissionAndHoldsEveryFinishedTurnOnce) {
   avk::testing::TempDir dir("avk_pg_standby");
@@ -63,10 +37,11 @@ TEST(PgStandby, APromotedStandbyTakesOverAMissionAndHoldsEveryFinishedTurnOnce) 
     admin.exec("SELECT pg_reload_conf()");
   }
   // The standby streams: the primary lists it as a synchronous sender.
-  ASSERT_TRUE(within(std::chrono::seconds(60), [&] {
-    return ask(primary.conninfo(),
+  ASSERT_TRUE(avk::testing::within(std::chrono::seconds(60), [&] {
+    return avk::testing::pg_number(
+               primary.conninfo(),
                "SELECT count(*) FROM pg_stat_replication WHERE sync_state = 'sync'") == 1;
-  })) << read_all(standby.log("server"));
+  })) << avk::testing::file_text(standby.log("server"));
 
   const std::string both = "host=" + primary.dir().string() + "," + standby.dir().string() +
                            " port=" + std::to_string(primary.port()) + "," +
@@ -80,26 +55,26 @@ TEST(PgStandby, APromotedStandbyTakesOverAMissionAndHoldsEveryFinishedTurnOnce) 
       log);
   ASSERT_GT(child, 0);
   const std::string turns = "SELECT count(*) FROM turns";
-  ASSERT_TRUE(within(std::chrono::seconds(240), [&] {
-    return ask(primary.conninfo(name), turns) >= 3;
-  })) << read_all(log);
+  ASSERT_TRUE(avk::testing::within(std::chrono::seconds(240), [&] {
+    return avk::testing::pg_number(primary.conninfo(name), turns) >= 3;
+  })) << avk::testing::file_text(log);
   primary.kill9();
   standby.promote();
   int status = 0;
-  ASSERT_TRUE(within(std::chrono::seconds(600), [&] {
+  ASSERT_TRUE(avk::testing::within(std::chrono::seconds(600), [&] {
     return ::waitpid(child, &status, WNOHANG) == child;
-  })) << read_all(log);
-  const std::string out = read_all(log);
+  })) << avk::testing::file_text(log);
+  const std::string out = avk::testing::file_text(log);
   ASSERT_TRUE(WIFEXITED(status)) << out;
   EXPECT_EQ(WEXITSTATUS(status), 0) << out;
   std::smatch m;
   ASSERT_TRUE(std::regex_search(out, m, std::regex(R"((\d+) turns finished this run)"))) << out;
   const std::int64_t finished = std::stoll(m[1]);
   const std::string db = standby.conninfo(name);
-  EXPECT_EQ(ask(db, turns), finished);
-  EXPECT_EQ(ask(db, "SELECT count(DISTINCT record_key) FROM turns"), finished);
-  EXPECT_EQ(ask(db, "SELECT count(*) FROM turns WHERE status = 'ok'"), 18);
-  EXPECT_EQ(ask(db, "SELECT count(*) FROM missions WHERE status = 'done'"), 1);
+  EXPECT_EQ(avk::testing::pg_number(db, turns), finished);
+  EXPECT_EQ(avk::testing::pg_number(db, "SELECT count(DISTINCT record_key) FROM turns"), finished);
+  EXPECT_EQ(avk::testing::pg_number(db, "SELECT count(*) FROM turns WHERE status = 'ok'"), 18);
+  EXPECT_EQ(avk::testing::pg_number(db, "SELECT count(*) FROM missions WHERE status = 'done'"), 1);
 }
 
 }  // namespace

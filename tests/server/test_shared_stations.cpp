@@ -18,6 +18,7 @@
 #include "store/postgresql.hpp"
 #include "support/http_client.hpp"
 #include "support/pg_cluster.hpp"
+#include "support/polling.hpp"
 #include "support/spawn_avk.hpp"
 #include "support/temp_dir.hpp"
 
@@ -44,16 +45,6 @@ std::map<std::string, std::string> control_headers() {
 
 json get_json(unsigned short port, const std::string& target) {
   return json::parse(http_call(port, "GET", target).body);
-}
-
-template <typename Done>
-bool within(std::chrono::seconds limit, Done done) {
-  const auto deadline = std::chrono::steady_clock::now() + limit;
-  while (std::chrono::steady_clock::now() < deadline) {
-    if (done()) return true;
-    std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  }
-  return done();
 }
 
 std::size_t turns_in_table(unsigned short port, const std::string& vehicle) {
@@ -104,7 +95,7 @@ TEST(SharedStations, TwoServersOnOneDatabaseEachFlyAMissionAndSeeTheOthersTable)
   // The database gave the two missions different ids.
   ASSERT_EQ(missions.size(), 2u);
   for (const std::string& m : missions)
-    ASSERT_TRUE(within(std::chrono::seconds(180), [&] {
+    ASSERT_TRUE(avk::testing::within(std::chrono::seconds(180), [&] {
       for (const Station* s : {&a, &b}) {
         const auto r = http_call(s->process.port, "GET", m);
         if (r.status == 200 && json::parse(r.body)["status"] == "done") return true;
@@ -115,9 +106,9 @@ TEST(SharedStations, TwoServersOnOneDatabaseEachFlyAMissionAndSeeTheOthersTable)
   // Each station answers for its own vehicle and for the other's, from the same turns.
   for (const Station* here : {&a, &b})
     for (const Station* vehicle : {&a, &b})
-      EXPECT_TRUE(
-          within(std::chrono::seconds(30),
-                 [&] { return turns_in_table(here->process.port, vehicle->vehicle) == 4u; }))
+      EXPECT_TRUE(avk::testing::within(
+          std::chrono::seconds(30),
+          [&] { return turns_in_table(here->process.port, vehicle->vehicle) == 4u; }))
           << "station on " << here->vehicle << " asked for " << vehicle->vehicle;
   // Both see both missions, each recorded with the station that ran it.
   for (const Station* s : {&a, &b})

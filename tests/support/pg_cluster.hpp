@@ -18,6 +18,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -111,6 +112,21 @@ class PgCluster {
   }
 
   void start() {
+    // A start right after kill9() may find the old server's last processes still leaving:
+    // tried again a few times, and the logs are in the error when it never starts.
+    for (int attempt = 1;; ++attempt) {
+      try {
+        start_once();
+        return;
+      } catch (const std::runtime_error& e) {
+        if (attempt == 3)
+          throw std::runtime_error(std::string(e.what()) + "\n" + tail(log("pg_ctl")) + "\n" +
+                                   tail(log("server")));
+        std::this_thread::sleep_for(std::chrono::seconds(1));
+      }
+    }
+  }
+  void start_once() {
     // fsync off: a test cluster does not need to survive a power cut, and a process crash (the
     // kill -9 the outage tests use) loses nothing committed without it.
     run(as_server_user(
@@ -142,6 +158,9 @@ class PgCluster {
     std::ifstream in(data() + "/postmaster.pid");
     pid_t pid = 0;
     if (!(in >> pid) || pid <= 0) throw std::runtime_error("no postmaster.pid in " + data());
+    // Stopped first, so that it forks no backend (a client reconnecting) while its children are
+    // listed: a backend missed here would keep the old shared memory, and no new server starts.
+    ::kill(pid, SIGSTOP);
     std::vector<pid_t> all{pid};
     for (const auto& e : std::filesystem::directory_iterator("/proc")) {
       std::ifstream stat(e.path() / "stat");
@@ -183,6 +202,12 @@ class PgCluster {
   std::string log(const std::string& name) const { return (dir_ / (name + ".log")).string(); }
 
   static std::string quoted(const std::string& s) { return "'" + s + "'"; }
+  // The last 2000 characters of a file.
+  static std::string tail(const std::string& path) {
+    std::ifstream in(path);
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return text.size() > 2000 ? text.substr(text.size() - 2000) : text;
+  }
   static std::string as_server_user(const std::string& command) {
     if (::geteuid() != 0) return command;
     return "runuser -u postgres -- " + command;
@@ -197,6 +222,17 @@ class PgCluster {
   int port_ = 0;
   bool owned_ = true;
 };
+
+// The number a query answers on a database; -1 while it cannot be reached.
+inline std::int64_t pg_number(const std::string& conninfo, const std::string& sql) {
+  try {
+    store::PgConnection c(conninfo);
+    auto s = c.prepare(sql);
+    return s.step() ? s.column_int64(0) : -1;
+  } catch (const store::StoreError&) {
+    return -1;
+  }
+}
 
 // The cluster this test process uses: CTest's shared one (AVK_TEST_PG_DIR), or one of its own
 // started on first use and removed at exit.
