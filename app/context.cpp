@@ -78,9 +78,10 @@ void follow_table_changes(const std::string& db, TableCache& tables, std::stop_t
         continue;
       }
       tables.follow_changes();
-      tables.changed();
+      tables.changed("");
     }
-    if (!listener->wait(250).empty()) tables.changed();
+    for (const std::string& vehicle : listener->wait(250))
+      tables.changed(vehicle);
   }
 }
 

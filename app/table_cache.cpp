@@ -18,6 +18,20 @@ TableCache::Entry& TableCache::entry(const std::string& vehicle_id, bool include
   return *e;
 }
 
+void TableCache::changed(const std::string& vehicle_id) {
+  std::lock_guard lock(generation_mutex_);
+  if (vehicle_id.empty())
+    ++any_generation_;
+  else
+    ++vehicle_generation_[vehicle_id];
+}
+
+std::pair<std::uint64_t, std::uint64_t> TableCache::generation_of(const std::string& vehicle_id) {
+  std::lock_guard lock(generation_mutex_);
+  const auto it = vehicle_generation_.find(vehicle_id);
+  return {any_generation_, it == vehicle_generation_.end() ? 0 : it->second};
+}
+
 void TableCache::forget(const std::string& vehicle_id) {
   for (const bool harvested : {false, true}) {
     Entry& e = entry(vehicle_id, harvested);
@@ -33,7 +47,7 @@ const TableCache::Revision& TableCache::revision(Context& ctx, Entry& e,
                                                  bool include_harvested, bool stale) {
   const auto now = std::chrono::steady_clock::now();
   // Read before the store: a change announced while the store is read causes another read.
-  const std::uint64_t generation = generation_.load();
+  const auto generation = generation_of(vehicle_id);
   if (!stale && (following_ ? e.generation == generation : now - e.checked < recheck_))
     return e.seen;
   e.checked = now;

@@ -44,9 +44,9 @@ class TableCache {
   // From now on a table is re-read only after changed() (a shared database announces every
   // change: store::TableChangeListener) instead of at most every recheck.
   void follow_changes() { following_ = true; }
-  // Some vehicle's table may have changed (the vehicle is not told apart: a rare event, and one
-  // query per cached table re-reads them).
-  void changed() { ++generation_; }
+  // The vehicle's table may have changed; "" for any vehicle's (a change that names none, or
+  // notifications that may have been missed).
+  void changed(const std::string& vehicle_id);
 
   static constexpr std::size_t kHeldOutTables = 8;
 
@@ -62,9 +62,9 @@ class TableCache {
   struct Entry {
     std::mutex mutex;
     std::chrono::steady_clock::time_point checked{};
-    std::uint64_t generation = 0;  // of changed() when last read
-    Revision seen;                 // as last read from the store
-    Revision value_from;           // what `value` was built from
+    std::pair<std::uint64_t, std::uint64_t> generation;  // of changed() when last read
+    Revision seen;                                       // as last read from the store
+    Revision value_from;                                 // what `value` was built from
     std::optional<VehicleTable> value;
   };
   struct HeldOutKey {
@@ -86,7 +86,11 @@ class TableCache {
                            bool include_harvested, bool stale);
   std::chrono::milliseconds recheck_;
   std::atomic<bool> following_{false};
-  std::atomic<std::uint64_t> generation_{1};
+  // Counts of changed(): for any vehicle, and per vehicle.
+  std::pair<std::uint64_t, std::uint64_t> generation_of(const std::string& vehicle_id);
+  std::mutex generation_mutex_;
+  std::uint64_t any_generation_ = 1;
+  std::map<std::string, std::uint64_t> vehicle_generation_;
   std::mutex mutex_;
   std::map<std::pair<std::string, bool>, std::unique_ptr<Entry>> entries_;
   // Apart from the entries: a held-out table takes a while to build, and predictions from the
