@@ -17,6 +17,7 @@
 #include "store/postgresql.hpp"
 #include "store/spool.hpp"
 #include "store/sqlite.hpp"
+#include "support/mission_run_exit.hpp"
 #include "support/pg_cluster.hpp"
 #include "support/polling.hpp"
 #include "support/spawn_avk.hpp"
@@ -69,18 +70,11 @@ TEST(PgOutage, KilledThreeTimesDuringAMissionEveryFinishedTurnIsStoredOnce) {
                                      [&] { return avk::testing::pg_number(db, turns) >= 0; }));
     before = avk::testing::pg_number(db, turns);
   }
-  int status = 0;
-  ASSERT_TRUE(avk::testing::within(std::chrono::seconds(600), [&] {
-    return ::waitpid(child, &status, WNOHANG) == child;
-  })) << avk::testing::file_text(log);
-  const std::string out = avk::testing::file_text(log);
-  ASSERT_TRUE(WIFEXITED(status)) << out;
-  EXPECT_EQ(WEXITSTATUS(status), 0) << out;
-  std::smatch m;
-  ASSERT_TRUE(std::regex_search(out, m, std::regex(R"((\d+) turns finished this run)"))) << out;
-  const std::int64_t finished = std::stoll(m[1]);
+  const auto run = avk::testing::finished_mission_run(child, log);
+  ASSERT_TRUE(run.exited_0) << run.output;
+  const std::int64_t finished = run.turns_finished;
   // Every cell once at least (a turn given up and flown again is finished twice).
-  EXPECT_GE(finished, 18) << out;
+  EXPECT_GE(finished, 18) << run.output;
   EXPECT_EQ(avk::testing::pg_number(db, "SELECT count(*) FROM turns WHERE status = 'ok'"), 18);
   // Every finished turn once: as many rows as turns, each under its own key.
   EXPECT_EQ(avk::testing::pg_number(db, turns), finished);

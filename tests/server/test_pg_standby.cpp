@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "store/postgresql.hpp"
+#include "support/mission_run_exit.hpp"
 #include "support/pg_cluster.hpp"
 #include "support/polling.hpp"
 #include "support/spawn_avk.hpp"
@@ -60,16 +61,9 @@ TEST(PgStandby, APromotedStandbyTakesOverAMissionAndHoldsEveryFinishedTurnOnce) 
   })) << avk::testing::file_text(log);
   primary.kill9();
   standby.promote();
-  int status = 0;
-  ASSERT_TRUE(avk::testing::within(std::chrono::seconds(600), [&] {
-    return ::waitpid(child, &status, WNOHANG) == child;
-  })) << avk::testing::file_text(log);
-  const std::string out = avk::testing::file_text(log);
-  ASSERT_TRUE(WIFEXITED(status)) << out;
-  EXPECT_EQ(WEXITSTATUS(status), 0) << out;
-  std::smatch m;
-  ASSERT_TRUE(std::regex_search(out, m, std::regex(R"((\d+) turns finished this run)"))) << out;
-  const std::int64_t finished = std::stoll(m[1]);
+  const auto run = avk::testing::finished_mission_run(child, log);
+  ASSERT_TRUE(run.exited_0) << run.output;
+  const std::int64_t finished = run.turns_finished;
   const std::string db = standby.conninfo(name);
   EXPECT_EQ(avk::testing::pg_number(db, turns), finished);
   EXPECT_EQ(avk::testing::pg_number(db, "SELECT count(DISTINCT record_key) FROM turns"), finished);
