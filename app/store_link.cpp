@@ -70,11 +70,31 @@ std::vector<store::NavRow> nav_rows(const json& a) {
   return rows;
 }
 
-// Applies one spooled write to the database.
+// Whether the event is stored already (a replay the station died in the middle of).
+bool event_stored(store::Store& db, std::int64_t mission_id, double t_s, const std::string& kind,
+                  const std::string& message) {
+  std::int64_t after = 0;
+  for (;;) {
+    const auto page = db.missions().events(mission_id, after, 1000);
+    if (page.empty()) return false;
+    for (const auto& e : page)
+      if (e.t_s == t_s && e.kind == kind && e.message == message) return true;
+    after = page.back().id;
+  }
+}
+
+// Applies one spooled write to the database. Each is recognised when it is stored already, so a
+// write replayed again (the station died between storing it and removing it from the spool) is
+// not stored twice: a turn by its record key, navigation by the mission's latest time (one
+// writer records a mission's navigation in time order), an event or a ConditionSet by its
+// fields; a status or a runner written again changes nothing.
 void apply(store::Store& db, const store::SpooledWrite& w) {
   const json p = json::parse(w.payload);
   if (w.kind == "nav") {
-    db.navigation().append(w.mission_id, nav_rows(p));
+    const auto rows = nav_rows(p);
+    const auto last = db.navigation().last(w.mission_id);
+    if (!rows.empty() && last && last->row.t_s >= rows.back().t_s) return;
+    db.navigation().append(w.mission_id, rows);
   } else if (w.kind == "turn") {
     db.turns().add(
         w.mission_id, kinematics::turn_from_json(p["raw"]),
@@ -83,12 +103,18 @@ void apply(store::Store& db, const store::SpooledWrite& w) {
         {opt(p["condition_set_time_s"]), opt(p["heading_error_deg"]), opt(p["yaw_rate_dps"])},
         p["record_key"].get<std::string>());
   } else if (w.kind == "condition_set") {
-    db.missions().append_condition_set(
-        w.mission_id, {p["start_s"].get<double>(), p["end_s"].get<double>(),
-                       p["target_speed_mps"].get<double>(), p["outcome"].get<std::string>()});
+    const store::ConditionSetTiming c{p["start_s"].get<double>(), p["end_s"].get<double>(),
+                                      p["target_speed_mps"].get<double>(),
+                                      p["outcome"].get<std::string>()};
+    for (const auto& stored : db.missions().condition_sets(w.mission_id))
+      if (stored == c) return;
+    db.missions().append_condition_set(w.mission_id, c);
   } else if (w.kind == "event") {
-    db.missions().append_event(w.mission_id, p["t_s"].get<double>(), p["kind"].get<std::string>(),
-                               p["message"].get<std::string>());
+    const double t_s = p["t_s"].get<double>();
+    const std::string kind = p["kind"].get<std::string>();
+    const std::string message = p["message"].get<std::string>();
+    if (event_stored(db, w.mission_id, t_s, kind, message)) return;
+    db.missions().append_event(w.mission_id, t_s, kind, message);
   } else if (w.kind == "status") {
     db.missions().set_status(w.mission_id,
                              *store::mission_status_from_string(p["status"].get<std::string>()),

@@ -21,6 +21,12 @@ constexpr Oid kBool = 16, kBytea = 17, kInt8 = 20, kInt2 = 21, kInt4 = 23, kText
 
 void ignore_notice(void*, const char*) {}
 
+// The SQLSTATE of a failed result; empty for an error libpq made itself (a lost connection).
+std::string sqlstate(const PGresult* r) {
+  const char* s = r ? PQresultErrorField(r, PG_DIAG_SQLSTATE) : nullptr;
+  return s ? s : "";
+}
+
 // SQLite's parameters ("?" and "?N") as PostgreSQL's ("$N"); a bare "?" takes the number after
 // the largest so far, as in SQLite. Quoted text and identifiers are left alone.
 std::string renumber_parameters(std::string_view sql, int& count, std::vector<bool>& used) {
@@ -218,9 +224,10 @@ class PgStatement final : public StatementImpl {
     const auto status = PQresultStatus(res_);
     if (status != PGRES_TUPLES_OK && status != PGRES_COMMAND_OK) {
       const std::string message = res_ ? PQresultErrorMessage(res_) : "";
+      const std::string state = sqlstate(res_);
       PQclear(res_);
       res_ = nullptr;
-      db_->fail("statement failed", message.c_str());
+      db_->fail("statement failed", message.c_str(), state);
     }
     const char* affected = PQcmdTuples(res_);
     db_->note_changes(*affected ? std::atoi(affected) : 0);
@@ -277,18 +284,25 @@ PgConnection::~PgConnection() {
   PQfinish(conn_);
 }
 
-void PgConnection::fail(std::string_view what, const char* server_message) const {
+void PgConnection::fail(std::string_view what, const char* server_message,
+                        const std::string& state) const {
   std::string message = server_message && *server_message ? server_message : PQerrorMessage(conn_);
   while (!message.empty() && message.back() == '\n')
     message.pop_back();
   const std::string text = std::string(what) + ": " + message;
-  if (PQstatus(conn_) != CONNECTION_OK)
+  // The connection is gone when libpq says so, when the error is libpq's own (every error of the
+  // server carries an SQLSTATE), or when the server says it is going away or cannot take the
+  // session (class 08, and 57P01-57P03: shut down, crashed, starting).
+  if (PQstatus(conn_) != CONNECTION_OK || state.empty() || state.starts_with("08") ||
+      state == "57P01" || state == "57P02" || state == "57P03") {
+    broken_ = true;
     throw StoreUnavailable("PostgreSQL '" + target_ + "' unavailable: " + text);
+  }
   throw StoreError(text);
 }
 
 void PgConnection::ensure_open() const {
-  if (PQstatus(conn_) == CONNECTION_OK) return;
+  if (PQstatus(conn_) == CONNECTION_OK && !broken_) return;
   if (in_transaction_)
     throw StoreUnavailable("PostgreSQL '" + target_ + "': connection lost during a transaction");
   PQreset(conn_);
@@ -299,6 +313,7 @@ void PgConnection::ensure_open() const {
     throw StoreUnavailable("PostgreSQL '" + target_ + "' unavailable: " + message);
   }
   // A new session: statements prepared on the old one are gone, and so are its LISTENs.
+  broken_ = false;
   set_up_session(conn_);
   prepared_.clear();
   reconnected_ = true;
@@ -316,8 +331,9 @@ std::string PgConnection::prepared_name(const std::string& sql, const std::strin
   PGresult* r = PQprepare(conn_, name.c_str(), sql.c_str(), n, types);
   const bool ok = PQresultStatus(r) == PGRES_COMMAND_OK;
   const std::string message = r ? PQresultErrorMessage(r) : "";
+  const std::string state = sqlstate(r);
   PQclear(r);
-  if (!ok) fail("prepare \"" + sql + "\"", message.c_str());
+  if (!ok) fail("prepare \"" + sql + "\"", message.c_str(), state);
   prepared_.emplace(key, name);
   return name;
 }
@@ -327,9 +343,10 @@ void PgConnection::exec(const char* sql) {
   PGresult* r = PQexec(conn_, sql);
   const auto status = PQresultStatus(r);
   const std::string message = r ? PQresultErrorMessage(r) : "";
+  const std::string state = sqlstate(r);
   PQclear(r);
   if (status != PGRES_COMMAND_OK && status != PGRES_TUPLES_OK)
-    fail(std::string("SQL failed"), message.c_str());
+    fail(std::string("SQL failed"), message.c_str(), state);
 }
 
 Statement PgConnection::prepare(std::string_view sql) const {
@@ -350,7 +367,7 @@ void PgConnection::commit() {
 
 void PgConnection::rollback() noexcept {
   in_transaction_ = false;
-  if (PQstatus(conn_) == CONNECTION_OK) PQclear(PQexec(conn_, "ROLLBACK"));
+  if (PQstatus(conn_) == CONNECTION_OK && !broken_) PQclear(PQexec(conn_, "ROLLBACK"));
 }
 
 void PgConnection::listen(const std::string& channel) {

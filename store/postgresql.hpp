@@ -63,8 +63,10 @@ class PgConnection final : public Database {
   std::string prepared_name(const std::string& sql, const std::string& type_key,
                             const unsigned* types, int n) const;
   void note_changes(int n) const { changes_ = n; }
-  // Throws StoreUnavailable when the connection is gone, else StoreError with the server's text.
-  [[noreturn]] void fail(std::string_view what, const char* server_message) const;
+  // Throws StoreUnavailable when the connection is gone (the next statement reopens it), else
+  // StoreError with the server's text. state: the error's SQLSTATE, empty for libpq's own.
+  [[noreturn]] void fail(std::string_view what, const char* server_message,
+                         const std::string& state) const;
 
  private:
   std::string target_;  // redacted, for messages
@@ -73,6 +75,7 @@ class PgConnection final : public Database {
   mutable int changes_ = 0;
   mutable bool in_transaction_ = false;
   mutable bool reconnected_ = false;
+  mutable bool broken_ = false;  // a failure said the connection is gone, whatever libpq says
   std::vector<std::string> channels_;
 };
 

@@ -4,18 +4,24 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <filesystem>
 #include <thread>
 
 #include "app/ckt_tables.hpp"
 #include "app/context.hpp"
 #include "app/mission_liveness.hpp"
 #include "app/station_identity.hpp"
+#include "app/store_link.hpp"
+#include "app/store_writer.hpp"
 #include "app/table_cache.hpp"
 #include "store/postgresql.hpp"
+#include "store/spool.hpp"
+#include "store/sqlite.hpp"
 #include "store/store.hpp"
 #include "support/pg_cluster.hpp"
 #include "support/polling.hpp"
 #include "support/synthetic_turns.hpp"
+#include "support/temp_dir.hpp"
 
 namespace {
 
@@ -133,6 +139,64 @@ TEST(SharedStore, AClassTablePoolsTheTurnsOfEveryVehicleOfTheKindOnRequest) {
   EXPECT_EQ(pooled.value().pooled_vehicles, (std::vector<std::string>{"m200-a", "m200-b"}));
   EXPECT_EQ(pooled.value().table->grid().speeds_mps, (std::vector<double>{1.0, 1.5}));
   EXPECT_FALSE(app::class_table(station, "nobody").ok());
+}
+
+}  // namespace
+
+namespace {
+
+// The station dies after storing the spooled writes but before removing them from the spool: the
+// next replay finds every one stored already and stores nothing twice.
+TEST(SharedStore, ASpoolReplayedAgainStoresNothingTwice) {
+  avk::testing::TempDir dir("avk_spool_again");
+  avk::testing::PgCluster pg(dir.path() / "cluster");
+  const std::string db = pg.conninfo(pg.create_database());
+  const std::string spool = (dir.path() / "spool.db").string();
+  app::set_spool_path(spool);
+  store::Store s(db);
+  s.vehicles().upsert({"usim-1", "usim", 2.0, 1.2});
+  const auto m = s.missions().create("usim-1", "collection", "{}");
+  std::vector<store::NavRow> first, second;
+  for (int i = 0; i < 20; ++i)
+    (i < 10 ? first : second).push_back({0.1 * i, 1.0 * i, 0.0, 90.0, 1.0, 90.0, 1.0, "turn"});
+  avk::testing::ArcTurnSpec spec;
+  spec.vehicle_id = "usim-1";
+  const auto turn = avk::testing::make_arc_turn(spec);
+
+  pg.stop();
+  {
+    app::StoreWriter w(s);
+    w.nav(m, first);
+    w.event(m, 1.0, "containment", "left the region");
+    w.condition_set(m, {0.5, 1.5, 1.0, "set"});
+    EXPECT_FALSE(w.turn(m, turn, kinematics::TurnStatus::ok, "", {}).has_value());
+    w.nav(m, second);
+    EXPECT_FALSE(w.replay(true));  // the server is still away
+  }
+  // What the spool held before the replay, as the dying station would leave it.
+  const std::string before = (dir.path() / "before.db").string();
+  store::Connection(spool).exec("VACUUM INTO '" + before + "'");
+  pg.start();
+  const auto counts = [&] {
+    return std::vector<std::int64_t>{
+        s.navigation().count(m), static_cast<std::int64_t>(s.missions().events(m).size()),
+        static_cast<std::int64_t>(s.missions().condition_sets(m).size()),
+        static_cast<std::int64_t>(s.turns().list({}).size())};
+  };
+  {
+    app::StoreWriter w(s);
+    ASSERT_TRUE(w.replay(true));
+  }
+  EXPECT_EQ(counts(), (std::vector<std::int64_t>{20, 1, 1, 1}));
+  for (const char* suffix : {"", "-wal", "-shm"})
+    std::filesystem::remove(spool + suffix);
+  std::filesystem::copy_file(before, spool);
+  {
+    app::StoreWriter w(s);
+    ASSERT_TRUE(w.replay(true));
+  }
+  EXPECT_EQ(counts(), (std::vector<std::int64_t>{20, 1, 1, 1}));
+  EXPECT_EQ(store::Spool(spool).count(), 0);
 }
 
 }  // namespace
