@@ -26,7 +26,7 @@ std::string& identity() {
 
 }  // namespace
 
-const std::string& station_id() {
+std::string station_id() {
   std::lock_guard lock(g_mutex);
   return identity();
 }

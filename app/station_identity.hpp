@@ -9,7 +9,7 @@
 namespace avk::app {
 
 // The host name unless set (avk serve --station-id).
-const std::string& station_id();
+std::string station_id();
 // Before any Context opens the database.
 void set_station_id(std::string id);
 

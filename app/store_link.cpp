@@ -190,18 +190,29 @@ struct StoreWriter::Impl {
     link().spooling = n > 0;
   }
 
+  // The writes waiting in the spool, as the last push or replay of any writer of the process
+  // counted them: a write while connected asks the spool file nothing.
+  static std::int64_t waiting() {
+    std::lock_guard lock(link().mutex);
+    return link().spooled;
+  }
+
   // True when the spool is empty (replayed now or nothing waited).
   bool replay(bool now) {
+    if (waiting() == 0) return true;
     std::lock_guard order(link().replay);
-    if (spool->count() == 0) return true;
+    if (spool->count() == 0) {
+      note_count();
+      return true;
+    }
     const auto t = std::chrono::steady_clock::now();
     if (!now && t - last_try < std::chrono::seconds(1)) return false;
     last_try = t;
     try {
       while (auto w = spool->oldest()) {
         apply(db, *w);
-        // A crash between the write and this removal replays the write again: a turn is then
-        // recognised by its key.
+        // A crash between the write and this removal replays the write again: apply recognises
+        // it as stored.
         spool->remove(w->seq);
       }
     } catch (const store::StoreUnavailable& e) {
@@ -215,8 +226,11 @@ struct StoreWriter::Impl {
 };
 
 StoreWriter::StoreWriter(store::Store& db) : impl_(std::make_unique<Impl>(Impl{db, nullptr, {}})) {
-  if (db.engine() == store::Engine::postgresql)
+  if (db.engine() == store::Engine::postgresql) {
     impl_->spool = std::make_unique<store::Spool>(spool_path());
+    // What an earlier run left in the spool waits before anything this writer writes.
+    impl_->note_count();
+  }
 }
 
 StoreWriter::~StoreWriter() = default;

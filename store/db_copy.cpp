@@ -8,16 +8,17 @@ namespace {
 
 struct CopiedTable {
   const char* name;
-  const char* key;  // the order rows are copied in, which keeps ids and navigation order
+  const char* key;       // the order rows are copied in, which keeps ids and navigation order
+  bool key_is_identity;  // the database numbers the key (a vehicle's id is its name)
 };
 
 // Parents before children, so that every foreign key finds its row.
 constexpr CopiedTable kTables[] = {
-    {"vehicles", "id"},       {"missions", "id"},
-    {"nav_samples", "rowid"}, {"condition_sets", "id"},
-    {"mission_events", "id"}, {"turns", "id"},
-    {"harvests", "id"},       {"mission_currents", "mission_id"},
-    {"yaw_models", "id"},     {"ckt_snapshots", "id"},
+    {"vehicles", "id", false},      {"missions", "id", true},
+    {"nav_samples", "rowid", true}, {"condition_sets", "id", true},
+    {"mission_events", "id", true}, {"turns", "id", true},
+    {"harvests", "id", true},       {"mission_currents", "mission_id", false},
+    {"yaw_models", "id", true},     {"ckt_snapshots", "id", true},
 };
 
 std::int64_t count_rows(Database& db, const CopiedTable& t) {
@@ -75,8 +76,7 @@ std::int64_t copy_table(Database& from, Database& to, const CopiedTable& t) {
   }
   // PostgreSQL's identity columns do not follow explicit ids: the next id must come after the
   // copied ones.
-  if (to.engine() == Engine::postgresql && n > 0 && std::string_view(t.key) != "mission_id" &&
-      std::string_view(t.name) != "vehicles")
+  if (to.engine() == Engine::postgresql && n > 0 && t.key_is_identity)
     to.exec(std::string("SELECT setval(pg_get_serial_sequence('") + t.name + "', '" + t.key +
             "'), (SELECT max(" + t.key + ") FROM " + t.name + "))");
   return n;

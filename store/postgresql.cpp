@@ -388,9 +388,8 @@ std::vector<std::string> PgConnection::wait_notification(int timeout_ms) {
   drain();
   if (!out.empty()) return out;
   pollfd fd{PQsocket(conn_), POLLIN, 0};
+  // A dead socket shows as a failed read in drain (PQstatus turns bad); the next call reconnects.
   if (fd.fd >= 0 && ::poll(&fd, 1, timeout_ms) > 0) drain();
-  // A dead socket shows here as a failed read; the next call reconnects.
-  if (PQstatus(conn_) != CONNECTION_OK && out.empty()) return out;
   return out;
 }
 
