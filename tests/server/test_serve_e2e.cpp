@@ -24,6 +24,7 @@
 #include "support/http_client.hpp"
 #include "support/sim_station.hpp"
 #include "support/spawn_avk.hpp"
+#include "support/station_requests.hpp"
 #include "support/temp_db.hpp"
 #include "support/ws_client.hpp"
 
@@ -36,21 +37,6 @@ using Clock = std::chrono::steady_clock;
 
 // Random-looking: `avk serve --token` refuses runs such as 0123456789 (server/token_strength.hpp).
 constexpr const char* kToken = "e2e-token-Kq7vX2mPz9LwT4bN8cRj5YhD3sFg";
-
-std::string small_mission(int repeats = 1) {
-  return json{{"name", "e2e"},
-              {"turn_array",
-               {{"speeds_mps", {0.5, 1.0}}, {"dheadings_deg", {40, 100}}, {"repeats", repeats}}},
-              {"operating_region",
-               {{"polygon_m", {{-100, -100}, {100, -100}, {100, 100}, {-100, 100}}},
-                {"buffer_m", 25},
-                {"return_point_m", {0, -70}}}}}
-      .dump();
-}
-
-std::map<std::string, std::string> control_headers() {
-  return {{"Authorization", std::string("Bearer ") + kToken}, {"Content-Type", "application/json"}};
-}
 
 TEST(ServeE2E, MissionOverRestFollowedOverTheStreamAndEveryTurnIsServed) {
   avk::testing::TempDb db("avk_e2e");
@@ -67,8 +53,9 @@ TEST(ServeE2E, MissionOverRestFollowedOverTheStreamAndEveryTurnIsServed) {
   EXPECT_EQ(hello["session_id"], hub.session_id());
   ws.send(R"({"subscribe":["turn","mission","nav"]})");
 
-  const auto created = http_call(port, "POST", "/api/v1/vehicles/sim-usim/missions",
-                                 small_mission(), control_headers());
+  const auto created =
+      http_call(port, "POST", "/api/v1/vehicles/sim-usim/missions",
+                avk::testing::small_mission("e2e"), avk::testing::control_headers(kToken));
   ASSERT_EQ(created.status, 201) << created.body;
   EXPECT_EQ(created.headers.at("Location"), "/api/v1/missions/1");
 
@@ -146,9 +133,10 @@ json get_json(unsigned short port, const std::string& target) {
 // `avk serve --sim` on db running mission 1 (`repeats` x 4 turns); port 0 when either failed.
 ServeProcess serve_with_mission(const std::string& db, const std::string& log, int repeats) {
   ServeProcess p = spawn_serve(db, log);
-  if (p.port && http_call(p.port, "POST", "/api/v1/vehicles/sim-usim/missions",
-                          small_mission(repeats), control_headers())
-                        .status == 201)
+  if (p.port &&
+      http_call(p.port, "POST", "/api/v1/vehicles/sim-usim/missions",
+                avk::testing::small_mission("e2e", repeats), avk::testing::control_headers(kToken))
+              .status == 201)
     return p;
   if (p.pid > 0) {
     kill(p.pid, SIGKILL);
@@ -222,9 +210,10 @@ TEST(ServeE2E, KillNineDuringAMissionLosesNoFinishedTurnAndTheMissionResumes) {
     const json again = get_json(second.port, "/api/v1/turns/" + t["id"].dump());
     EXPECT_EQ(again["advance_m"], t["advance_m"]);
   }
-  ASSERT_EQ(
-      http_call(second.port, "POST", "/api/v1/missions/1/resume", "", control_headers()).status,
-      200);
+  ASSERT_EQ(http_call(second.port, "POST", "/api/v1/missions/1/resume", "",
+                      avk::testing::control_headers(kToken))
+                .status,
+            200);
   json m;
   const auto done_by = Clock::now() + std::chrono::seconds(60);
   while (Clock::now() < done_by) {
@@ -304,11 +293,12 @@ TEST(ServeE2E, FirstStartWritesAPrivateTokenAndPrintsTheDashboardUrl) {
   printed << std::ifstream(log).rdbuf();
   EXPECT_NE(printed.str().find("?token=" + token), std::string::npos) << printed.str();
   // Control needs it; reads on loopback do not.
-  EXPECT_EQ(http_call(p.port, "POST", "/api/v1/vehicles/sim-usim/missions", small_mission(),
-                      {{"Content-Type", "application/json"}})
+  EXPECT_EQ(http_call(p.port, "POST", "/api/v1/vehicles/sim-usim/missions",
+                      avk::testing::small_mission("e2e"), {{"Content-Type", "application/json"}})
                 .status,
             401);
-  EXPECT_EQ(http_call(p.port, "POST", "/api/v1/vehicles/sim-usim/missions", small_mission(),
+  EXPECT_EQ(http_call(p.port, "POST", "/api/v1/vehicles/sim-usim/missions",
+                      avk::testing::small_mission("e2e"),
                       {{"Content-Type", "application/json"}, {"Authorization", "Bearer " + token}})
                 .status,
             201);

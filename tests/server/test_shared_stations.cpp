@@ -20,6 +20,7 @@
 #include "support/pg_cluster.hpp"
 #include "support/polling.hpp"
 #include "support/spawn_avk.hpp"
+#include "support/station_requests.hpp"
 #include "support/temp_dir.hpp"
 
 namespace {
@@ -28,20 +29,6 @@ using avk::testing::http_call;
 using nlohmann::json;
 
 constexpr const char* kToken = "shared-token-Rz8qW3nLx5VtK9mPc2Jd7HbF4sGy";
-
-std::string small_mission() {
-  return json{{"name", "shared"},
-              {"turn_array", {{"speeds_mps", {0.5, 1.0}}, {"dheadings_deg", {40, 100}}}},
-              {"operating_region",
-               {{"polygon_m", {{-100, -100}, {100, -100}, {100, 100}, {-100, 100}}},
-                {"buffer_m", 25},
-                {"return_point_m", {0, -70}}}}}
-      .dump();
-}
-
-std::map<std::string, std::string> control_headers() {
-  return {{"Authorization", std::string("Bearer ") + kToken}, {"Content-Type", "application/json"}};
-}
 
 json get_json(unsigned short port, const std::string& target) {
   return json::parse(http_call(port, "GET", target).body);
@@ -88,7 +75,7 @@ TEST(SharedStations, TwoServersOnOneDatabaseEachFlyAMissionAndSeeTheOthersTable)
   for (const Station* s : {&a, &b}) {
     const auto created =
         http_call(s->process.port, "POST", "/api/v1/vehicles/" + s->vehicle + "/missions",
-                  small_mission(), control_headers());
+                  avk::testing::small_mission("shared"), avk::testing::control_headers(kToken));
     ASSERT_EQ(created.status, 201) << created.body;
     missions.insert(created.headers.at("Location"));
   }
