@@ -209,10 +209,18 @@ class PgStatement final : public StatementImpl {
   void execute() {
     db_->ensure_open();
     const int n = static_cast<int>(values_.size());
-    std::string type_key;
-    for (const Oid t : types_)
-      type_key += std::to_string(t) + ",";
-    const std::string name = db_->prepared_name(sql_, type_key, types_.data(), n);
+    // A statement run again with the same types on the same session reuses its server-side name
+    // without looking it up (the text of a batch insert is long).
+    if (prepared_name_.empty() || prepared_types_ != types_ ||
+        prepared_session_ != db_->session()) {
+      std::string type_key;
+      for (const Oid t : types_)
+        type_key += std::to_string(t) + ",";
+      prepared_name_ = db_->prepared_name(sql_, type_key, types_.data(), n);
+      prepared_types_ = types_;
+      prepared_session_ = db_->session();
+    }
+    const std::string& name = prepared_name_;
     std::vector<const char*> values(values_.size());
     std::vector<int> lengths(values_.size());
     for (std::size_t i = 0; i < values_.size(); ++i) {
@@ -243,6 +251,9 @@ class PgStatement final : public StatementImpl {
   PGresult* res_ = nullptr;
   int row_ = -1;
   mutable std::vector<unsigned char> blob_;
+  std::string prepared_name_;
+  std::vector<Oid> prepared_types_;
+  std::uint64_t prepared_session_ = 0;
 };
 
 // Settings every session of the station uses: doubles printed in their shortest exact form (the
@@ -314,6 +325,7 @@ void PgConnection::ensure_open() const {
   }
   // A new session: statements prepared on the old one are gone, and so are its LISTENs.
   broken_ = false;
+  ++session_;
   set_up_session(conn_);
   prepared_.clear();
   reconnected_ = true;

@@ -63,6 +63,8 @@ class PgConnection final : public Database {
   std::string prepared_name(const std::string& sql, const std::string& type_key,
                             const unsigned* types, int n) const;
   void note_changes(int n) const { changes_ = n; }
+  // Counts the sessions this connection has had: statements prepared in an earlier one are gone.
+  std::uint64_t session() const { return session_; }
   // Throws StoreUnavailable when the connection is gone (the next statement reopens it), else
   // StoreError with the server's text. state: the error's SQLSTATE, empty for libpq's own.
   [[noreturn]] void fail(std::string_view what, const char* server_message,
@@ -75,7 +77,8 @@ class PgConnection final : public Database {
   mutable int changes_ = 0;
   mutable bool in_transaction_ = false;
   mutable bool reconnected_ = false;
-  mutable bool broken_ = false;  // a failure said the connection is gone, whatever libpq says
+  mutable bool broken_ = false;
+  mutable std::uint64_t session_ = 1;  // a failure said the connection is gone, whatever libpq says
   std::vector<std::string> channels_;
 };
 
